@@ -1,0 +1,376 @@
+#include "core/frame_builder.hpp"
+
+namespace lr {
+namespace {
+
+// Model-space vector times a normal matrix (Q16.16 entries) as int64, then normalised.
+Unit30 transform_normal(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
+  int64_t r[3];
+  for (int i = 0; i < 3; ++i)
+    r[i] = int64_t{nm.m[i][0].raw} * x + int64_t{nm.m[i][1].raw} * y + int64_t{nm.m[i][2].raw} * z;
+  Unit30 u{0, 0, 1 << 30};
+  normalize_unit30(r[0], r[1], r[2], u);
+  return u;
+}
+
+// Face normal of a model-space triangle as a Q1.30 unit vector (counter-clockwise winding).
+Unit30 face_normal_model(Vec3 p0, Vec3 p1, Vec3 p2) {
+  int64_t e1[3] = {int64_t{p1.x.raw} - p0.x.raw, int64_t{p1.y.raw} - p0.y.raw,
+                   int64_t{p1.z.raw} - p0.z.raw};
+  int64_t e2[3] = {int64_t{p2.x.raw} - p0.x.raw, int64_t{p2.y.raw} - p0.y.raw,
+                   int64_t{p2.z.raw} - p0.z.raw};
+  // Edges are < 2^32; bring them below 2^30 so the cross products stay below 2^61.
+  uint64_t m = 0;
+  for (int i = 0; i < 3; ++i) m |= abs64(e1[i]) | abs64(e2[i]);
+  if (m >= (uint64_t{1} << 30)) {
+    int s = (63 - clz64(m)) - 29;
+    for (int i = 0; i < 3; ++i) {
+      e1[i] >>= s;
+      e2[i] >>= s;
+    }
+  }
+  Unit30 u{0, 0, 1 << 30};
+  normalize_unit30(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                   e1[0] * e2[1] - e1[1] * e2[0], u);
+  return u;
+}
+
+Rgb8 to_rgb8_sat(Color15 c) {
+  auto b = [](uint16_t v) { return to_byte(v > Color15::kOne ? Color15::kOne : v); };
+  return {b(c.r), b(c.g), b(c.b)};
+}
+
+}  // namespace
+
+Status FrameBuilder::configure(const FrameStorage& s, int width, int height, int strip_height) {
+  configured_ = false;
+  if (width < 1 || height < 1 || width > kMaxViewport || height > kMaxViewport) return Status::kInvalidArgument;
+  if (strip_height < 1 || strip_height > 32) return Status::kInvalidArgument;
+  int strips = (height + strip_height - 1) / strip_height;
+  if (s.buckets.size() < static_cast<size_t>(strips)) return Status::kInvalidArgument;
+  if (s.depth.size() < static_cast<size_t>(width) * static_cast<size_t>(strip_height))
+    return Status::kInvalidArgument;
+  if (s.active_index.size() < 2 * s.active.size() || s.active.size() > kMaxStoreEntries)
+    return Status::kInvalidArgument;
+  if (s.draws.empty() || s.draws.size() > 256) return Status::kInvalidArgument;
+  storage_ = s;
+  if (storage_.vertices.size() > kMaxStoreEntries) storage_.vertices = storage_.vertices.first(kMaxStoreEntries);
+  if (storage_.triangles.size() > kMaxStoreEntries - 1)
+    storage_.triangles = storage_.triangles.first(kMaxStoreEntries - 1);
+  width_ = width;
+  height_ = height;
+  strip_height_ = strip_height;
+  strips_ = strips;
+  guard_.gx = 8192 / width > 1 ? 8192 / width : 1;
+  guard_.gy = 8192 / height > 1 ? 8192 / height : 1;
+  configured_ = true;
+  return Status::kOk;
+}
+
+Status FrameBuilder::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 background) {
+  if (!configured_) return Status::kInvalidArgument;
+  if (lights.count > kMaxLights) return Status::kInvalidArgument;
+  camera_ = camera;
+  lights_ = lights;
+  background_ = background;
+  vertex_count_ = triangle_count_ = draw_count_ = 0;
+  for (int i = 0; i < strips_; ++i) storage_.buckets[static_cast<size_t>(i)] = kNoTriangle;
+  stats_ = FrameStats{};
+  stats_.bytes_per_vertex = sizeof(ScreenVertex);
+  stats_.bytes_per_binned_triangle = sizeof(BinnedTriangle);
+  stats_.bytes_per_active_triangle = sizeof(ActiveTriangle) + 2 * sizeof(uint16_t);
+  return Status::kOk;
+}
+
+bool FrameBuilder::project(const ClipCoord& c, ScreenVertex& v) const {
+  // Inside every plane: w >= 2^-16, |x| <= gx w, |y| <= gy w, |z| <= w. Normalise so w < 2^31.
+  int64_t x = c.x, y = c.y, z = c.z, w = c.w;
+  if (w <= 0) return false;
+  while (w >= (int64_t{1} << 31)) {
+    x >>= 1;
+    y >>= 1;
+    z >>= 1;
+    w >>= 1;
+  }
+  // (x + w) <= (gx + 1) w and (gx + 1) * width <= 8192 + width: product < 1.5 * 2^51.
+  v.x = static_cast<int32_t>(round_div((x + w) * (int64_t{width_} * kHalfPixel), w));
+  v.y = static_cast<int32_t>(round_div((w - y) * (int64_t{height_} * kHalfPixel), w));
+  // (z + w) <= 2w < 2^32 and 65535 * 2^15 < 2^31: product < 2^63.
+  int64_t zz = round_div((z + w) * (int64_t{65535} << 15), w);
+  v.z = static_cast<uint32_t>(zz < 0 ? 0 : zz > kDepthMax ? kDepthMax : zz);
+  int64_t wq = c.w >> (ClipCoord::kFracBits - 16);
+  v.w = static_cast<uint32_t>(wq < 1 ? 1 : wq > 0xFFFFFFFF ? 0xFFFFFFFF : wq);
+  v.outcode = 0;
+  return true;
+}
+
+Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_planes, uint8_t& index) {
+  if (draw_count_ >= storage_.draws.size()) return Status::kCapacity;
+  DrawRecord r;
+  r.depth = state.depth_test;
+  if (state.shading == Shading::kFlat || !has_color_planes) {
+    r.colors = ColorPlanes::kNone;
+  } else {
+    r.colors = state.perspective == Perspective::kExact ? ColorPlanes::kPerspective : ColorPlanes::kAffine;
+  }
+  index = static_cast<uint8_t>(draw_count_);
+  storage_.draws[draw_count_++] = r;
+  return Status::kOk;
+}
+
+FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat,
+                                          Cull cull) {
+  const ScreenVertex& v0 = storage_.vertices[a];
+  const ScreenVertex& v1 = storage_.vertices[b];
+  const ScreenVertex& v2 = storage_.vertices[c];
+  int64_t area = (int64_t{v1.x} - v0.x) * (int64_t{v2.y} - v0.y) -
+                 (int64_t{v2.x} - v0.x) * (int64_t{v1.y} - v0.y);
+  if (area == 0) return BinResult::kZeroArea;
+  // Counter-clockwise in NDC (y up) is clockwise on the display (y down): negative area.
+  bool front = area < 0;
+  if ((cull == Cull::kBack && !front) || (cull == Cull::kFront && front)) return BinResult::kBackface;
+  int32_t ymin = v0.y < v1.y ? v0.y : v1.y, ymax = v0.y > v1.y ? v0.y : v1.y;
+  ymin = v2.y < ymin ? v2.y : ymin;
+  ymax = v2.y > ymax ? v2.y : ymax;
+  int32_t xmin = v0.x < v1.x ? v0.x : v1.x, xmax = v0.x > v1.x ? v0.x : v1.x;
+  xmin = v2.x < xmin ? v2.x : xmin;
+  xmax = v2.x > xmax ? v2.x : xmax;
+  int32_t r0 = first_row_below(ymin), r1 = last_row_at_or_above(ymax);
+  if (r0 < 0) r0 = 0;
+  if (r1 > height_ - 1) r1 = height_ - 1;
+  // Columns whose centres can pass both edge tests: [ceil((xmin-128)/256), ceil((xmax-128)/256)).
+  int32_t c0 = (xmin - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
+  int32_t c1 = (xmax - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
+  if (c0 < 0) c0 = 0;
+  if (c1 > width_) c1 = width_;
+  if (r0 > r1 || c0 >= c1) return BinResult::kOffscreen;
+  if (triangle_count_ >= storage_.triangles.size()) return BinResult::kCapacity;
+  auto index = static_cast<uint16_t>(triangle_count_++);
+  BinnedTriangle& t = storage_.triangles[index];
+  t.v[0] = a;
+  t.v[1] = b;
+  t.v[2] = c;
+  t.draw = draw;
+  t.flat = flat;
+  uint16_t& head = storage_.buckets[static_cast<size_t>(r0 / strip_height_)];
+  t.next = head;
+  head = index;
+  ++stats_.triangles_binned;
+  return BinResult::kBinned;
+}
+
+namespace {
+void count_outcome(FrameStats& s, int binned, int last_reason) {
+  // last_reason: 1 backface, 2 zero area, 3 offscreen, 4 capacity, 5 clipped away, 6 vertex capacity
+  if (binned > 0) {
+    ++s.binned_inputs;
+    return;
+  }
+  switch (last_reason) {
+    case 1: ++s.culled_backface; break;
+    case 2: ++s.culled_zero_area; break;
+    case 3: ++s.culled_offscreen; break;
+    case 4: ++s.dropped_triangle_capacity; break;
+    case 6: ++s.dropped_vertex_capacity; break;
+    default: ++s.clipped_away; break;
+  }
+}
+}  // namespace
+
+Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& material,
+                          const DrawState& state) {
+  if (!configured_) return Status::kInvalidArgument;
+  const size_t n = mesh.positions.size();
+  if ((!mesh.normals.empty() && mesh.normals.size() != n) || (!mesh.colors.empty() && mesh.colors.size() != n))
+    return Status::kInvalidArgument;
+  const bool lit = state.lighting;
+  const bool gouraud = state.shading == Shading::kGouraud;
+  if (lit && gouraud && mesh.normals.empty()) return Status::kInvalidArgument;
+  const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
+  stats_.triangles_in += tri_count;
+
+  // Unlit meshes without vertex colours have one colour: no colour planes needed.
+  bool color_planes = gouraud && (lit || !mesh.colors.empty());
+  if (draw_count_ >= storage_.draws.size()) {
+    stats_.dropped_triangle_capacity += tri_count;
+    return Status::kCapacity;
+  }
+  if (n > storage_.vertices.size() - vertex_count_) {
+    stats_.dropped_vertex_capacity += tri_count;
+    return Status::kCapacity;
+  }
+  uint8_t draw_index = 0;
+  add_draw_record(state, color_planes, draw_index);
+  const uint32_t dropped_before = stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity;
+
+  const Mat4 mvp = camera_.projection * camera_.view * model;
+  const Mat4 nm = normal_matrix(model);
+  const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
+  PreparedLighting pl;
+  if (lit) pl = prepare_lighting(lights_, material, view_dir, camera_.eye);
+  const Color15 material_color = material.diffuse;
+
+  const size_t base = vertex_count_;
+  vertex_count_ += n;
+  stats_.vertices_transformed += static_cast<uint32_t>(n);
+  for (size_t i = 0; i < n; ++i) {
+    ScreenVertex& sv = storage_.vertices[base + i];
+    ClipCoord c = transform_point(mvp, mesh.positions[i]);
+    sv.outcode = outcode(c, guard_);
+    if (sv.outcode == 0) project(c, sv);
+    if (lit && gouraud) {
+      const Normal16& nn = mesh.normals[i];
+      Unit30 nw = transform_normal(nm, nn.x, nn.y, nn.z);
+      Vec3 pw = pl.local_viewer ? transform_affine(model, mesh.positions[i]) : Vec3{};
+      sv.color = light_point(pl, nw, pw);
+    } else if (!lit) {
+      sv.color = mesh.colors.empty() ? material_color : from_rgb8(mesh.colors[i]);
+    } else {
+      sv.color = Color15{};
+    }
+  }
+
+  for (uint32_t t = 0; t < tri_count; ++t) {
+    const auto& tri = mesh.triangles[t];
+    if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
+      ++stats_.rejected_invalid;
+      continue;
+    }
+    uint16_t vi[3] = {static_cast<uint16_t>(base + tri[0]), static_cast<uint16_t>(base + tri[1]),
+                      static_cast<uint16_t>(base + tri[2])};
+    const ScreenVertex* sv[3] = {&storage_.vertices[vi[0]], &storage_.vertices[vi[1]],
+                                 &storage_.vertices[vi[2]]};
+    uint8_t oc_or = sv[0]->outcode | sv[1]->outcode | sv[2]->outcode;
+    uint8_t oc_and = sv[0]->outcode & sv[1]->outcode & sv[2]->outcode;
+    if (oc_or & kClipOutOfRange) {
+      ++stats_.rejected_invalid;
+      continue;
+    }
+    if (oc_and != 0) {
+      ++stats_.clipped_away;
+      continue;
+    }
+    Rgb8 flat{};
+    if (!gouraud) {
+      if (lit) {
+        const Vec3& p0 = mesh.positions[tri[0]];
+        const Vec3& p1 = mesh.positions[tri[1]];
+        const Vec3& p2 = mesh.positions[tri[2]];
+        Unit30 fm = face_normal_model(p0, p1, p2);
+        Unit30 fw = transform_normal(nm, fm.x, fm.y, fm.z);
+        Vec3 centroid{};
+        if (pl.local_viewer) {
+          Vec3 w0 = transform_affine(model, p0), w1 = transform_affine(model, p1),
+               w2 = transform_affine(model, p2);
+          centroid = {Fixed::from_raw(static_cast<int32_t>((int64_t{w0.x.raw} + w1.x.raw + w2.x.raw) / 3)),
+                      Fixed::from_raw(static_cast<int32_t>((int64_t{w0.y.raw} + w1.y.raw + w2.y.raw) / 3)),
+                      Fixed::from_raw(static_cast<int32_t>((int64_t{w0.z.raw} + w1.z.raw + w2.z.raw) / 3))};
+        }
+        flat = to_rgb8_sat(light_point(pl, fw, centroid));
+      } else {
+        flat = to_rgb8_sat(sv[2]->color);  // GL's provoking vertex: the last one
+      }
+    } else if (!color_planes) {
+      flat = to_rgb8_sat(material_color);
+    }
+
+    if (oc_or == 0) {
+      BinResult r = bin(vi[0], vi[1], vi[2], draw_index, flat, state.cull);
+      count_outcome(stats_, r == BinResult::kBinned ? 1 : 0, static_cast<int>(r));
+      continue;
+    }
+
+    // Clip in homogeneous space. Clip coordinates are recomputed from the mesh rather than
+    // stored per vertex: only triangles that cross a plane pay for it.
+    ++stats_.clipped;
+    ClipVertex poly[kMaxClipVertices];
+    for (int k = 0; k < 3; ++k) {
+      poly[k].p = transform_point(mvp, mesh.positions[tri[static_cast<size_t>(k)]]);
+      poly[k].color = sv[k]->color;
+    }
+    int m = clip_polygon(poly, 3, oc_or, guard_);
+    if (m < 3) {
+      ++stats_.clipped_away;
+      continue;
+    }
+    if (static_cast<size_t>(m) > storage_.vertices.size() - vertex_count_) {
+      ++stats_.dropped_vertex_capacity;
+      continue;
+    }
+    uint16_t first = static_cast<uint16_t>(vertex_count_);
+    int projected = 0;
+    for (int k = 0; k < m; ++k) {
+      ScreenVertex& nv = storage_.vertices[vertex_count_ + static_cast<size_t>(k)];
+      nv.color = poly[k].color;
+      nv.outcode = 0;
+      if (project(poly[k].p, nv)) ++projected;
+    }
+    if (projected != m) {
+      ++stats_.clipped_away;
+      continue;
+    }
+    vertex_count_ += static_cast<size_t>(m);
+    int binned = 0, last = 5;
+    for (int k = 1; k + 1 < m; ++k) {
+      BinResult r = bin(first, static_cast<uint16_t>(first + k), static_cast<uint16_t>(first + k + 1),
+                        draw_index, flat, state.cull);
+      if (r == BinResult::kBinned) ++binned;
+      else last = static_cast<int>(r);
+    }
+    count_outcome(stats_, binned, last);
+  }
+  bool dropped = stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity > dropped_before;
+  return dropped ? Status::kCapacity : Status::kOk;
+}
+
+Status FrameBuilder::draw_screen(std::span<const ScreenVertex> vertices,
+                                 std::span<const std::array<uint16_t, 3>> triangles,
+                                 const DrawState& state) {
+  if (!configured_) return Status::kInvalidArgument;
+  const size_t n = vertices.size();
+  const auto tri_count = static_cast<uint32_t>(triangles.size());
+  stats_.triangles_in += tri_count;
+  bool gouraud = state.shading == Shading::kGouraud;
+  if (draw_count_ >= storage_.draws.size()) {
+    stats_.dropped_triangle_capacity += tri_count;
+    return Status::kCapacity;
+  }
+  if (n > storage_.vertices.size() - vertex_count_) {
+    stats_.dropped_vertex_capacity += tri_count;
+    return Status::kCapacity;
+  }
+  uint8_t draw_index = 0;
+  add_draw_record(state, gouraud, draw_index);
+  const uint32_t dropped_before = stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity;
+  const size_t base = vertex_count_;
+  const int32_t limit = (kMaxViewport * 3) << kSubpixelBits;  // inside the coordinate budget
+  for (size_t i = 0; i < n; ++i) {
+    ScreenVertex v = vertices[i];
+    bool ok = v.x > -limit && v.x < limit && v.y > -limit && v.y < limit && v.z <= kDepthMax && v.w >= 1;
+    v.outcode = ok ? 0 : kClipOutOfRange;
+    storage_.vertices[base + i] = v;
+  }
+  vertex_count_ += n;
+  for (uint32_t t = 0; t < tri_count; ++t) {
+    const auto& tri = triangles[t];
+    if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
+      ++stats_.rejected_invalid;
+      continue;
+    }
+    uint16_t vi[3] = {static_cast<uint16_t>(base + tri[0]), static_cast<uint16_t>(base + tri[1]),
+                      static_cast<uint16_t>(base + tri[2])};
+    uint8_t oc = storage_.vertices[vi[0]].outcode | storage_.vertices[vi[1]].outcode |
+                 storage_.vertices[vi[2]].outcode;
+    if (oc != 0) {
+      ++stats_.rejected_invalid;
+      continue;
+    }
+    Rgb8 flat = to_rgb8_sat(storage_.vertices[vi[2]].color);
+    BinResult r = bin(vi[0], vi[1], vi[2], draw_index, flat, state.cull);
+    count_outcome(stats_, r == BinResult::kBinned ? 1 : 0, static_cast<int>(r));
+  }
+  bool dropped = stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity > dropped_before;
+  return dropped ? Status::kCapacity : Status::kOk;
+}
+
+}  // namespace lr

@@ -1,0 +1,102 @@
+// The front half of a frame: the vertex stage and triangle setup up to the edge table.
+//
+// draw() transforms, lights, clips, projects and snaps a mesh's vertices into the vertex store,
+// culls its triangles and bins the survivors by their first strip (the edge table: one list head
+// per strip, linked through the triangle records in submission order). Nothing here depends on
+// the pixel format or the strip height; Renderer<PF, K> adds the strip loop.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "core/clip.hpp"
+#include "core/frame_stats.hpp"
+#include "core/lighting.hpp"
+#include "core/material.hpp"
+#include "core/mesh.hpp"
+#include "core/screen_vertex.hpp"
+#include "core/status.hpp"
+#include "core/triangle_setup.hpp"
+
+namespace lr {
+
+inline constexpr uint16_t kNoTriangle = 0xFFFF;
+inline constexpr size_t kMaxStoreEntries = 0xFFFF;  // indices are uint16; 0xFFFF = none
+
+// A triangle in the edge table: 12 bytes.
+struct BinnedTriangle {
+  uint16_t v[3];   // vertex store indices
+  uint16_t next;   // next triangle of the same bucket (lists are built by prepending, so
+                   // they run from the latest submission to the earliest)
+  uint8_t draw;    // draw record
+  Rgb8 flat;       // flat-shaded colour
+};
+static_assert(sizeof(BinnedTriangle) == 12);
+
+// The per-draw state the strip loop needs: which span routine.
+struct DrawRecord {
+  ColorPlanes colors = ColorPlanes::kNone;
+  bool depth = true;
+};
+
+// Storage for one frame, owned by the caller. Capacities are the spans' sizes (at most 65535
+// vertices and triangles); running out drops work and counts it in FrameStats.
+struct FrameStorage {
+  std::span<ScreenVertex> vertices;
+  std::span<BinnedTriangle> triangles;
+  std::span<DrawRecord> draws;
+  std::span<uint16_t> buckets;        // one per strip: ceil(height / K)
+  std::span<ActiveTriangle> active;   // triangles being rasterized at once
+  std::span<uint16_t> active_index;   // 2 x active.size(): draw order and free slots
+  std::span<uint16_t> depth;          // width x K (16-bit depth of one strip)
+};
+
+class FrameBuilder {
+ public:
+  // Checks the storage against the viewport (width, height in [1, kMaxViewport]) and strip
+  // height. Must succeed before begin_frame.
+  Status configure(const FrameStorage& storage, int width, int height, int strip_height);
+
+  // Starts a frame: clears the stores and the statistics.
+  Status begin_frame(const Camera& camera, const LightSet& lights, Rgb8 background);
+
+  // Adds a mesh. On a full store the triangles that do not fit are dropped and counted, and
+  // kCapacity is returned; what fit is kept. kInvalidArgument (nothing added) when the mesh's
+  // arrays disagree in size or Gouraud lighting is asked of a mesh without normals.
+  Status draw(const Mesh& mesh, const Mat4& model, const Material& material, const DrawState& state);
+
+  // Adds triangles already in screen space (snapped subpixel positions, depth, colour):
+  // for 2D overlays and for tests of the raster rules. Lighting does not apply.
+  Status draw_screen(std::span<const ScreenVertex> vertices,
+                     std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
+
+  const FrameStats& stats() const { return stats_; }
+  std::span<const ScreenVertex> screen_vertices() const { return storage_.vertices.first(vertex_count_); }
+  std::span<const BinnedTriangle> binned_triangles() const {
+    return storage_.triangles.first(triangle_count_);
+  }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int strip_height() const { return strip_height_; }
+  GuardBand guard_band() const { return guard_; }
+
+ protected:
+  enum class BinResult : uint8_t { kBinned, kBackface, kZeroArea, kOffscreen, kCapacity };
+  BinResult bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Cull cull);
+  bool project(const ClipCoord& c, ScreenVertex& out) const;
+  Status add_draw_record(const DrawState& state, bool has_color_planes, uint8_t& index);
+
+  FrameStorage storage_{};
+  FrameStats stats_{};
+  int width_ = 0, height_ = 0, strip_height_ = 1, strips_ = 0;
+  GuardBand guard_{};
+  Camera camera_{};
+  LightSet lights_{};
+  Rgb8 background_{};
+  size_t vertex_count_ = 0, triangle_count_ = 0, draw_count_ = 0;
+  bool configured_ = false;
+};
+
+}  // namespace lr

@@ -1,0 +1,75 @@
+#include "core/lighting.hpp"
+
+namespace lr {
+namespace {
+
+constexpr uint16_t mul15(uint16_t a, uint16_t b) {
+  return static_cast<uint16_t>((uint32_t{a} * b + (1u << 14)) >> 15);
+}
+
+constexpr int64_t dot30(const Unit30& a, const Unit30& b) {
+  return (int64_t{a.x} * b.x + int64_t{a.y} * b.y + int64_t{a.z} * b.z) >> 30;
+}
+
+Unit30 unit_of(Vec3 v) {
+  Unit30 u{0, 0, 1 << 30};
+  normalize_unit30(v.x.raw, v.y.raw, v.z.raw, u);
+  return u;
+}
+
+Unit30 half_vector(const Unit30& l, const Unit30& v) {
+  Unit30 h = v;
+  normalize_unit30(int64_t{l.x} + v.x, int64_t{l.y} + v.y, int64_t{l.z} + v.z, h);
+  return h;
+}
+
+}  // namespace
+
+PreparedLighting prepare_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec3 eye) {
+  PreparedLighting pl;
+  pl.count = set.count > kMaxLights ? kMaxLights : set.count;
+  pl.shininess_q8 = m.shininess_q8;
+  pl.local_viewer = set.local_viewer;
+  pl.eye = eye;
+  pl.view = unit_of(view_dir);
+  for (int c = 0; c < 3; ++c)
+    pl.base[c] = channel(m.emission, c) + mul15(channel(set.global_ambient, c), channel(m.ambient, c));
+  for (int i = 0; i < pl.count; ++i) {
+    const DirectionalLight& src = set.lights[static_cast<size_t>(i)];
+    PreparedLighting::Light& d = pl.lights[static_cast<size_t>(i)];
+    d.l = unit_of(src.direction);
+    d.h = half_vector(d.l, pl.view);
+    for (int c = 0; c < 3; ++c) {
+      pl.base[c] += mul15(channel(src.ambient, c), channel(m.ambient, c));
+      d.kd[c] = mul15(channel(src.diffuse, c), channel(m.diffuse, c));
+      d.ks[c] = mul15(channel(src.specular, c), channel(m.specular, c));
+    }
+  }
+  return pl;
+}
+
+Color15 light_point(const PreparedLighting& pl, const Unit30& n, Vec3 p) {
+  int32_t acc[3] = {pl.base[0], pl.base[1], pl.base[2]};
+  Unit30 v = pl.view;
+  if (pl.local_viewer) v = unit_of(pl.eye - p);
+  for (int i = 0; i < pl.count; ++i) {
+    const PreparedLighting::Light& li = pl.lights[static_cast<size_t>(i)];
+    int64_t ndl = dot30(n, li.l);
+    if (ndl <= 0) continue;  // no diffuse, and GL gives no specular where N.L <= 0
+    // ndl <= 2^30: Q1.30 times Q1.15 is < 2^46 before the shift.
+    for (int c = 0; c < 3; ++c) acc[c] += static_cast<int32_t>((ndl * li.kd[c] + (1 << 29)) >> 30);
+    Unit30 h = pl.local_viewer ? half_vector(li.l, v) : li.h;
+    int64_t ndh = dot30(n, h);
+    if (ndh <= 0) continue;
+    if (ndh > (int64_t{1} << 30)) ndh = int64_t{1} << 30;
+    uint32_t sp = DefaultPowTable::pow_q15(static_cast<uint32_t>(ndh), pl.shininess_q8);
+    for (int c = 0; c < 3; ++c)
+      acc[c] += static_cast<int32_t>((sp * uint32_t{li.ks[c]} + (1u << 14)) >> 15);
+  }
+  uint16_t o[3];
+  for (int c = 0; c < 3; ++c)
+    o[c] = static_cast<uint16_t>(acc[c] < 0 ? 0 : acc[c] > Color15::kOne ? Color15::kOne : acc[c]);
+  return make_color15(o);
+}
+
+}  // namespace lr

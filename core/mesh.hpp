@@ -1,0 +1,53 @@
+// What the caller hands to the renderer: meshes (in flash or RAM), the camera and the draw state.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "core/color.hpp"
+#include "core/mat4.hpp"
+#include "core/vec.hpp"
+
+namespace lr {
+
+// An indexed triangle mesh. Positions in model units (Q16.16); normals unit Q1.14 (needed for
+// Gouraud lighting; flat lighting uses face normals); colours optional (unlit shading).
+// Triangles are counter-clockwise when front-facing; indices < positions.size().
+struct Mesh {
+  std::span<const Vec3> positions;
+  std::span<const Normal16> normals;             // empty, or one per position
+  std::span<const Rgb8> colors;                  // empty, or one per position
+  std::span<const std::array<uint16_t, 3>> triangles;
+};
+
+enum class Shading : uint8_t {
+  kFlat,     // one colour per triangle: lit with the face normal, or the last vertex's colour
+  kGouraud,  // lit per vertex, colours interpolated perspective-correctly
+};
+
+enum class Cull : uint8_t { kNone, kBack, kFront };
+
+// How the vertex colours of Gouraud shading are interpolated (a quality setting).
+enum class Perspective : uint8_t {
+  kExact,   // c/w and 1/w linear in screen space, one division per pixel (default)
+  kAffine,  // c linear in screen space
+};
+
+struct DrawState {
+  Shading shading = Shading::kGouraud;
+  bool lighting = true;      // false: unlit (vertex colours if the mesh has them, else Kd)
+  bool depth_test = true;    // LESS against the strip's depth buffer, and write
+  Cull cull = Cull::kNone;
+  Perspective perspective = Perspective::kExact;
+};
+
+// The camera of a frame: view and projection matrices (OpenGL meaning), and the eye position
+// in world space (for the local viewer).
+struct Camera {
+  Mat4 view = Mat4::identity();
+  Mat4 projection = Mat4::identity();
+  Vec3 eye{};
+};
+
+}  // namespace lr

@@ -1,0 +1,181 @@
+// The renderer: FrameBuilder's edge table, rasterized strip by strip into a display sink.
+//
+// Renderer<PF, K>: PF the strip's pixel format (Rgb565Be, Rgb888), K the strip height in rows
+// (1..32, compile time). Per strip: triangles whose first row falls in it join the active list
+// (kept in submission order, so depth ties and no-depth drawing resolve as in GL); each active
+// triangle fills its rows of the strip; finished triangles leave; the strip goes to the sink.
+// RAM: the caller's FrameStorage; nothing is allocated, nothing holds a frame.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+
+#include "core/frame_builder.hpp"
+#include "core/pixel_format.hpp"
+#include "core/span.hpp"
+#include "hal/display.hpp"
+
+namespace lr {
+
+// Optional receiver of each strip's depth buffer (16-bit, 65535 = far/cleared): for tools.
+class DepthSink {
+ public:
+  virtual void on_depth(const StripRect& rect, std::span<const uint16_t> depth) = 0;
+
+ protected:
+  ~DepthSink() = default;
+};
+
+template <class PF, int K>
+class Renderer : public FrameBuilder {
+  static_assert(K >= 1 && K <= 32, "strip height K must be 1..32");
+
+ public:
+  using Pixel = typename PF::Storage;
+  static constexpr int kStripHeight = K;
+
+  Status configure(const FrameStorage& storage, int width, int height) {
+    return FrameBuilder::configure(storage, width, height, K);
+  }
+
+  // Rasterizes the frame built since begin_frame(). On a sink error the frame is abandoned and
+  // the sink's status returned; the renderer is ready for the next frame either way.
+  Status render(StripSink<PF>& sink, DepthSink* depth_sink = nullptr);
+
+ private:
+  void activate(int strip);
+  void raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows);
+  void retire(int next_row);
+
+  size_t active_count_ = 0;
+  size_t free_count_ = 0;
+};
+
+template <class PF, int K>
+Status Renderer<PF, K>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
+  if (!configured_) return Status::kInvalidArgument;
+  const auto w = static_cast<size_t>(width_);
+  stats_.bytes_per_strip = static_cast<uint32_t>(w * K * (sizeof(Pixel) + sizeof(uint16_t)));
+  active_count_ = 0;
+  free_count_ = storage_.active.size();
+  uint16_t* free_slots = storage_.active_index.data() + storage_.active.size();
+  for (size_t i = 0; i < free_count_; ++i) free_slots[i] = static_cast<uint16_t>(free_count_ - 1 - i);
+
+  Status st = sink.begin_frame(static_cast<uint16_t>(width_), static_cast<uint16_t>(height_));
+  if (st != Status::kOk) return st;
+  const Pixel bg = PF::encode(background_);
+  for (int s = 0; s < strips_; ++s) {
+    const int y0 = s * K;
+    const int rows = std::min(K, height_ - y0);
+    const size_t count = w * static_cast<size_t>(rows);
+    StripLease<PF> lease;
+    st = sink.acquire(lease);
+    if (st != Status::kOk) return st;
+    std::span<Pixel> px = lease.pixels();
+    if (px.size() < count) return Status::kInvalidArgument;
+    std::fill_n(px.data(), count, bg);
+    activate(s);
+    std::span<uint16_t> depth = storage_.depth.first(count);
+    if (active_count_ == 0) {
+      ++stats_.empty_strips;
+      if (depth_sink) std::fill(depth.begin(), depth.end(), uint16_t{0xFFFF});
+    } else {
+      std::fill(depth.begin(), depth.end(), uint16_t{0xFFFF});
+      const uint16_t* order = storage_.active_index.data();
+      for (size_t i = 0; i < active_count_; ++i)
+        raster_triangle(storage_.active[order[i]], px.data(), y0, rows);
+      retire(y0 + rows);
+    }
+    StripRect rect{0, static_cast<uint16_t>(y0), static_cast<uint16_t>(width_), static_cast<uint16_t>(rows)};
+    if (depth_sink) depth_sink->on_depth(rect, depth);
+    ++stats_.strips;
+    st = sink.submit(rect, std::move(lease));
+    if (st != Status::kOk) return st;
+  }
+  return sink.end_frame();
+}
+
+template <class PF, int K>
+void Renderer<PF, K>::activate(int strip) {
+  uint16_t& head = storage_.buckets[static_cast<size_t>(strip)];
+  size_t m = 0;
+  for (uint16_t i = head; i != kNoTriangle; i = storage_.triangles[i].next) ++m;
+  if (m == 0) return;
+  // The list runs from the latest submission to the earliest: when the active list cannot take
+  // them all, the latest are the ones dropped.
+  size_t fit = std::min(m, free_count_);
+  stats_.dropped_active_capacity += static_cast<uint32_t>(m - fit);
+  uint16_t node = head;
+  for (size_t skip = m - fit; skip > 0; --skip) node = storage_.triangles[node].next;
+  head = kNoTriangle;
+
+  // Merge from the back: existing entries are in ascending submission order, the bucket gives
+  // descending order.
+  uint16_t* order = storage_.active_index.data();
+  uint16_t* free_slots = order + storage_.active.size();
+  ptrdiff_t i = static_cast<ptrdiff_t>(active_count_) - 1;
+  ptrdiff_t out = static_cast<ptrdiff_t>(active_count_ + fit) - 1;
+  for (; node != kNoTriangle; node = storage_.triangles[node].next) {
+    while (i >= 0 && storage_.active[order[i]].index > node) order[out--] = order[i--];
+    uint16_t slot = free_slots[--free_count_];
+    const BinnedTriangle& bt = storage_.triangles[node];
+    const DrawRecord& dr = storage_.draws[bt.draw];
+    SetupInput in;
+    for (int k = 0; k < 3; ++k) in.v[k] = &storage_.vertices[bt.v[k]];
+    int32_t ymin = std::min({in.v[0]->y, in.v[1]->y, in.v[2]->y});
+    int32_t ymax = std::max({in.v[0]->y, in.v[1]->y, in.v[2]->y});
+    in.first_row = std::max(first_row_below(ymin), 0);
+    in.last_row = std::min(last_row_at_or_above(ymax), height_ - 1);
+    in.colors = dr.colors;
+    in.depth = dr.depth;
+    ActiveTriangle& t = storage_.active[slot];
+    setup_triangle(in, t);
+    t.index = node;
+    t.draw = bt.draw;
+    t.flat = bt.flat;
+    order[out--] = slot;
+  }
+  active_count_ += fit;
+  if (active_count_ > stats_.max_active) stats_.max_active = static_cast<uint32_t>(active_count_);
+}
+
+template <class PF, int K>
+void Renderer<PF, K>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows) {
+  const DrawRecord& dr = storage_.draws[t.draw];
+  const SpanFn<PF> fn = span_routine<PF>(dr.depth, dr.colors);
+  const int end = std::min<int>(t.last_row, y0 + rows - 1);
+  int r = t.row;
+  for (; r <= end; ++r) {
+    if (r == t.mid_row + 1) t.short_edge = t.bottom_edge;
+    int32_t a = t.long_edge.column(), b = t.short_edge.column();
+    int32_t left = t.long_is_left ? a : b, right = t.long_is_left ? b : a;
+    left = std::max(left, 0);
+    right = std::min(right, width_);
+    if (left < right) {
+      size_t off = static_cast<size_t>(r - y0) * static_cast<size_t>(width_) + static_cast<size_t>(left);
+      int32_t n = right - left;
+      stats_.pixels_written += fn(t, pixels + off, storage_.depth.data() + off, left, r, n);
+      stats_.pixels_tested += static_cast<uint32_t>(n);
+      ++stats_.spans;
+    }
+    t.long_edge.step();
+    t.short_edge.step();
+  }
+  t.row = static_cast<int16_t>(r);
+}
+
+template <class PF, int K>
+void Renderer<PF, K>::retire(int next_row) {
+  uint16_t* order = storage_.active_index.data();
+  uint16_t* free_slots = order + storage_.active.size();
+  size_t kept = 0;
+  for (size_t i = 0; i < active_count_; ++i) {
+    uint16_t slot = order[i];
+    if (storage_.active[slot].last_row < next_row) free_slots[free_count_++] = slot;
+    else order[kept++] = slot;
+  }
+  active_count_ = kept;
+}
+
+}  // namespace lr

@@ -1,0 +1,101 @@
+#include "core/triangle_setup.hpp"
+
+#include <utility>
+
+namespace lr {
+namespace {
+
+// 256 * n / area rounded, for area > 0, without forming 256 * n (n may be near 2^57).
+// Returns false when the result is 2^38 or more in magnitude (a sub-subpixel needle).
+bool gradient(int64_t n, int64_t area, int64_t& g) {
+  int64_t q = n / area, r = n % area;
+  if (q >= (int64_t{1} << 30) || q <= -(int64_t{1} << 30)) return false;
+  g = q * kSubpixel + round_div(r * kSubpixel, area);
+  return true;
+}
+
+}  // namespace
+
+Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]) {
+  int64_t x0 = v[0]->x, y0 = v[0]->y;
+  int64_t ex1 = v[1]->x - x0, ey1 = v[1]->y - y0, ex2 = v[2]->x - x0, ey2 = v[2]->y - y0;
+  int64_t area = ex1 * ey2 - ex2 * ey1;
+  int64_t da1 = int64_t{a[1]} - a[0], da2 = int64_t{a[2]} - a[0];
+  int64_t nx = da1 * ey2 - da2 * ey1;
+  int64_t ny = da2 * ex1 - da1 * ex2;
+  if (area < 0) {
+    area = -area;
+    nx = -nx;
+    ny = -ny;
+  }
+  Plane p;
+  int64_t gx = 0, gy = 0;
+  if (area == 0 || !gradient(nx, area, gx) || !gradient(ny, area, gy)) {
+    p.base = static_cast<uint32_t>((int64_t{a[0]} + a[1] + a[2]) / 3);
+    return p;
+  }
+  // Value at the centre of pixel (0, 0): |g| < 2^38 and |128 - x0| < 2^22, so each product is
+  // below 2^60 and the sum below 2^61.
+  int64_t off = gx * (kHalfPixel - x0) + gy * (kHalfPixel - y0);
+  int64_t base = int64_t{a[0]} + round_div(off, kSubpixel);
+  p.base = static_cast<uint32_t>(static_cast<uint64_t>(base));
+  p.gx = static_cast<uint32_t>(static_cast<uint64_t>(gx));
+  p.gy = static_cast<uint32_t>(static_cast<uint64_t>(gy));
+  return p;
+}
+
+void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
+  const ScreenVertex* v[3] = {in.v[0], in.v[1], in.v[2]};
+  // Sort by y (display rows, top first); a fixed network keeps ties deterministic.
+  if (v[1]->y < v[0]->y) std::swap(v[0], v[1]);
+  if (v[2]->y < v[1]->y) std::swap(v[1], v[2]);
+  if (v[1]->y < v[0]->y) std::swap(v[0], v[1]);
+  int32_t x0 = v[0]->x, y0 = v[0]->y, x1 = v[1]->x, y1 = v[1]->y, x2 = v[2]->x, y2 = v[2]->y;
+  int64_t cross = (int64_t{x1} - x0) * (int64_t{y2} - y0) - (int64_t{x2} - x0) * (int64_t{y1} - y0);
+  t.long_is_left = cross > 0;  // middle vertex right of the long edge
+
+  int32_t first = in.first_row;
+  t.row = static_cast<int16_t>(first);
+  t.last_row = static_cast<int16_t>(in.last_row);
+  int32_t mid = last_row_at_or_above(y1);
+  if (mid < first - 1) mid = first - 1;
+  if (mid > in.last_row) mid = in.last_row;
+  t.mid_row = static_cast<int16_t>(mid);
+  t.long_edge.init(x0, y0, x2, y2, first);
+  if (y2 > y1) t.bottom_edge.init(x1, y1, x2, y2, mid + 1 > first ? mid + 1 : first);
+  if (first <= mid) {
+    t.short_edge.init(x0, y0, x1, y1, first);  // rows exist above y1, so y1 > y0
+  } else {
+    t.short_edge = t.bottom_edge;
+  }
+
+  if (in.depth) {
+    uint32_t z[3] = {v[0]->z, v[1]->z, v[2]->z};
+    t.z = make_plane(v, z);
+  }
+  if (in.colors == ColorPlanes::kPerspective) {
+    uint32_t wmin = v[0]->w;
+    for (int i = 1; i < 3; ++i) wmin = v[i]->w < wmin ? v[i]->w : wmin;
+    uint32_t q[3];
+    for (int i = 0; i < 3; ++i) {
+      // wmin <= w: the ratio is in (0, 1], Q1.30, at least 1.
+      uint64_t r = ((uint64_t{wmin} << 30) + v[i]->w / 2) / v[i]->w;
+      q[i] = r == 0 ? 1u : static_cast<uint32_t>(r);
+    }
+    t.q = make_plane(v, q);
+    for (int c = 0; c < 3; ++c) {
+      uint32_t cq[3];
+      for (int i = 0; i < 3; ++i)
+        cq[i] = static_cast<uint32_t>((uint64_t{channel(v[i]->color, c)} * q[i] + (1u << 14)) >> 15);
+      t.c[c] = make_plane(v, cq);
+    }
+  } else if (in.colors == ColorPlanes::kAffine) {
+    for (int c = 0; c < 3; ++c) {
+      uint32_t cv[3];
+      for (int i = 0; i < 3; ++i) cv[i] = uint32_t{channel(v[i]->color, c)} << 15;
+      t.c[c] = make_plane(v, cv);
+    }
+  }
+}
+
+}  // namespace lr

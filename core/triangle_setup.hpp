@@ -1,0 +1,67 @@
+// Triangle setup: what a binned triangle becomes when its first strip is reached — edge walkers
+// for its rows and the planes of its attributes.
+//
+// Attribute planes live on the pixel lattice: A(c, r) = base + gx * c + gy * r for the pixel
+// in column c of row r, evaluated in uint32 arithmetic modulo 2^32. The gradients are rounded
+// to integers once; modular arithmetic then makes every evaluation (direct, or stepped along a
+// span) give exactly the value of that rounded plane, with no drift and no overflow trap,
+// wherever the true value lies in the attribute's range. Error against the exact plane: half a
+// unit per pixel of distance from the top vertex (< 2^13 units anywhere in the guard band).
+//
+// Attributes (all unsigned, ranges at vertices):
+//   z    window depth x 65535 x 2^16, [0, 65535 x 2^16]        (screen-linear)
+//   q    w_min / w in Q1.30, (0, 2^30]                            (perspective: 1/w, normalised)
+//   cq_i colour channel i (Q1.15) times q, Q1.30, [0, q]          (perspective colours)
+//   c_i  colour channel i, Q1.15 scaled by 2^15 = Q2.30, [0, 2^30] (affine colours)
+// Gradient numerators are < 2^57; gradients beyond 2^38 per pixel only occur for needles
+// thinner than 1/256 pixel: such a triangle gets constant attributes (the vertex mean).
+#pragma once
+
+#include <cstdint>
+
+#include "core/color.hpp"
+#include "core/edge.hpp"
+#include "core/screen_vertex.hpp"
+
+namespace lr {
+
+struct Plane {
+  uint32_t base = 0, gx = 0, gy = 0;
+  uint32_t at(int32_t c, int32_t r) const {
+    return base + gx * static_cast<uint32_t>(c) + gy * static_cast<uint32_t>(r);
+  }
+};
+
+enum class ColorPlanes : uint8_t { kNone, kPerspective, kAffine };
+
+struct ActiveTriangle {
+  EdgeWalker long_edge;    // top vertex to bottom vertex
+  EdgeWalker short_edge;   // the short edge of the current row (top, then bottom)
+  EdgeWalker bottom_edge;  // middle vertex to bottom vertex, positioned at row mid_row + 1
+  int16_t row = 0;         // next row to draw
+  int16_t mid_row = 0;     // last row drawn with the top short edge
+  int16_t last_row = 0;    // last row to draw (inclusive, clamped to the viewport)
+  uint16_t index = 0;      // binned triangle index: submission order
+  bool long_is_left = false;
+  uint8_t draw = 0;        // draw record of the triangle's state
+  Rgb8 flat{};             // colour of flat-shaded triangles
+  Plane z;
+  Plane q;
+  Plane c[3];
+};
+
+struct SetupInput {
+  const ScreenVertex* v[3];
+  ColorPlanes colors;
+  bool depth;
+  int32_t first_row;  // first row to draw (>= the triangle's own first row), viewport clamped
+  int32_t last_row;   // inclusive
+};
+
+// Fills `out` (except index/draw/flat). The triangle must have non-zero area.
+void setup_triangle(const SetupInput& in, ActiveTriangle& out);
+
+// Exposed for tests: the plane through three vertex values.
+Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]);
+
+}  // namespace lr
