@@ -1,11 +1,13 @@
 // x^s for the specular term, from two tables generated at compile time: log2 of the mantissa
-// and exp2 of the fraction, each with 2^kBits + 1 entries and linear interpolation.
+// (Q8.24) and exp2 of the fraction (Q1.30), each with 2^kBits + 1 entries and linear
+// interpolation.
 //
 // x: Q1.30 in [0, 2^30] (N.H of two Q1.30 unit vectors). s: shininess in Q8.8, [0, 128].
-// Result: Q1.15 in [0, 32768].
-// Error (measured by tests/core/pow_table_test.cpp against std::pow): with 8-bit tables the
-// interpolation error is below 3e-6 in log2 and 2e-6 relative in exp2; for s <= 128 the result
-// stays within 2 Q1.15 units (0.016 of an 8-bit level). Fewer bits trade flash for error.
+// Result: Q1.15 in [0, 32768]. log2(x) >= -30 fits Q8.24; s * log2(x) >= -3840 stays in int64.
+// Error against std::pow over x in [0, 1] and s in [0, 128] (tests/core/math_test.cpp):
+//   tables 6/6 bits (520 B): 20.9 Q1.15 units;  8/8 (2 KB, default): 2.2 units = 0.017 of an
+//   8-bit level;  9/8 (3 KB): 1.0;  10/8 (5 KB): 0.7. The log table's interpolation dominates
+//   (its error is multiplied by s).
 #pragma once
 
 #include <array>
@@ -38,11 +40,11 @@ consteval double ct_exp(double x) {  // |x| <= 1
 inline constexpr double kLn2 = 0.69314718055994530942;
 
 template <int kBits>
-consteval std::array<int32_t, (size_t{1} << kBits) + 1> make_log2_table() {  // log2(1 + i/N), Q16
+consteval std::array<int32_t, (size_t{1} << kBits) + 1> make_log2_table() {  // log2(1 + i/N), Q24
   std::array<int32_t, (size_t{1} << kBits) + 1> t{};
   for (int i = 0; i <= (1 << kBits); ++i)
     t[static_cast<size_t>(i)] =
-        static_cast<int32_t>(ct_ln(1.0 + double(i) / (1 << kBits)) / kLn2 * 65536.0 + 0.5);
+        static_cast<int32_t>(ct_ln(1.0 + double(i) / (1 << kBits)) / kLn2 * 16777216.0 + 0.5);
   return t;
 }
 template <int kBits>
@@ -63,28 +65,28 @@ struct PowTable {
   static constexpr auto kExp2 = detail::make_exp2_table<kExpBits>();
   static constexpr size_t kBytes = sizeof(kLog2) + sizeof(kExp2);
 
-  // log2(x) in Q16 for x in (0, 2^30] (Q1.30): <= 0.
-  static constexpr int32_t log2_q16(uint32_t x) {
-    int top = 31 - clz32(x);  // bit index of the leading one, 0..30
+  // log2(x) in Q8.24 for x in (0, 2^30] (Q1.30): in [-30, 0].
+  static constexpr int32_t log2_q24(uint32_t x) {
+    int top = 31 - clz32(x);       // bit index of the leading one, 0..30
     uint32_t m = x << (31 - top);  // leading one at bit 31; the 31 bits below are the fraction
     uint32_t frac = m & 0x7FFFFFFFu;
     uint32_t idx = frac >> (31 - kLogBits);
-    uint32_t rem = (frac >> (31 - kLogBits - 15)) & 0x7FFFu;  // next 15 bits
+    uint32_t rem = (frac >> (31 - kLogBits - 16)) & 0xFFFFu;  // next 16 bits
     int32_t a = kLog2[idx], b = kLog2[idx + 1];
-    int32_t lm = a + static_cast<int32_t>((int64_t{b - a} * rem) >> 15);
-    return lm + (top - 30) * 65536;
+    int32_t lm = a + static_cast<int32_t>((int64_t{b - a} * rem) >> 16);
+    return lm + (top - 30) * (1 << 24);
   }
 
-  // 2^y for y <= 0 in Q16, result Q1.15.
+  // 2^y for y <= 0 in Q8.24, result Q1.15.
   static constexpr uint32_t exp2_q15(int64_t y) {
     int64_t ny = -y;
-    int64_t n = ny >> 16;
+    int64_t n = ny >> 24;
     if (n >= 16) return 0;
-    uint32_t f = static_cast<uint32_t>(ny & 0xFFFF);
-    uint32_t idx = f >> (16 - kExpBits);
-    uint32_t rem = (f << kExpBits) & 0xFFFFu;  // fraction between entries, Q16
+    uint32_t f = static_cast<uint32_t>(ny & 0xFFFFFF);
+    uint32_t idx = f >> (24 - kExpBits);
+    uint32_t rem = (f << kExpBits) & 0xFFFFFFu;  // fraction between entries, Q24
     uint32_t a = kExp2[idx], b = kExp2[idx + 1];
-    uint32_t e = a - static_cast<uint32_t>((uint64_t{a - b} * rem) >> 16);  // Q1.30
+    uint32_t e = a - static_cast<uint32_t>((uint64_t{a - b} * rem) >> 24);  // Q1.30
     return static_cast<uint32_t>(round_shift(int64_t{e}, 15 + static_cast<int>(n)));
   }
 
@@ -93,7 +95,7 @@ struct PowTable {
     if (s_q8 == 0) return 1u << 15;
     if (x == 0) return 0;
     if (x >= (1u << 30)) return 1u << 15;
-    int64_t y = (int64_t{log2_q16(x)} * s_q8) >> 8;
+    int64_t y = (int64_t{log2_q24(x)} * s_q8) >> 8;
     return exp2_q15(y);
   }
 };

@@ -1,0 +1,224 @@
+// lineraster-sim: renders an OBJ with the fixed-point core to PNG or PPM.
+// Any wrong option or bad file: one line on stderr, exit status 2, no output written.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/material.hpp"
+#include "host_sim/image_io.hpp"
+#include "host_sim/obj_loader.hpp"
+#include "host_sim/scene.hpp"
+
+namespace {
+
+using lr::host::Vec3d;
+
+constexpr const char* kUsage =
+    "usage: lineraster-sim --obj FILE [--out FILE.png|.ppm] [--width N] [--height N] [--fovy DEG]\n"
+    "  [--near Z] [--far Z] [--eye x,y,z] [--target x,y,z] [--up x,y,z] [--fit] [--model-scale S]\n"
+    "  [--model-rotate-y DEG] [--model-translate x,y,z] [--shading flat|gouraud|phong] [--unlit]\n"
+    "  [--light-dir x,y,z] [--local-viewer] [--material NAME] [--ambient r,g,b] [--diffuse r,g,b]\n"
+    "  [--specular r,g,b] [--shininess N] [--bg r,g,b] [--no-depth] [--cull back|none]\n"
+    "  [--depth-out FILE.png] [--strip-height 1|2|4|8|16|32] [--stats]\n";
+
+int fail(const std::string& msg) {
+  std::fprintf(stderr, "lineraster-sim: %s\n", msg.c_str());
+  return 2;
+}
+
+bool parse_double(std::string_view s, double& out) {
+  if (s.empty()) return false;
+  std::string tmp(s);
+  char* end = nullptr;
+  out = std::strtod(tmp.c_str(), &end);
+  return end == tmp.c_str() + tmp.size() && std::isfinite(out);
+}
+
+bool parse_int(std::string_view s, int& out) {
+  double d;
+  if (!parse_double(s, d) || d != std::floor(d) || d < -1e9 || d > 1e9) return false;
+  out = static_cast<int>(d);
+  return true;
+}
+
+bool parse_vec3(std::string_view s, Vec3d& out) {
+  size_t a = s.find(','), b = a == std::string_view::npos ? a : s.find(',', a + 1);
+  if (b == std::string_view::npos || s.find(',', b + 1) != std::string_view::npos) return false;
+  return parse_double(s.substr(0, a), out[0]) && parse_double(s.substr(a + 1, b - a - 1), out[1]) &&
+         parse_double(s.substr(b + 1), out[2]);
+}
+
+bool unit_color(const Vec3d& c) {
+  for (double v : c)
+    if (v < 0 || v > 1) return false;
+  return true;
+}
+
+std::string extension(const std::string& path) {
+  size_t dot = path.find_last_of('.');
+  size_t slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string e = path.substr(dot + 1);
+  for (char& ch : e) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return e;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  lr::host::SceneOptions o;
+  std::string obj, out = "out.png", depth_out;
+  bool stats = false;
+  std::vector<Vec3d> lights;
+  for (int i = 1; i < argc; ++i) {
+    std::string_view a = argv[i];
+    auto value = [&](std::string_view& v) {
+      if (i + 1 >= argc) return false;
+      v = argv[++i];
+      return true;
+    };
+    std::string_view v;
+    if (a == "--help" || a == "-h") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    } else if (a == "--fit") {
+      o.fit = true;
+    } else if (a == "--unlit") {
+      o.unlit = true;
+    } else if (a == "--local-viewer") {
+      o.local_viewer = true;
+    } else if (a == "--no-depth") {
+      o.depth_test = false;
+    } else if (a == "--stats") {
+      stats = true;
+    } else if (a == "--obj" || a == "--out" || a == "--depth-out" || a == "--width" || a == "--height" ||
+               a == "--fovy" || a == "--near" || a == "--far" || a == "--eye" || a == "--target" ||
+               a == "--up" || a == "--model-scale" || a == "--model-rotate-y" || a == "--model-translate" ||
+               a == "--shading" || a == "--light-dir" || a == "--material" || a == "--ambient" ||
+               a == "--diffuse" || a == "--specular" || a == "--shininess" || a == "--bg" || a == "--cull" ||
+               a == "--strip-height") {
+      if (!value(v)) return fail(std::string(a) + ": missing value");
+      const std::string bad = std::string(a) + ": bad value '" + std::string(v) + "'";
+      if (a == "--obj") {
+        obj = v;
+      } else if (a == "--out") {
+        out = v;
+        if (extension(out) != "png" && extension(out) != "ppm")
+          return fail("--out: the file name must end in .png or .ppm");
+      } else if (a == "--depth-out") {
+        depth_out = v;
+        if (extension(depth_out) != "png") return fail("--depth-out: the file name must end in .png");
+      } else if (a == "--width" || a == "--height") {
+        int n;
+        if (!parse_int(v, n) || n < 1 || n > 4096) return fail(bad + " (1..4096)");
+        (a == "--width" ? o.width : o.height) = n;
+      } else if (a == "--strip-height") {
+        int n;
+        if (!parse_int(v, n) || (n != 1 && n != 2 && n != 4 && n != 8 && n != 16 && n != 32))
+          return fail(bad + " (1, 2, 4, 8, 16 or 32)");
+        o.strip_height = n;
+      } else if (a == "--fovy" || a == "--near" || a == "--far" || a == "--model-scale" ||
+                 a == "--model-rotate-y" || a == "--shininess") {
+        double d;
+        if (!parse_double(v, d)) return fail(bad);
+        if (a == "--fovy") {
+          if (d <= 0 || d >= 180) return fail(bad + " (0 < fovy < 180)");
+          o.fovy = d;
+        } else if (a == "--near") {
+          if (d <= 0) return fail(bad + " (near > 0)");
+          o.near = d;
+        } else if (a == "--far") {
+          o.far = d;
+        } else if (a == "--model-scale") {
+          o.model_scale = d;
+        } else if (a == "--model-rotate-y") {
+          o.model_rotate_y = std::fmod(d, 360.0);
+        } else {
+          if (d < 0 || d > 128) return fail(bad + " (0..128)");
+          o.material.shininess = d;
+          o.use_mesh_materials = false;
+        }
+      } else if (a == "--eye" || a == "--target" || a == "--up" || a == "--model-translate" ||
+                 a == "--light-dir") {
+        Vec3d p;
+        if (!parse_vec3(v, p)) return fail(bad + " (expected x,y,z)");
+        if (a == "--eye") o.eye = p;
+        else if (a == "--target") o.target = p;
+        else if (a == "--up") o.up = p;
+        else if (a == "--model-translate") o.model_translate = p;
+        else {
+          if (p[0] == 0 && p[1] == 0 && p[2] == 0) return fail(bad + " (zero direction)");
+          lights.push_back(p);
+        }
+      } else if (a == "--ambient" || a == "--diffuse" || a == "--specular" || a == "--bg") {
+        Vec3d c;
+        if (!parse_vec3(v, c) || !unit_color(c)) return fail(bad + " (expected r,g,b in [0,1])");
+        if (a == "--bg") {
+          o.background = c;
+        } else {
+          (a == "--ambient" ? o.material.ambient : a == "--diffuse" ? o.material.diffuse : o.material.specular) = c;
+          o.use_mesh_materials = false;
+        }
+      } else if (a == "--material") {
+        const lr::NamedMaterial* m = lr::find_material(v);
+        if (!m) return fail(bad + " (unknown material; e.g. gold, silver, jade, ruby, red_plastic)");
+        for (int k = 0; k < 3; ++k) {
+          o.material.ambient[static_cast<size_t>(k)] = m->ambient[k] * 1e-8;
+          o.material.diffuse[static_cast<size_t>(k)] = m->diffuse[k] * 1e-8;
+          o.material.specular[static_cast<size_t>(k)] = m->specular[k] * 1e-8;
+        }
+        o.material.emission = {0, 0, 0};
+        o.material.shininess = m->shininess_fraction * 1e-8 * 128.0;
+        o.use_mesh_materials = false;
+      } else if (a == "--shading") {
+        if (v == "flat") o.shading = lr::Shading::kFlat;
+        else if (v == "gouraud") o.shading = lr::Shading::kGouraud;
+        else if (v == "phong") return fail("--shading phong: not supported yet (per-pixel lighting is a later issue)");
+        else return fail(bad + " (flat, gouraud or phong)");
+      } else if (a == "--cull") {
+        if (v == "back") o.cull = lr::Cull::kBack;
+        else if (v == "none") o.cull = lr::Cull::kNone;
+        else return fail(bad + " (back or none)");
+      }
+    } else {
+      return fail("unknown option '" + std::string(a) + "' (see --help)");
+    }
+  }
+  if (obj.empty()) return fail("--obj FILE is required (see --help)");
+  if (o.far <= o.near) return fail("--far must be greater than --near");
+  if (!lights.empty()) o.light_dirs = lights;
+
+  lr::host::HostMesh mesh;
+  std::string error;
+  if (!lr::host::load_obj(obj, mesh, error)) return fail(error);
+  lr::host::RenderResult result;
+  if (!lr::host::render_scene(mesh, o, result, error)) return fail(error);
+  if (!lr::host::write_image(out, result.image, error)) return fail(error);
+  if (!depth_out.empty() &&
+      !lr::host::write_png_gray16(depth_out, o.width, o.height, result.depth, error)) {
+    std::remove(out.c_str());
+    return fail(error);
+  }
+  if (stats) {
+    const lr::FrameStats& s = result.stats;
+    std::printf(
+        "{\"width\":%d,\"height\":%d,\"strip_height\":%d,\"triangles_in\":%u,\"binned_inputs\":%u,"
+        "\"culled_backface\":%u,\"culled_zero_area\":%u,\"culled_offscreen\":%u,\"clipped\":%u,"
+        "\"clipped_away\":%u,\"rejected_invalid\":%u,\"dropped_vertex_capacity\":%u,"
+        "\"dropped_triangle_capacity\":%u,\"dropped_active_capacity\":%u,\"triangles_binned\":%u,"
+        "\"vertices_transformed\":%u,\"strips\":%u,\"empty_strips\":%u,\"spans\":%u,"
+        "\"pixels_tested\":%u,\"pixels_written\":%u,\"max_active\":%u,\"bytes_sent\":%llu,"
+        "\"bytes_per_vertex\":%u,\"bytes_per_binned_triangle\":%u,\"bytes_per_active_triangle\":%u,"
+        "\"bytes_per_strip\":%u}\n",
+        o.width, o.height, o.strip_height, s.triangles_in, s.binned_inputs, s.culled_backface,
+        s.culled_zero_area, s.culled_offscreen, s.clipped, s.clipped_away, s.rejected_invalid,
+        s.dropped_vertex_capacity, s.dropped_triangle_capacity, s.dropped_active_capacity,
+        s.triangles_binned, s.vertices_transformed, s.strips, s.empty_strips, s.spans, s.pixels_tested,
+        s.pixels_written, s.max_active, static_cast<unsigned long long>(result.bytes), s.bytes_per_vertex,
+        s.bytes_per_binned_triangle, s.bytes_per_active_triangle, s.bytes_per_strip);
+  }
+  return 0;
+}

@@ -1,0 +1,255 @@
+#include "host_sim/scene.hpp"
+
+#include <cmath>
+#include <memory>
+#include <unordered_map>
+
+#include "core/camera.hpp"
+#include "core/renderer.hpp"
+#include "host_sim/capture_display.hpp"
+#include "host_sim/mesh_prep.hpp"
+
+namespace lr::host {
+namespace {
+
+// One draw: a piece of the mesh with one material, at most 65535 vertices.
+struct FixedDraw {
+  std::vector<Vec3> positions;
+  std::vector<Normal16> normals;
+  std::vector<Rgb8> colors;
+  std::vector<std::array<uint16_t, 3>> triangles;
+  Material material;
+};
+
+uint16_t c15(double v) {
+  if (!(v > 0)) return 0;
+  if (v >= 1) return Color15::kOne;
+  return static_cast<uint16_t>(std::lround(v * Color15::kOne));
+}
+
+int16_t n14(double v) {
+  double c = std::fmin(1.0, std::fmax(-1.0, v));
+  return static_cast<int16_t>(std::lround(c * (1 << Normal16::kFracBits)));
+}
+
+Material to_core_material(const Vec3d& ka, const Vec3d& kd, const Vec3d& ks, const Vec3d& ke, double ns) {
+  Material m;
+  m.ambient = to_color15(ka);
+  m.diffuse = to_color15(kd);
+  m.specular = to_color15(ks);
+  m.emission = to_color15(ke);
+  double s = std::fmin(128.0, std::fmax(0.0, std::isfinite(ns) ? ns : 0.0));
+  m.shininess_q8 = static_cast<uint16_t>(std::lround(s * 256.0));
+  return m;
+}
+
+bool fixed_vec(const Vec3d& v, Vec3& out) {
+  return to_fixed(v[0], out.x) && to_fixed(v[1], out.y) && to_fixed(v[2], out.z);
+}
+
+bool build_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<FixedDraw>& draws,
+                 std::string& error) {
+  ModelTransform mt = model_transform(mesh, o);
+  const size_t nt = mesh.triangles.size();
+  // Group triangles by material, in first-use order, keeping submission order inside a group.
+  std::vector<int32_t> order_of;
+  std::vector<std::vector<uint32_t>> groups;
+  std::unordered_map<int32_t, size_t> group_index;
+  for (uint32_t t = 0; t < nt; ++t) {
+    int32_t mat = o.use_mesh_materials && t < mesh.triangle_material.size() ? mesh.triangle_material[t] : -1;
+    auto it = group_index.find(mat);
+    if (it == group_index.end()) {
+      it = group_index.emplace(mat, groups.size()).first;
+      groups.emplace_back();
+      order_of.push_back(mat);
+    }
+    groups[it->second].push_back(t);
+  }
+  for (size_t g = 0; g < groups.size(); ++g) {
+    int32_t mat = order_of[g];
+    Material material;
+    if (mat >= 0 && static_cast<size_t>(mat) < mesh.materials.size()) {
+      const HostMaterial& hm = mesh.materials[static_cast<size_t>(mat)];
+      material = to_core_material(hm.ambient, hm.diffuse, hm.specular, hm.emission, hm.shininess);
+    } else {
+      const MaterialOptions& m = o.material;
+      material = to_core_material(m.ambient, m.diffuse, m.specular, m.emission, m.shininess);
+    }
+    std::unordered_map<uint32_t, uint16_t> local;
+    FixedDraw d;
+    d.material = material;
+    auto flush = [&]() {
+      if (!d.triangles.empty()) draws.push_back(std::move(d));
+      d = FixedDraw{};
+      d.material = material;
+      local.clear();
+    };
+    for (uint32_t t : groups[g]) {
+      if (d.positions.size() + 3 > 0xFFFF) flush();
+      std::array<uint16_t, 3> tri{};
+      for (int k = 0; k < 3; ++k) {
+        uint32_t vi = mesh.triangles[t][static_cast<size_t>(k)];
+        if (vi >= mesh.positions.size()) {
+          error = "mesh: triangle " + std::to_string(t) + " uses vertex " + std::to_string(vi) +
+                  " of " + std::to_string(mesh.positions.size());
+          return false;
+        }
+        auto [it, fresh] = local.emplace(vi, static_cast<uint16_t>(d.positions.size()));
+        if (fresh) {
+          const Vec3d& p = mesh.positions[vi];
+          Vec3d q{(p[0] - mt.fit_center[0]) * mt.fit_scale, (p[1] - mt.fit_center[1]) * mt.fit_scale,
+                  (p[2] - mt.fit_center[2]) * mt.fit_scale};
+          Vec3 fp;
+          if (!fixed_vec(q, fp)) {
+            error = "mesh: vertex " + std::to_string(vi) +
+                    " is not finite or outside the core's range (|x| < 32768); try --fit";
+            return false;
+          }
+          d.positions.push_back(fp);
+          const Vec3d& n = vi < mesh.normals.size() ? mesh.normals[vi] : Vec3d{0, 0, 1};
+          d.normals.push_back(Normal16{n14(n[0]), n14(n[1]), n14(n[2])});
+          if (mesh.has_colors()) {
+            const Vec3d& c = mesh.colors[vi];
+            d.colors.push_back(to_rgb8(to_color15(c)));
+          }
+        }
+        tri[static_cast<size_t>(k)] = it->second;
+      }
+      d.triangles.push_back(tri);
+    }
+    flush();
+  }
+  return true;
+}
+
+template <int K>
+bool render_k(const std::vector<FixedDraw>& draws, const SceneOptions& o, RenderResult& out,
+              std::string& error) {
+  using PF = Rgb888;
+  const size_t w = static_cast<size_t>(o.width), h = static_cast<size_t>(o.height);
+  std::vector<ScreenVertex> vertices(0xFFFF);
+  std::vector<BinnedTriangle> triangles(0xFFFE);
+  std::vector<DrawRecord> records(256);
+  std::vector<uint16_t> buckets((h + K - 1) / K);
+  std::vector<ActiveTriangle> active(4096);
+  std::vector<uint16_t> active_index(2 * active.size());
+  std::vector<uint16_t> depth(w * K);
+  FrameStorage storage{vertices, triangles, records, buckets, active, active_index, depth};
+  auto renderer = std::make_unique<Renderer<PF, K>>();
+  if (renderer->configure(storage, o.width, o.height) != Status::kOk) {
+    error = "viewport: width and height must be 1.." + std::to_string(kMaxViewport);
+    return false;
+  }
+  Fixed fovy, near, far;
+  Vec3 eye, target, up;
+  if (!to_fixed(o.fovy, fovy) || !to_fixed(o.near, near) || !to_fixed(o.far, far) ||
+      !fixed_vec(o.eye, eye) || !fixed_vec(o.target, target) || !fixed_vec(o.up, up)) {
+    error = "camera: a value is not finite or outside the core's range (|x| < 32768)";
+    return false;
+  }
+  Camera cam;
+  cam.eye = eye;
+  Fixed aspect = Fixed::ratio(o.width, o.height);
+  if (!perspective(fovy, aspect, near, far, cam.projection)) {
+    error = "camera: need 0 < fovy < 180 and 0 < near < far";
+    return false;
+  }
+  if (!look_at(eye, target, up, cam.view)) {
+    error = "camera: eye equals target, or up is parallel to the view direction";
+    return false;
+  }
+  LightSet lights;
+  if (o.light_dirs.size() > static_cast<size_t>(kMaxLights)) {
+    error = "lights: at most " + std::to_string(kMaxLights);
+    return false;
+  }
+  for (const Vec3d& d : o.light_dirs) {
+    double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    Vec3 fd;
+    if (!(len > 0) || !std::isfinite(len) || !fixed_vec({d[0] / len, d[1] / len, d[2] / len}, fd)) {
+      error = "light: direction must be finite and non-zero";
+      return false;
+    }
+    lights.lights[lights.count++] = DirectionalLight::of_color(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
+  }
+  lights.global_ambient = to_color15(o.global_ambient);
+  lights.local_viewer = o.local_viewer;
+  Rgb8 bg = to_rgb8(to_color15(o.background));
+  renderer->begin_frame(cam, lights, bg);
+
+  Fixed scale, rot;
+  Vec3 tr;
+  if (!to_fixed(o.model_scale, scale) || !to_fixed(o.model_rotate_y, rot) || !fixed_vec(o.model_translate, tr)) {
+    error = "model: a transform value is not finite or outside the core's range";
+    return false;
+  }
+  Mat4 model = translate(tr) * rotate_y(rot) * lr::scale(scale);
+  DrawState st;
+  st.shading = o.shading;
+  st.lighting = !o.unlit;
+  st.depth_test = o.depth_test;
+  st.cull = o.cull;
+  st.perspective = o.perspective;
+  for (const FixedDraw& d : draws) {
+    Mesh m{d.positions, d.normals, d.colors, d.triangles};
+    Status s = renderer->draw(m, model, d.material, st);
+    if (s != Status::kOk && s != Status::kCapacity) {
+      error = std::string("draw: ") + to_string(s);
+      return false;
+    }
+  }
+  CaptureDisplay<PF> display(w * K);
+  DepthCapture depth_capture;
+  depth_capture.resize(o.width, o.height);
+  Status s = renderer->render(display, &depth_capture);
+  if (s != Status::kOk) {
+    error = std::string("render: ") + to_string(s) + " " + display.error();
+    return false;
+  }
+  out.image = display.image();
+  out.depth = depth_capture.depth();
+  out.stats = renderer->stats();
+  out.strips = display.strips();
+  out.bytes = display.bytes();
+  return true;
+}
+
+}  // namespace
+
+bool to_fixed(double v, Fixed& out) {
+  if (!std::isfinite(v) || std::fabs(v) >= 32767.5) return false;
+  out = Fixed::from_raw(static_cast<int32_t>(std::lround(v * Fixed::kOne)));
+  return true;
+}
+
+Color15 to_color15(const Vec3d& c) { return {c15(c[0]), c15(c[1]), c15(c[2])}; }
+
+ModelTransform model_transform(const HostMesh& mesh, const SceneOptions& o) {
+  ModelTransform mt;
+  if (o.fit && !mesh.positions.empty()) {
+    FitTransform f = fit_transform(mesh);
+    mt.fit_center = f.center;
+    mt.fit_scale = f.scale;
+  }
+  return mt;
+}
+
+bool render_scene(const HostMesh& mesh, const SceneOptions& o, RenderResult& out, std::string& error) {
+  std::vector<FixedDraw> draws;
+  if (!build_draws(mesh, o, draws, error)) return false;
+  if (draws.size() > 256) {
+    error = "mesh: more than 256 draws (materials x 65535-vertex pieces)";
+    return false;
+  }
+  switch (o.strip_height) {
+    case 1: return render_k<1>(draws, o, out, error);
+    case 2: return render_k<2>(draws, o, out, error);
+    case 4: return render_k<4>(draws, o, out, error);
+    case 8: return render_k<8>(draws, o, out, error);
+    case 16: return render_k<16>(draws, o, out, error);
+    case 32: return render_k<32>(draws, o, out, error);
+    default: error = "strip height must be 1, 2, 4, 8, 16 or 32"; return false;
+  }
+}
+
+}  // namespace lr::host

@@ -1,0 +1,70 @@
+// Rendering a HostMesh with the fixed-point core on the host: converts the double-precision
+// mesh and options to the core's formats (rejecting what they cannot hold), builds the camera,
+// lights and materials, and runs the strip renderer into a capture display.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/frame_stats.hpp"
+#include "core/mesh.hpp"
+#include "host_sim/host_mesh.hpp"
+#include "host_sim/image_io.hpp"
+
+namespace lr::host {
+
+struct MaterialOptions {
+  Vec3d ambient{0.1, 0.1, 0.1};
+  Vec3d diffuse{0.8, 0.8, 0.8};
+  Vec3d specular{0.5, 0.5, 0.5};
+  Vec3d emission{0.0, 0.0, 0.0};
+  double shininess = 32.0;  // GL range [0, 128]
+};
+
+// Everything lineraster-sim's options describe (defaults are the CLI's).
+struct SceneOptions {
+  int width = 320, height = 240;
+  double fovy = 60.0, near = 0.1, far = 100.0;
+  Vec3d eye{0, 0, 3}, target{0, 0, 0}, up{0, 1, 0};
+  bool fit = false;
+  double model_scale = 1.0, model_rotate_y = 0.0;
+  Vec3d model_translate{0, 0, 0};
+  Shading shading = Shading::kGouraud;
+  bool unlit = false;
+  std::vector<Vec3d> light_dirs{{1, 1, 1}};  // world space, towards the light; colour white
+  Vec3d global_ambient{0, 0, 0};
+  bool local_viewer = false;
+  MaterialOptions material;
+  bool use_mesh_materials = true;  // MTL materials of the mesh win unless material options were given
+  Vec3d background{0, 0, 0};
+  bool depth_test = true;
+  Cull cull = Cull::kNone;
+  Perspective perspective = Perspective::kExact;
+  int strip_height = 8;  // 1, 2, 4, 8, 16 or 32
+};
+
+struct RenderResult {
+  ImageRgb8 image;
+  std::vector<uint16_t> depth;  // 16-bit window depth per pixel, 65535 where nothing was drawn
+  FrameStats stats;
+  uint32_t strips = 0;
+  uint64_t bytes = 0;
+};
+
+// The model transform the options describe, applied to positions in double:
+// translate * rotate_y * scale * fit. Used by the reference renderer's tests too.
+struct ModelTransform {
+  Vec3d fit_center{0, 0, 0};
+  double fit_scale = 1.0;
+};
+ModelTransform model_transform(const HostMesh& mesh, const SceneOptions& options);
+
+// Renders; on failure returns false with a one-line error (nothing rendered).
+bool render_scene(const HostMesh& mesh, const SceneOptions& options, RenderResult& out, std::string& error);
+
+// The core's conversions, exposed for tests: false when the value cannot be represented.
+bool to_fixed(double v, Fixed& out);
+Color15 to_color15(const Vec3d& c);
+
+}  // namespace lr::host

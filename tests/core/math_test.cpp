@@ -1,0 +1,172 @@
+// Fixed-point math against double: trig, normalisation, camera matrices, specular power table,
+// the material table as published, colour conversions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/camera.hpp"
+#include "core/color.hpp"
+#include "core/material.hpp"
+#include "core/pixel_format.hpp"
+#include "core/pow_table.hpp"
+#include "core/trig.hpp"
+#include "core/vec.hpp"
+
+namespace lr {
+namespace {
+
+double d(Fixed f) { return f.raw / 65536.0; }
+Fixed fx(double v) { return Fixed::from_raw(static_cast<int32_t>(std::lround(v * 65536.0))); }
+constexpr double kPi = 3.14159265358979323846;
+
+TEST(Trig, SinCosWithinHalfAUnitOfQ16Everywhere) {
+  double worst = 0;
+  for (int i = -720 * 16; i <= 720 * 16; ++i) {
+    Fixed a = Fixed::from_raw(i * 4096);  // 1/16 degree steps over two turns each way
+    double rad = i / 16.0 * kPi / 180.0;
+    worst = std::max(worst, std::fabs(d(sin_deg(a)) - std::sin(rad)));
+    worst = std::max(worst, std::fabs(d(cos_deg(a)) - std::cos(rad)));
+  }
+  EXPECT_LT(worst, 1.0 / 65536.0);  // under one Q16.16 unit
+  EXPECT_EQ(sin_deg(Fixed::from_int(90)).raw, 65536);
+  EXPECT_EQ(sin_deg(Fixed::from_int(180)).raw, 0);
+  EXPECT_EQ(cos_deg(Fixed::from_int(0)).raw, 65536);
+  EXPECT_EQ(sin_deg(Fixed::from_int(-90)).raw, -65536);
+}
+
+TEST(Vec, NormalizeIsUnitWithinTwoQ30Units) {
+  uint32_t seed = 12345;
+  auto rnd = [&]() {
+    seed = seed * 1664525u + 1013904223u;
+    return static_cast<int32_t>(seed >> 1) - (1 << 30);
+  };
+  for (int i = 0; i < 2000; ++i) {
+    int64_t x = rnd() >> (i % 30), y = rnd() >> (i % 17), z = rnd() >> (i % 5);
+    Unit30 u;
+    ASSERT_TRUE(normalize_unit30(x, y, z, u));
+    double len = std::sqrt(double(u.x) * u.x + double(u.y) * u.y + double(u.z) * u.z) / (1 << 30);
+    EXPECT_NEAR(len, 1.0, 4.0 / (1 << 30));
+    double n = std::sqrt(double(x) * x + double(y) * y + double(z) * z);
+    EXPECT_NEAR(u.x / double(1 << 30), x / n, 3e-9);
+  }
+  Unit30 u;
+  EXPECT_FALSE(normalize_unit30(0, 0, 0, u));
+}
+
+// gluPerspective, written out.
+TEST(Camera, PerspectiveMatchesGluPerspective) {
+  Mat4 m;
+  ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(320, 240), fx(0.1), Fixed::from_int(100), m));
+  double f = 1.0 / std::tan(30.0 * kPi / 180.0);
+  double n = d(fx(0.1)), fa = 100;
+  EXPECT_NEAR(d(m.m[0][0]), f / (4.0 / 3.0), 2e-5);
+  EXPECT_NEAR(d(m.m[1][1]), f, 2e-5);
+  EXPECT_NEAR(d(m.m[2][2]), (fa + n) / (n - fa), 2e-5);
+  EXPECT_NEAR(d(m.m[2][3]), 2 * fa * n / (n - fa), 2e-5);
+  EXPECT_EQ(m.m[3][2].raw, -65536);
+  EXPECT_EQ(m.m[3][3].raw, 0);
+  EXPECT_EQ(m.m[0][1].raw, 0);
+  EXPECT_FALSE(perspective(Fixed::from_int(0), Fixed::from_int(1), fx(0.1), Fixed::from_int(10), m));
+  EXPECT_FALSE(perspective(Fixed::from_int(60), Fixed::from_int(1), Fixed::from_int(10), Fixed::from_int(1), m));
+  EXPECT_FALSE(perspective(Fixed::from_int(180), Fixed::from_int(1), fx(0.1), Fixed::from_int(10), m));
+}
+
+TEST(Camera, LookAtMatchesGluLookAt) {
+  Vec3 eye{fx(1), fx(2), fx(3)}, target{fx(0), fx(0.5), fx(0)}, up{fx(0), fx(1), fx(0)};
+  Mat4 m;
+  ASSERT_TRUE(look_at(eye, target, up, m));
+  // gluLookAt: f = normalize(target - eye), s = normalize(f x up), u = s x f.
+  double F[3] = {-1, -1.5, -3}, fl = std::sqrt(1 + 2.25 + 9);
+  for (double& v : F) v /= fl;
+  double S[3] = {F[1] * 0 - F[2] * 1, F[2] * 0 - F[0] * 0, F[0] * 1 - F[1] * 0};
+  double sl = std::sqrt(S[0] * S[0] + S[1] * S[1] + S[2] * S[2]);
+  for (double& v : S) v /= sl;
+  double U[3] = {S[1] * F[2] - S[2] * F[1], S[2] * F[0] - S[0] * F[2], S[0] * F[1] - S[1] * F[0]};
+  const double* rows[3] = {S, U, F};
+  double E[3] = {1, 2, 3};
+  for (int i = 0; i < 3; ++i) {
+    double sign = i == 2 ? -1 : 1;
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(d(m.m[i][j]), sign * rows[i][j], 3e-5) << i << "," << j;
+    double t = -sign * (rows[i][0] * E[0] + rows[i][1] * E[1] + rows[i][2] * E[2]);
+    EXPECT_NEAR(d(m.m[i][3]), t, 1e-4);
+  }
+  EXPECT_FALSE(look_at(eye, eye, up, m));
+  EXPECT_FALSE(look_at(Vec3{}, Vec3{fx(0), fx(5), fx(0)}, up, m));  // up parallel to view
+}
+
+TEST(Camera, TransformPointAgreesWithDouble) {
+  Mat4 p, v;
+  ASSERT_TRUE(perspective(Fixed::from_int(45), Fixed::from_int(1), fx(0.5), Fixed::from_int(50), p));
+  ASSERT_TRUE(look_at({fx(0), fx(0), fx(5)}, {}, {fx(0), fx(1), fx(0)}, v));
+  Mat4 mvp = p * v * rotate_y(Fixed::from_int(30));
+  Vec3 pt{fx(0.5), fx(-0.25), fx(1.0)};
+  ClipCoord c = transform_point(mvp, pt);
+  // Same in double.
+  double a = 30 * kPi / 180, x = 0.5 * std::cos(a) + 1.0 * std::sin(a), y = -0.25,
+         z = -0.5 * std::sin(a) + 1.0 * std::cos(a) - 5;
+  double f = 1 / std::tan(22.5 * kPi / 180), n = 0.5, fa = 50;
+  double cx = f * x, cy = f * y, cz = (fa + n) / (n - fa) * z + 2 * fa * n / (n - fa), cw = -z;
+  double s = 1.0 / (1 << 28);
+  EXPECT_NEAR(c.x * s, cx, 1e-4);
+  EXPECT_NEAR(c.y * s, cy, 1e-4);
+  EXPECT_NEAR(c.z * s, cz, 2e-4);
+  EXPECT_NEAR(c.w * s, cw, 1e-4);
+}
+
+TEST(PowTable, DefaultTablesWithinTwoAndAQuarterQ15UnitsOfStdPow) {
+  double worst = 0;
+  for (int si = 0; si <= 128 * 4; ++si) {
+    uint32_t s_q8 = static_cast<uint32_t>(si * 64);  // shininess in quarter steps
+    double s = s_q8 / 256.0;
+    for (int xi = 0; xi <= 4096; ++xi) {
+      uint32_t x = static_cast<uint32_t>((static_cast<uint64_t>(xi) << 30) / 4096);
+      double ref = std::pow(x / double(1 << 30), s) * 32768.0;
+      double got = DefaultPowTable::pow_q15(x, s_q8);
+      worst = std::max(worst, std::fabs(got - ref));
+    }
+  }
+  EXPECT_LE(worst, 2.25);  // measured 2.16
+  EXPECT_GT(worst, 0.5);   // the bound is tight: a broken table would not be this close
+  EXPECT_EQ(DefaultPowTable::pow_q15(0, 0), 32768u);  // pow(0, 0) = 1
+  EXPECT_EQ(DefaultPowTable::pow_q15(0, 256), 0u);
+  EXPECT_EQ(DefaultPowTable::pow_q15(1u << 30, 128 * 256), 32768u);
+}
+
+TEST(Materials, TableHoldsThePublishedValues) {
+  EXPECT_EQ(material_table().size(), 24u);
+  const NamedMaterial* gold = find_material("gold");
+  ASSERT_NE(gold, nullptr);
+  EXPECT_EQ(gold->ambient[0], 24725000u);   // 0.24725
+  EXPECT_EQ(gold->diffuse[1], 60648000u);   // 0.60648
+  EXPECT_EQ(gold->specular[2], 36606500u);  // 0.366065
+  Material m = to_material(*gold);
+  EXPECT_EQ(m.shininess_q8, std::lround(51.2 * 256));  // 0.4 x 128 = 51.2
+  EXPECT_EQ(m.diffuse.r, static_cast<uint16_t>(std::lround(0.75164 * 32768)));
+  const NamedMaterial* brass = find_material("brass");
+  ASSERT_NE(brass, nullptr);
+  EXPECT_EQ(to_material(*brass).shininess_q8, std::lround(0.21794872 * 128 * 256));  // 27.9 x 256
+  ASSERT_NE(find_material("black-plastic"), nullptr);
+  EXPECT_EQ(find_material("black plastic"), find_material("black_plastic"));
+  EXPECT_EQ(find_material("unobtainium"), nullptr);
+  EXPECT_EQ(to_material(*find_material("yellow_rubber")).shininess_q8, 10 * 256);  // .078125 x 128
+}
+
+TEST(Color, ByteRoundingAndRgb565) {
+  for (uint32_t v = 0; v <= 255; ++v) {
+    EXPECT_EQ(to_byte(from_byte(static_cast<uint8_t>(v))), v);
+    Rgb8 c{static_cast<uint8_t>(v), static_cast<uint8_t>(v), static_cast<uint8_t>(v)};
+    uint16_t s = Rgb565Be::encode(c);
+    const auto* bytes = reinterpret_cast<const uint8_t*>(&s);
+    unsigned value = (unsigned{bytes[0]} << 8) | bytes[1];  // big-endian in memory
+    EXPECT_EQ(value >> 11, (31 * v + 127) / 255);
+    EXPECT_EQ((value >> 5) & 63, (63 * v + 127) / 255);
+    EXPECT_EQ(value & 31, (31 * v + 127) / 255);
+  }
+  EXPECT_EQ(to_byte(16384), 128);  // round(127.5) = 128
+  EXPECT_EQ(to_byte(32768), 255);
+  Rgb8 red = Rgb565Be::decode(Rgb565Be::encode({255, 0, 0}));
+  EXPECT_EQ(red, (Rgb8{255, 0, 0}));
+}
+
+}  // namespace
+}  // namespace lr

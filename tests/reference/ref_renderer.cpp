@@ -1,0 +1,373 @@
+#include "tests/reference/ref_renderer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+namespace lr::ref {
+namespace {
+
+__extension__ typedef __int128 i128;
+
+// Largest |snapped coordinate| accepted: differences fit in int64 and edge-function products
+// (< 2^61 * 2^62) fit in __int128 with room to spare.
+constexpr double kMaxSub = 1152921504606846976.0;  // 2^60
+
+int clamp_bits(int bits) {
+  return std::clamp(bits, 1, 16);
+}
+
+int64_t floor_div(int64_t a, int64_t b) {  // b > 0
+  int64_t q = a / b;
+  if (a % b != 0 && a < 0) --q;
+  return q;
+}
+
+int64_t ceil_div(int64_t a, int64_t b) {
+  return -floor_div(-a, b);
+}
+
+double clamp01(double c) {
+  return c > 0.0 ? (c < 1.0 ? c : 1.0) : 0.0;
+}  // NaN -> 0
+
+Vec3d clamp01(const Vec3d& c) {
+  return {clamp01(c[0]), clamp01(c[1]), clamp01(c[2])};
+}
+
+uint8_t to_byte(double c) {
+  return static_cast<uint8_t>(std::lround(255.0 * clamp01(c)));
+}
+
+i128 area2_exact(const ScreenTri& t) {
+  return static_cast<i128>(t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) -
+         static_cast<i128>(t.x[2] - t.x[0]) * (t.y[1] - t.y[0]);
+}
+
+// A triangle reordered to positive signed display area (clockwise on screen), so that the edge
+// function of every edge is positive inside.
+struct TriSetup {
+  bool valid = false;
+  int64_t x[3] = {}, y[3] = {};
+  int order[3] = {0, 1, 2};  // original index of each reordered vertex
+  bool owned[3] = {};        // edge k runs from vertex k to vertex k + 1 (reordered)
+  i128 area = 0;             // > 0 when valid
+};
+
+TriSetup setup_tri(const ScreenTri& t) {
+  TriSetup s;
+  const i128 a = area2_exact(t);
+  if (a == 0) return s;
+  s.valid = true;
+  s.area = a > 0 ? a : -a;
+  if (a < 0) {
+    s.order[1] = 2;
+    s.order[2] = 1;
+  }
+  for (int k = 0; k < 3; ++k) {
+    s.x[k] = t.x[s.order[k]];
+    s.y[k] = t.y[s.order[k]];
+  }
+  for (int k = 0; k < 3; ++k) {
+    const int k1 = (k + 1) % 3;
+    const int64_t dx = s.x[k1] - s.x[k];
+    const int64_t dy = s.y[k1] - s.y[k];
+    // Inward normal of the edge is (-dy, dx). Left edge: interior at larger x (-dy > 0).
+    // Bottom edge: horizontal with the interior at smaller display y (dx < 0).
+    s.owned[k] = dy < 0 || (dy == 0 && dx < 0);
+  }
+  return s;
+}
+
+// Edge function of edge k at p: the (unnormalized) barycentric weight of vertex k + 2.
+i128 edge_fn(const TriSetup& s, int k, int64_t px, int64_t py) {
+  const int k1 = (k + 1) % 3;
+  return static_cast<i128>(s.x[k1] - s.x[k]) * (py - s.y[k]) -
+         static_cast<i128>(s.y[k1] - s.y[k]) * (px - s.x[k]);
+}
+
+// Fill rule at p. On success w[i] holds the weight of ORIGINAL vertex i (sum = s.area).
+bool inside(const TriSetup& s, int64_t px, int64_t py, i128 w[3]) {
+  for (int k = 0; k < 3; ++k) {
+    const i128 e = edge_fn(s, k, px, py);
+    if (e < 0 || (e == 0 && !s.owned[k])) return false;
+    w[s.order[(k + 2) % 3]] = e;
+  }
+  return true;
+}
+
+bool in_range(const ScreenTri& t) {
+  for (int k = 0; k < 3; ++k) {
+    const double ax = static_cast<double>(t.x[k]), ay = static_cast<double>(t.y[k]);
+    if (!(std::fabs(ax) <= kMaxSub) || !(std::fabs(ay) <= kMaxSub)) return false;
+  }
+  return true;
+}
+
+// Calls fn(i, j, w) for every covered pixel centre on the screen, row by row.
+template <class F>
+void raster(const TriSetup& s, int width, int height, int bits, F&& fn) {
+  if (!s.valid || width <= 0 || height <= 0) return;
+  const int64_t S = int64_t{1} << bits, half = S / 2;
+  const int64_t minx = std::min({s.x[0], s.x[1], s.x[2]});
+  const int64_t maxx = std::max({s.x[0], s.x[1], s.x[2]});
+  const int64_t miny = std::min({s.y[0], s.y[1], s.y[2]});
+  const int64_t maxy = std::max({s.y[0], s.y[1], s.y[2]});
+  const int64_t i0 = std::max<int64_t>(0, ceil_div(minx - half, S));
+  const int64_t i1 = std::min<int64_t>(width - 1, floor_div(maxx - half, S));
+  const int64_t j0 = std::max<int64_t>(0, ceil_div(miny - half, S));
+  const int64_t j1 = std::min<int64_t>(height - 1, floor_div(maxy - half, S));
+  i128 w[3];
+  for (int64_t j = j0; j <= j1; ++j) {
+    const int64_t py = j * S + half;
+    for (int64_t i = i0; i <= i1; ++i) {
+      if (inside(s, i * S + half, py, w)) fn(static_cast<int>(i), static_cast<int>(j), w);
+    }
+  }
+}
+
+// Precomputed lighting state for one render call.
+class Lighting {
+ public:
+  explicit Lighting(const RefParams& p) : p_(p) {
+    for (const RefLight& l : p.lights) dirs_.push_back(normalize(l.direction));
+    // Infinite viewer: the eye-space +Z axis (towards the eye) expressed in world space.
+    v_inf_ = normalize(Vec3d{p.view.m[2][0], p.view.m[2][1], p.view.m[2][2]});
+    Mat4d inv;
+    if (invert(p.view, inv)) {
+      const Vec4d e = transform(inv, Vec4d{0, 0, 0, 1});
+      if (e[3] != 0.0) eye_ = {e[0] / e[3], e[1] / e[3], e[2] / e[3]};
+    }
+  }
+
+  Vec3d at(const Vec3d& n, const Vec3d& pos) const {
+    const RefMaterial& m = p_.material;
+    Vec3d c = add(m.emission, cmul(p_.global_ambient, m.ambient));
+    const Vec3d v = p_.local_viewer ? normalize(sub(eye_, pos)) : v_inf_;
+    for (size_t i = 0; i < dirs_.size(); ++i) {
+      const Vec3d& lc = p_.lights[i].color;
+      const Vec3d& l = dirs_[i];
+      c = add(c, cmul(lc, m.ambient));
+      const double ndl = dot(n, l);
+      if (ndl > 0.0) {
+        c = add(c, muls(cmul(lc, m.diffuse), ndl));
+        const Vec3d h = normalize(add(l, v));
+        const double ndh = std::max(dot(n, h), 0.0);
+        c = add(c, muls(cmul(lc, m.specular), std::pow(ndh, m.shininess)));
+      }
+    }
+    return clamp01(c);
+  }
+
+ private:
+  const RefParams& p_;
+  std::vector<Vec3d> dirs_;
+  Vec3d v_inf_{0, 0, 1};
+  Vec3d eye_{0, 0, 0};
+};
+
+struct ClipVert {
+  Vec4d c;    // clip coordinates
+  Vec3d col;  // colour (Gouraud / unlit vertex colour)
+};
+
+constexpr int kMaxPoly = 9;
+
+// Sutherland-Hodgman against one plane; dist(v) >= 0 is kept. Intersections are always computed
+// from the inside vertex towards the outside one, so an edge shared by two triangles gives
+// bit-identical points whichever way each triangle walks it.
+template <class Dist>
+int clip_poly(const ClipVert* in, int n, ClipVert* out, Dist dist) {
+  int m = 0;
+  for (int k = 0; k < n; ++k) {
+    const ClipVert& a = in[k];
+    const ClipVert& b = in[(k + 1) % n];
+    const double da = dist(a.c), db = dist(b.c);
+    const bool ina = da >= 0.0, inb = db >= 0.0;
+    if (ina) out[m++] = a;
+    if (ina != inb) {
+      const ClipVert& vi = ina ? a : b;
+      const ClipVert& vo = ina ? b : a;
+      const double di = ina ? da : db, dout = ina ? db : da;
+      const double t = di / (di - dout);
+      ClipVert r;
+      for (size_t q = 0; q < 4; ++q) r.c[q] = vi.c[q] + t * (vo.c[q] - vi.c[q]);
+      for (size_t q = 0; q < 3; ++q) r.col[q] = vi.col[q] + t * (vo.col[q] - vi.col[q]);
+      out[m++] = r;
+    }
+  }
+  return m;
+}
+
+bool finite4(const Vec4d& v) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3]);
+}
+
+}  // namespace
+
+double signed_area2(const ScreenTri& tri) {
+  return static_cast<double>(area2_exact(tri));
+}
+
+bool covers(const ScreenTri& tri, int64_t px_centre_x_sub, int64_t px_centre_y_sub) {
+  if (!in_range(tri)) return false;
+  const TriSetup s = setup_tri(tri);
+  if (!s.valid) return false;
+  i128 w[3];
+  return inside(s, px_centre_x_sub, px_centre_y_sub, w);
+}
+
+void coverage(const std::vector<ScreenTri>& tris, int width, int height, int subpixel_bits,
+              std::vector<int32_t>& hits, std::vector<int32_t>& owner) {
+  const int w = std::max(width, 0), h = std::max(height, 0);
+  const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
+  hits.assign(n, 0);
+  owner.assign(n, -1);
+  const int bits = clamp_bits(subpixel_bits);
+  for (size_t t = 0; t < tris.size(); ++t) {
+    if (!in_range(tris[t])) continue;
+    raster(setup_tri(tris[t]), w, h, bits, [&](int i, int j, const i128*) {
+      const size_t p = static_cast<size_t>(j) * static_cast<size_t>(w) + static_cast<size_t>(i);
+      ++hits[p];
+      owner[p] = static_cast<int32_t>(t);
+    });
+  }
+}
+
+Vec3d light_point(const RefParams& params, const Vec3d& normal_world, const Vec3d& position_world) {
+  return Lighting(params).at(normal_world, position_world);
+}
+
+void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) {
+  const int W = std::max(params.width, 0), H = std::max(params.height, 0);
+  const size_t npix = static_cast<size_t>(W) * static_cast<size_t>(H);
+  out.width = W;
+  out.height = H;
+  out.color.assign(npix, clamp01(params.background));
+  out.rgb8.resize(npix * 3);
+  for (size_t p = 0; p < npix; ++p)
+    for (size_t q = 0; q < 3; ++q) out.rgb8[p * 3 + q] = to_byte(params.background[q]);
+  out.depth.assign(npix, 1.0);
+  out.owner.assign(npix, -1);
+  if (npix == 0) return;
+
+  const int bits = clamp_bits(params.subpixel_bits);
+  const double S = static_cast<double>(int64_t{1} << bits);
+  const Mat4d mvp = mul(params.projection, mul(params.view, params.model));
+  const Lighting lighting(params);
+  const bool flat = params.shading == RefShading::Flat;
+  const bool lit = !params.unlit;
+  const size_t nv = mesh.positions.size();
+  const bool have_colors = mesh.colors.size() == nv && nv > 0;
+  const bool have_normals = mesh.normals.size() == nv;
+
+  // Per-vertex work: clip position, world position and (for Gouraud / unlit) the colour.
+  std::vector<Vec4d> clip(nv);
+  std::vector<Vec3d> world(nv), vcol(nv);
+  for (size_t v = 0; v < nv; ++v) {
+    const Vec3d& p = mesh.positions[v];
+    clip[v] = transform(mvp, Vec4d{p[0], p[1], p[2], 1.0});
+    world[v] = transform_point(params.model, p);
+    if (lit) {
+      if (!flat) {
+        const Vec3d n =
+            have_normals ? transform_normal(params.model, mesh.normals[v]) : Vec3d{0, 0, 0};
+        vcol[v] = lighting.at(n, world[v]);
+      }
+    } else {
+      vcol[v] = have_colors ? mesh.colors[v] : params.material.diffuse;
+    }
+  }
+
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    if (tri[0] >= nv || tri[1] >= nv || tri[2] >= nv) continue;
+    const size_t vi[3] = {tri[0], tri[1], tri[2]};
+    if (!finite4(clip[vi[0]]) || !finite4(clip[vi[1]]) || !finite4(clip[vi[2]])) continue;
+
+    // Flat: one colour for the whole triangle.
+    Vec3d face_col{0, 0, 0};
+    if (flat) {
+      if (lit) {
+        const Vec3d n =
+            normalize(cross(sub(world[vi[1]], world[vi[0]]), sub(world[vi[2]], world[vi[0]])));
+        const Vec3d centroid = muls(add(add(world[vi[0]], world[vi[1]]), world[vi[2]]), 1.0 / 3.0);
+        face_col = lighting.at(n, centroid);
+      } else {
+        face_col = vcol[vi[2]];  // provoking vertex: the last one
+      }
+    }
+
+    ClipVert poly_a[kMaxPoly], poly_b[kMaxPoly];
+    for (int k = 0; k < 3; ++k) poly_a[k] = {clip[vi[k]], flat ? face_col : vcol[vi[k]]};
+    int n = clip_poly(poly_a, 3, poly_b, [](const Vec4d& c) { return c[2] + c[3]; });  // near
+    if (n < 3) continue;
+    n = clip_poly(poly_b, n, poly_a, [](const Vec4d& c) { return c[3] - c[2]; });  // far
+    if (n < 3) continue;
+
+    // Project, viewport, snap.
+    int64_t sx[kMaxPoly], sy[kMaxPoly];
+    double zw[kMaxPoly], inv_w[kMaxPoly];
+    bool ok = true;
+    for (int k = 0; k < n && ok; ++k) {
+      const Vec4d& c = poly_a[k].c;
+      if (!(c[3] > 0.0) || !finite4(c)) {
+        ok = false;
+        break;
+      }
+      const double iw = 1.0 / c[3];
+      const double x = (c[0] * iw + 1.0) * W * 0.5;
+      const double y = (1.0 - c[1] * iw) * H * 0.5;
+      const double xs = x * S, ys = y * S;
+      if (!(std::fabs(xs) <= kMaxSub) || !(std::fabs(ys) <= kMaxSub)) {
+        ok = false;
+        break;
+      }
+      sx[k] = std::llround(xs);
+      sy[k] = std::llround(ys);
+      zw[k] = (c[2] * iw + 1.0) * 0.5;
+      inv_w[k] = iw;
+    }
+    if (!ok) continue;
+
+    for (int k = 1; k + 1 < n; ++k) {
+      const int f[3] = {0, k, k + 1};
+      ScreenTri st{};
+      for (int q = 0; q < 3; ++q) {
+        st.x[q] = sx[f[q]];
+        st.y[q] = sy[f[q]];
+      }
+      const TriSetup s = setup_tri(st);
+      if (!s.valid) continue;                                 // zero snapped area
+      if (params.cull_back && area2_exact(st) > 0) continue;  // back face
+      const double area = static_cast<double>(s.area);
+      raster(s, W, H, bits, [&](int i, int j, const i128* w) {
+        const double b[3] = {static_cast<double>(w[0]) / area, static_cast<double>(w[1]) / area,
+                             static_cast<double>(w[2]) / area};
+        const size_t p = out.index(i, j);
+        const double z =
+            clamp01(b[0] * zw[f[0]] + b[1] * zw[f[1]] + b[2] * zw[f[2]]);  // affine in screen
+        if (params.depth_test) {
+          if (!(z < out.depth[p])) return;
+          out.depth[p] = z;
+        }
+        Vec3d col = face_col;
+        if (!flat) {
+          const double q0 = b[0] * inv_w[f[0]], q1 = b[1] * inv_w[f[1]], q2 = b[2] * inv_w[f[2]];
+          const double qs = 1.0 / (q0 + q1 + q2);
+          for (size_t ch = 0; ch < 3; ++ch)
+            col[ch] = (q0 * poly_a[f[0]].col[ch] + q1 * poly_a[f[1]].col[ch] +
+                       q2 * poly_a[f[2]].col[ch]) *
+                      qs;
+        }
+        col = clamp01(col);
+        out.color[p] = col;
+        for (size_t ch = 0; ch < 3; ++ch) out.rgb8[p * 3 + ch] = to_byte(col[ch]);
+        out.owner[p] = static_cast<int32_t>(t);
+      });
+    }
+  }
+}
+
+}  // namespace lr::ref
