@@ -18,6 +18,7 @@ namespace lr::host {
 namespace {
 
 constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+constexpr size_t kMaxFileBytes = size_t{1} << 30;  // OBJ and MTL files larger than 1 GiB: error
 
 // ---------------------------------------------------------------------------------------------
 // Small text helpers
@@ -82,7 +83,8 @@ std::string dir_of(const std::string& path) {
   return path.substr(0, slash);
 }
 
-// Reads a whole file. On failure returns false with `err` = errno of the failing call.
+// Reads a whole file (at most kMaxFileBytes). On failure returns false with `err` = errno of the
+// failing call (EFBIG when the file is too large).
 bool read_file(const std::string& path, std::string& text, int& err) {
   if (path.find('\0') != std::string::npos) {
     err = ENOENT;
@@ -96,13 +98,18 @@ bool read_file(const std::string& path, std::string& text, int& err) {
   }
   std::string data;
   char buf[65536];
+  bool too_large = false;
   for (;;) {
     const size_t n = std::fread(buf, 1, sizeof buf, f);
+    if (data.size() + n > kMaxFileBytes) {
+      too_large = true;  // also stops endless sources such as /dev/zero
+      break;
+    }
     data.append(buf, n);
     if (n < sizeof buf) break;
   }
-  const bool failed = std::ferror(f) != 0;
-  err = failed ? (errno != 0 ? errno : EIO) : 0;
+  const bool failed = too_large || std::ferror(f) != 0;
+  err = too_large ? EFBIG : failed ? (errno != 0 ? errno : EIO) : 0;
   std::fclose(f);
   if (failed) return false;
   text = std::move(data);

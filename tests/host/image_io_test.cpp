@@ -54,7 +54,7 @@ std::vector<uint8_t> read_bytes(const std::string& path) {
 void write_bytes(const std::string& path, const std::vector<uint8_t>& data) {
   std::FILE* f = std::fopen(path.c_str(), "wb");
   ASSERT_NE(f, nullptr);
-  std::fwrite(data.data(), 1, data.size(), f);
+  if (!data.empty()) std::fwrite(data.data(), 1, data.size(), f);
   std::fclose(f);
 }
 
@@ -73,7 +73,7 @@ uint8_t scale16(unsigned v) { return static_cast<uint8_t>(std::lround(v * 255.0 
 // --- Writing test PNGs with libpng directly (setjmp frame holds no C++ objects) -------------
 
 struct RawPng {
-  const char* path;
+  std::string path;  // used only outside the setjmp frame
   uint32_t width, height;
   int bit_depth, color_type, interlace;
   const uint8_t* rows;  // packed rows, big-endian 16-bit samples, `stride` bytes each
@@ -101,7 +101,7 @@ bool write_raw_png_impl(const RawPng* r, png_structp png, png_infop info, std::F
 }
 
 bool write_raw_png(const RawPng& r) {
-  std::FILE* f = std::fopen(r.path, "wb");
+  std::FILE* f = std::fopen(r.path.c_str(), "wb");
   if (!f) return false;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png_create_info_struct(png);
@@ -113,7 +113,7 @@ bool write_raw_png(const RawPng& r) {
 
 RawPng raw(const std::string& path, uint32_t w, uint32_t h, int depth, int type,
            const std::vector<uint8_t>& rows, size_t stride) {
-  return RawPng{path.c_str(), w, h, depth, type, PNG_INTERLACE_NONE, rows.data(), stride,
+  return RawPng{path, w, h, depth, type, PNG_INTERLACE_NONE, rows.data(), stride,
                 nullptr, 0, nullptr, 0};
 }
 

@@ -1,0 +1,103 @@
+// Clipping: triangles crossing the near plane and reaching far outside the viewport (guard
+// band) render as the reference does: no gaps, no spikes.
+#include <gtest/gtest.h>
+
+#include "tests/support/scene_compare.hpp"
+
+namespace lr {
+namespace {
+
+// A square ground plane y = 0 of half-size `half`, colours varying over its corners.
+host::HostMesh ground(double half) {
+  host::HostMesh m;
+  m.positions = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
+  m.normals.assign(4, {0, 1, 0});
+  m.colors = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}};
+  m.triangles = {{0, 3, 2}, {0, 2, 1}};  // counter-clockwise seen from above
+  m.triangle_material = {-1, -1};
+  return m;
+}
+
+TEST(Clipping, WideGroundPlaneThroughTheNearPlaneRendersExactly) {
+  host::HostMesh mesh = ground(50);
+  host::SceneOptions o;
+  o.unlit = true;
+  o.eye = {0, 1, 0};
+  o.target = {0, 0.7, -5};
+  o.far = 200;
+  test::Comparison c;
+  std::string err;
+  ASSERT_TRUE(test::compare_scene(mesh, o, c, err)) << err;
+  std::printf("ground plane (unlit): %s, clipped=%u\n", c.summary().c_str(), c.core.stats.clipped);
+  EXPECT_EQ(c.core.stats.clipped, 2u);  // both triangles cross the near plane
+  EXPECT_EQ(c.core.stats.binned_inputs, 2u);
+  // The near corners of the plane project to |x_ndc| ~ 100 and beyond.
+  EXPECT_LE(c.coverage_diff, size_t(o.width * o.height) / 2000);  // <= 0.05 %
+  EXPECT_GE(c.fraction_within1(), 0.999);
+  EXPECT_LE(c.max_error, 2);
+  // No gaps: every row below the horizon is covered from edge to edge; no spikes above it.
+  int first_full = -1;
+  for (int y = 0; y < o.height; ++y) {
+    int covered = 0;
+    for (int x = 0; x < o.width; ++x) covered += c.core.depth[size_t(y) * size_t(o.width) + size_t(x)] != 0xFFFF;
+    if (covered == o.width && first_full < 0) first_full = y;
+    if (first_full >= 0) {
+      EXPECT_EQ(covered, o.width) << "gap in row " << y;
+    } else {
+      EXPECT_LT(covered, o.width);
+    }
+  }
+  EXPECT_GT(first_full, 60);
+  EXPECT_LT(first_full, 160);
+}
+
+TEST(Clipping, LitGroundPlaneSeenFromLowAngle) {
+  host::HostMesh mesh = ground(300);
+  host::SceneOptions o;
+  o.eye = {0, 0.5, 0};
+  o.target = {0, 0.45, -10};
+  o.far = 400;
+  o.light_dirs = {{0.3, 1, 0.2}};
+  test::Comparison c;
+  std::string err;
+  ASSERT_TRUE(test::compare_scene(mesh, o, c, err)) << err;
+  std::printf("ground plane (lit, far 400): %s\n", c.summary().c_str());
+  EXPECT_LE(c.coverage_diff, size_t(o.width * o.height) / 2000);
+  EXPECT_GE(c.fraction_within1(), 0.999);
+}
+
+TEST(Clipping, TriangleBehindTheCameraIsClippedAway) {
+  host::HostMesh m;
+  m.positions = {{-1, -1, 5}, {1, -1, 5}, {0, 1, 5}};  // eye at z = 3 looking down -z
+  m.normals.assign(3, {0, 0, 1});
+  m.triangles = {{0, 1, 2}};
+  m.triangle_material = {-1};
+  host::RenderResult r;
+  std::string err;
+  ASSERT_TRUE(host::render_scene(m, host::SceneOptions{}, r, err)) << err;
+  EXPECT_EQ(r.stats.clipped_away, 1u);
+  EXPECT_EQ(r.stats.pixels_written, 0u);
+}
+
+TEST(Clipping, SidePlanesOnlyCutFarOutsideTheViewport) {
+  // A huge triangle in front of the camera: the guard band cuts it, the picture is unchanged.
+  host::HostMesh m;
+  m.positions = {{-30000, -30000, -1}, {30000, -30000, -1}, {0, 30000, -1}};
+  m.normals.assign(3, {0, 0, 1});
+  m.colors = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.triangles = {{0, 1, 2}};
+  m.triangle_material = {-1};
+  host::SceneOptions o;
+  o.unlit = true;
+  o.far = 10;
+  test::Comparison c;
+  std::string err;
+  ASSERT_TRUE(test::compare_scene(m, o, c, err)) << err;
+  std::printf("giant triangle: %s\n", c.summary().c_str());
+  EXPECT_EQ(c.core.stats.clipped, 1u);
+  EXPECT_EQ(c.both, size_t(o.width) * size_t(o.height));
+  EXPECT_GE(c.fraction_within1(), 0.999);
+}
+
+}  // namespace
+}  // namespace lr

@@ -1,0 +1,97 @@
+// Renders one scene with the fixed-point core and with the double reference, and measures the
+// difference: per-channel error on pixels both cover, and coverage disagreements.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "host_sim/scene.hpp"
+#include "tests/reference/ref_renderer.hpp"
+
+namespace lr::test {
+
+// The reference's parameters for the same options (same matrices in double).
+inline ref::RefParams ref_params(const host::HostMesh& mesh, const host::SceneOptions& o) {
+  ref::RefParams p;
+  p.width = o.width;
+  p.height = o.height;
+  host::ModelTransform mt = host::model_transform(mesh, o);
+  ref::Mat4d fit = ref::mul(ref::scale({mt.fit_scale, mt.fit_scale, mt.fit_scale}),
+                            ref::translate({-mt.fit_center[0], -mt.fit_center[1], -mt.fit_center[2]}));
+  p.model = ref::mul(ref::mul(ref::translate(o.model_translate), ref::rotate_y(o.model_rotate_y)),
+                     ref::mul(ref::scale({o.model_scale, o.model_scale, o.model_scale}), fit));
+  p.view = ref::look_at(o.eye, o.target, o.up);
+  p.projection = ref::perspective(o.fovy, double(o.width) / o.height, o.near, o.far);
+  for (const auto& d : o.light_dirs) p.lights.push_back(ref::RefLight{d, {1, 1, 1}});
+  p.global_ambient = o.global_ambient;
+  p.material = {o.material.ambient, o.material.diffuse, o.material.specular, o.material.emission,
+                o.material.shininess};
+  p.shading = o.shading == Shading::kFlat ? ref::RefShading::Flat : ref::RefShading::Gouraud;
+  p.unlit = o.unlit;
+  p.depth_test = o.depth_test;
+  p.cull_back = o.cull == Cull::kBack;
+  p.local_viewer = o.local_viewer;
+  p.background = o.background;
+  return p;
+}
+
+struct Comparison {
+  size_t both = 0;             // pixels covered by both
+  size_t coverage_diff = 0;    // covered by one only
+  size_t within1 = 0;          // of `both`: every channel within 1 level
+  int max_error = 0;           // of `both`: largest channel difference
+  double mean_error = 0;       // of `both`: mean absolute channel difference
+  double psnr = 0;             // over `both`
+  host::RenderResult core;
+  ref::RefFrame reference;
+
+  double fraction_within1() const { return both ? double(within1) / double(both) : 1.0; }
+  std::string summary() const {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "both=%zu within1=%.4f%% max=%d mean=%.4f psnr=%.2fdB coverage_diff=%zu", both,
+                  100.0 * fraction_within1(), max_error, mean_error, psnr, coverage_diff);
+    return buf;
+  }
+};
+
+inline bool compare_scene(const host::HostMesh& mesh, const host::SceneOptions& o, Comparison& c,
+                          std::string& error) {
+  if (!host::render_scene(mesh, o, c.core, error)) return false;
+  ref::render(mesh, ref_params(mesh, o), c.reference);
+  const size_t n = size_t(o.width) * size_t(o.height);
+  double sum = 0, sq = 0;
+  for (size_t p = 0; p < n; ++p) {
+    bool core_cov = c.core.depth[p] != 0xFFFF || !o.depth_test;
+    bool ref_cov = c.reference.owner[p] >= 0;
+    if (!o.depth_test) {
+      const uint8_t* a = &c.core.image.rgb[3 * p];
+      core_cov = !(a[0] == 0 && a[1] == 0 && a[2] == 0);
+    }
+    if (core_cov != ref_cov) {
+      ++c.coverage_diff;
+      continue;
+    }
+    if (!core_cov) continue;
+    ++c.both;
+    int worst = 0;
+    for (int k = 0; k < 3; ++k) {
+      int e = std::abs(int(c.core.image.rgb[3 * p + size_t(k)]) - int(c.reference.rgb8[3 * p + size_t(k)]));
+      worst = std::max(worst, e);
+      sum += e;
+      sq += double(e) * e;
+    }
+    c.max_error = std::max(c.max_error, worst);
+    if (worst <= 1) ++c.within1;
+  }
+  if (c.both) {
+    c.mean_error = sum / (3.0 * double(c.both));
+    double mse = sq / (3.0 * double(c.both));
+    c.psnr = mse > 0 ? 10 * std::log10(255.0 * 255.0 / mse) : 99.0;
+  }
+  return true;
+}
+
+}  // namespace lr::test
