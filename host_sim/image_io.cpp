@@ -29,7 +29,9 @@ bool size_ok(uint64_t w, uint64_t h) {
   return w >= 1 && h >= 1 && w <= kMaxSide && h <= kMaxSide && w * h <= kMaxPixels;
 }
 
-std::string size_text(uint64_t w, uint64_t h) { return std::to_string(w) + "x" + std::to_string(h); }
+std::string size_text(uint64_t w, uint64_t h) {
+  return std::to_string(w) + "x" + std::to_string(h);
+}
 
 // fopen that refuses names with an embedded NUL (c_str() would silently cut them).
 std::FILE* open_file(const std::string& path, const char* mode) {
@@ -138,7 +140,8 @@ bool write_png_data(const std::string& path, const uint8_t* data, int width, int
     ctx.bit_depth = bit_depth;
     ctx.color_type = color_type;
     ctx.swap16 = swap16;
-    ctx.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &ctx.msg, png_on_error, png_on_warning);
+    ctx.png =
+        png_create_write_struct(PNG_LIBPNG_VER_STRING, &ctx.msg, png_on_error, png_on_warning);
     if (!ctx.png) {
       what = "cannot initialise libpng";
       return false;
@@ -258,9 +261,9 @@ bool read_ppm_file(std::FILE* f, const std::string& path, ImageRgb8& out, std::s
   for (int i = 0; i < 3; ++i) {
     bool too_large = false;
     if (!read_ascii_uint(f, header[i], too_large)) {
-      return fail(error, path,
-                  std::string(too_large ? "header value too large: " : "bad or missing ") +
-                      kNames[i]);
+      return fail(
+          error, path,
+          std::string(too_large ? "header value too large: " : "bad or missing ") + kNames[i]);
     }
   }
   const uint32_t w = header[0], h = header[1], maxval = header[2];
@@ -311,7 +314,8 @@ bool read_ppm_file(std::FILE* f, const std::string& path, ImageRgb8& out, std::s
 bool image_ok(const ImageRgb8& image) {
   return image.width > 0 && image.height > 0 &&
          size_ok(static_cast<uint64_t>(image.width), static_cast<uint64_t>(image.height)) &&
-         image.rgb.size() == static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 3;
+         image.rgb.size() ==
+             static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 3;
 }
 
 std::string image_problem(const ImageRgb8& image) {

@@ -13,26 +13,34 @@ namespace {
 constexpr int kMaxCount = 2048;
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-int clamp_count(int n, int lo) { return std::clamp(n, lo, kMaxCount); }
+int clamp_count(int n, int lo) {
+  return std::clamp(n, lo, kMaxCount);
+}
 
 Vec3d cross(const Vec3d& a, const Vec3d& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot(const Vec3d& a, const Vec3d& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 Vec3d normalized(const Vec3d& v) {
   const double len = std::sqrt(dot(v, v));
   if (!(len > 0.0)) return {0.0, 0.0, 1.0};
   return {v[0] / len, v[1] / len, v[2] / len};
 }
 
-uint32_t u32(int v) { return static_cast<uint32_t>(v); }
+uint32_t u32(int v) {
+  return static_cast<uint32_t>(v);
+}
 
 void add_quad(HostMesh& m, uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
   m.triangles.push_back({a, b, c});
   m.triangles.push_back({a, c, d});
 }
 
-void finish(HostMesh& m) { m.triangle_material.assign(m.triangles.size(), -1); }
+void finish(HostMesh& m) {
+  m.triangle_material.assign(m.triangles.size(), -1);
+}
 
 // Appends the shortest round-trip form of v.
 void append_number(std::string& s, double v) {
@@ -80,8 +88,7 @@ FitTransform fit_transform(const HostMesh& mesh) {
                   std::ldexp(p[2], shift) - c[2]};
     d2 = std::max(d2, dot(s, s));
   }
-  const Vec3d center{std::ldexp(c[0], -shift), std::ldexp(c[1], -shift),
-                     std::ldexp(c[2], -shift)};
+  const Vec3d center{std::ldexp(c[0], -shift), std::ldexp(c[1], -shift), std::ldexp(c[2], -shift)};
   if (!(d2 > 0.0)) return {center, 1.0};
   const double scale = std::ldexp(1.0 / std::sqrt(d2), shift);
   if (!std::isfinite(scale) || !(scale > 0.0)) return {center, 1.0};
@@ -121,7 +128,8 @@ HostMesh make_uv_sphere(int stacks, int slices) {
   auto ring = [slices](int i, int j) { return u32(slices + (i - 1) * (slices + 1) + j); };
   for (int j = 0; j < slices; ++j) m.triangles.push_back({u32(j), ring(1, j), ring(1, j + 1)});
   for (int i = 1; i + 1 < stacks; ++i) {
-    for (int j = 0; j < slices; ++j) add_quad(m, ring(i, j), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j + 1));
+    for (int j = 0; j < slices; ++j)
+      add_quad(m, ring(i, j), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j + 1));
   }
   for (int j = 0; j < slices; ++j) {
     m.triangles.push_back({ring(stacks - 1, j), u32(south + j), ring(stacks - 1, j + 1)});
@@ -149,7 +157,8 @@ HostMesh make_torus(double major, double minor, int rings, int sides) {
   }
   auto at = [sides](int i, int j) { return u32(i * (sides + 1) + j); };
   for (int i = 0; i < rings; ++i) {
-    for (int j = 0; j < sides; ++j) add_quad(m, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+    for (int j = 0; j < sides; ++j)
+      add_quad(m, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
   }
   finish(m);
   return m;
@@ -197,7 +206,8 @@ HostMesh make_grid(int nx, int ny) {
   }
   auto at = [nx](int i, int j) { return u32(j * (nx + 1) + i); };
   for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) add_quad(m, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+    for (int i = 0; i < nx; ++i)
+      add_quad(m, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
   }
   finish(m);
   return m;
@@ -216,10 +226,12 @@ HostMesh make_torus_knot(int p, int q, double tube, int segments, int sides) {
     const Vec3d c{r * cp / 3.0, r * sp / 3.0, -sq / 3.0};
     // Tangent (derivative of the curve) and the direction from the torus' core circle to the curve,
     // made perpendicular to the tangent: a frame that is periodic in t, so the tube closes exactly.
-    const Vec3d tangent = normalized({-q * sq * cp - p * r * sp, -q * sq * sp + p * r * cp, -q * cq});
+    const Vec3d tangent =
+        normalized({-q * sq * cp - p * r * sp, -q * sq * sp + p * r * cp, -q * cq});
     const Vec3d d{cq * cp, cq * sp, -sq};
     const double dt = dot(d, tangent);
-    const Vec3d n = normalized({d[0] - dt * tangent[0], d[1] - dt * tangent[1], d[2] - dt * tangent[2]});
+    const Vec3d n =
+        normalized({d[0] - dt * tangent[0], d[1] - dt * tangent[1], d[2] - dt * tangent[2]});
     const Vec3d b = cross(tangent, n);
     for (int j = 0; j <= sides; ++j) {
       const double a = kTwoPi * (j % sides) / sides;
@@ -234,7 +246,8 @@ HostMesh make_torus_knot(int p, int q, double tube, int segments, int sides) {
   // around first to face outwards.
   auto at = [sides](int i, int j) { return u32(i * (sides + 1) + j); };
   for (int i = 0; i < segments; ++i) {
-    for (int j = 0; j < sides; ++j) add_quad(m, at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+    for (int j = 0; j < sides; ++j)
+      add_quad(m, at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
   }
   finish(m);
   return m;
@@ -243,7 +256,8 @@ HostMesh make_torus_knot(int p, int q, double tube, int segments, int sides) {
 void set_colors_from_normals(HostMesh& mesh) {
   mesh.colors.resize(mesh.normals.size());
   for (size_t i = 0; i < mesh.normals.size(); ++i) {
-    for (size_t c = 0; c < 3; ++c) mesh.colors[i][c] = std::clamp(0.5 + 0.5 * mesh.normals[i][c], 0.0, 1.0);
+    for (size_t c = 0; c < 3; ++c)
+      mesh.colors[i][c] = std::clamp(0.5 + 0.5 * mesh.normals[i][c], 0.0, 1.0);
   }
 }
 

@@ -43,8 +43,8 @@ HostMesh make_cube();
 // Plane z = 0 over [-1,1]^2 split into nx * ny cells (2 triangles each), normal +z,
 // uv = ((x + 1) / 2, (y + 1) / 2). nx, ny >= 1.
 HostMesh make_grid(int nx, int ny);
-// (p, q) torus knot tube: the curve ((2 + cos(q t)) cos(p t), (2 + cos(q t)) sin(p t), -sin(q t)) / 3
-// (so it lies within radius 1 of the origin), swept by a circle of radius `tube` (same units).
+// (p, q) torus knot tube: the curve ((2 + cos(q t)) cos(p t), (2 + cos(q t)) sin(p t), -sin(q t)) /
+// 3 (so it lies within radius 1 of the origin), swept by a circle of radius `tube` (same units).
 // segments >= 3 along the curve, sides >= 3 around the tube. Empty mesh unless 0 < tube (finite)
 // and p, q are in 1..16.
 HostMesh make_torus_knot(int p, int q, double tube, int segments, int sides);

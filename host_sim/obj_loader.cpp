@@ -1,4 +1,5 @@
-// Wavefront OBJ + MTL loader: see obj_loader.hpp for what is understood and how errors are reported.
+// Wavefront OBJ + MTL loader: see obj_loader.hpp for what is understood and how errors are
+// reported.
 #include "host_sim/obj_loader.hpp"
 
 #include <algorithm>
@@ -23,7 +24,9 @@ constexpr size_t kMaxFileBytes = size_t{1} << 30;  // OBJ and MTL files larger t
 // ---------------------------------------------------------------------------------------------
 // Small text helpers
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f' || c == '\r'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\v' || c == '\f' || c == '\r';
+}
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
@@ -295,7 +298,9 @@ std::string_view rest_after(std::string_view line, std::string_view keyword_toke
   return trim(line.substr(off));
 }
 
-double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
+double clamp01(double v) {
+  return std::clamp(v, 0.0, 1.0);
+}
 
 // Unit vector of v, or false when v is zero (or not finite). Scales first so nothing overflows.
 bool normalize(Vec3d& v) {
@@ -331,8 +336,8 @@ bool parse_mtl_impl(std::string_view text, const std::string& name, const std::s
       cur->name = std::string(mname);
       continue;
     }
-    const bool colour = iequals(kw, "Ka") || iequals(kw, "Kd") || iequals(kw, "Ks") ||
-                        iequals(kw, "Ke");
+    const bool colour =
+        iequals(kw, "Ka") || iequals(kw, "Kd") || iequals(kw, "Ks") || iequals(kw, "Ke");
     const bool known = colour || iequals(kw, "Ns") || iequals(kw, "d") || iequals(kw, "Tr") ||
                        iequals(kw, "map_Kd");
     if (!known) continue;
@@ -340,9 +345,9 @@ bool parse_mtl_impl(std::string_view text, const std::string& name, const std::s
     if (colour) {
       if (tok.size() >= 2 && (iequals(tok[1], "spectral") || iequals(tok[1], "xyz"))) continue;
       if (tok.size() != 2 && tok.size() != 4) {
-        return fail(error, w,
-                    std::string(kw) + ": expected 1 or 3 numbers, got " +
-                        std::to_string(tok.size() - 1));
+        return fail(
+            error, w,
+            std::string(kw) + ": expected 1 or 3 numbers, got " + std::to_string(tok.size() - 1));
       }
       double v[3] = {0, 0, 0};
       if (!read_numbers(tok, 1, v, w, error)) return false;
@@ -357,9 +362,9 @@ bool parse_mtl_impl(std::string_view text, const std::string& name, const std::s
       static const struct {
         const char* opt;
         int min_args, max_args;
-      } kOptions[] = {{"-blendu", 1, 1}, {"-blendv", 1, 1}, {"-bm", 1, 1},   {"-boost", 1, 1},
+      } kOptions[] = {{"-blendu", 1, 1}, {"-blendv", 1, 1}, {"-bm", 1, 1},      {"-boost", 1, 1},
                       {"-cc", 1, 1},     {"-clamp", 1, 1},  {"-imfchan", 1, 1}, {"-mm", 2, 2},
-                      {"-o", 1, 3},      {"-s", 1, 3},      {"-t", 1, 3},    {"-texres", 1, 1},
+                      {"-o", 1, 3},      {"-s", 1, 3},      {"-t", 1, 3},       {"-texres", 1, 1},
                       {"-type", 1, 1}};
       size_t i = 1;
       while (i < tok.size() && tok[i].size() > 1 && tok[i][0] == '-') {
@@ -386,9 +391,9 @@ bool parse_mtl_impl(std::string_view text, const std::string& name, const std::s
       size_t first = 1;
       if (iequals(kw, "d") && tok.size() >= 2 && iequals(tok[1], "-halo")) first = 2;
       if (tok.size() != first + 1) {
-        return fail(error, w,
-                    std::string(kw) + ": expected 1 number, got " +
-                        std::to_string(tok.size() - first));
+        return fail(
+            error, w,
+            std::string(kw) + ": expected 1 number, got " + std::to_string(tok.size() - first));
       }
       double v = 0.0;
       if (!read_numbers(tok, first, &v, w, error)) return false;
@@ -501,8 +506,8 @@ class ObjParser {
     const size_t n = tok_.size() - 1;
     if (n != 3) {
       return fail(error_, w,
-                  std::string(n < 3 ? "too few" : "too many") +
-                      " numbers in vn: expected 3, got " + std::to_string(n));
+                  std::string(n < 3 ? "too few" : "too many") + " numbers in vn: expected 3, got " +
+                      std::to_string(n));
     }
     double v[3] = {0, 0, 0};
     if (!read_numbers(tok_, 1, v, w, error_)) return false;

@@ -25,13 +25,13 @@
 // shadow_obj, trace_obj, ctech, stech, ...).
 //
 // MTL statements understood (keywords case-insensitive): newmtl, Ka, Kd, Ks, Ke (1 or 3 numbers,
-// clamped to [0, 1]; the `spectral` and `xyz` forms are ignored), Ns (shininess = clamp(Ns, 0, 128)),
-// d (`-halo` skipped; clamped to [0, 1]), Tr (d = 1 - Tr), map_Kd (options -blendu -blendv -bm
-// -boost -cc -clamp -imfchan -mm -o -s -t -texres -type are skipped; the rest of the line is the file
-// name, resolved relative to the MTL's folder; the file is not opened here). Everything else (illum,
-// Ni, Tf, map_Ka, map_Ks, bump, PBR extensions, ...) is ignored. A material statement before any
-// newmtl is an error. A material name defined again (in the same or a later MTL) replaces the
-// earlier definition in place.
+// clamped to [0, 1]; the `spectral` and `xyz` forms are ignored), Ns (shininess = clamp(Ns, 0,
+// 128)), d (`-halo` skipped; clamped to [0, 1]), Tr (d = 1 - Tr), map_Kd (options -blendu -blendv
+// -bm -boost -cc -clamp -imfchan -mm -o -s -t -texres -type are skipped; the rest of the line is
+// the file name, resolved relative to the MTL's folder; the file is not opened here). Everything
+// else (illum, Ni, Tf, map_Ka, map_Ks, bump, PBR extensions, ...) is ignored. A material statement
+// before any newmtl is an error. A material name defined again (in the same or a later MTL)
+// replaces the earlier definition in place.
 //
 // Smooth normals (corners without vn) follow DESIGN.md §4: the normalized sum, over every face that
 // uses the position, of the face's area vector (for a triangle the cross product of two edges, not
@@ -41,7 +41,8 @@
 //
 // Errors are one line "FILE:LINE: what is wrong" (LINE 1-based; for "no faces" the last line).
 // Numbers are read with std::from_chars (a leading '+' is accepted); trailing garbage, NaN/Inf and
-// values too large for a double are errors; values too small for a double read as 0.
+// values too large for a double are errors; values too small for a double read as 0. OBJ and MTL
+// files larger than 1 GiB are refused (as "cannot open ...: File too large").
 #pragma once
 
 #include <string>
@@ -62,9 +63,9 @@ bool load_obj(const std::string& path, HostMesh& out, std::string& error);
 bool parse_obj(std::string_view text, const std::string& name, const std::string& base_dir,
                HostMesh& out, std::string& error);
 
-// Parses one MTL file's text. On success replaces `out` with its materials (in order of definition);
-// map_Kd paths are resolved relative to `base_dir`. On failure returns false, sets `error` to
-// "NAME:LINE: what is wrong" and leaves `out` untouched.
+// Parses one MTL file's text. On success replaces `out` with its materials (in order of
+// definition); map_Kd paths are resolved relative to `base_dir`. On failure returns false, sets
+// `error` to "NAME:LINE: what is wrong" and leaves `out` untouched.
 bool parse_mtl(std::string_view text, const std::string& name, const std::string& base_dir,
                std::vector<HostMaterial>& out, std::string& error);
 

@@ -68,7 +68,9 @@ ImageRgb8 random_image(int w, int h, unsigned seed) {
   return img;
 }
 
-uint8_t scale16(unsigned v) { return static_cast<uint8_t>(std::lround(v * 255.0 / 65535.0)); }
+uint8_t scale16(unsigned v) {
+  return static_cast<uint8_t>(std::lround(v * 255.0 / 65535.0));
+}
 
 // --- Writing test PNGs with libpng directly (setjmp frame holds no C++ objects) -------------
 
@@ -113,8 +115,8 @@ bool write_raw_png(const RawPng& r) {
 
 RawPng raw(const std::string& path, uint32_t w, uint32_t h, int depth, int type,
            const std::vector<uint8_t>& rows, size_t stride) {
-  return RawPng{path, w, h, depth, type, PNG_INTERLACE_NONE, rows.data(), stride,
-                nullptr, 0, nullptr, 0};
+  return RawPng{path,        w,      h,       depth, type,    PNG_INTERLACE_NONE,
+                rows.data(), stride, nullptr, 0,     nullptr, 0};
 }
 
 ImageRgb8 read_ok(const std::string& path) {
@@ -144,8 +146,7 @@ bool read_gray16_impl(Gray16Read* g, png_structp png, png_infop info, std::FILE*
   png_bytepp rows = png_get_rows(png, info);
   for (uint32_t y = 0; y < g->height; ++y) {
     for (uint32_t x = 0; x < g->width; ++x) {
-      g->out[y * g->width + x] =
-          static_cast<uint16_t>((rows[y][2 * x] << 8) | rows[y][2 * x + 1]);
+      g->out[y * g->width + x] = static_cast<uint16_t>((rows[y][2 * x] << 8) | rows[y][2 * x + 1]);
     }
   }
   return true;
@@ -434,11 +435,13 @@ TEST(ImageIoErrors, RandomByteFlipsNeverCrash) {
   for (int iter = 0; iter < 300; ++iter) {
     std::vector<uint8_t> bad = good;
     const int flips = 1 + static_cast<int>(rng() % 3);
-    for (int k = 0; k < flips; ++k) bad[8 + rng() % (bad.size() - 8)] ^= static_cast<uint8_t>(1 + rng() % 255);
+    for (int k = 0; k < flips; ++k)
+      bad[8 + rng() % (bad.size() - 8)] ^= static_cast<uint8_t>(1 + rng() % 255);
     write_bytes(dir.file("f.png"), bad);
     ImageRgb8 out;
     if (read_png(dir.file("f.png"), out, error)) {
-      EXPECT_EQ(out.rgb.size(), static_cast<size_t>(out.width) * static_cast<size_t>(out.height) * 3);
+      EXPECT_EQ(out.rgb.size(),
+                static_cast<size_t>(out.width) * static_cast<size_t>(out.height) * 3);
     } else {
       EXPECT_EQ(error.rfind(dir.file("f.png") + ": ", 0), 0u);
     }
@@ -490,8 +493,8 @@ TEST(ImageIoErrors, InvalidImageIsRefusedAndExistingFileKept) {
   ImageRgb8 bad = img;
   bad.rgb.pop_back();
   EXPECT_FALSE(write_png(dir.file("keep.png"), bad, error));
-  EXPECT_EQ(error, dir.file("keep.png") +
-                       ": invalid image (4x4 with 47 bytes; sides must be 1..16384)");
+  EXPECT_EQ(error,
+            dir.file("keep.png") + ": invalid image (4x4 with 47 bytes; sides must be 1..16384)");
   EXPECT_EQ(read_bytes(dir.file("keep.png")), before);
   EXPECT_FALSE(exists(dir.file("keep.png.tmp")));
   ImageRgb8 empty;
@@ -536,7 +539,8 @@ TEST(ImageIoPpm, OtherMaxvalsAreScaled) {
 
 TEST(ImageIoPpm, GreyPgmIsReplicated) {
   TmpDir dir;
-  ImageRgb8 img = read_ppm_text(dir, std::string("P5\n3 1\n255\n") + '\x00' + '\x40' + '\xFF', true);
+  ImageRgb8 img =
+      read_ppm_text(dir, std::string("P5\n3 1\n255\n") + '\x00' + '\x40' + '\xFF', true);
   EXPECT_EQ(img.rgb, (std::vector<uint8_t>{0, 0, 0, 64, 64, 64, 255, 255, 255}));
   img = read_ppm_text(dir, "P2 2 1 1 1 0", true);
   EXPECT_EQ(img.rgb, (std::vector<uint8_t>{255, 255, 255, 0, 0, 0}));

@@ -19,10 +19,14 @@ void round6(lr::host::HostMesh& m) {
     const double x = std::round(v * 1e6) / 1e6;
     return x == 0.0 ? 0.0 : x;  // no "-0"
   };
-  for (auto& p : m.positions) for (double& v : p) v = r(v);
-  for (auto& n : m.normals) for (double& v : n) v = r(v);
-  for (auto& c : m.colors) for (double& v : c) v = r(v);
-  for (auto& t : m.uvs) for (double& v : t) v = r(v);
+  for (auto& p : m.positions)
+    for (double& v : p) v = r(v);
+  for (auto& n : m.normals)
+    for (double& v : n) v = r(v);
+  for (auto& c : m.colors)
+    for (double& v : c) v = r(v);
+  for (auto& t : m.uvs)
+    for (double& v : t) v = r(v);
 }
 
 bool write_text(const std::string& path, const std::string& text) {

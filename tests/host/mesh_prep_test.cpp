@@ -14,15 +14,22 @@
 namespace lr::host {
 namespace {
 
-Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3d sub(const Vec3d& a, const Vec3d& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
 Vec3d cross(const Vec3d& a, const Vec3d& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double length(const Vec3d& a) { return std::sqrt(dot(a, a)); }
+double dot(const Vec3d& a, const Vec3d& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+double length(const Vec3d& a) {
+  return std::sqrt(dot(a, a));
+}
 
 Vec3d face_normal(const HostMesh& m, const std::array<uint32_t, 3>& t) {
-  return cross(sub(m.positions[t[1]], m.positions[t[0]]), sub(m.positions[t[2]], m.positions[t[0]]));
+  return cross(sub(m.positions[t[1]], m.positions[t[0]]),
+               sub(m.positions[t[2]], m.positions[t[0]]));
 }
 
 // Basic consistency every mesh must have.
@@ -156,7 +163,7 @@ TEST(MeshPrep, CubeHas24VerticesWithPerFaceNormalsAndUvs) {
     const Vec3d fn = face_normal(m, t);
     const Vec3d unit{fn[0] / length(fn), fn[1] / length(fn), fn[2] / length(fn)};
     for (uint32_t v : t) EXPECT_EQ(m.normals[v], unit);  // flat, exactly axis-aligned
-    EXPECT_EQ(length(fn), 4.0);  // each triangle is half of a 2 x 2 face
+    EXPECT_EQ(length(fn), 4.0);                          // each triangle is half of a 2 x 2 face
   }
   for (size_t i = 0; i < 24; ++i) {
     for (double c : m.positions[i]) EXPECT_TRUE(c == 1.0 || c == -1.0);

@@ -176,8 +176,8 @@ TEST(ObjLoader, PentagonIsFannedAndVerticesNumberedInOrderOfFirstUse) {
   EXPECT_EQ(m.triangles[0], (std::array<uint32_t, 3>{0, 1, 2}));
   EXPECT_EQ(m.triangles[1], (std::array<uint32_t, 3>{0, 2, 3}));
   EXPECT_EQ(m.triangles[2], (std::array<uint32_t, 3>{0, 3, 4}));
-  EXPECT_EQ(m.positions[0], (Vec3d{0, 1, 0}));  // OBJ position 5
-  EXPECT_EQ(m.positions[4], (Vec3d{0, 0, 0}));  // OBJ position 1
+  EXPECT_EQ(m.positions[0], (Vec3d{0, 1, 0}));                       // OBJ position 5
+  EXPECT_EQ(m.positions[4], (Vec3d{0, 0, 0}));                       // OBJ position 1
   for (const Vec3d& n : m.normals) EXPECT_EQ(n, (Vec3d{0, 0, -1}));  // clockwise seen from +z
 }
 
@@ -406,15 +406,14 @@ TEST(ObjLoader, LoadObjResolvesMtllibNextToTheObj) {
   EXPECT_EQ(m.materials[1].name, "cube_white");
   EXPECT_EQ(m.materials[1].shininess, 96.0);
   EXPECT_EQ(m.materials[1].map_kd, kSourceDir + "/tests/host/data/checker.png");
-  EXPECT_EQ(m.triangle_material,
-            (std::vector<int32_t>{0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1}));
+  EXPECT_EQ(m.triangle_material, (std::vector<int32_t>{0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1}));
 }
 
 TEST(ObjLoader, LaterMaterialDefinitionReplacesEarlierOne) {
   std::vector<HostMaterial> mats;
   std::string error;
-  ASSERT_TRUE(parse_mtl("newmtl a\nKd 1 0 0\nnewmtl b\nnewmtl a\nKd 0 1 0\n", "m.mtl", "", mats,
-                        error));
+  ASSERT_TRUE(
+      parse_mtl("newmtl a\nKd 1 0 0\nnewmtl b\nnewmtl a\nKd 0 1 0\n", "m.mtl", "", mats, error));
   ASSERT_EQ(mats.size(), 3u);  // parse_mtl keeps the file as written ...
   TmpDir dir;
   dir.write("m.mtl", "newmtl a\nKd 1 0 0\nnewmtl b\n");
@@ -455,7 +454,8 @@ TEST(ObjLoaderErrors, IndexZero) {
 }
 
 TEST(ObjLoaderErrors, IndexOutOfRange) {
-  expect_error(std::string(kTri) + "f 1 2 4\n", "t.obj:4: position index 4 out of range (3 defined)");
+  expect_error(std::string(kTri) + "f 1 2 4\n",
+               "t.obj:4: position index 4 out of range (3 defined)");
   expect_error(std::string(kTri) + "vn 0 0 1\nf 1//1 2//2 3//1\n",
                "t.obj:5: normal index 2 out of range (1 defined)");
   expect_error(std::string(kTri) + "f 1/1 2/1 3/1\n",
@@ -506,8 +506,8 @@ TEST(ObjLoaderErrors, ErrorInsideMaterialLibraryNamesTheMtlFile) {
   expect_error("mtllib bad.mtl\n", dir.path() + "/bad.mtl:3: bad number 'zero'", dir.path());
   expect_error("mtllib early.mtl\n", dir.path() + "/early.mtl:1: 'Kd' before any newmtl",
                dir.path());
-  expect_error("mtllib count.mtl\n", dir.path() + "/count.mtl:2: Ks: expected 1 or 3 numbers, got 2",
-               dir.path());
+  expect_error("mtllib count.mtl\n",
+               dir.path() + "/count.mtl:2: Ks: expected 1 or 3 numbers, got 2", dir.path());
 }
 
 TEST(ObjLoaderErrors, InconsistentColours) {

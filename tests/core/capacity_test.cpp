@@ -1,0 +1,140 @@
+// Full stores drop work and count it; the frame still renders what fit, unchanged.
+#include <gtest/gtest.h>
+
+#include "host_sim/mesh_prep.hpp"
+#include "host_sim/scene.hpp"
+#include "tests/support/core_harness.hpp"
+
+namespace lr {
+namespace {
+
+using test::CoreHarness;
+using test::ScreenScene;
+constexpr int64_t S = kSubpixel;
+
+// Four separate squares (two triangles each) in different places of a 64 x 64 frame.
+ScreenScene squares(int count) {
+  ScreenScene s;
+  for (int i = 0; i < count; ++i) {
+    int64_t x = (4 + 15 * i) * S, y = (3 + 14 * i) * S, e = 10 * S;
+    s.add(x, y, x, y + e, x + e, y);
+    s.add(x + e, y, x, y + e, x + e, y + e);
+  }
+  return s;
+}
+
+TEST(Capacity, TriangleStoreFullDropsTheRestAndKeepsWhatFit) {
+  ScreenScene all = squares(4), first = squares(2);
+  CoreHarness<8> small(64, 64, 100, /*max_triangles=*/4);
+  small.begin();
+  EXPECT_EQ(small.renderer().draw_screen(all.vertices, all.triangles, test::coverage_state()), Status::kCapacity);
+  host::ImageRgb8 got = small.render();
+  EXPECT_EQ(small.renderer().stats().dropped_triangle_capacity, 4u);
+  EXPECT_EQ(small.renderer().stats().binned_inputs, 4u);
+  CoreHarness<8> ref(64, 64);
+  ref.begin();
+  ref.renderer().draw_screen(first.vertices, first.triangles, test::coverage_state());
+  EXPECT_EQ(got.rgb, ref.render().rgb);
+}
+
+TEST(Capacity, VertexStoreFullDropsTheWholeDraw) {
+  ScreenScene a = squares(2), b = squares(4);
+  CoreHarness<8> small(64, 64, /*max_vertices=*/20);
+  small.begin();
+  EXPECT_EQ(small.renderer().draw_screen(a.vertices, a.triangles, test::coverage_state()), Status::kOk);
+  EXPECT_EQ(small.renderer().draw_screen(b.vertices, b.triangles, test::coverage_state()), Status::kCapacity);
+  host::ImageRgb8 got = small.render();
+  EXPECT_EQ(small.renderer().stats().dropped_vertex_capacity, 8u);
+  EXPECT_EQ(small.renderer().stats().triangles_in, 12u);
+  CoreHarness<8> ref(64, 64);
+  ref.begin();
+  ref.renderer().draw_screen(a.vertices, a.triangles, test::coverage_state());
+  EXPECT_EQ(got.rgb, ref.render().rgb);
+}
+
+TEST(Capacity, ActiveListFullDropsTheLatestTrianglesOfAStrip) {
+  // Three triangles starting in the same strip; room for two at a time.
+  ScreenScene s;
+  for (int i = 0; i < 3; ++i) s.add((2 + 20 * i) * S, 2 * S, (2 + 20 * i) * S, 40 * S, (18 + 20 * i) * S, 2 * S);
+  ScreenScene kept;
+  for (int i = 0; i < 2; ++i) kept.add((2 + 20 * i) * S, 2 * S, (2 + 20 * i) * S, 40 * S, (18 + 20 * i) * S, 2 * S);
+  CoreHarness<8> small(64, 48, 100, 100, /*max_active=*/2);
+  small.begin();
+  small.renderer().draw_screen(s.vertices, s.triangles, test::coverage_state());
+  host::ImageRgb8 got = small.render();
+  EXPECT_EQ(small.renderer().stats().dropped_active_capacity, 1u);
+  CoreHarness<8> ref(64, 48);
+  ref.begin();
+  ref.renderer().draw_screen(kept.vertices, kept.triangles, test::coverage_state());
+  EXPECT_EQ(got.rgb, ref.render().rgb);
+}
+
+TEST(Capacity, DrawTableFullIsReported) {
+  ScreenScene a = squares(1);
+  CoreHarness<8> small(64, 64, 100, 100, 16, /*max_draws=*/1);
+  small.begin();
+  EXPECT_EQ(small.renderer().draw_screen(a.vertices, a.triangles, test::coverage_state()), Status::kOk);
+  EXPECT_EQ(small.renderer().draw_screen(a.vertices, a.triangles, test::coverage_state()), Status::kCapacity);
+  EXPECT_EQ(small.renderer().stats().dropped_triangle_capacity, 2u);
+}
+
+TEST(Capacity, InvalidIndicesAndCoordinatesAreRejectedAndCounted) {
+  ScreenScene s = squares(1);
+  s.triangles.push_back({0, 1, 200});  // out of range
+  ScreenVertex far;
+  far.x = 1 << 30;  // beyond the coordinate budget
+  s.vertices.push_back(far);
+  s.triangles.push_back({0, 1, static_cast<uint16_t>(s.vertices.size() - 1)});
+  CoreHarness<8> core(64, 64);
+  core.begin();
+  core.renderer().draw_screen(s.vertices, s.triangles, test::coverage_state());
+  core.render();
+  EXPECT_EQ(core.renderer().stats().rejected_invalid, 2u);
+  EXPECT_EQ(core.renderer().stats().binned_inputs, 2u);
+}
+
+TEST(Capacity, BadConfigurationIsRefused) {
+  std::vector<ScreenVertex> v(10);
+  std::vector<BinnedTriangle> t(10);
+  std::vector<DrawRecord> d(4);
+  std::vector<uint16_t> buckets(3), depth(64 * 8);
+  std::vector<ActiveTriangle> active(4);
+  std::vector<uint16_t> index(8);
+  FrameStorage s{v, t, d, buckets, active, index, depth};
+  auto r = std::make_unique<Renderer<Rgb888, 8>>();
+  EXPECT_EQ(r->configure(s, 64, 64), Status::kInvalidArgument);  // 8 strips need 8 buckets
+  buckets.resize(8);
+  s.buckets = buckets;
+  EXPECT_EQ(r->configure(s, 64, 64), Status::kOk);
+  EXPECT_EQ(r->configure(s, 65, 64), Status::kInvalidArgument);  // depth too small for the width
+  EXPECT_EQ(r->configure(s, 0, 64), Status::kInvalidArgument);
+  index.resize(7);
+  s.active_index = index;
+  EXPECT_EQ(r->configure(s, 64, 64), Status::kInvalidArgument);
+}
+
+TEST(StripHeight, OneEightAndThirtyTwoGiveIdenticalFrames) {
+  host::HostMesh mesh = host::make_torus_knot(2, 3, 0.2, 160, 12);
+  host::SceneOptions o;
+  o.fit = true;
+  o.light_dirs = {{1, 1, 1}, {-1, 0.3, 0.5}};
+  host::RenderResult r1, r8, r32;
+  std::string err;
+  o.strip_height = 1;
+  ASSERT_TRUE(host::render_scene(mesh, o, r1, err)) << err;
+  o.strip_height = 8;
+  ASSERT_TRUE(host::render_scene(mesh, o, r8, err)) << err;
+  o.strip_height = 32;
+  ASSERT_TRUE(host::render_scene(mesh, o, r32, err)) << err;
+  EXPECT_EQ(r1.image.rgb, r8.image.rgb);
+  EXPECT_EQ(r1.image.rgb, r32.image.rgb);
+  EXPECT_EQ(r1.depth, r32.depth);
+  EXPECT_EQ(r1.strips, 240u);
+  EXPECT_EQ(r8.strips, 30u);
+  EXPECT_EQ(r32.strips, 8u);  // 7 full strips and one of 16 rows
+  EXPECT_EQ(r1.stats.pixels_written, r32.stats.pixels_written);
+  EXPECT_GT(r1.stats.pixels_written, 5000u);
+}
+
+}  // namespace
+}  // namespace lr
