@@ -75,8 +75,9 @@ int main(int argc, char** argv) {
   std::vector<Vec3d> lights;
   for (int i = 1; i < argc; ++i) {
     std::string_view a = argv[i];
+    // A value never starts with "--": "--obj --out x.png" is a missing value, not a file "--out".
     auto value = [&](std::string_view& v) {
-      if (i + 1 >= argc) return false;
+      if (i + 1 >= argc || std::string_view(argv[i + 1]).substr(0, 2) == "--") return false;
       v = argv[++i];
       return true;
     };

@@ -1,0 +1,90 @@
+// The four memory functions GCC emits calls to on its own (struct copies, zeroing, std::fill of
+// a byte pattern, string_view comparison). The firmware links no C library (-nostdlib): this is
+// all of it, so that nothing can pull in malloc, stdio or the C library's startup.
+//
+// Built with -fno-tree-loop-distribute-patterns -fno-builtin (see firmware/CMakeLists.txt):
+// otherwise GCC recognises these loops and turns them into calls to themselves.
+#include <cstddef>
+#include <cstdint>
+
+namespace {
+
+constexpr std::uintptr_t kWordMask = sizeof(std::uint32_t) - 1;
+
+bool word_aligned(const void* p) { return (reinterpret_cast<std::uintptr_t>(p) & kWordMask) == 0; }
+
+}  // namespace
+
+extern "C" {
+
+void* memcpy(void* __restrict dst, const void* __restrict src, std::size_t n) {
+  auto* d = static_cast<unsigned char*>(dst);
+  const auto* s = static_cast<const unsigned char*>(src);
+  if (word_aligned(d) && word_aligned(s)) {
+    // May alias anything: memcpy's words are not objects of type uint32_t.
+    using Word [[gnu::may_alias]] = std::uint32_t;
+    auto* dw = reinterpret_cast<Word*>(d);
+    const auto* sw = reinterpret_cast<const Word*>(s);
+    for (; n >= 16; n -= 16) {
+      dw[0] = sw[0];
+      dw[1] = sw[1];
+      dw[2] = sw[2];
+      dw[3] = sw[3];
+      dw += 4;
+      sw += 4;
+    }
+    for (; n >= 4; n -= 4) *dw++ = *sw++;
+    d = reinterpret_cast<unsigned char*>(dw);
+    s = reinterpret_cast<const unsigned char*>(sw);
+  }
+  while (n--) *d++ = *s++;
+  return dst;
+}
+
+void* memmove(void* dst, const void* src, std::size_t n) {
+  auto* d = static_cast<unsigned char*>(dst);
+  const auto* s = static_cast<const unsigned char*>(src);
+  if (reinterpret_cast<std::uintptr_t>(d) - reinterpret_cast<std::uintptr_t>(s) >= n) {
+    // No overlap that a forward copy would spoil (d before s, or d at or after s + n).
+    while (n--) *d++ = *s++;
+  } else {
+    d += n;
+    s += n;
+    while (n--) *--d = *--s;
+  }
+  return dst;
+}
+
+void* memset(void* dst, int c, std::size_t n) {
+  auto* d = static_cast<unsigned char*>(dst);
+  const auto byte = static_cast<unsigned char>(c);
+  while (n > 0 && !word_aligned(d)) {
+    *d++ = byte;
+    --n;
+  }
+  using Word [[gnu::may_alias]] = std::uint32_t;
+  const Word pattern = 0x01010101u * byte;
+  auto* dw = reinterpret_cast<Word*>(d);
+  for (; n >= 16; n -= 16) {
+    dw[0] = pattern;
+    dw[1] = pattern;
+    dw[2] = pattern;
+    dw[3] = pattern;
+    dw += 4;
+  }
+  for (; n >= 4; n -= 4) *dw++ = pattern;
+  d = reinterpret_cast<unsigned char*>(dw);
+  while (n--) *d++ = byte;
+  return dst;
+}
+
+int memcmp(const void* a, const void* b, std::size_t n) {
+  const auto* p = static_cast<const unsigned char*>(a);
+  const auto* q = static_cast<const unsigned char*>(b);
+  for (; n > 0; --n, ++p, ++q) {
+    if (*p != *q) return *p < *q ? -1 : 1;
+  }
+  return 0;
+}
+
+}  // extern "C"
