@@ -346,7 +346,8 @@ Status FrameBuilder::draw_screen(std::span<const ScreenVertex> vertices,
   const int32_t limit = (kMaxViewport * 3) << kSubpixelBits;  // inside the coordinate budget
   for (size_t i = 0; i < n; ++i) {
     ScreenVertex v = vertices[i];
-    bool ok = v.x > -limit && v.x < limit && v.y > -limit && v.y < limit && v.z <= kDepthMax && v.w >= 1;
+    if (v.w == 0) v.w = 1u << 16;
+    bool ok = v.x > -limit && v.x < limit && v.y > -limit && v.y < limit && v.z <= kDepthMax;
     v.outcode = ok ? 0 : kClipOutOfRange;
     storage_.vertices[base + i] = v;
   }

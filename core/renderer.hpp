@@ -125,8 +125,8 @@ void Renderer<PF, K>::activate(int strip) {
     for (int k = 0; k < 3; ++k) in.v[k] = &storage_.vertices[bt.v[k]];
     int32_t ymin = std::min({in.v[0]->y, in.v[1]->y, in.v[2]->y});
     int32_t ymax = std::max({in.v[0]->y, in.v[1]->y, in.v[2]->y});
-    in.first_row = std::max(first_row_below(ymin), 0);
-    in.last_row = std::min(last_row_at_or_above(ymax), height_ - 1);
+    in.first_row = std::max<int32_t>(first_row_below(ymin), 0);
+    in.last_row = std::min<int32_t>(last_row_at_or_above(ymax), height_ - 1);
     in.colors = dr.colors;
     in.depth = dr.depth;
     ActiveTriangle& t = storage_.active[slot];
@@ -150,8 +150,8 @@ void Renderer<PF, K>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, 
     if (r == t.mid_row + 1) t.short_edge = t.bottom_edge;
     int32_t a = t.long_edge.column(), b = t.short_edge.column();
     int32_t left = t.long_is_left ? a : b, right = t.long_is_left ? b : a;
-    left = std::max(left, 0);
-    right = std::min(right, width_);
+    left = std::max<int32_t>(left, 0);
+    right = std::min<int32_t>(right, width_);
     if (left < right) {
       size_t off = static_cast<size_t>(r - y0) * static_cast<size_t>(width_) + static_cast<size_t>(left);
       int32_t n = right - left;

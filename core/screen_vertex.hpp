@@ -25,7 +25,8 @@ inline constexpr uint32_t kDepthMax = 65535u << 16;
 struct ScreenVertex {
   int32_t x = 0, y = 0;  // display position in subpixels (Q.8), y down; valid when outcode == 0
   uint32_t z = 0;        // window depth, scaled as kDepthMax above
-  uint32_t w = 1u << 16; // clip-space w, Q16.16, >= 1 (perspective correction)
+  uint32_t w = 0;        // clip-space w, Q16.16 (perspective correction); draw_screen reads
+                         // 0 as 1.0. All-zero defaults keep static stores in .bss.
   Color15 color{};       // lit or given colour
   uint8_t outcode = 0;   // clip planes this vertex is outside of (0: projected fields valid)
   uint8_t reserved = 0;

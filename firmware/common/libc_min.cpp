@@ -1,5 +1,7 @@
-// The four memory functions GCC emits calls to on its own (struct copies, zeroing, std::fill of
-// a byte pattern, string_view comparison). The firmware links no C library (-nostdlib): this is
+// The C library functions that compiled code calls without asking: memcpy, memmove, memset,
+// memcmp (GCC emits them for struct copies, zeroing, std::fill of a byte pattern,
+// std::string_view comparison) and strlen (std::string_view from a C string, when not folded at
+// compile time, e.g. at -O0). The firmware links no C library (-nostdlib): this is
 // all of it, so that nothing can pull in malloc, stdio or the C library's startup.
 //
 // Built with -fno-tree-loop-distribute-patterns -fno-builtin (see firmware/CMakeLists.txt):
@@ -85,6 +87,12 @@ int memcmp(const void* a, const void* b, std::size_t n) {
     if (*p != *q) return *p < *q ? -1 : 1;
   }
   return 0;
+}
+
+std::size_t strlen(const char* s) {
+  const char* p = s;
+  while (*p != '\0') ++p;
+  return static_cast<std::size_t>(p - s);
 }
 
 }  // extern "C"

@@ -1,0 +1,27 @@
+#!/bin/bash
+# Installs the Debian 12 packages lineraster needs that are missing. Run as root.
+# Usage: scripts/setup.sh [demo|test]   (demo: what rendering needs; test: everything)
+set -euo pipefail
+what=${1:-test}
+pkgs=(g++ make cmake libpng-dev)
+if [ "$what" = test ]; then
+  pkgs+=(libgtest-dev libbenchmark-dev valgrind gcc-arm-none-eabi libnewlib-arm-none-eabi
+         libstdc++-arm-none-eabi-newlib qemu-system-arm)
+fi
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all packages present"
+  exit 0
+fi
+if [ "$(id -u)" != 0 ]; then
+  echo "setup: missing packages: ${missing[*]}; run as root (or: sudo apt-get install ${missing[*]})" >&2
+  exit 1
+fi
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "setup: done"
