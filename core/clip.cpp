@@ -9,21 +9,28 @@ constexpr int64_t kMinW = int64_t{1} << (ClipCoord::kFracBits - 16);  // w >= 2^
 // Signed distance to plane i (>= 0 inside). |coordinates| < 2^47 and G <= 8192 keep it < 2^61.
 int64_t distance(const ClipCoord& c, int i, GuardBand g) {
   switch (i) {
-    case 0: return c.z + c.w;
-    case 1: return c.w - c.z;
-    case 2: return c.x + g.gx * c.w;
-    case 3: return g.gx * c.w - c.x;
-    case 4: return c.y + g.gy * c.w;
-    case 5: return g.gy * c.w - c.y;
-    default: return c.w - kMinW;
+    case 0:
+      return c.z + c.w;
+    case 1:
+      return c.w - c.z;
+    case 2:
+      return c.x + g.gx * c.w;
+    case 3:
+      return g.gx * c.w - c.x;
+    case 4:
+      return c.y + g.gy * c.w;
+    case 5:
+      return g.gy * c.w - c.y;
+    default:
+      return c.w - kMinW;
   }
 }
 
 // (a * t) >> 30 for |a| < 2^63 and 0 <= t <= 2^30, without a 128-bit product.
 int64_t mul_frac30(int64_t a, uint32_t t) {
   uint64_t u = abs64(a);
-  uint64_t hi = (u >> 32) * t;           // < 2^61
-  uint64_t lo = (u & 0xFFFFFFFFu) * t;   // < 2^62
+  uint64_t hi = (u >> 32) * t;          // < 2^61
+  uint64_t lo = (u & 0xFFFFFFFFu) * t;  // < 2^62
   uint64_t r = (hi << 2) + (lo >> 30);
   return a < 0 ? -static_cast<int64_t>(r) : static_cast<int64_t>(r);
 }

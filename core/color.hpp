@@ -19,8 +19,12 @@ struct Color15 {
 };
 
 // Channel i (0 = r, 1 = g, 2 = b) of a colour.
-constexpr uint16_t channel(const Color15& c, int i) { return i == 0 ? c.r : i == 1 ? c.g : c.b; }
-constexpr Color15 make_color15(const uint16_t (&v)[3]) { return {v[0], v[1], v[2]}; }
+constexpr uint16_t channel(const Color15& c, int i) {
+  return i == 0 ? c.r : i == 1 ? c.g : c.b;
+}
+constexpr Color15 make_color15(const uint16_t (&v)[3]) {
+  return {v[0], v[1], v[2]};
+}
 
 struct Rgb8 {
   uint8_t r = 0, g = 0, b = 0;
@@ -32,14 +36,18 @@ constexpr uint8_t to_byte(uint32_t c15) {
   return static_cast<uint8_t>((c15 * 255u + (Color15::kOne / 2)) >> Color15::kFracBits);
 }
 
-constexpr Rgb8 to_rgb8(Color15 c) { return {to_byte(c.r), to_byte(c.g), to_byte(c.b)}; }
+constexpr Rgb8 to_rgb8(Color15 c) {
+  return {to_byte(c.r), to_byte(c.g), to_byte(c.b)};
+}
 
 // An 8-bit level as Q1.15, exact to rounding: v * 32768 / 255.
 constexpr uint16_t from_byte(uint8_t v) {
   return static_cast<uint16_t>((uint32_t{v} * Color15::kOne + 127u) / 255u);
 }
 
-constexpr Color15 from_rgb8(Rgb8 c) { return {from_byte(c.r), from_byte(c.g), from_byte(c.b)}; }
+constexpr Color15 from_rgb8(Rgb8 c) {
+  return {from_byte(c.r), from_byte(c.g), from_byte(c.b)};
+}
 
 // A colour given in millionths (as published material tables are), converted at compile time.
 consteval uint16_t c15_from_micro(uint32_t micro) {

@@ -79,8 +79,12 @@ constexpr Fixed Fixed::ratio(int32_t n, int32_t d) {
 
 // Number of leading zero bits of a non-zero value; portable and constexpr (GCC lowers the
 // builtin to CLZ where the core has it).
-constexpr int clz32(uint32_t v) { return __builtin_clz(v); }
-constexpr int clz64(uint64_t v) { return __builtin_clzll(v); }
+constexpr int clz32(uint32_t v) {
+  return __builtin_clz(v);
+}
+constexpr int clz64(uint64_t v) {
+  return __builtin_clzll(v);
+}
 
 // Magnitude of an int64 as uint64, defined for INT64_MIN too.
 constexpr uint64_t abs64(int64_t v) {

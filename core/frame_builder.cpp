@@ -44,7 +44,8 @@ Rgb8 to_rgb8_sat(Color15 c) {
 
 Status FrameBuilder::configure(const FrameStorage& s, int width, int height, int strip_height) {
   configured_ = false;
-  if (width < 1 || height < 1 || width > kMaxViewport || height > kMaxViewport) return Status::kInvalidArgument;
+  if (width < 1 || height < 1 || width > kMaxViewport || height > kMaxViewport)
+    return Status::kInvalidArgument;
   if (strip_height < 1 || strip_height > 32) return Status::kInvalidArgument;
   int strips = (height + strip_height - 1) / strip_height;
   if (s.buckets.size() < static_cast<size_t>(strips)) return Status::kInvalidArgument;
@@ -54,7 +55,8 @@ Status FrameBuilder::configure(const FrameStorage& s, int width, int height, int
     return Status::kInvalidArgument;
   if (s.draws.empty() || s.draws.size() > 256) return Status::kInvalidArgument;
   storage_ = s;
-  if (storage_.vertices.size() > kMaxStoreEntries) storage_.vertices = storage_.vertices.first(kMaxStoreEntries);
+  if (storage_.vertices.size() > kMaxStoreEntries)
+    storage_.vertices = storage_.vertices.first(kMaxStoreEntries);
   if (storage_.triangles.size() > kMaxStoreEntries - 1)
     storage_.triangles = storage_.triangles.first(kMaxStoreEntries - 1);
   width_ = width;
@@ -104,22 +106,24 @@ bool FrameBuilder::project(const ClipCoord& c, ScreenVertex& v) const {
   return true;
 }
 
-Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_planes, uint8_t& index) {
+Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_planes,
+                                     uint8_t& index) {
   if (draw_count_ >= storage_.draws.size()) return Status::kCapacity;
   DrawRecord r;
   r.depth = state.depth_test;
   if (state.shading == Shading::kFlat || !has_color_planes) {
     r.colors = ColorPlanes::kNone;
   } else {
-    r.colors = state.perspective == Perspective::kExact ? ColorPlanes::kPerspective : ColorPlanes::kAffine;
+    r.colors =
+        state.perspective == Perspective::kExact ? ColorPlanes::kPerspective : ColorPlanes::kAffine;
   }
   index = static_cast<uint8_t>(draw_count_);
   storage_.draws[draw_count_++] = r;
   return Status::kOk;
 }
 
-FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat,
-                                          Cull cull) {
+FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
+                                          Rgb8 flat, Cull cull) {
   const ScreenVertex& v0 = storage_.vertices[a];
   const ScreenVertex& v1 = storage_.vertices[b];
   const ScreenVertex& v2 = storage_.vertices[c];
@@ -128,7 +132,8 @@ FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, ui
   if (area == 0) return BinResult::kZeroArea;
   // Counter-clockwise in NDC (y up) is clockwise on the display (y down): negative area.
   bool front = area < 0;
-  if ((cull == Cull::kBack && !front) || (cull == Cull::kFront && front)) return BinResult::kBackface;
+  if ((cull == Cull::kBack && !front) || (cull == Cull::kFront && front))
+    return BinResult::kBackface;
   int32_t ymin = v0.y < v1.y ? v0.y : v1.y, ymax = v0.y > v1.y ? v0.y : v1.y;
   ymin = v2.y < ymin ? v2.y : ymin;
   ymax = v2.y > ymax ? v2.y : ymax;
@@ -161,18 +166,31 @@ FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, ui
 
 namespace {
 void count_outcome(FrameStats& s, int binned, int last_reason) {
-  // last_reason: 1 backface, 2 zero area, 3 offscreen, 4 capacity, 5 clipped away, 6 vertex capacity
+  // last_reason: 1 backface, 2 zero area, 3 offscreen, 4 capacity, 5 clipped away, 6 vertex
+  // capacity
   if (binned > 0) {
     ++s.binned_inputs;
     return;
   }
   switch (last_reason) {
-    case 1: ++s.culled_backface; break;
-    case 2: ++s.culled_zero_area; break;
-    case 3: ++s.culled_offscreen; break;
-    case 4: ++s.dropped_triangle_capacity; break;
-    case 6: ++s.dropped_vertex_capacity; break;
-    default: ++s.clipped_away; break;
+    case 1:
+      ++s.culled_backface;
+      break;
+    case 2:
+      ++s.culled_zero_area;
+      break;
+    case 3:
+      ++s.culled_offscreen;
+      break;
+    case 4:
+      ++s.dropped_triangle_capacity;
+      break;
+    case 6:
+      ++s.dropped_vertex_capacity;
+      break;
+    default:
+      ++s.clipped_away;
+      break;
   }
 }
 }  // namespace
@@ -181,7 +199,8 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
                           const DrawState& state) {
   if (!configured_) return Status::kInvalidArgument;
   const size_t n = mesh.positions.size();
-  if ((!mesh.normals.empty() && mesh.normals.size() != n) || (!mesh.colors.empty() && mesh.colors.size() != n))
+  if ((!mesh.normals.empty() && mesh.normals.size() != n) ||
+      (!mesh.colors.empty() && mesh.colors.size() != n))
     return Status::kInvalidArgument;
   const bool lit = state.lighting;
   const bool gouraud = state.shading == Shading::kGouraud;
@@ -262,9 +281,10 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
         if (pl.local_viewer) {
           Vec3 w0 = transform_affine(model, p0), w1 = transform_affine(model, p1),
                w2 = transform_affine(model, p2);
-          centroid = {Fixed::from_raw(static_cast<int32_t>((int64_t{w0.x.raw} + w1.x.raw + w2.x.raw) / 3)),
-                      Fixed::from_raw(static_cast<int32_t>((int64_t{w0.y.raw} + w1.y.raw + w2.y.raw) / 3)),
-                      Fixed::from_raw(static_cast<int32_t>((int64_t{w0.z.raw} + w1.z.raw + w2.z.raw) / 3))};
+          centroid = {
+              Fixed::from_raw(static_cast<int32_t>((int64_t{w0.x.raw} + w1.x.raw + w2.x.raw) / 3)),
+              Fixed::from_raw(static_cast<int32_t>((int64_t{w0.y.raw} + w1.y.raw + w2.y.raw) / 3)),
+              Fixed::from_raw(static_cast<int32_t>((int64_t{w0.z.raw} + w1.z.raw + w2.z.raw) / 3))};
         }
         flat = to_rgb8_sat(light_point(pl, fw, centroid));
       } else {
@@ -312,10 +332,12 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     vertex_count_ += static_cast<size_t>(m);
     int binned = 0, last = 5;
     for (int k = 1; k + 1 < m; ++k) {
-      BinResult r = bin(first, static_cast<uint16_t>(first + k), static_cast<uint16_t>(first + k + 1),
-                        draw_index, flat, state.cull);
-      if (r == BinResult::kBinned) ++binned;
-      else last = static_cast<int>(r);
+      BinResult r = bin(first, static_cast<uint16_t>(first + k),
+                        static_cast<uint16_t>(first + k + 1), draw_index, flat, state.cull);
+      if (r == BinResult::kBinned)
+        ++binned;
+      else
+        last = static_cast<int>(r);
     }
     count_outcome(stats_, binned, last);
   }

@@ -27,11 +27,11 @@ inline constexpr size_t kMaxStoreEntries = 0xFFFF;  // indices are uint16; 0xFFF
 
 // A triangle in the edge table: 12 bytes.
 struct BinnedTriangle {
-  uint16_t v[3];   // vertex store indices
-  uint16_t next;   // next triangle of the same bucket (lists are built by prepending, so
-                   // they run from the latest submission to the earliest)
-  uint8_t draw;    // draw record
-  Rgb8 flat;       // flat-shaded colour
+  uint16_t v[3];  // vertex store indices
+  uint16_t next;  // next triangle of the same bucket (lists are built by prepending, so
+                  // they run from the latest submission to the earliest)
+  uint8_t draw;   // draw record
+  Rgb8 flat;      // flat-shaded colour
 };
 static_assert(sizeof(BinnedTriangle) == 12);
 
@@ -47,10 +47,10 @@ struct FrameStorage {
   std::span<ScreenVertex> vertices;
   std::span<BinnedTriangle> triangles;
   std::span<DrawRecord> draws;
-  std::span<uint16_t> buckets;        // one per strip: ceil(height / K)
-  std::span<ActiveTriangle> active;   // triangles being rasterized at once
-  std::span<uint16_t> active_index;   // 2 x active.size(): draw order and free slots
-  std::span<uint16_t> depth;          // width x K (16-bit depth of one strip)
+  std::span<uint16_t> buckets;       // one per strip: ceil(height / K)
+  std::span<ActiveTriangle> active;  // triangles being rasterized at once
+  std::span<uint16_t> active_index;  // 2 x active.size(): draw order and free slots
+  std::span<uint16_t> depth;         // width x K (16-bit depth of one strip)
 };
 
 class FrameBuilder {
@@ -65,7 +65,8 @@ class FrameBuilder {
   // Adds a mesh. On a full store the triangles that do not fit are dropped and counted, and
   // kCapacity is returned; what fit is kept. kInvalidArgument (nothing added) when the mesh's
   // arrays disagree in size or Gouraud lighting is asked of a mesh without normals.
-  Status draw(const Mesh& mesh, const Mat4& model, const Material& material, const DrawState& state);
+  Status draw(const Mesh& mesh, const Mat4& model, const Material& material,
+              const DrawState& state);
 
   // Adds triangles already in screen space (snapped subpixel positions, depth, colour):
   // for 2D overlays and for tests of the raster rules. Lighting does not apply.
@@ -73,7 +74,9 @@ class FrameBuilder {
                      std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
 
   const FrameStats& stats() const { return stats_; }
-  std::span<const ScreenVertex> screen_vertices() const { return storage_.vertices.first(vertex_count_); }
+  std::span<const ScreenVertex> screen_vertices() const {
+    return storage_.vertices.first(vertex_count_);
+  }
   std::span<const BinnedTriangle> binned_triangles() const {
     return storage_.triangles.first(triangle_count_);
   }

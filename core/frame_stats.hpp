@@ -11,29 +11,29 @@ struct FrameStats {
   uint32_t triangles_in = 0;
   uint32_t culled_backface = 0;
   uint32_t culled_zero_area = 0;
-  uint32_t culled_offscreen = 0;   // outside the viewport, or covering no pixel centre
-  uint32_t clipped_away = 0;       // entirely outside a clip plane
-  uint32_t rejected_invalid = 0;   // vertex index out of range
+  uint32_t culled_offscreen = 0;  // outside the viewport, or covering no pixel centre
+  uint32_t clipped_away = 0;      // entirely outside a clip plane
+  uint32_t rejected_invalid = 0;  // vertex index out of range
   uint32_t dropped_vertex_capacity = 0;
   uint32_t dropped_triangle_capacity = 0;
-  uint32_t binned_inputs = 0;      // inputs that reached the edge table (at least one piece)
+  uint32_t binned_inputs = 0;  // inputs that reached the edge table (at least one piece)
   // Pieces: triangles made by clipping, and what reached the edge table.
-  uint32_t clipped = 0;            // input triangles that crossed a clip plane and were cut
-  uint32_t triangles_binned = 0;   // records in the edge table (clipping can make several)
+  uint32_t clipped = 0;                  // input triangles that crossed a clip plane and were cut
+  uint32_t triangles_binned = 0;         // records in the edge table (clipping can make several)
   uint32_t dropped_active_capacity = 0;  // binned triangles not drawn: active list full
   // Raster work.
   uint32_t vertices_transformed = 0;
   uint32_t strips = 0;
-  uint32_t empty_strips = 0;       // strips with no active triangle (background fill only)
+  uint32_t empty_strips = 0;  // strips with no active triangle (background fill only)
   uint32_t spans = 0;
-  uint32_t pixels_tested = 0;      // pixels inside spans
-  uint32_t pixels_written = 0;     // pixels that passed the depth test and were written
-  uint32_t max_active = 0;         // peak size of the active list
+  uint32_t pixels_tested = 0;   // pixels inside spans
+  uint32_t pixels_written = 0;  // pixels that passed the depth test and were written
+  uint32_t max_active = 0;      // peak size of the active list
   // RAM figures (bytes), fixed by the formats.
   uint32_t bytes_per_vertex = 0;
   uint32_t bytes_per_binned_triangle = 0;
   uint32_t bytes_per_active_triangle = 0;
-  uint32_t bytes_per_strip = 0;    // colour + depth of one strip
+  uint32_t bytes_per_strip = 0;  // colour + depth of one strip
 };
 
 }  // namespace lr

@@ -33,7 +33,8 @@ PreparedLighting prepare_lighting(const LightSet& set, const Material& m, Vec3 v
   pl.eye = eye;
   pl.view = unit_of(view_dir);
   for (int c = 0; c < 3; ++c)
-    pl.base[c] = channel(m.emission, c) + mul15(channel(set.global_ambient, c), channel(m.ambient, c));
+    pl.base[c] =
+        channel(m.emission, c) + mul15(channel(set.global_ambient, c), channel(m.ambient, c));
   for (int i = 0; i < pl.count; ++i) {
     const DirectionalLight& src = set.lights[static_cast<size_t>(i)];
     PreparedLighting::Light& d = pl.lights[static_cast<size_t>(i)];

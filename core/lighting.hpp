@@ -45,18 +45,18 @@ struct LightSet {
 // vectors (infinite viewer) and the products of light and material colours. Made per draw.
 struct PreparedLighting {
   struct Light {
-    Unit30 l;           // towards the light
-    Unit30 h;           // half vector for the infinite viewer
-    uint16_t kd[3];     // Ld * Kd, Q1.15
-    uint16_t ks[3];     // Ls * Ks, Q1.15
+    Unit30 l;        // towards the light
+    Unit30 h;        // half vector for the infinite viewer
+    uint16_t kd[3];  // Ld * Kd, Q1.15
+    uint16_t ks[3];  // Ls * Ks, Q1.15
   };
   std::array<Light, kMaxLights> lights{};
   uint8_t count = 0;
   int32_t base[3] = {0, 0, 0};  // emission + global ambient * Ka + sum La * Ka, Q1.15
   uint16_t shininess_q8 = 0;
   bool local_viewer = false;
-  Vec3 eye{};                   // world-space eye position (local viewer)
-  Unit30 view{};                // world-space direction towards the viewer (infinite viewer)
+  Vec3 eye{};     // world-space eye position (local viewer)
+  Unit30 view{};  // world-space direction towards the viewer (infinite viewer)
 };
 
 // view_dir: world-space direction from the scene towards the eye (the view's +Z axis).

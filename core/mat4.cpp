@@ -20,7 +20,9 @@ Mat4 scale(Vec3 s) {
   return r;
 }
 
-Mat4 scale(Fixed s) { return scale(Vec3{s, s, s}); }
+Mat4 scale(Fixed s) {
+  return scale(Vec3{s, s, s});
+}
 
 namespace {
 // Rotation in the plane of axes (a, b): the standard GL matrices.
@@ -35,9 +37,15 @@ Mat4 rotation(int a, int b, Fixed degrees) {
 }
 }  // namespace
 
-Mat4 rotate_x(Fixed degrees) { return rotation(1, 2, degrees); }
-Mat4 rotate_y(Fixed degrees) { return rotation(2, 0, degrees); }
-Mat4 rotate_z(Fixed degrees) { return rotation(0, 1, degrees); }
+Mat4 rotate_x(Fixed degrees) {
+  return rotation(1, 2, degrees);
+}
+Mat4 rotate_y(Fixed degrees) {
+  return rotation(2, 0, degrees);
+}
+Mat4 rotate_z(Fixed degrees) {
+  return rotation(0, 1, degrees);
+}
 
 Mat4 normal_matrix(const Mat4& model) {
   // Cofactors in Q32.32 (int64): each a difference of two products of Q16.16 entries.

@@ -16,8 +16,8 @@ namespace lr {
 // Triangles are counter-clockwise when front-facing; indices < positions.size().
 struct Mesh {
   std::span<const Vec3> positions;
-  std::span<const Normal16> normals;             // empty, or one per position
-  std::span<const Rgb8> colors;                  // empty, or one per position
+  std::span<const Normal16> normals;  // empty, or one per position
+  std::span<const Rgb8> colors;       // empty, or one per position
   std::span<const std::array<uint16_t, 3>> triangles;
 };
 
@@ -36,8 +36,8 @@ enum class Perspective : uint8_t {
 
 struct DrawState {
   Shading shading = Shading::kGouraud;
-  bool lighting = true;      // false: unlit (vertex colours if the mesh has them, else Kd)
-  bool depth_test = true;    // LESS against the strip's depth buffer, and write
+  bool lighting = true;    // false: unlit (vertex colours if the mesh has them, else Kd)
+  bool depth_test = true;  // LESS against the strip's depth buffer, and write
   Cull cull = Cull::kNone;
   Perspective perspective = Perspective::kExact;
 };

@@ -46,7 +46,8 @@ struct Rgb565Be {
   static constexpr Rgb8 decode(Storage s) {
     unsigned v = to_value(s);
     unsigned r5 = v >> 11, g6 = (v >> 5) & 63u, b5 = v & 31u;
-    return {static_cast<uint8_t>((r5 << 3) | (r5 >> 2)), static_cast<uint8_t>((g6 << 2) | (g6 >> 4)),
+    return {static_cast<uint8_t>((r5 << 3) | (r5 >> 2)),
+            static_cast<uint8_t>((g6 << 2) | (g6 >> 4)),
             static_cast<uint8_t>((b5 << 3) | (b5 >> 2))};
   }
 };

@@ -60,7 +60,8 @@ Status Renderer<PF, K>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
   active_count_ = 0;
   free_count_ = storage_.active.size();
   uint16_t* free_slots = storage_.active_index.data() + storage_.active.size();
-  for (size_t i = 0; i < free_count_; ++i) free_slots[i] = static_cast<uint16_t>(free_count_ - 1 - i);
+  for (size_t i = 0; i < free_count_; ++i)
+    free_slots[i] = static_cast<uint16_t>(free_count_ - 1 - i);
 
   Status st = sink.begin_frame(static_cast<uint16_t>(width_), static_cast<uint16_t>(height_));
   if (st != Status::kOk) return st;
@@ -87,7 +88,8 @@ Status Renderer<PF, K>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
         raster_triangle(storage_.active[order[i]], px.data(), y0, rows);
       retire(y0 + rows);
     }
-    StripRect rect{0, static_cast<uint16_t>(y0), static_cast<uint16_t>(width_), static_cast<uint16_t>(rows)};
+    StripRect rect{0, static_cast<uint16_t>(y0), static_cast<uint16_t>(width_),
+                   static_cast<uint16_t>(rows)};
     if (depth_sink) depth_sink->on_depth(rect, depth);
     ++stats_.strips;
     st = sink.submit(rect, std::move(lease));
@@ -153,7 +155,8 @@ void Renderer<PF, K>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, 
     left = std::max<int32_t>(left, 0);
     right = std::min<int32_t>(right, width_);
     if (left < right) {
-      size_t off = static_cast<size_t>(r - y0) * static_cast<size_t>(width_) + static_cast<size_t>(left);
+      size_t off =
+          static_cast<size_t>(r - y0) * static_cast<size_t>(width_) + static_cast<size_t>(left);
       int32_t n = right - left;
       stats_.pixels_written += fn(t, pixels + off, storage_.depth.data() + off, left, r, n);
       stats_.pixels_tested += static_cast<uint32_t>(n);
@@ -172,8 +175,10 @@ void Renderer<PF, K>::retire(int next_row) {
   size_t kept = 0;
   for (size_t i = 0; i < active_count_; ++i) {
     uint16_t slot = order[i];
-    if (storage_.active[slot].last_row < next_row) free_slots[free_count_++] = slot;
-    else order[kept++] = slot;
+    if (storage_.active[slot].last_row < next_row)
+      free_slots[free_count_++] = slot;
+    else
+      order[kept++] = slot;
   }
   active_count_ = kept;
 }

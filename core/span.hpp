@@ -16,7 +16,9 @@ namespace lr {
 
 namespace detail {
 
-constexpr uint32_t clamp15(uint32_t c15) { return c15 > Color15::kOne ? Color15::kOne : c15; }
+constexpr uint32_t clamp15(uint32_t c15) {
+  return c15 > Color15::kOne ? Color15::kOne : c15;
+}
 
 // Perspective-correct channel value cq / q in Q1.15 with a 17-bit normalised reciprocal:
 // s = clz(q), qn = q << s in [2^31, 2^32), r = (2^32 - 1) / (qn >> 16) in (2^16, 2^17];
@@ -88,7 +90,8 @@ uint32_t fill_span(const ActiveTriangle& t, typename PF::Storage* px, uint16_t* 
         px[i] = flat;
       } else if constexpr (kColors == ColorPlanes::kPerspective) {
         detail::Reciprocal rc(q);
-        px[i] = PF::encode(Rgb8{to_byte(rc.apply(c[0])), to_byte(rc.apply(c[1])), to_byte(rc.apply(c[2]))});
+        px[i] = PF::encode(
+            Rgb8{to_byte(rc.apply(c[0])), to_byte(rc.apply(c[1])), to_byte(rc.apply(c[2]))});
       } else {
         px[i] = PF::encode(Rgb8{to_byte(detail::affine15(c[0])), to_byte(detail::affine15(c[1])),
                                 to_byte(detail::affine15(c[2]))});

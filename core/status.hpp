@@ -16,12 +16,18 @@ enum class Status : uint8_t {
 
 constexpr const char* to_string(Status s) {
   switch (s) {
-    case Status::kOk: return "ok";
-    case Status::kInvalidArgument: return "invalid argument";
-    case Status::kCapacity: return "capacity exceeded";
-    case Status::kDisplayError: return "display error";
-    case Status::kTimeout: return "timeout";
-    case Status::kBusy: return "busy";
+    case Status::kOk:
+      return "ok";
+    case Status::kInvalidArgument:
+      return "invalid argument";
+    case Status::kCapacity:
+      return "capacity exceeded";
+    case Status::kDisplayError:
+      return "display error";
+    case Status::kTimeout:
+      return "timeout";
+    case Status::kBusy:
+      return "busy";
   }
   return "unknown";
 }

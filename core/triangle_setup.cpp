@@ -86,7 +86,8 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
     for (int c = 0; c < 3; ++c) {
       uint32_t cq[3];
       for (int i = 0; i < 3; ++i)
-        cq[i] = static_cast<uint32_t>((uint64_t{channel(v[i]->color, c)} * q[i] + (1u << 14)) >> 15);
+        cq[i] =
+            static_cast<uint32_t>((uint64_t{channel(v[i]->color, c)} * q[i] + (1u << 14)) >> 15);
       t.c[c] = make_plane(v, cq);
     }
   } else if (in.colors == ColorPlanes::kAffine) {

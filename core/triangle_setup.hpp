@@ -43,8 +43,8 @@ struct ActiveTriangle {
   int16_t last_row = 0;    // last row to draw (inclusive, clamped to the viewport)
   uint16_t index = 0;      // binned triangle index: submission order
   bool long_is_left = false;
-  uint8_t draw = 0;        // draw record of the triangle's state
-  Rgb8 flat{};             // colour of flat-shaded triangles
+  uint8_t draw = 0;  // draw record of the triangle's state
+  Rgb8 flat{};       // colour of flat-shaded triangles
   Plane z;
   Plane q;
   Plane c[3];

@@ -32,6 +32,8 @@ Fixed sin_deg(Fixed degrees) {
   return Fixed::from_raw(sign * sin_quadrant(a));
 }
 
-Fixed cos_deg(Fixed degrees) { return sin_deg(degrees + Fixed::from_int(90)); }
+Fixed cos_deg(Fixed degrees) {
+  return sin_deg(degrees + Fixed::from_int(90));
+}
 
 }  // namespace lr

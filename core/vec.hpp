@@ -30,8 +30,12 @@ struct Unit30 {
   static constexpr int kFracBits = 30;
 };
 
-constexpr Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-constexpr Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+constexpr Vec3 operator+(Vec3 a, Vec3 b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+constexpr Vec3 operator-(Vec3 a, Vec3 b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
 
 // Dot product of Q16.16 vectors in Q32.32 (int64; |result| < 3 * 2^62 / ... see note).
 // Each product is < 2^62 in magnitude; the sum of three is shifted by 2 first so it cannot
@@ -59,8 +63,8 @@ constexpr bool normalize_unit30(int64_t x, int64_t y, int64_t z, Unit30& out) {
     y = static_cast<int64_t>(static_cast<uint64_t>(y) << s);
     z = static_cast<int64_t>(static_cast<uint64_t>(z) << s);
   }
-  uint64_t len2 = static_cast<uint64_t>(x * x) + static_cast<uint64_t>(y * y) +
-                  static_cast<uint64_t>(z * z);
+  uint64_t len2 =
+      static_cast<uint64_t>(x * x) + static_cast<uint64_t>(y * y) + static_cast<uint64_t>(z * z);
   // len in [2^28, 2^31): 30 fractional bits of each quotient need x * 2^30 < 2^60.
   int64_t len = isqrt64(len2);
   if (len == 0) return false;

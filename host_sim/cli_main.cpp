@@ -95,12 +95,12 @@ int main(int argc, char** argv) {
       o.depth_test = false;
     } else if (a == "--stats") {
       stats = true;
-    } else if (a == "--obj" || a == "--out" || a == "--depth-out" || a == "--width" || a == "--height" ||
-               a == "--fovy" || a == "--near" || a == "--far" || a == "--eye" || a == "--target" ||
-               a == "--up" || a == "--model-scale" || a == "--model-rotate-y" || a == "--model-translate" ||
-               a == "--shading" || a == "--light-dir" || a == "--material" || a == "--ambient" ||
-               a == "--diffuse" || a == "--specular" || a == "--shininess" || a == "--bg" || a == "--cull" ||
-               a == "--strip-height") {
+    } else if (a == "--obj" || a == "--out" || a == "--depth-out" || a == "--width" ||
+               a == "--height" || a == "--fovy" || a == "--near" || a == "--far" || a == "--eye" ||
+               a == "--target" || a == "--up" || a == "--model-scale" || a == "--model-rotate-y" ||
+               a == "--model-translate" || a == "--shading" || a == "--light-dir" ||
+               a == "--material" || a == "--ambient" || a == "--diffuse" || a == "--specular" ||
+               a == "--shininess" || a == "--bg" || a == "--cull" || a == "--strip-height") {
       if (!value(v)) return fail(std::string(a) + ": missing value");
       const std::string bad = std::string(a) + ": bad value '" + std::string(v) + "'";
       if (a == "--obj") {
@@ -111,7 +111,8 @@ int main(int argc, char** argv) {
           return fail("--out: the file name must end in .png or .ppm");
       } else if (a == "--depth-out") {
         depth_out = v;
-        if (extension(depth_out) != "png") return fail("--depth-out: the file name must end in .png");
+        if (extension(depth_out) != "png")
+          return fail("--depth-out: the file name must end in .png");
       } else if (a == "--width" || a == "--height") {
         int n;
         if (!parse_int(v, n) || n < 1 || n > 4096) return fail(bad + " (1..4096)");
@@ -146,10 +147,14 @@ int main(int argc, char** argv) {
                  a == "--light-dir") {
         Vec3d p;
         if (!parse_vec3(v, p)) return fail(bad + " (expected x,y,z)");
-        if (a == "--eye") o.eye = p;
-        else if (a == "--target") o.target = p;
-        else if (a == "--up") o.up = p;
-        else if (a == "--model-translate") o.model_translate = p;
+        if (a == "--eye")
+          o.eye = p;
+        else if (a == "--target")
+          o.target = p;
+        else if (a == "--up")
+          o.up = p;
+        else if (a == "--model-translate")
+          o.model_translate = p;
         else {
           if (p[0] == 0 && p[1] == 0 && p[2] == 0) return fail(bad + " (zero direction)");
           lights.push_back(p);
@@ -160,12 +165,15 @@ int main(int argc, char** argv) {
         if (a == "--bg") {
           o.background = c;
         } else {
-          (a == "--ambient" ? o.material.ambient : a == "--diffuse" ? o.material.diffuse : o.material.specular) = c;
+          (a == "--ambient"   ? o.material.ambient
+           : a == "--diffuse" ? o.material.diffuse
+                              : o.material.specular) = c;
           o.use_mesh_materials = false;
         }
       } else if (a == "--material") {
         const lr::NamedMaterial* m = lr::find_material(v);
-        if (!m) return fail(bad + " (unknown material; e.g. gold, silver, jade, ruby, red_plastic)");
+        if (!m)
+          return fail(bad + " (unknown material; e.g. gold, silver, jade, ruby, red_plastic)");
         for (int k = 0; k < 3; ++k) {
           o.material.ambient[static_cast<size_t>(k)] = m->ambient[k] * 1e-8;
           o.material.diffuse[static_cast<size_t>(k)] = m->diffuse[k] * 1e-8;
@@ -175,14 +183,21 @@ int main(int argc, char** argv) {
         o.material.shininess = m->shininess_fraction * 1e-8 * 128.0;
         o.use_mesh_materials = false;
       } else if (a == "--shading") {
-        if (v == "flat") o.shading = lr::Shading::kFlat;
-        else if (v == "gouraud") o.shading = lr::Shading::kGouraud;
-        else if (v == "phong") return fail("--shading phong: not supported yet (per-pixel lighting is a later issue)");
-        else return fail(bad + " (flat, gouraud or phong)");
+        if (v == "flat")
+          o.shading = lr::Shading::kFlat;
+        else if (v == "gouraud")
+          o.shading = lr::Shading::kGouraud;
+        else if (v == "phong")
+          return fail("--shading phong: not supported yet (per-pixel lighting is a later issue)");
+        else
+          return fail(bad + " (flat, gouraud or phong)");
       } else if (a == "--cull") {
-        if (v == "back") o.cull = lr::Cull::kBack;
-        else if (v == "none") o.cull = lr::Cull::kNone;
-        else return fail(bad + " (back or none)");
+        if (v == "back")
+          o.cull = lr::Cull::kBack;
+        else if (v == "none")
+          o.cull = lr::Cull::kNone;
+        else
+          return fail(bad + " (back or none)");
       }
     } else {
       return fail("unknown option '" + std::string(a) + "' (see --help)");
@@ -217,8 +232,9 @@ int main(int argc, char** argv) {
         o.width, o.height, o.strip_height, s.triangles_in, s.binned_inputs, s.culled_backface,
         s.culled_zero_area, s.culled_offscreen, s.clipped, s.clipped_away, s.rejected_invalid,
         s.dropped_vertex_capacity, s.dropped_triangle_capacity, s.dropped_active_capacity,
-        s.triangles_binned, s.vertices_transformed, s.strips, s.empty_strips, s.spans, s.pixels_tested,
-        s.pixels_written, s.max_active, static_cast<unsigned long long>(result.bytes), s.bytes_per_vertex,
+        s.triangles_binned, s.vertices_transformed, s.strips, s.empty_strips, s.spans,
+        s.pixels_tested, s.pixels_written, s.max_active,
+        static_cast<unsigned long long>(result.bytes), s.bytes_per_vertex,
         s.bytes_per_binned_triangle, s.bytes_per_active_triangle, s.bytes_per_strip);
   }
   return 0;

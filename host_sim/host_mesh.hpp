@@ -28,10 +28,10 @@ struct HostMaterial {
 // Every vertex has a position and a unit normal (smooth normals are made where the OBJ has none).
 // Triangles are counter-clockwise when front-facing (OBJ convention = GL convention).
 struct HostMesh {
-  std::vector<Vec3d> positions;   // model units
-  std::vector<Vec3d> normals;     // unit length, one per vertex
-  std::vector<Vec3d> colors;      // per vertex linear [0, 1]; empty when the OBJ has no `v x y z r g b`
-  std::vector<Vec2d> uvs;         // per vertex; empty when the OBJ has no `vt` in use
+  std::vector<Vec3d> positions;  // model units
+  std::vector<Vec3d> normals;    // unit length, one per vertex
+  std::vector<Vec3d> colors;  // per vertex linear [0, 1]; empty when the OBJ has no `v x y z r g b`
+  std::vector<Vec2d> uvs;     // per vertex; empty when the OBJ has no `vt` in use
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<int32_t> triangle_material;  // per triangle: index into materials, or -1
   std::vector<HostMaterial> materials;

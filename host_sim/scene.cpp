@@ -32,7 +32,8 @@ int16_t n14(double v) {
   return static_cast<int16_t>(std::lround(c * (1 << Normal16::kFracBits)));
 }
 
-Material to_core_material(const Vec3d& ka, const Vec3d& kd, const Vec3d& ks, const Vec3d& ke, double ns) {
+Material to_core_material(const Vec3d& ka, const Vec3d& kd, const Vec3d& ks, const Vec3d& ke,
+                          double ns) {
   Material m;
   m.ambient = to_color15(ka);
   m.diffuse = to_color15(kd);
@@ -56,7 +57,8 @@ bool build_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<FixedD
   std::vector<std::vector<uint32_t>> groups;
   std::unordered_map<int32_t, size_t> group_index;
   for (uint32_t t = 0; t < nt; ++t) {
-    int32_t mat = o.use_mesh_materials && t < mesh.triangle_material.size() ? mesh.triangle_material[t] : -1;
+    int32_t mat =
+        o.use_mesh_materials && t < mesh.triangle_material.size() ? mesh.triangle_material[t] : -1;
     auto it = group_index.find(mat);
     if (it == group_index.end()) {
       it = group_index.emplace(mat, groups.size()).first;
@@ -97,7 +99,8 @@ bool build_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<FixedD
         auto [it, fresh] = local.emplace(vi, static_cast<uint16_t>(d.positions.size()));
         if (fresh) {
           const Vec3d& p = mesh.positions[vi];
-          Vec3d q{(p[0] - mt.fit_center[0]) * mt.fit_scale, (p[1] - mt.fit_center[1]) * mt.fit_scale,
+          Vec3d q{(p[0] - mt.fit_center[0]) * mt.fit_scale,
+                  (p[1] - mt.fit_center[1]) * mt.fit_scale,
                   (p[2] - mt.fit_center[2]) * mt.fit_scale};
           Vec3 fp;
           if (!fixed_vec(q, fp)) {
@@ -170,7 +173,8 @@ bool render_k(const std::vector<FixedDraw>& draws, const SceneOptions& o, Render
       error = "light: direction must be finite and non-zero";
       return false;
     }
-    lights.lights[lights.count++] = DirectionalLight::of_color(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
+    lights.lights[lights.count++] =
+        DirectionalLight::of_color(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
   }
   lights.global_ambient = to_color15(o.global_ambient);
   lights.local_viewer = o.local_viewer;
@@ -179,7 +183,8 @@ bool render_k(const std::vector<FixedDraw>& draws, const SceneOptions& o, Render
 
   Fixed scale, rot;
   Vec3 tr;
-  if (!to_fixed(o.model_scale, scale) || !to_fixed(o.model_rotate_y, rot) || !fixed_vec(o.model_translate, tr)) {
+  if (!to_fixed(o.model_scale, scale) || !to_fixed(o.model_rotate_y, rot) ||
+      !fixed_vec(o.model_translate, tr)) {
     error = "model: a transform value is not finite or outside the core's range";
     return false;
   }
@@ -222,7 +227,9 @@ bool to_fixed(double v, Fixed& out) {
   return true;
 }
 
-Color15 to_color15(const Vec3d& c) { return {c15(c[0]), c15(c[1]), c15(c[2])}; }
+Color15 to_color15(const Vec3d& c) {
+  return {c15(c[0]), c15(c[1]), c15(c[2])};
+}
 
 ModelTransform model_transform(const HostMesh& mesh, const SceneOptions& o) {
   ModelTransform mt;
@@ -234,7 +241,8 @@ ModelTransform model_transform(const HostMesh& mesh, const SceneOptions& o) {
   return mt;
 }
 
-bool render_scene(const HostMesh& mesh, const SceneOptions& o, RenderResult& out, std::string& error) {
+bool render_scene(const HostMesh& mesh, const SceneOptions& o, RenderResult& out,
+                  std::string& error) {
   std::vector<FixedDraw> draws;
   if (!build_draws(mesh, o, draws, error)) return false;
   if (draws.size() > 256) {
@@ -242,13 +250,21 @@ bool render_scene(const HostMesh& mesh, const SceneOptions& o, RenderResult& out
     return false;
   }
   switch (o.strip_height) {
-    case 1: return render_k<1>(draws, o, out, error);
-    case 2: return render_k<2>(draws, o, out, error);
-    case 4: return render_k<4>(draws, o, out, error);
-    case 8: return render_k<8>(draws, o, out, error);
-    case 16: return render_k<16>(draws, o, out, error);
-    case 32: return render_k<32>(draws, o, out, error);
-    default: error = "strip height must be 1, 2, 4, 8, 16 or 32"; return false;
+    case 1:
+      return render_k<1>(draws, o, out, error);
+    case 2:
+      return render_k<2>(draws, o, out, error);
+    case 4:
+      return render_k<4>(draws, o, out, error);
+    case 8:
+      return render_k<8>(draws, o, out, error);
+    case 16:
+      return render_k<16>(draws, o, out, error);
+    case 32:
+      return render_k<32>(draws, o, out, error);
+    default:
+      error = "strip height must be 1, 2, 4, 8, 16 or 32";
+      return false;
   }
 }
 

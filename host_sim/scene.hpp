@@ -36,7 +36,8 @@ struct SceneOptions {
   Vec3d global_ambient{0, 0, 0};
   bool local_viewer = false;
   MaterialOptions material;
-  bool use_mesh_materials = true;  // MTL materials of the mesh win unless material options were given
+  bool use_mesh_materials =
+      true;  // MTL materials of the mesh win unless material options were given
   Vec3d background{0, 0, 0};
   bool depth_test = true;
   Cull cull = Cull::kNone;
@@ -61,7 +62,8 @@ struct ModelTransform {
 ModelTransform model_transform(const HostMesh& mesh, const SceneOptions& options);
 
 // Renders; on failure returns false with a one-line error (nothing rendered).
-bool render_scene(const HostMesh& mesh, const SceneOptions& options, RenderResult& out, std::string& error);
+bool render_scene(const HostMesh& mesh, const SceneOptions& options, RenderResult& out,
+                  std::string& error);
 
 // The core's conversions, exposed for tests: false when the value cannot be represented.
 bool to_fixed(double v, Fixed& out);

@@ -13,7 +13,9 @@ namespace {
 
 constexpr std::uintptr_t kWordMask = sizeof(std::uint32_t) - 1;
 
-bool word_aligned(const void* p) { return (reinterpret_cast<std::uintptr_t>(p) & kWordMask) == 0; }
+bool word_aligned(const void* p) {
+  return (reinterpret_cast<std::uintptr_t>(p) & kWordMask) == 0;
+}
 
 }  // namespace
 

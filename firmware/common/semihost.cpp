@@ -10,7 +10,7 @@ namespace {
 // Operation numbers and exit reasons of the Arm semihosting specification.
 constexpr uint32_t kSysWrite0 = 0x04;
 constexpr uint32_t kSysExit = 0x18;
-constexpr uint32_t kAdpStoppedApplicationExit = 0x20026;   // exit status 0
+constexpr uint32_t kAdpStoppedApplicationExit = 0x20026;      // exit status 0
 constexpr uint32_t kAdpStoppedRunTimeErrorUnknown = 0x20023;  // exit status 1
 
 #if LR_SEMIHOSTING
@@ -35,7 +35,9 @@ uint32_t call_value(uint32_t op, uint32_t arg) {
 
 }  // namespace
 
-bool enabled() { return LR_SEMIHOSTING != 0; }
+bool enabled() {
+  return LR_SEMIHOSTING != 0;
+}
 
 void write(const char* text) {
 #if LR_SEMIHOSTING

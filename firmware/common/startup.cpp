@@ -26,7 +26,9 @@ int main();
 namespace {
 
 // System control block registers.
-volatile uint32_t& reg(uint32_t address) { return *reinterpret_cast<volatile uint32_t*>(address); }
+volatile uint32_t& reg(uint32_t address) {
+  return *reinterpret_cast<volatile uint32_t*>(address);
+}
 constexpr uint32_t kCpacr = 0xE000ED88;  // coprocessor access control
 constexpr uint32_t kCfsr = 0xE000ED28;   // configurable fault status
 constexpr uint32_t kHfsr = 0xE000ED2C;   // hard fault status

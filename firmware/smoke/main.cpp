@@ -61,8 +61,14 @@ constexpr std::array<lr::Normal16, 6> kNormals = {{
 }};
 // One triangle per octant, counter-clockwise seen from outside.
 constexpr std::array<std::array<uint16_t, 3>, 8> kTriangles = {{
-    {0, 2, 4}, {1, 4, 2}, {0, 4, 3}, {1, 3, 4},
-    {0, 5, 2}, {1, 2, 5}, {0, 3, 5}, {1, 5, 3},
+    {0, 2, 4},
+    {1, 4, 2},
+    {0, 4, 3},
+    {1, 3, 4},
+    {0, 5, 2},
+    {1, 2, 5},
+    {0, 3, 5},
+    {1, 5, 3},
 }};
 
 // Every face's normal (counter-clockwise winding) points away from the centre.
@@ -136,8 +142,8 @@ class ChecksumSink final : public lr::StripSink<PF> {
     if (slot >= g_strip_buffers.size() || !lent_[slot] || px.data() != g_strip_buffers[slot].data())
       return lr::Status::kInvalidArgument;
     lent_[slot] = false;
-    if (!in_frame_ || rect.x != 0 || rect.width != width_ || rect.y != next_row_ || rect.height == 0 ||
-        rect.y + rect.height > height_)
+    if (!in_frame_ || rect.x != 0 || rect.width != width_ || rect.y != next_row_ ||
+        rect.height == 0 || rect.y + rect.height > height_)
       return lr::Status::kInvalidArgument;
     const size_t count = size_t{rect.width} * rect.height;
     if (count > px.size()) return lr::Status::kInvalidArgument;
@@ -194,7 +200,7 @@ void report(const char* label, uint32_t value) {
 }
 
 bool render_frame() {
-  const lr::FrameStorage storage{g_vertices, g_triangles, g_draws, g_buckets,
+  const lr::FrameStorage storage{g_vertices, g_triangles,    g_draws, g_buckets,
                                  g_active,   g_active_index, g_depth};
   if (!check(g_renderer.configure(storage, kWidth, kHeight), "configure")) return false;
 
@@ -202,8 +208,8 @@ bool render_frame() {
   camera.eye = {Fixed::from_double(1.6), Fixed::from_double(1.4), Fixed::from_double(3.6)};
   const lr::Vec3 target{k0, k0, k0};
   const lr::Vec3 up{k0, Fixed::from_double(1.0), k0};
-  if (!lr::perspective(Fixed::from_double(45.0), Fixed::ratio(kWidth, kHeight), Fixed::from_double(0.5),
-                       Fixed::from_double(20.0), camera.projection) ||
+  if (!lr::perspective(Fixed::from_double(45.0), Fixed::ratio(kWidth, kHeight),
+                       Fixed::from_double(0.5), Fixed::from_double(20.0), camera.projection) ||
       !lr::look_at(camera.eye, target, up, camera.view)) {
     sh::write("lr_smoke: camera rejected\n");
     return false;
@@ -212,7 +218,8 @@ bool render_frame() {
   // One white directional light (GL's light 0 colours: no ambient, diffuse and specular 1),
   // GL's default global ambient of 0.2.
   lr::LightSet lights;
-  lights.lights[0].direction = {Fixed::from_double(0.4), Fixed::from_double(0.8), Fixed::from_double(0.6)};
+  lights.lights[0].direction = {Fixed::from_double(0.4), Fixed::from_double(0.8),
+                                Fixed::from_double(0.6)};
   lights.count = 1;
   constexpr uint16_t kAmbient = 6554;  // 0.2 in Q1.15
   lights.global_ambient = {kAmbient, kAmbient, kAmbient};
@@ -224,14 +231,16 @@ bool render_frame() {
   }
   const lr::Material material = lr::to_material(*gold);
 
-  if (!check(g_renderer.begin_frame(camera, lights, lr::Rgb8{16, 24, 48}), "begin_frame")) return false;
+  if (!check(g_renderer.begin_frame(camera, lights, lr::Rgb8{16, 24, 48}), "begin_frame"))
+    return false;
 
   lr::DrawState state;
   state.shading = lr::Shading::kGouraud;
   state.lighting = true;
   state.depth_test = true;
   state.cull = lr::Cull::kNone;  // back faces are drawn too: the depth test must hide them
-  const lr::Mat4 model = lr::rotate_y(Fixed::from_double(25.0)) * lr::rotate_x(Fixed::from_double(-15.0));
+  const lr::Mat4 model =
+      lr::rotate_y(Fixed::from_double(25.0)) * lr::rotate_x(Fixed::from_double(-15.0));
   if (!check(g_renderer.draw(kOctahedron, model, material, state), "draw")) return false;
 
   return check(g_renderer.render(g_sink), "render");
@@ -240,7 +249,8 @@ bool render_frame() {
 }  // namespace
 
 int main() {
-  sh::write("lr_smoke: 320x240 RGB565BE, strips of 8 rows, gold octahedron (Gouraud, depth test)\n");
+  sh::write(
+      "lr_smoke: 320x240 RGB565BE, strips of 8 rows, gold octahedron (Gouraud, depth test)\n");
   bool ok = render_frame();
   const lr::FrameStats& st = g_renderer.stats();
   const uint32_t sum = g_sink.checksum();

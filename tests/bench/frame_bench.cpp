@@ -66,18 +66,21 @@ Scene load_scene() {
   for (size_t i = 0; i < m.positions.size(); ++i) {
     const auto& p = m.positions[i];
     const auto& n = m.normals[i];
-    s.positions.push_back({Fixed::from_raw(int32_t(p[0] * 65536 / 1.4)), Fixed::from_raw(int32_t(p[1] * 65536 / 1.4)),
+    s.positions.push_back({Fixed::from_raw(int32_t(p[0] * 65536 / 1.4)),
+                           Fixed::from_raw(int32_t(p[1] * 65536 / 1.4)),
                            Fixed::from_raw(int32_t(p[2] * 65536 / 1.4))});
     s.normals.push_back({int16_t(n[0] * 16384), int16_t(n[1] * 16384), int16_t(n[2] * 16384)});
   }
-  for (const auto& t : m.triangles) s.triangles.push_back({uint16_t(t[0]), uint16_t(t[1]), uint16_t(t[2])});
-  perspective(Fixed::from_int(60), Fixed::ratio(320, 240), Fixed::from_double(0.1), Fixed::from_int(100),
-              s.camera.projection);
+  for (const auto& t : m.triangles)
+    s.triangles.push_back({uint16_t(t[0]), uint16_t(t[1]), uint16_t(t[2])});
+  perspective(Fixed::from_int(60), Fixed::ratio(320, 240), Fixed::from_double(0.1),
+              Fixed::from_int(100), s.camera.projection);
   s.camera.eye = {Fixed{}, Fixed{}, Fixed::from_int(3)};
   look_at(s.camera.eye, {}, {Fixed{}, Fixed::from_int(1), Fixed{}}, s.camera.view);
   s.lights.count = 1;
-  s.lights.lights[0] = DirectionalLight::of_color({Fixed::from_int(1), Fixed::from_int(1), Fixed::from_int(1)},
-                                                 {Color15::kOne, Color15::kOne, Color15::kOne});
+  s.lights.lights[0] =
+      DirectionalLight::of_color({Fixed::from_int(1), Fixed::from_int(1), Fixed::from_int(1)},
+                                 {Color15::kOne, Color15::kOne, Color15::kOne});
   s.material = to_material(*find_material("gold"));
   return s;
 }
@@ -93,7 +96,9 @@ struct Frame {
   std::vector<uint16_t> depth = std::vector<uint16_t>(320 * K);
   Renderer<PF, K> renderer;
   NullSink<PF> sink{320 * K};
-  Frame() { renderer.configure({vertices, triangles, draws, buckets, active, index, depth}, 320, 240); }
+  Frame() {
+    renderer.configure({vertices, triangles, draws, buckets, active, index, depth}, 320, 240);
+  }
 };
 
 template <class PF, int K>
@@ -132,8 +137,9 @@ int main(int argc, char** argv) {
     auto f = std::make_unique<Frame<Rgb565Be, 8>>();
     Status s = render_frame(*f, scene);
     const FrameStats& st = f->renderer.stats();
-    std::printf("status=%s triangles_in=%u binned=%u pixels_written=%u strips=%u max_active=%u\n", to_string(s),
-                st.triangles_in, st.triangles_binned, st.pixels_written, st.strips, st.max_active);
+    std::printf("status=%s triangles_in=%u binned=%u pixels_written=%u strips=%u max_active=%u\n",
+                to_string(s), st.triangles_in, st.triangles_binned, st.pixels_written, st.strips,
+                st.max_active);
     return s == Status::kOk ? 0 : 1;
   }
   benchmark::Initialize(&argc, argv);

@@ -52,7 +52,8 @@ size_t lines(const std::string& s) {
 
 TEST(Cli, RendersPngWithTheRequestedSize) {
   std::string out = tmpdir() + "/a.png";
-  Outcome r = run("--obj " + kMesh + " --fit --material gold --width 200 --height 150 --out " + out);
+  Outcome r =
+      run("--obj " + kMesh + " --fit --material gold --width 200 --height 150 --out " + out);
   ASSERT_EQ(r.status, 0) << r.err;
   lr::host::ImageRgb8 img;
   std::string err;

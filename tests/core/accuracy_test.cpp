@@ -11,14 +11,19 @@ namespace {
 host::HostMesh torus_knot() {
   host::HostMesh m;
   std::string err;
-  EXPECT_TRUE(host::load_obj(std::string(LR_SOURCE_DIR) + "/tests/host/data/torus_knot.obj", m, err)) << err;
+  EXPECT_TRUE(
+      host::load_obj(std::string(LR_SOURCE_DIR) + "/tests/host/data/torus_knot.obj", m, err))
+      << err;
   return m;
 }
 
 host::SceneOptions gold(host::SceneOptions o = {}) {
   o.fit = true;
-  o.material = {{0.24725, 0.1995, 0.0745}, {0.75164, 0.60648, 0.22648}, {0.628281, 0.555802, 0.366065},
-                {0, 0, 0}, 51.2};
+  o.material = {{0.24725, 0.1995, 0.0745},
+                {0.75164, 0.60648, 0.22648},
+                {0.628281, 0.555802, 0.366065},
+                {0, 0, 0},
+                51.2};
   return o;
 }
 

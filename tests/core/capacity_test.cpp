@@ -27,7 +27,8 @@ TEST(Capacity, TriangleStoreFullDropsTheRestAndKeepsWhatFit) {
   ScreenScene all = squares(4), first = squares(2);
   CoreHarness<8> small(64, 64, 100, /*max_triangles=*/4);
   small.begin();
-  EXPECT_EQ(small.renderer().draw_screen(all.vertices, all.triangles, test::coverage_state()), Status::kCapacity);
+  EXPECT_EQ(small.renderer().draw_screen(all.vertices, all.triangles, test::coverage_state()),
+            Status::kCapacity);
   host::ImageRgb8 got = small.render();
   EXPECT_EQ(small.renderer().stats().dropped_triangle_capacity, 4u);
   EXPECT_EQ(small.renderer().stats().binned_inputs, 4u);
@@ -41,8 +42,10 @@ TEST(Capacity, VertexStoreFullDropsTheWholeDraw) {
   ScreenScene a = squares(2), b = squares(4);
   CoreHarness<8> small(64, 64, /*max_vertices=*/20);
   small.begin();
-  EXPECT_EQ(small.renderer().draw_screen(a.vertices, a.triangles, test::coverage_state()), Status::kOk);
-  EXPECT_EQ(small.renderer().draw_screen(b.vertices, b.triangles, test::coverage_state()), Status::kCapacity);
+  EXPECT_EQ(small.renderer().draw_screen(a.vertices, a.triangles, test::coverage_state()),
+            Status::kOk);
+  EXPECT_EQ(small.renderer().draw_screen(b.vertices, b.triangles, test::coverage_state()),
+            Status::kCapacity);
   host::ImageRgb8 got = small.render();
   EXPECT_EQ(small.renderer().stats().dropped_vertex_capacity, 8u);
   EXPECT_EQ(small.renderer().stats().triangles_in, 12u);
@@ -55,9 +58,11 @@ TEST(Capacity, VertexStoreFullDropsTheWholeDraw) {
 TEST(Capacity, ActiveListFullDropsTheLatestTrianglesOfAStrip) {
   // Three triangles starting in the same strip; room for two at a time.
   ScreenScene s;
-  for (int i = 0; i < 3; ++i) s.add((2 + 20 * i) * S, 2 * S, (2 + 20 * i) * S, 40 * S, (18 + 20 * i) * S, 2 * S);
+  for (int i = 0; i < 3; ++i)
+    s.add((2 + 20 * i) * S, 2 * S, (2 + 20 * i) * S, 40 * S, (18 + 20 * i) * S, 2 * S);
   ScreenScene kept;
-  for (int i = 0; i < 2; ++i) kept.add((2 + 20 * i) * S, 2 * S, (2 + 20 * i) * S, 40 * S, (18 + 20 * i) * S, 2 * S);
+  for (int i = 0; i < 2; ++i)
+    kept.add((2 + 20 * i) * S, 2 * S, (2 + 20 * i) * S, 40 * S, (18 + 20 * i) * S, 2 * S);
   CoreHarness<8> small(64, 48, 100, 100, /*max_active=*/2);
   small.begin();
   small.renderer().draw_screen(s.vertices, s.triangles, test::coverage_state());
@@ -73,8 +78,10 @@ TEST(Capacity, DrawTableFullIsReported) {
   ScreenScene a = squares(1);
   CoreHarness<8> small(64, 64, 100, 100, 16, /*max_draws=*/1);
   small.begin();
-  EXPECT_EQ(small.renderer().draw_screen(a.vertices, a.triangles, test::coverage_state()), Status::kOk);
-  EXPECT_EQ(small.renderer().draw_screen(a.vertices, a.triangles, test::coverage_state()), Status::kCapacity);
+  EXPECT_EQ(small.renderer().draw_screen(a.vertices, a.triangles, test::coverage_state()),
+            Status::kOk);
+  EXPECT_EQ(small.renderer().draw_screen(a.vertices, a.triangles, test::coverage_state()),
+            Status::kCapacity);
   EXPECT_EQ(small.renderer().stats().dropped_triangle_capacity, 2u);
 }
 

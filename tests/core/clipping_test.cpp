@@ -39,7 +39,8 @@ TEST(Clipping, WideGroundPlaneThroughTheNearPlaneRendersExactly) {
   int first_full = -1;
   for (int y = 0; y < o.height; ++y) {
     int covered = 0;
-    for (int x = 0; x < o.width; ++x) covered += c.core.depth[size_t(y) * size_t(o.width) + size_t(x)] != 0xFFFF;
+    for (int x = 0; x < o.width; ++x)
+      covered += c.core.depth[size_t(y) * size_t(o.width) + size_t(x)] != 0xFFFF;
     if (covered == o.width && first_full < 0) first_full = y;
     if (first_full >= 0) {
       EXPECT_EQ(covered, o.width) << "gap in row " << y;

@@ -10,8 +10,8 @@ using test::CoreHarness;
 constexpr int32_t S = kSubpixel;
 
 // A screen-space quad at constant depth (window depth d in [0, 1]).
-void quad(std::vector<ScreenVertex>& v, std::vector<std::array<uint16_t, 3>>& t, int x0, int y0, int x1,
-          int y1, double d, Rgb8 c) {
+void quad(std::vector<ScreenVertex>& v, std::vector<std::array<uint16_t, 3>>& t, int x0, int y0,
+          int x1, int y1, double d, Rgb8 c) {
   auto base = static_cast<uint16_t>(v.size());
   int xs[4] = {x0, x0, x1, x1}, ys[4] = {y0, y1, y1, y0};
   for (int k = 0; k < 4; ++k) {
@@ -79,7 +79,7 @@ TEST(Depth, SixteenBitPrecision) {
   std::vector<std::array<uint16_t, 3>> t;
   const double step = 1.0 / 65535, level = 32767 * step;  // exactly on a 16-bit level
   quad(v, t, 0, 0, 8, 8, level + step, {255, 0, 0});
-  quad(v, t, 0, 0, 8, 8, level, {0, 255, 0});                 // one step nearer: wins
+  quad(v, t, 0, 0, 8, 8, level, {0, 255, 0});  // one step nearer: wins
   quad(v, t, 16, 0, 24, 8, level, {255, 0, 0});
   quad(v, t, 16, 0, 24, 8, level - 0.3 * step, {0, 255, 0});  // under half a step: same value
   CoreHarness<8> core(32, 16);

@@ -14,7 +14,8 @@
 namespace lr {
 namespace {
 
-void check_golden(const std::string& name, const host::HostMesh& mesh, const host::SceneOptions& o) {
+void check_golden(const std::string& name, const host::HostMesh& mesh,
+                  const host::SceneOptions& o) {
   host::RenderResult r;
   std::string err;
   ASSERT_TRUE(host::render_scene(mesh, o, r, err)) << err;
@@ -24,14 +25,16 @@ void check_golden(const std::string& name, const host::HostMesh& mesh, const hos
     ASSERT_TRUE(host::write_png(path, r.image, err)) << err;
   }
   host::ImageRgb8 golden;
-  ASSERT_TRUE(host::read_png(path, golden, err)) << err << " (run with LR_UPDATE_GOLDEN=1 to create)";
+  ASSERT_TRUE(host::read_png(path, golden, err))
+      << err << " (run with LR_UPDATE_GOLDEN=1 to create)";
   ASSERT_EQ(golden.width, r.image.width);
   ASSERT_EQ(golden.height, r.image.height);
   size_t differ = 0;
   int worst = 0;
   for (size_t p = 0; p < golden.rgb.size() / 3; ++p) {
     int e = 0;
-    for (size_t k = 0; k < 3; ++k) e = std::max(e, std::abs(int(golden.rgb[3 * p + k]) - int(r.image.rgb[3 * p + k])));
+    for (size_t k = 0; k < 3; ++k)
+      e = std::max(e, std::abs(int(golden.rgb[3 * p + k]) - int(r.image.rgb[3 * p + k])));
     differ += e > 0;
     worst = std::max(worst, e);
   }
@@ -54,11 +57,16 @@ host::SceneOptions small() {
 TEST(Golden, GoldTorusKnotGouraud) {
   host::HostMesh mesh;
   std::string err;
-  ASSERT_TRUE(host::load_obj(std::string(LR_SOURCE_DIR) + "/tests/host/data/torus_knot.obj", mesh, err)) << err;
+  ASSERT_TRUE(
+      host::load_obj(std::string(LR_SOURCE_DIR) + "/tests/host/data/torus_knot.obj", mesh, err))
+      << err;
   host::SceneOptions o = small();
   o.fit = true;
-  o.material = {{0.24725, 0.1995, 0.0745}, {0.75164, 0.60648, 0.22648}, {0.628281, 0.555802, 0.366065},
-                {0, 0, 0}, 51.2};
+  o.material = {{0.24725, 0.1995, 0.0745},
+                {0.75164, 0.60648, 0.22648},
+                {0.628281, 0.555802, 0.366065},
+                {0, 0, 0},
+                51.2};
   check_golden("torus_knot_gold", mesh, o);
 }
 

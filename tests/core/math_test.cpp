@@ -15,8 +15,12 @@
 namespace lr {
 namespace {
 
-double d(Fixed f) { return f.raw / 65536.0; }
-Fixed fx(double v) { return Fixed::from_raw(static_cast<int32_t>(std::lround(v * 65536.0))); }
+double d(Fixed f) {
+  return f.raw / 65536.0;
+}
+Fixed fx(double v) {
+  return Fixed::from_raw(static_cast<int32_t>(std::lround(v * 65536.0)));
+}
 constexpr double kPi = 3.14159265358979323846;
 
 TEST(Trig, SinCosWithinHalfAUnitOfQ16Everywhere) {
@@ -56,7 +60,8 @@ TEST(Vec, NormalizeIsUnitWithinTwoQ30Units) {
 // gluPerspective, written out.
 TEST(Camera, PerspectiveMatchesGluPerspective) {
   Mat4 m;
-  ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(320, 240), fx(0.1), Fixed::from_int(100), m));
+  ASSERT_TRUE(
+      perspective(Fixed::from_int(60), Fixed::ratio(320, 240), fx(0.1), Fixed::from_int(100), m));
   double f = 1.0 / std::tan(30.0 * kPi / 180.0);
   double n = d(fx(0.1)), fa = 100;
   EXPECT_NEAR(d(m.m[0][0]), f / (4.0 / 3.0), 2e-5);
@@ -66,9 +71,12 @@ TEST(Camera, PerspectiveMatchesGluPerspective) {
   EXPECT_EQ(m.m[3][2].raw, -65536);
   EXPECT_EQ(m.m[3][3].raw, 0);
   EXPECT_EQ(m.m[0][1].raw, 0);
-  EXPECT_FALSE(perspective(Fixed::from_int(0), Fixed::from_int(1), fx(0.1), Fixed::from_int(10), m));
-  EXPECT_FALSE(perspective(Fixed::from_int(60), Fixed::from_int(1), Fixed::from_int(10), Fixed::from_int(1), m));
-  EXPECT_FALSE(perspective(Fixed::from_int(180), Fixed::from_int(1), fx(0.1), Fixed::from_int(10), m));
+  EXPECT_FALSE(
+      perspective(Fixed::from_int(0), Fixed::from_int(1), fx(0.1), Fixed::from_int(10), m));
+  EXPECT_FALSE(perspective(Fixed::from_int(60), Fixed::from_int(1), Fixed::from_int(10),
+                           Fixed::from_int(1), m));
+  EXPECT_FALSE(
+      perspective(Fixed::from_int(180), Fixed::from_int(1), fx(0.1), Fixed::from_int(10), m));
 }
 
 TEST(Camera, LookAtMatchesGluLookAt) {
@@ -96,7 +104,8 @@ TEST(Camera, LookAtMatchesGluLookAt) {
 
 TEST(Camera, TransformPointAgreesWithDouble) {
   Mat4 p, v;
-  ASSERT_TRUE(perspective(Fixed::from_int(45), Fixed::from_int(1), fx(0.5), Fixed::from_int(50), p));
+  ASSERT_TRUE(
+      perspective(Fixed::from_int(45), Fixed::from_int(1), fx(0.5), Fixed::from_int(50), p));
   ASSERT_TRUE(look_at({fx(0), fx(0), fx(5)}, {}, {fx(0), fx(1), fx(0)}, v));
   Mat4 mvp = p * v * rotate_y(Fixed::from_int(30));
   Vec3 pt{fx(0.5), fx(-0.25), fx(1.0)};

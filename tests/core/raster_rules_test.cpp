@@ -28,7 +28,8 @@ Compare run(const ScreenScene& scene, int w, int h, FrameStats* stats_out = null
   CoreHarness<K> core(w, h);
   EXPECT_EQ(core.configured(), Status::kOk);
   core.begin();
-  EXPECT_EQ(core.renderer().draw_screen(scene.vertices, scene.triangles, test::coverage_state()), Status::kOk);
+  EXPECT_EQ(core.renderer().draw_screen(scene.vertices, scene.triangles, test::coverage_state()),
+            Status::kOk);
   Status st;
   host::ImageRgb8 img = core.render(&st);
   EXPECT_EQ(st, Status::kOk);
@@ -63,7 +64,8 @@ ScreenScene jittered_grid(std::mt19937& rng, int nx, int ny, int64_t x0, int64_t
   std::bernoulli_distribution coin(0.5);
   for (int y = 0; y < ny; ++y) {
     for (int x = 0; x < nx; ++x) {
-      size_t a = size_t(y) * size_t(nx + 1) + size_t(x), b = a + 1, c = a + size_t(nx + 1), d = c + 1;
+      size_t a = size_t(y) * size_t(nx + 1) + size_t(x), b = a + 1, c = a + size_t(nx + 1),
+             d = c + 1;
       size_t t[2][3];
       if (coin(rng)) {
         size_t t0[3] = {a, b, d}, t1[3] = {a, d, c};
@@ -113,7 +115,8 @@ TEST(FillRule, FanAroundAPixelCentre) {
   std::vector<std::pair<int64_t, int64_t>> ring;
   for (int i = 0; i < n; ++i) {
     double a = 2 * 3.14159265358979 * i / n;
-    ring.emplace_back(cx + std::llround(30 * S * std::cos(a)), cy + std::llround(30 * S * std::sin(a)));
+    ring.emplace_back(cx + std::llround(30 * S * std::cos(a)),
+                      cy + std::llround(30 * S * std::sin(a)));
   }
   for (int i = 0; i < n; ++i) {
     auto [x1, y1] = ring[size_t(i)];
@@ -129,7 +132,7 @@ TEST(FillRule, SingleTrianglesWithCentresOnEveryKindOfEdge) {
   // A right triangle with a horizontal top edge, a vertical left edge and a diagonal, all
   // through pixel centres; and its mirror images. Left and bottom edges own their centres.
   ScreenScene s;
-  s.add(2 * S + H, 2 * S + H, 8 * S + H, 2 * S + H, 2 * S + H, 8 * S + H);      // top + left edges
+  s.add(2 * S + H, 2 * S + H, 8 * S + H, 2 * S + H, 2 * S + H, 8 * S + H);     // top + left edges
   s.add(20 * S + H, 8 * S + H, 14 * S + H, 8 * S + H, 20 * S + H, 2 * S + H);  // bottom + right
   s.add(30 * S + H, 2 * S + H, 30 * S + H, 8 * S + H, 36 * S + H, 8 * S + H);  // left + bottom
   s.add(50 * S + H, 2 * S + H, 44 * S + H, 2 * S + H, 50 * S + H, 8 * S + H);  // top + right

@@ -8,10 +8,20 @@
 
 namespace lr::fw::semihost {
 
-bool enabled() { return true; }
-void write(const char* text) { std::fputs(text, stdout); }
-void write_dec(uint32_t v) { std::printf("%u", v); }
-void write_hex(uint32_t v) { std::printf("0x%08x", v); }
-void exit(bool success) { std::exit(success ? 0 : 1); }
+bool enabled() {
+  return true;
+}
+void write(const char* text) {
+  std::fputs(text, stdout);
+}
+void write_dec(uint32_t v) {
+  std::printf("%u", v);
+}
+void write_hex(uint32_t v) {
+  std::printf("0x%08x", v);
+}
+void exit(bool success) {
+  std::exit(success ? 0 : 1);
+}
 
 }  // namespace lr::fw::semihost

@@ -17,10 +17,17 @@ class CoreHarness {
  public:
   CoreHarness(int width, int height, size_t max_vertices = 0xFFFF, size_t max_triangles = 0xFFFE,
               size_t max_active = 1024, size_t max_draws = 64)
-      : width_(width), height_(height), vertices_(max_vertices), triangles_(max_triangles),
-        draws_(max_draws), buckets_(static_cast<size_t>((height + K - 1) / K)), active_(max_active),
-        active_index_(2 * max_active), depth_(static_cast<size_t>(width) * K),
-        display_(static_cast<size_t>(width) * K), renderer_(std::make_unique<Renderer<PF, K>>()) {
+      : width_(width),
+        height_(height),
+        vertices_(max_vertices),
+        triangles_(max_triangles),
+        draws_(max_draws),
+        buckets_(static_cast<size_t>((height + K - 1) / K)),
+        active_(max_active),
+        active_index_(2 * max_active),
+        depth_(static_cast<size_t>(width) * K),
+        display_(static_cast<size_t>(width) * K),
+        renderer_(std::make_unique<Renderer<PF, K>>()) {
     FrameStorage s{vertices_, triangles_, draws_, buckets_, active_, active_index_, depth_};
     configured_ = renderer_->configure(s, width, height);
   }

@@ -18,8 +18,9 @@ inline ref::RefParams ref_params(const host::HostMesh& mesh, const host::SceneOp
   p.width = o.width;
   p.height = o.height;
   host::ModelTransform mt = host::model_transform(mesh, o);
-  ref::Mat4d fit = ref::mul(ref::scale({mt.fit_scale, mt.fit_scale, mt.fit_scale}),
-                            ref::translate({-mt.fit_center[0], -mt.fit_center[1], -mt.fit_center[2]}));
+  ref::Mat4d fit =
+      ref::mul(ref::scale({mt.fit_scale, mt.fit_scale, mt.fit_scale}),
+               ref::translate({-mt.fit_center[0], -mt.fit_center[1], -mt.fit_center[2]}));
   p.model = ref::mul(ref::mul(ref::translate(o.model_translate), ref::rotate_y(o.model_rotate_y)),
                      ref::mul(ref::scale({o.model_scale, o.model_scale, o.model_scale}), fit));
   p.view = ref::look_at(o.eye, o.target, o.up);
@@ -38,12 +39,12 @@ inline ref::RefParams ref_params(const host::HostMesh& mesh, const host::SceneOp
 }
 
 struct Comparison {
-  size_t both = 0;             // pixels covered by both
-  size_t coverage_diff = 0;    // covered by one only
-  size_t within1 = 0;          // of `both`: every channel within 1 level
-  int max_error = 0;           // of `both`: largest channel difference
-  double mean_error = 0;       // of `both`: mean absolute channel difference
-  double psnr = 0;             // over `both`
+  size_t both = 0;           // pixels covered by both
+  size_t coverage_diff = 0;  // covered by one only
+  size_t within1 = 0;        // of `both`: every channel within 1 level
+  int max_error = 0;         // of `both`: largest channel difference
+  double mean_error = 0;     // of `both`: mean absolute channel difference
+  double psnr = 0;           // over `both`
   host::RenderResult core;
   ref::RefFrame reference;
 
@@ -78,7 +79,8 @@ inline bool compare_scene(const host::HostMesh& mesh, const host::SceneOptions& 
     ++c.both;
     int worst = 0;
     for (int k = 0; k < 3; ++k) {
-      int e = std::abs(int(c.core.image.rgb[3 * p + size_t(k)]) - int(c.reference.rgb8[3 * p + size_t(k)]));
+      int e = std::abs(int(c.core.image.rgb[3 * p + size_t(k)]) -
+                       int(c.reference.rgb8[3 * p + size_t(k)]));
       worst = std::max(worst, e);
       sum += e;
       sq += double(e) * e;
