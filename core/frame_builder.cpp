@@ -107,8 +107,16 @@ bool FrameBuilder::project(const ClipCoord& c, ScreenVertex& v) const {
 }
 
 Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_planes,
-                                     uint8_t& index) {
-  if (draw_count_ >= storage_.draws.size()) return Status::kCapacity;
+                                     size_t vertices, uint32_t triangles, uint8_t& index) {
+  // Without a draw record or room for every vertex the whole draw is dropped, and counted.
+  if (draw_count_ >= storage_.draws.size()) {
+    stats_.dropped_triangle_capacity += triangles;
+    return Status::kCapacity;
+  }
+  if (vertices > storage_.vertices.size() - vertex_count_) {
+    stats_.dropped_vertex_capacity += triangles;
+    return Status::kCapacity;
+  }
   DrawRecord r;
   r.depth = state.depth_test;
   if (state.shading == Shading::kFlat || !has_color_planes) {
@@ -210,16 +218,9 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
 
   // Unlit meshes without vertex colours have one colour: no colour planes needed.
   bool color_planes = gouraud && (lit || !mesh.colors.empty());
-  if (draw_count_ >= storage_.draws.size()) {
-    stats_.dropped_triangle_capacity += tri_count;
-    return Status::kCapacity;
-  }
-  if (n > storage_.vertices.size() - vertex_count_) {
-    stats_.dropped_vertex_capacity += tri_count;
-    return Status::kCapacity;
-  }
   uint8_t draw_index = 0;
-  add_draw_record(state, color_planes, draw_index);
+  if (add_draw_record(state, color_planes, n, tri_count, draw_index) != Status::kOk)
+    return Status::kCapacity;
   const uint32_t dropped_before = stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity;
 
   const Mat4 mvp = camera_.projection * camera_.view * model;
@@ -353,16 +354,9 @@ Status FrameBuilder::draw_screen(std::span<const ScreenVertex> vertices,
   const auto tri_count = static_cast<uint32_t>(triangles.size());
   stats_.triangles_in += tri_count;
   bool gouraud = state.shading == Shading::kGouraud;
-  if (draw_count_ >= storage_.draws.size()) {
-    stats_.dropped_triangle_capacity += tri_count;
-    return Status::kCapacity;
-  }
-  if (n > storage_.vertices.size() - vertex_count_) {
-    stats_.dropped_vertex_capacity += tri_count;
-    return Status::kCapacity;
-  }
   uint8_t draw_index = 0;
-  add_draw_record(state, gouraud, draw_index);
+  if (add_draw_record(state, gouraud, n, tri_count, draw_index) != Status::kOk)
+    return Status::kCapacity;
   const uint32_t dropped_before = stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity;
   const size_t base = vertex_count_;
   const int32_t limit = (kMaxViewport * 3) << kSubpixelBits;  // inside the coordinate budget

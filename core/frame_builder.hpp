@@ -89,7 +89,8 @@ class FrameBuilder {
   enum class BinResult : uint8_t { kBinned, kBackface, kZeroArea, kOffscreen, kCapacity };
   BinResult bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Cull cull);
   bool project(const ClipCoord& c, ScreenVertex& out) const;
-  Status add_draw_record(const DrawState& state, bool has_color_planes, uint8_t& index);
+  Status add_draw_record(const DrawState& state, bool has_color_planes, size_t vertices,
+                         uint32_t triangles, uint8_t& index);
 
   FrameStorage storage_{};
   FrameStats stats_{};

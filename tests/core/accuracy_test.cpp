@@ -17,14 +17,8 @@ host::HostMesh torus_knot() {
   return m;
 }
 
-host::SceneOptions gold(host::SceneOptions o = {}) {
-  o.fit = true;
-  o.material = {{0.24725, 0.1995, 0.0745},
-                {0.75164, 0.60648, 0.22648},
-                {0.628281, 0.555802, 0.366065},
-                {0, 0, 0},
-                51.2};
-  return o;
+host::SceneOptions gold() {
+  return test::gold_options();
 }
 
 TEST(Accuracy, GouraudTorusKnotWithinOneLevelOnAlmostEveryPixel) {

@@ -10,6 +10,7 @@
 #include "host_sim/mesh_prep.hpp"
 #include "host_sim/obj_loader.hpp"
 #include "host_sim/scene.hpp"
+#include "tests/support/scene_compare.hpp"
 
 namespace lr {
 namespace {
@@ -60,14 +61,7 @@ TEST(Golden, GoldTorusKnotGouraud) {
   ASSERT_TRUE(
       host::load_obj(std::string(LR_SOURCE_DIR) + "/tests/host/data/torus_knot.obj", mesh, err))
       << err;
-  host::SceneOptions o = small();
-  o.fit = true;
-  o.material = {{0.24725, 0.1995, 0.0745},
-                {0.75164, 0.60648, 0.22648},
-                {0.628281, 0.555802, 0.366065},
-                {0, 0, 0},
-                51.2};
-  check_golden("torus_knot_gold", mesh, o);
+  check_golden("torus_knot_gold", mesh, test::gold_options(small()));
 }
 
 TEST(Golden, FlatShadedSphereTwoLights) {

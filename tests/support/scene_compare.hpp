@@ -58,6 +58,17 @@ struct Comparison {
   }
 };
 
+// The classic table's gold as CLI options would give it (--fit --material gold).
+inline host::SceneOptions gold_options(host::SceneOptions o = {}) {
+  o.fit = true;
+  o.material = {{0.24725, 0.1995, 0.0745},
+                {0.75164, 0.60648, 0.22648},
+                {0.628281, 0.555802, 0.366065},
+                {0, 0, 0},
+                51.2};
+  return o;
+}
+
 inline bool compare_scene(const host::HostMesh& mesh, const host::SceneOptions& o, Comparison& c,
                           std::string& error) {
   if (!host::render_scene(mesh, o, c.core, error)) return false;
