@@ -7,6 +7,7 @@
 
 #include "core/color.hpp"
 #include "core/mat4.hpp"
+#include "core/texture.hpp"
 #include "core/vec.hpp"
 
 namespace lr {

@@ -12,15 +12,6 @@
 namespace lr::host {
 namespace {
 
-// One draw: a piece of the mesh with one material, at most 65535 vertices.
-struct FixedDraw {
-  std::vector<Vec3> positions;
-  std::vector<Normal16> normals;
-  std::vector<Rgb8> colors;
-  std::vector<std::array<uint16_t, 3>> triangles;
-  Material material;
-};
-
 uint16_t c15(double v) {
   if (!(v > 0)) return 0;
   if (v >= 1) return Color15::kOne;
@@ -48,8 +39,10 @@ bool fixed_vec(const Vec3d& v, Vec3& out) {
   return to_fixed(v[0], out.x) && to_fixed(v[1], out.y) && to_fixed(v[2], out.z);
 }
 
-bool build_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<FixedDraw>& draws,
-                 std::string& error) {
+}  // namespace
+
+bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<FixedDraw>& draws,
+                       std::string& error) {
   ModelTransform mt = model_transform(mesh, o);
   const size_t nt = mesh.triangles.size();
   // Group triangles by material, in first-use order, keeping submission order inside a group.
@@ -80,10 +73,12 @@ bool build_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<FixedD
     std::unordered_map<uint32_t, uint16_t> local;
     FixedDraw d;
     d.material = material;
+    d.material_index = mat;
     auto flush = [&]() {
       if (!d.triangles.empty()) draws.push_back(std::move(d));
       d = FixedDraw{};
       d.material = material;
+      d.material_index = mat;
       local.clear();
     };
     for (uint32_t t : groups[g]) {
@@ -115,6 +110,15 @@ bool build_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<FixedD
             const Vec3d& c = mesh.colors[vi];
             d.colors.push_back(to_rgb8(to_color15(c)));
           }
+          if (mesh.has_uvs()) {
+            TexCoord tc;
+            if (!to_texcoord(mesh.uvs[vi], tc)) {
+              error = "mesh: texture coordinate of vertex " + std::to_string(vi) +
+                      " is not finite or outside the core's range (|u|, |v| < 2048)";
+              return false;
+            }
+            d.uvs.push_back(tc);
+          }
         }
         tri[static_cast<size_t>(k)] = it->second;
       }
@@ -124,6 +128,8 @@ bool build_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<FixedD
   }
   return true;
 }
+
+namespace {
 
 template <int K>
 bool render_k(const std::vector<FixedDraw>& draws, const SceneOptions& o, RenderResult& out,
@@ -196,7 +202,7 @@ bool render_k(const std::vector<FixedDraw>& draws, const SceneOptions& o, Render
   st.cull = o.cull;
   st.perspective = o.perspective;
   for (const FixedDraw& d : draws) {
-    Mesh m{d.positions, d.normals, d.colors, d.triangles};
+    Mesh m = d.mesh();
     Status s = renderer->draw(m, model, d.material, st);
     if (s != Status::kOk && s != Status::kCapacity) {
       error = std::string("draw: ") + to_string(s);
@@ -221,6 +227,16 @@ bool render_k(const std::vector<FixedDraw>& draws, const SceneOptions& o, Render
 
 }  // namespace
 
+bool to_texcoord(const Vec2d& uv, TexCoord& out) {
+  constexpr double kOne = double(1 << TexCoord::kFracBits);
+  if (!std::isfinite(uv[0]) || !std::isfinite(uv[1]) || std::fabs(uv[0]) >= 2047.999 ||
+      std::fabs(uv[1]) >= 2047.999)
+    return false;
+  out.u = static_cast<int32_t>(std::lround(uv[0] * kOne));
+  out.v = static_cast<int32_t>(std::lround(uv[1] * kOne));
+  return true;
+}
+
 bool to_fixed(double v, Fixed& out) {
   if (!std::isfinite(v) || std::fabs(v) >= 32767.5) return false;
   out = Fixed::from_raw(static_cast<int32_t>(std::lround(v * Fixed::kOne)));
@@ -244,7 +260,7 @@ ModelTransform model_transform(const HostMesh& mesh, const SceneOptions& o) {
 bool render_scene(const HostMesh& mesh, const SceneOptions& o, RenderResult& out,
                   std::string& error) {
   std::vector<FixedDraw> draws;
-  if (!build_draws(mesh, o, draws, error)) return false;
+  if (!build_fixed_draws(mesh, o, draws, error)) return false;
   if (draws.size() > 256) {
     error = "mesh: more than 256 draws (materials x 65535-vertex pieces)";
     return false;

@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "core/frame_stats.hpp"
+#include "core/material.hpp"
 #include "core/mesh.hpp"
+#include "core/texture.hpp"
 #include "host_sim/host_mesh.hpp"
 #include "host_sim/image_io.hpp"
 
@@ -61,12 +63,30 @@ struct ModelTransform {
 };
 ModelTransform model_transform(const HostMesh& mesh, const SceneOptions& options);
 
+// A mesh in the core's formats: one piece with one material and at most 65535 vertices.
+struct FixedDraw {
+  std::vector<Vec3> positions;
+  std::vector<Normal16> normals;
+  std::vector<Rgb8> colors;     // empty when the mesh has none
+  std::vector<TexCoord> uvs;    // empty when the mesh has none
+  std::vector<std::array<uint16_t, 3>> triangles;
+  Material material;
+  int32_t material_index = -1;  // the HostMesh material it came from, -1 for the options' one
+  Mesh mesh() const { return {positions, normals, colors, uvs, triangles}; }
+};
+
+// Converts the mesh (with the options' fit applied) to the core's formats, split by material
+// and into pieces of at most 65535 vertices. The asset converter uses the same conversion.
+bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& options, std::vector<FixedDraw>& draws,
+                       std::string& error);
+
 // Renders; on failure returns false with a one-line error (nothing rendered).
 bool render_scene(const HostMesh& mesh, const SceneOptions& options, RenderResult& out,
                   std::string& error);
 
 // The core's conversions, exposed for tests: false when the value cannot be represented.
 bool to_fixed(double v, Fixed& out);
+bool to_texcoord(const Vec2d& uv, TexCoord& out);
 Color15 to_color15(const Vec3d& c);
 
 }  // namespace lr::host

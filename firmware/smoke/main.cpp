@@ -81,7 +81,7 @@ consteval bool outward_winding() {
 }
 static_assert(outward_winding(), "octahedron triangles must be counter-clockwise from outside");
 
-constexpr lr::Mesh kOctahedron{kPositions, kNormals, {}, kTriangles};
+constexpr lr::Mesh kOctahedron{kPositions, kNormals, {}, {}, kTriangles};
 
 // ---- Frame storage (RAM, static) -------------------------------------------------------------
 constexpr size_t kMaxVertices = 64;   // 6 per draw, plus the vertices clipping makes

@@ -51,7 +51,7 @@ struct Scene {
   Camera camera;
   LightSet lights;
   Material material;
-  Mesh mesh() const { return {positions, normals, {}, triangles}; }
+  Mesh mesh() const { return {positions, normals, {}, {}, triangles}; }
 };
 
 Scene load_scene() {

@@ -43,7 +43,7 @@ Result run(const host::HostMesh& m, Vec3 eye, int w, int h) {
   core.begin({0, 0, 0}, cam);
   DrawState st = test::coverage_state();
   st.cull = Cull::kBack;
-  EXPECT_EQ(core.renderer().draw(Mesh{pos, {}, col, tri}, Mat4::identity(), Material{}, st),
+  EXPECT_EQ(core.renderer().draw(Mesh{pos, {}, col, {}, tri}, Mat4::identity(), Material{}, st),
             Status::kOk);
   host::ImageRgb8 img = core.render();
 
