@@ -19,6 +19,7 @@ struct Mesh {
   std::span<const Vec3> positions;
   std::span<const Normal16> normals;  // empty, or one per position
   std::span<const Rgb8> colors;       // empty, or one per position
+  std::span<const TexCoord> uvs;      // empty, or one per position (textured draws)
   std::span<const std::array<uint16_t, 3>> triangles;
 };
 
