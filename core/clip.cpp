@@ -54,6 +54,14 @@ ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, int64_t d_in, 
     c[k] = static_cast<uint16_t>(a + (((b - a) * t) >> 30));
   }
   r.color = make_color15(c);
+  for (int k = 0; k < 3; ++k) {
+    int64_t a = channel(in.spec, k), b = channel(out.spec, k);
+    c[k] = static_cast<uint16_t>(a + (((b - a) * t) >> 30));
+  }
+  r.spec = make_color15(c);
+  // |u| < 2^31: the difference is < 2^32 and times t (< 2^30) stays inside int64.
+  r.u = static_cast<int32_t>(in.u + ((int64_t{out.u} - in.u) * t >> 30));
+  r.v = static_cast<int32_t>(in.v + ((int64_t{out.v} - in.v) * t >> 30));
   return r;
 }
 

@@ -35,6 +35,8 @@ struct GuardBand {
 struct ClipVertex {
   ClipCoord p;
   Color15 color;
+  Color15 spec;
+  int32_t u = 0, v = 0;  // texture coordinates, Q12.20
 };
 
 uint8_t outcode(const ClipCoord& c, GuardBand g);

@@ -119,11 +119,28 @@ Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_plan
   }
   DrawRecord r;
   r.depth = state.depth_test;
+  r.flat = state.shading == Shading::kFlat;
+  if (state.texture != nullptr) {
+    const Texture& tex = *state.texture;
+    r.texture = &tex;
+    r.fetch = fetch_routine(tex.format, state.sampler.filter, state.sampler.wrap_s, state.sampler.wrap_t);
+    r.env = state.sampler.env;
+    r.mip = state.sampler.mip;
+    r.wrap_s = state.sampler.wrap_s;
+    r.wrap_t = state.sampler.wrap_t;
+    switch (state.perspective) {
+      case Perspective::kExact: r.persp = TexPersp::kExact; break;
+      case Perspective::kAffine: r.persp = TexPersp::kAffine; break;
+      case Perspective::kSpan8: r.persp = TexPersp::kSpan; r.span_len = 8; break;
+      case Perspective::kSpan16: r.persp = TexPersp::kSpan; r.span_len = 16; break;
+      case Perspective::kSpan32: r.persp = TexPersp::kSpan; r.span_len = 32; break;
+    }
+  }
   if (state.shading == Shading::kFlat || !has_color_planes) {
     r.colors = ColorPlanes::kNone;
   } else {
     r.colors =
-        state.perspective == Perspective::kExact ? ColorPlanes::kPerspective : ColorPlanes::kAffine;
+        state.perspective == Perspective::kAffine ? ColorPlanes::kAffine : ColorPlanes::kPerspective;
   }
   index = static_cast<uint8_t>(draw_count_);
   storage_.draws[draw_count_++] = r;
@@ -131,7 +148,7 @@ Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_plan
 }
 
 FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
-                                          Rgb8 flat, Cull cull) {
+                                          Rgb8 flat, Rgb8 flat_spec, Cull cull) {
   const ScreenVertex& v0 = storage_.vertices[a];
   const ScreenVertex& v1 = storage_.vertices[b];
   const ScreenVertex& v2 = storage_.vertices[c];
@@ -165,6 +182,8 @@ FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, ui
   t.v[2] = c;
   t.draw = draw;
   t.flat = flat;
+  t.flat_spec = flat_spec;
+  t.reserved = 0;
   uint16_t& head = storage_.buckets[static_cast<size_t>(r0 / strip_height_)];
   t.next = head;
   head = index;
@@ -213,11 +232,20 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
   const bool lit = state.lighting;
   const bool gouraud = state.shading == Shading::kGouraud;
   if (lit && gouraud && mesh.normals.empty()) return Status::kInvalidArgument;
+  const bool textured = state.texture != nullptr;
+  if (textured) {
+    if (validate(*state.texture) != Status::kOk) return Status::kInvalidArgument;
+    if (state.sampler.mip != MipMode::kNone && state.texture->level_count < 2) return Status::kInvalidArgument;
+    if (!mesh.uvs.empty() && mesh.uvs.size() != n) return Status::kInvalidArgument;
+  }
+  // Textured, lit and modulated: primary and specular colours kept apart (GL's separate
+  // specular colour), so that the texel modulates the primary only.
+  const bool split = textured && lit && state.sampler.env == TexEnv::kModulate;
   const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
   stats_.triangles_in += tri_count;
 
   // Unlit meshes without vertex colours have one colour: no colour planes needed.
-  bool color_planes = gouraud && (lit || !mesh.colors.empty());
+  bool color_planes = gouraud && (lit || !mesh.colors.empty() || textured);
   uint8_t draw_index = 0;
   if (add_draw_record(state, color_planes, n, tri_count, draw_index) != Status::kOk)
     return Status::kCapacity;
@@ -238,11 +266,20 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     ClipCoord c = transform_point(mvp, mesh.positions[i]);
     sv.outcode = outcode(c, guard_);
     if (sv.outcode == 0) project(c, sv);
+    sv.u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
+    sv.v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
+    sv.spec = Color15{};
     if (lit && gouraud) {
       const Normal16& nn = mesh.normals[i];
       Unit30 nw = transform_normal(nm, nn.x, nn.y, nn.z);
       Vec3 pw = pl.local_viewer ? transform_affine(model, mesh.positions[i]) : Vec3{};
-      sv.color = light_point(pl, nw, pw);
+      if (split) {
+        LitColor lc = light_point_split(pl, nw, pw);
+        sv.color = lc.primary;
+        sv.spec = lc.secondary;
+      } else {
+        sv.color = light_point(pl, nw, pw);
+      }
     } else if (!lit) {
       sv.color = mesh.colors.empty() ? material_color : from_rgb8(mesh.colors[i]);
     } else {
@@ -270,7 +307,7 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
       ++stats_.clipped_away;
       continue;
     }
-    Rgb8 flat{};
+    Rgb8 flat{}, flat_spec{};
     if (!gouraud) {
       if (lit) {
         const Vec3& p0 = mesh.positions[tri[0]];
@@ -287,7 +324,13 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
               Fixed::from_raw(static_cast<int32_t>((int64_t{w0.y.raw} + w1.y.raw + w2.y.raw) / 3)),
               Fixed::from_raw(static_cast<int32_t>((int64_t{w0.z.raw} + w1.z.raw + w2.z.raw) / 3))};
         }
-        flat = to_rgb8_sat(light_point(pl, fw, centroid));
+        if (split) {
+          LitColor lc = light_point_split(pl, fw, centroid);
+          flat = to_rgb8_sat(lc.primary);
+          flat_spec = to_rgb8_sat(lc.secondary);
+        } else {
+          flat = to_rgb8_sat(light_point(pl, fw, centroid));
+        }
       } else {
         flat = to_rgb8_sat(sv[2]->color);  // GL's provoking vertex: the last one
       }
@@ -296,7 +339,7 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     }
 
     if (oc_or == 0) {
-      BinResult r = bin(vi[0], vi[1], vi[2], draw_index, flat, state.cull);
+      BinResult r = bin(vi[0], vi[1], vi[2], draw_index, flat, flat_spec, state.cull);
       count_outcome(stats_, r == BinResult::kBinned ? 1 : 0, static_cast<int>(r));
       continue;
     }
@@ -308,6 +351,9 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     for (int k = 0; k < 3; ++k) {
       poly[k].p = transform_point(mvp, mesh.positions[tri[static_cast<size_t>(k)]]);
       poly[k].color = sv[k]->color;
+      poly[k].spec = sv[k]->spec;
+      poly[k].u = sv[k]->u;
+      poly[k].v = sv[k]->v;
     }
     int m = clip_polygon(poly, 3, oc_or, guard_);
     if (m < 3) {
@@ -323,6 +369,9 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     for (int k = 0; k < m; ++k) {
       ScreenVertex& nv = storage_.vertices[vertex_count_ + static_cast<size_t>(k)];
       nv.color = poly[k].color;
+      nv.spec = poly[k].spec;
+      nv.u = poly[k].u;
+      nv.v = poly[k].v;
       nv.outcode = 0;
       if (project(poly[k].p, nv)) ++projected;
     }
@@ -334,7 +383,7 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     int binned = 0, last = 5;
     for (int k = 1; k + 1 < m; ++k) {
       BinResult r = bin(first, static_cast<uint16_t>(first + k),
-                        static_cast<uint16_t>(first + k + 1), draw_index, flat, state.cull);
+                        static_cast<uint16_t>(first + k + 1), draw_index, flat, flat_spec, state.cull);
       if (r == BinResult::kBinned)
         ++binned;
       else
@@ -383,7 +432,8 @@ Status FrameBuilder::draw_screen(std::span<const ScreenVertex> vertices,
       continue;
     }
     Rgb8 flat = to_rgb8_sat(storage_.vertices[vi[2]].color);
-    BinResult r = bin(vi[0], vi[1], vi[2], draw_index, flat, state.cull);
+    Rgb8 flat_spec = to_rgb8_sat(storage_.vertices[vi[2]].spec);
+    BinResult r = bin(vi[0], vi[1], vi[2], draw_index, flat, flat_spec, state.cull);
     count_outcome(stats_, r == BinResult::kBinned ? 1 : 0, static_cast<int>(r));
   }
   bool dropped = stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity > dropped_before;

@@ -17,6 +17,7 @@
 #include "core/material.hpp"
 #include "core/mesh.hpp"
 #include "core/screen_vertex.hpp"
+#include "core/sampler.hpp"
 #include "core/status.hpp"
 #include "core/triangle_setup.hpp"
 
@@ -25,20 +26,33 @@ namespace lr {
 inline constexpr uint16_t kNoTriangle = 0xFFFF;
 inline constexpr size_t kMaxStoreEntries = 0xFFFF;  // indices are uint16; 0xFFFF = none
 
-// A triangle in the edge table: 12 bytes.
+// A triangle in the edge table: 16 bytes.
 struct BinnedTriangle {
   uint16_t v[3];  // vertex store indices
   uint16_t next;  // next triangle of the same bucket (lists are built by prepending, so
                   // they run from the latest submission to the earliest)
   uint8_t draw;   // draw record
-  Rgb8 flat;      // flat-shaded colour
+  Rgb8 flat;      // flat-shaded colour (the primary colour when textured)
+  Rgb8 flat_spec; // flat-shaded secondary colour of textured, lit draws
+  uint8_t reserved;
 };
-static_assert(sizeof(BinnedTriangle) == 12);
+static_assert(sizeof(BinnedTriangle) == 16);
 
-// The per-draw state the strip loop needs: which span routine.
+// How a textured span interpolates: exactly per pixel, exactly every span_len pixels, or affine.
+enum class TexPersp : uint8_t { kExact, kSpan, kAffine };
+
+// The per-draw state the strip loop needs: which span routine, and its texture.
 struct DrawRecord {
-  ColorPlanes colors = ColorPlanes::kNone;
+  ColorPlanes colors = ColorPlanes::kNone;  // untextured draws
   bool depth = true;
+  bool flat = false;
+  const Texture* texture = nullptr;  // textured draws
+  FetchFn fetch = nullptr;
+  TexPersp persp = TexPersp::kExact;
+  uint8_t span_len = 16;
+  TexEnv env = TexEnv::kModulate;
+  MipMode mip = MipMode::kNone;
+  Wrap wrap_s = Wrap::kRepeat, wrap_t = Wrap::kRepeat;
 };
 
 // Storage for one frame, owned by the caller. Capacities are the spans' sizes (at most 65535
@@ -87,7 +101,8 @@ class FrameBuilder {
 
  protected:
   enum class BinResult : uint8_t { kBinned, kBackface, kZeroArea, kOffscreen, kCapacity };
-  BinResult bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Cull cull);
+  BinResult bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
+                Cull cull);
   bool project(const ClipCoord& c, ScreenVertex& out) const;
   Status add_draw_record(const DrawState& state, bool has_color_planes, size_t vertices,
                          uint32_t triangles, uint8_t& index);

@@ -49,8 +49,9 @@ PreparedLighting prepare_lighting(const LightSet& set, const Material& m, Vec3 v
   return pl;
 }
 
-Color15 light_point(const PreparedLighting& pl, const Unit30& n, Vec3 p) {
-  int32_t acc[3] = {pl.base[0], pl.base[1], pl.base[2]};
+LitColor light_point_split(const PreparedLighting& pl, const Unit30& n, Vec3 p) {
+  int32_t prim[3] = {pl.base[0], pl.base[1], pl.base[2]};
+  int32_t spec[3] = {0, 0, 0};
   Unit30 v = pl.view;
   if (pl.local_viewer) v = unit_of(pl.eye - p);
   for (int i = 0; i < pl.count; ++i) {
@@ -58,19 +59,34 @@ Color15 light_point(const PreparedLighting& pl, const Unit30& n, Vec3 p) {
     int64_t ndl = dot30(n, li.l);
     if (ndl <= 0) continue;  // no diffuse, and GL gives no specular where N.L <= 0
     // ndl <= 2^30: Q1.30 times Q1.15 is < 2^46 before the shift.
-    for (int c = 0; c < 3; ++c) acc[c] += static_cast<int32_t>((ndl * li.kd[c] + (1 << 29)) >> 30);
+    for (int c = 0; c < 3; ++c)
+      prim[c] += static_cast<int32_t>((ndl * li.kd[c] + (1 << 29)) >> 30);
     Unit30 h = pl.local_viewer ? half_vector(li.l, v) : li.h;
     int64_t ndh = dot30(n, h);
     if (ndh <= 0) continue;
     if (ndh > (int64_t{1} << 30)) ndh = int64_t{1} << 30;
     uint32_t sp = DefaultPowTable::pow_q15(static_cast<uint32_t>(ndh), pl.shininess_q8);
     for (int c = 0; c < 3; ++c)
-      acc[c] += static_cast<int32_t>((sp * uint32_t{li.ks[c]} + (1u << 14)) >> 15);
+      spec[c] += static_cast<int32_t>((sp * uint32_t{li.ks[c]} + (1u << 14)) >> 15);
   }
-  uint16_t o[3];
-  for (int c = 0; c < 3; ++c)
-    o[c] = static_cast<uint16_t>(acc[c] < 0 ? 0 : acc[c] > Color15::kOne ? Color15::kOne : acc[c]);
-  return make_color15(o);
+  auto clamp = [](int32_t x) {
+    return static_cast<uint16_t>(x < 0 ? 0 : x > Color15::kOne ? Color15::kOne : x);
+  };
+  LitColor out;
+  out.primary = {clamp(prim[0]), clamp(prim[1]), clamp(prim[2])};
+  out.secondary = {clamp(spec[0]), clamp(spec[1]), clamp(spec[2])};
+  return out;
+}
+
+Color15 light_point(const PreparedLighting& pl, const Unit30& n, Vec3 p) {
+  // Every term is non-negative, so clamping the two sums first changes nothing.
+  LitColor c = light_point_split(pl, n, p);
+  auto sum = [](uint16_t a, uint16_t b) {
+    uint32_t v = uint32_t{a} + b;
+    return static_cast<uint16_t>(v > Color15::kOne ? Color15::kOne : v);
+  };
+  return {sum(c.primary.r, c.secondary.r), sum(c.primary.g, c.secondary.g),
+          sum(c.primary.b, c.secondary.b)};
 }
 
 }  // namespace lr

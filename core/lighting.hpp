@@ -66,4 +66,11 @@ PreparedLighting prepare_lighting(const LightSet& lights, const Material& materi
 // Lit colour of a surface point with unit normal n (world) at world position p.
 Color15 light_point(const PreparedLighting& pl, const Unit30& n, Vec3 p);
 
+// The same split as GL_SEPARATE_SPECULAR_COLOR does it: primary = emission + ambient + diffuse,
+// secondary = specular, each clamped to [0, 1]. Textures modulate the primary only.
+struct LitColor {
+  Color15 primary, secondary;
+};
+LitColor light_point_split(const PreparedLighting& pl, const Unit30& n, Vec3 p);
+
 }  // namespace lr

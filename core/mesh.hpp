@@ -30,10 +30,13 @@ enum class Shading : uint8_t {
 
 enum class Cull : uint8_t { kNone, kBack, kFront };
 
-// How the vertex colours of Gouraud shading are interpolated (a quality setting).
+// How attributes (texture coordinates, Gouraud colours) are interpolated: a quality setting.
 enum class Perspective : uint8_t {
-  kExact,   // c/w and 1/w linear in screen space, one division per pixel (default)
-  kAffine,  // c linear in screen space
+  kExact,   // a/w and 1/w linear in screen space, one reciprocal per pixel (default)
+  kSpan8,   // exact every 8 pixels (and at the end of the span), linear in between
+  kSpan16,  // ... every 16 pixels
+  kSpan32,  // ... every 32 pixels
+  kAffine,  // a linear in screen space
 };
 
 struct DrawState {
@@ -42,6 +45,10 @@ struct DrawState {
   bool depth_test = true;  // LESS against the strip's depth buffer, and write
   Cull cull = Cull::kNone;
   Perspective perspective = Perspective::kExact;
+  // Texturing: the texture (nullptr: none; it must outlive render()) and how it is sampled.
+  // The mesh needs texture coordinates (uvs); draw() checks the texture with validate().
+  const Texture* texture = nullptr;
+  Sampler sampler{};
 };
 
 // The camera of a frame: view and projection matrices (OpenGL meaning), and the eye position

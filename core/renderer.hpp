@@ -14,6 +14,7 @@
 #include "core/frame_builder.hpp"
 #include "core/pixel_format.hpp"
 #include "core/span.hpp"
+#include "core/tex_span.hpp"
 #include "hal/display.hpp"
 
 namespace lr {
@@ -129,8 +130,18 @@ void Renderer<PF, K>::activate(int strip) {
     int32_t ymax = std::max({in.v[0]->y, in.v[1]->y, in.v[2]->y});
     in.first_row = std::max<int32_t>(first_row_below(ymin), 0);
     in.last_row = std::min<int32_t>(last_row_at_or_above(ymax), height_ - 1);
-    in.colors = dr.colors;
+    in.colors = dr.texture ? ColorPlanes::kNone : dr.colors;
     in.depth = dr.depth;
+    if (dr.texture) {
+      in.tex.texture = dr.texture;
+      in.tex.perspective = dr.persp != TexPersp::kAffine;
+      in.tex.colors = dr.env == TexEnv::kModulate;
+      in.tex.flat = dr.flat;
+      in.tex.flat_primary = from_rgb8(bt.flat);
+      in.tex.flat_secondary = from_rgb8(bt.flat_spec);
+      in.tex.wrap_s = dr.wrap_s;
+      in.tex.wrap_t = dr.wrap_t;
+    }
     ActiveTriangle& t = storage_.active[slot];
     setup_triangle(in, t);
     t.index = node;
@@ -146,6 +157,7 @@ template <class PF, int K>
 void Renderer<PF, K>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows) {
   const DrawRecord& dr = storage_.draws[t.draw];
   const SpanFn<PF> fn = span_routine<PF>(dr.depth, dr.colors);
+  const TexSpanFn<PF> tex_fn = dr.texture ? tex_span_routine<PF>(dr) : nullptr;
   const int end = std::min<int>(t.last_row, y0 + rows - 1);
   int r = t.row;
   for (; r <= end; ++r) {
@@ -158,7 +170,8 @@ void Renderer<PF, K>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, 
       size_t off =
           static_cast<size_t>(r - y0) * static_cast<size_t>(width_) + static_cast<size_t>(left);
       int32_t n = right - left;
-      stats_.pixels_written += fn(t, pixels + off, storage_.depth.data() + off, left, r, n);
+      stats_.pixels_written += tex_fn ? tex_fn(t, dr, pixels + off, storage_.depth.data() + off, left, r, n)
+                                      : fn(t, pixels + off, storage_.depth.data() + off, left, r, n);
       stats_.pixels_tested += static_cast<uint32_t>(n);
       ++stats_.spans;
     }

@@ -1,5 +1,5 @@
 // A vertex after the vertex stage: projected, snapped, lit. One per mesh vertex of each draw,
-// plus those made by clipping. 24 bytes.
+// plus those made by clipping. 40 bytes.
 #pragma once
 
 #include <cstdint>
@@ -27,10 +27,12 @@ struct ScreenVertex {
   uint32_t z = 0;        // window depth, scaled as kDepthMax above
   uint32_t w = 0;        // clip-space w, Q16.16 (perspective correction); draw_screen reads
                          // 0 as 1.0. All-zero defaults keep static stores in .bss.
-  Color15 color{};       // lit or given colour
+  int32_t u = 0, v = 0;  // texture coordinates, Q12.20 (TexCoord)
+  Color15 color{};       // lit or given colour (the primary colour when textured and lit)
+  Color15 spec{};        // secondary (specular) colour of textured, lit draws; else 0
   uint8_t outcode = 0;   // clip planes this vertex is outside of (0: projected fields valid)
   uint8_t reserved = 0;
 };
-static_assert(sizeof(ScreenVertex) == 24);
+static_assert(sizeof(ScreenVertex) == 40);
 
 }  // namespace lr

@@ -14,6 +14,49 @@ bool gradient(int64_t n, int64_t area, int64_t& g) {
   return true;
 }
 
+// A Q1.15 colour channel times q (Q1.30), in Q1.30: <= q.
+uint32_t scale_by_q(uint32_t c15, uint32_t q) {
+  return static_cast<uint32_t>((uint64_t{c15} * q + (1u << 14)) >> 15);
+}
+
+// One texture axis: coordinates (Q12.20) to level-0 texels in Q.8, relative to the triangle's
+// own integer origin, so that the planes never hold more than the triangle's extent however far
+// from 0 the coordinates are. Extent limit: 2^22 texels (e.g. |du| < 2048 on a 2048-texel
+// texture); beyond it the relative coordinates saturate.
+void texture_axis(const int32_t uv[3], uint32_t size, Wrap wrap, bool perspective,
+                  const ScreenVertex* const v[3], const uint32_t q[3], Plane& plane, int32_t& off,
+                  uint8_t& m) {
+  int64_t c[3];
+  for (int i = 0; i < 3; ++i) c[i] = (int64_t{uv[i]} * size) >> (TexCoord::kFracBits - 8);
+  int64_t lo = c[0] < c[1] ? c[0] : c[1];
+  lo = c[2] < lo ? c[2] : lo;
+  const int64_t base = floor_div(lo, 256) * 256;
+  const int64_t period = int64_t{size} * 256;
+  // Repeat: only the origin's place in the period matters. Clamp: the origin itself
+  // (|base| <= 2^30 since |u| < 2048 and size <= 2048).
+  off = static_cast<int32_t>(wrap == Wrap::kRepeat ? base - floor_div(base, period) * period : base);
+  constexpr int64_t kMaxRel = (int64_t{1} << 30) - 1;
+  uint32_t rel[3];
+  uint32_t hi = 0;
+  for (int i = 0; i < 3; ++i) {
+    int64_t r = c[i] - base;
+    rel[i] = static_cast<uint32_t>(r > kMaxRel ? kMaxRel : r);
+    hi |= rel[i];
+  }
+  const int bits = hi == 0 ? 0 : 32 - clz32(hi);
+  if (perspective) {
+    // s q < 2^(bits + 30): shifting by the bit length of s keeps the plane below 2^30.
+    m = static_cast<uint8_t>(bits);
+    for (int i = 0; i < 3; ++i) rel[i] = static_cast<uint32_t>((uint64_t{rel[i]} * q[i]) >> m);
+  } else {
+    // Affine: s itself, moved up to 2^30 so that the rounded gradient keeps 30 - bits more
+    // fraction bits (its rounding would otherwise add up to half a Q.8 unit per pixel).
+    m = static_cast<uint8_t>(30 - bits);
+    for (int i = 0; i < 3; ++i) rel[i] <<= m;
+  }
+  plane = make_plane(v, rel);
+}
+
 }  // namespace
 
 Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]) {
@@ -73,21 +116,22 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
     uint32_t z[3] = {v[0]->z, v[1]->z, v[2]->z};
     t.z = make_plane(v, z);
   }
-  if (in.colors == ColorPlanes::kPerspective) {
+  const bool tex = in.tex.texture != nullptr;
+  uint32_t q[3] = {1u << 30, 1u << 30, 1u << 30};
+  if (in.colors == ColorPlanes::kPerspective || (tex && in.tex.perspective)) {
     uint32_t wmin = v[0]->w;
     for (int i = 1; i < 3; ++i) wmin = v[i]->w < wmin ? v[i]->w : wmin;
-    uint32_t q[3];
     for (int i = 0; i < 3; ++i) {
       // wmin <= w: the ratio is in (0, 1], Q1.30, at least 1.
       uint64_t r = ((uint64_t{wmin} << 30) + v[i]->w / 2) / v[i]->w;
       q[i] = r == 0 ? 1u : static_cast<uint32_t>(r);
     }
     t.q = make_plane(v, q);
+  }
+  if (in.colors == ColorPlanes::kPerspective) {
     for (int c = 0; c < 3; ++c) {
       uint32_t cq[3];
-      for (int i = 0; i < 3; ++i)
-        cq[i] =
-            static_cast<uint32_t>((uint64_t{channel(v[i]->color, c)} * q[i] + (1u << 14)) >> 15);
+      for (int i = 0; i < 3; ++i) cq[i] = scale_by_q(channel(v[i]->color, c), q[i]);
       t.c[c] = make_plane(v, cq);
     }
   } else if (in.colors == ColorPlanes::kAffine) {
@@ -96,6 +140,27 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
       for (int i = 0; i < 3; ++i) cv[i] = uint32_t{channel(v[i]->color, c)} << 15;
       t.c[c] = make_plane(v, cv);
     }
+  }
+  if (tex) setup_texture(in.tex, v, q, t);
+}
+
+void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const uint32_t q[3],
+                   ActiveTriangle& t) {
+  const TextureLevel& l0 = ts.texture->levels[0];
+  const int32_t us[3] = {v[0]->u, v[1]->u, v[2]->u}, vs[3] = {v[0]->v, v[1]->v, v[2]->v};
+  texture_axis(us, l0.width, ts.wrap_s, ts.perspective, v, q, t.s, t.off_s, t.m_s);
+  texture_axis(vs, l0.height, ts.wrap_t, ts.perspective, v, q, t.t, t.off_t, t.m_t);
+  if (!ts.colors) return;
+  for (int c = 0; c < 3; ++c) {
+    uint32_t p[3], sp[3];
+    for (int i = 0; i < 3; ++i) {
+      uint32_t pc = channel(ts.flat ? ts.flat_primary : v[i]->color, c);
+      uint32_t sc = channel(ts.flat ? ts.flat_secondary : v[i]->spec, c);
+      p[i] = ts.perspective ? scale_by_q(pc, q[i]) : pc << 15;
+      sp[i] = ts.perspective ? scale_by_q(sc, q[i]) : sc << 15;
+    }
+    t.c[c] = make_plane(v, p);
+    t.spec[c] = make_plane(v, sp);
   }
 }
 

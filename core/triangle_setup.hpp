@@ -22,6 +22,7 @@
 #include "core/color.hpp"
 #include "core/edge.hpp"
 #include "core/screen_vertex.hpp"
+#include "core/texture.hpp"
 
 namespace lr {
 
@@ -48,18 +49,41 @@ struct ActiveTriangle {
   Plane z;
   Plane q;
   Plane c[3];
+  // Textured triangles. s, t: texel coordinates of level 0 in Q.8 relative to the triangle's
+  // own origin (off_s, off_t; see setup_texture), as s * q >> m_s (perspective) or s << m_s
+  // (affine).
+  Plane s, t;
+  Plane spec[3];  // secondary colour, in the format of c
+  int32_t off_s = 0, off_t = 0;
+  uint8_t m_s = 0, m_t = 0;
+};
+
+// How texture coordinates and colours of a textured triangle are laid out.
+struct TextureSetup {
+  const Texture* texture = nullptr;  // nullptr: untextured
+  bool perspective = true;           // planes of a * q (exact and span modes) or of a (affine)
+  bool colors = true;                // modulate: primary and secondary colour planes
+  bool flat = false;                 // constant colours flat_primary / flat_secondary
+  Color15 flat_primary{}, flat_secondary{};
+  Wrap wrap_s = Wrap::kRepeat, wrap_t = Wrap::kRepeat;
 };
 
 struct SetupInput {
   const ScreenVertex* v[3];
   ColorPlanes colors;
   bool depth;
+  TextureSetup tex;
   int32_t first_row;  // first row to draw (>= the triangle's own first row), viewport clamped
   int32_t last_row;   // inclusive
 };
 
 // Fills `out` (except index/draw/flat). The triangle must have non-zero area.
 void setup_triangle(const SetupInput& in, ActiveTriangle& out);
+
+// The texture planes of a textured triangle (part of setup_triangle). q: the vertices' Q1.30
+// perspective factors (used when ts.perspective).
+void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const uint32_t q[3],
+                   ActiveTriangle& t);
 
 // Exposed for tests: the plane through three vertex values.
 Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]);

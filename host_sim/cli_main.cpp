@@ -11,6 +11,7 @@
 #include "host_sim/image_io.hpp"
 #include "host_sim/obj_loader.hpp"
 #include "host_sim/scene.hpp"
+#include "host_sim/texture_load.hpp"
 
 namespace {
 
@@ -22,7 +23,10 @@ constexpr const char* kUsage =
     "  [--model-rotate-y DEG] [--model-translate x,y,z] [--shading flat|gouraud|phong] [--unlit]\n"
     "  [--light-dir x,y,z] [--local-viewer] [--material NAME] [--ambient r,g,b] [--diffuse r,g,b]\n"
     "  [--specular r,g,b] [--shininess N] [--bg r,g,b] [--no-depth] [--cull back|none]\n"
-    "  [--depth-out FILE.png] [--strip-height 1|2|4|8|16|32] [--stats]\n";
+    "  [--depth-out FILE.png] [--strip-height 1|2|4|8|16|32] [--stats]\n"
+    "  [--texture FILE.png] [--filter nearest|bilinear] [--wrap repeat|clamp]\n"
+    "  [--perspective exact|span8|span16|span32|affine] [--mipmap none|nearest|linear]\n"
+    "  [--texture-format rgb565|rgb888|l8|palette8]\n";
 
 int fail(const std::string& msg) {
   std::fprintf(stderr, "lineraster-sim: %s\n", msg.c_str());
@@ -100,7 +104,9 @@ int main(int argc, char** argv) {
                a == "--target" || a == "--up" || a == "--model-scale" || a == "--model-rotate-y" ||
                a == "--model-translate" || a == "--shading" || a == "--light-dir" ||
                a == "--material" || a == "--ambient" || a == "--diffuse" || a == "--specular" ||
-               a == "--shininess" || a == "--bg" || a == "--cull" || a == "--strip-height") {
+               a == "--shininess" || a == "--bg" || a == "--cull" || a == "--strip-height" ||
+               a == "--texture" || a == "--filter" || a == "--wrap" || a == "--perspective" ||
+               a == "--mipmap" || a == "--texture-format") {
       if (!value(v)) return fail(std::string(a) + ": missing value");
       const std::string bad = std::string(a) + ": bad value '" + std::string(v) + "'";
       if (a == "--obj") {
@@ -191,6 +197,31 @@ int main(int argc, char** argv) {
           return fail("--shading phong: not supported yet (per-pixel lighting is a later issue)");
         else
           return fail(bad + " (flat, gouraud or phong)");
+      } else if (a == "--texture") {
+        o.texture = v;
+      } else if (a == "--texture-format") {
+        if (!lr::host::parse_texel_format(v, o.texture_format))
+          return fail(bad + " (rgb565, rgb888, l8 or palette8)");
+      } else if (a == "--filter") {
+        if (v == "nearest") o.filter = lr::Filter::kNearest;
+        else if (v == "bilinear") o.filter = lr::Filter::kBilinear;
+        else return fail(bad + " (nearest or bilinear)");
+      } else if (a == "--wrap") {
+        if (v == "repeat") o.wrap = lr::Wrap::kRepeat;
+        else if (v == "clamp") o.wrap = lr::Wrap::kClampToEdge;
+        else return fail(bad + " (repeat or clamp)");
+      } else if (a == "--perspective") {
+        if (v == "exact") o.perspective = lr::Perspective::kExact;
+        else if (v == "span8") o.perspective = lr::Perspective::kSpan8;
+        else if (v == "span16") o.perspective = lr::Perspective::kSpan16;
+        else if (v == "span32") o.perspective = lr::Perspective::kSpan32;
+        else if (v == "affine") o.perspective = lr::Perspective::kAffine;
+        else return fail(bad + " (exact, span8, span16, span32 or affine)");
+      } else if (a == "--mipmap") {
+        if (v == "none") o.mipmap = lr::MipMode::kNone;
+        else if (v == "nearest") o.mipmap = lr::MipMode::kNearest;
+        else if (v == "linear") o.mipmap = lr::MipMode::kLinear;
+        else return fail(bad + " (none, nearest or linear)");
       } else if (a == "--cull") {
         if (v == "back")
           o.cull = lr::Cull::kBack;

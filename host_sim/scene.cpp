@@ -8,6 +8,7 @@
 #include "core/renderer.hpp"
 #include "host_sim/capture_display.hpp"
 #include "host_sim/mesh_prep.hpp"
+#include "host_sim/texture_load.hpp"
 
 namespace lr::host {
 namespace {
@@ -131,9 +132,47 @@ bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<
 
 namespace {
 
+// The texture of each draw (nullptr: untextured), loaded once per file.
+struct DrawTextures {
+  std::vector<std::pair<std::string, std::unique_ptr<HostTexture>>> loaded;
+  std::vector<const Texture*> per_draw;
+};
+
+bool load_draw_textures(const HostMesh& mesh, const std::vector<FixedDraw>& draws,
+                        const SceneOptions& o, DrawTextures& out, std::string& error) {
+  for (const FixedDraw& d : draws) {
+    if (o.texture_object != nullptr) {
+      out.per_draw.push_back(o.texture_object);
+      continue;
+    }
+    std::string path = o.texture;
+    if (path.empty() && d.material_index >= 0 && size_t(d.material_index) < mesh.materials.size())
+      path = mesh.materials[size_t(d.material_index)].map_kd;
+    if (path.empty()) {
+      out.per_draw.push_back(nullptr);
+      continue;
+    }
+    if (d.uvs.empty()) {
+      error = path + ": the mesh has no texture coordinates (vt) to map it with";
+      return false;
+    }
+    const HostTexture* found = nullptr;
+    for (const auto& [p, t] : out.loaded)
+      if (p == path) found = t.get();
+    if (!found) {
+      auto t = std::make_unique<HostTexture>();
+      if (!load_texture(path, o.texture_format, o.mipmap != MipMode::kNone, *t, error)) return false;
+      found = t.get();
+      out.loaded.emplace_back(path, std::move(t));
+    }
+    out.per_draw.push_back(&found->texture);
+  }
+  return true;
+}
+
 template <int K>
-bool render_k(const std::vector<FixedDraw>& draws, const SceneOptions& o, RenderResult& out,
-              std::string& error) {
+bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
+              const SceneOptions& o, RenderResult& out, std::string& error) {
   using PF = Rgb888;
   const size_t w = static_cast<size_t>(o.width), h = static_cast<size_t>(o.height);
   std::vector<ScreenVertex> vertices(0xFFFF);
@@ -201,8 +240,14 @@ bool render_k(const std::vector<FixedDraw>& draws, const SceneOptions& o, Render
   st.depth_test = o.depth_test;
   st.cull = o.cull;
   st.perspective = o.perspective;
-  for (const FixedDraw& d : draws) {
+  for (size_t i = 0; i < draws.size(); ++i) {
+    const FixedDraw& d = draws[i];
     Mesh m = d.mesh();
+    st.texture = textures.per_draw[i];
+    st.sampler.filter = o.filter;
+    st.sampler.wrap_s = st.sampler.wrap_t = o.wrap;
+    st.sampler.mip = o.mipmap;
+    st.sampler.env = o.unlit ? TexEnv::kReplace : TexEnv::kModulate;
     Status s = renderer->draw(m, model, d.material, st);
     if (s != Status::kOk && s != Status::kCapacity) {
       error = std::string("draw: ") + to_string(s);
@@ -265,19 +310,21 @@ bool render_scene(const HostMesh& mesh, const SceneOptions& o, RenderResult& out
     error = "mesh: more than 256 draws (materials x 65535-vertex pieces)";
     return false;
   }
+  DrawTextures textures;
+  if (!load_draw_textures(mesh, draws, o, textures, error)) return false;
   switch (o.strip_height) {
     case 1:
-      return render_k<1>(draws, o, out, error);
+      return render_k<1>(draws, textures, o, out, error);
     case 2:
-      return render_k<2>(draws, o, out, error);
+      return render_k<2>(draws, textures, o, out, error);
     case 4:
-      return render_k<4>(draws, o, out, error);
+      return render_k<4>(draws, textures, o, out, error);
     case 8:
-      return render_k<8>(draws, o, out, error);
+      return render_k<8>(draws, textures, o, out, error);
     case 16:
-      return render_k<16>(draws, o, out, error);
+      return render_k<16>(draws, textures, o, out, error);
     case 32:
-      return render_k<32>(draws, o, out, error);
+      return render_k<32>(draws, textures, o, out, error);
     default:
       error = "strip height must be 1, 2, 4, 8, 16 or 32";
       return false;

@@ -45,6 +45,15 @@ struct SceneOptions {
   Cull cull = Cull::kNone;
   Perspective perspective = Perspective::kExact;
   int strip_height = 8;  // 1, 2, 4, 8, 16 or 32
+  // Texturing. The texture is `texture` when given, else each material's map_Kd (when the mesh
+  // has texture coordinates). Lit draws modulate the texel (specular added after), unlit ones
+  // replace the colour by the texel.
+  std::string texture;
+  TexelFormat texture_format = TexelFormat::kRgb565;
+  Filter filter = Filter::kBilinear;
+  Wrap wrap = Wrap::kRepeat;
+  MipMode mipmap = MipMode::kNone;
+  const Texture* texture_object = nullptr;  // for tests and tools: used instead of any file
 };
 
 struct RenderResult {

@@ -84,7 +84,7 @@ TEST(Cli, PpmByExtensionAndStatsJson) {
   EXPECT_NE(r.out.find("\"triangles_in\":4000"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"strip_height\":16"), std::string::npos);
   EXPECT_NE(r.out.find("\"strips\":15"), std::string::npos);
-  EXPECT_NE(r.out.find("\"bytes_per_binned_triangle\":12"), std::string::npos);
+  EXPECT_NE(r.out.find("\"bytes_per_binned_triangle\":16"), std::string::npos);
 }
 
 TEST(Cli, DepthOutIsA16BitImage) {

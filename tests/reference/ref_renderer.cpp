@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 namespace lr::ref {
 namespace {
@@ -160,6 +161,27 @@ class Lighting {
     return clamp01(c);
   }
 
+  // GL_SEPARATE_SPECULAR_COLOR: the same terms as at(), specular kept apart; each part clamped.
+  RefLitColor separate(const Vec3d& n, const Vec3d& pos) const {
+    const RefMaterial& m = p_.material;
+    Vec3d c = add(m.emission, cmul(p_.global_ambient, m.ambient));
+    Vec3d spec{0, 0, 0};
+    const Vec3d v = p_.local_viewer ? normalize(sub(eye_, pos)) : v_inf_;
+    for (size_t i = 0; i < dirs_.size(); ++i) {
+      const Vec3d& lc = p_.lights[i].color;
+      const Vec3d& l = dirs_[i];
+      c = add(c, cmul(lc, m.ambient));
+      const double ndl = dot(n, l);
+      if (ndl > 0.0) {
+        c = add(c, muls(cmul(lc, m.diffuse), ndl));
+        const Vec3d h = normalize(add(l, v));
+        const double ndh = std::max(dot(n, h), 0.0);
+        spec = add(spec, muls(cmul(lc, m.specular), std::pow(ndh, m.shininess)));
+      }
+    }
+    return {clamp01(c), clamp01(spec)};
+  }
+
  private:
   const RefParams& p_;
   std::vector<Vec3d> dirs_;
@@ -168,8 +190,10 @@ class Lighting {
 };
 
 struct ClipVert {
-  Vec4d c;    // clip coordinates
-  Vec3d col;  // colour (Gouraud / unlit vertex colour)
+  Vec4d c;                // clip coordinates
+  Vec3d col;              // colour (Gouraud / unlit vertex colour); textured + lit: primary
+  Vec3d spec{0, 0, 0};    // textured + lit: secondary (specular) colour
+  double uv[2] = {0, 0};  // texture coordinates
 };
 
 constexpr int kMaxPoly = 9;
@@ -194,6 +218,8 @@ int clip_poly(const ClipVert* in, int n, ClipVert* out, Dist dist) {
       ClipVert r;
       for (size_t q = 0; q < 4; ++q) r.c[q] = vi.c[q] + t * (vo.c[q] - vi.c[q]);
       for (size_t q = 0; q < 3; ++q) r.col[q] = vi.col[q] + t * (vo.col[q] - vi.col[q]);
+      for (size_t q = 0; q < 3; ++q) r.spec[q] = vi.spec[q] + t * (vo.spec[q] - vi.spec[q]);
+      for (size_t q = 0; q < 2; ++q) r.uv[q] = vi.uv[q] + t * (vo.uv[q] - vi.uv[q]);
       out[m++] = r;
     }
   }
@@ -202,6 +228,32 @@ int clip_poly(const ClipVert* in, int n, ClipVert* out, Dist dist) {
 
 bool finite4(const Vec4d& v) {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3]);
+}
+
+// Wraps the integer texel index i (a whole number held in a double) into [0, size - 1].
+int wrap_index(double i, int size, RefWrap wrap) {
+  const double n = static_cast<double>(size);
+  if (wrap == RefWrap::Repeat) {
+    double r = std::fmod(i, n);  // exact; sign of i
+    if (r < 0.0) r += n;
+    return std::clamp(static_cast<int>(r), 0, size - 1);
+  }
+  return static_cast<int>(std::clamp(i, 0.0, n - 1.0));
+}
+
+// Texel coordinate s = u * size; non-finite coordinates become 0 (no texel is defined for them).
+double texel_coord(double u, int size) {
+  const double s = u * static_cast<double>(size);
+  return std::isfinite(s) ? s : 0.0;
+}
+
+Vec3d lerp3(const Vec3d& a, const Vec3d& b, double t) {
+  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+}
+
+bool level_ok(const RefLevel& l) {
+  return l.width > 0 && l.height > 0 &&
+         l.texels.size() >= static_cast<size_t>(l.width) * static_cast<size_t>(l.height);
 }
 
 }  // namespace
@@ -239,6 +291,67 @@ Vec3d light_point(const RefParams& params, const Vec3d& normal_world, const Vec3
   return Lighting(params).at(normal_world, position_world);
 }
 
+RefLitColor light_point_separate(const RefParams& params, const Vec3d& normal_world,
+                                 const Vec3d& position_world) {
+  return Lighting(params).separate(normal_world, position_world);
+}
+
+Vec3d sample_level(const RefLevel& level, double u, double v, RefFilter filter, RefWrap wrap_s,
+                   RefWrap wrap_t) {
+  if (!level_ok(level)) return {0, 0, 0};
+  const int w = level.width, h = level.height;
+  const double s = texel_coord(u, w), t = texel_coord(v, h);
+  if (filter == RefFilter::Nearest) {
+    return level.at(wrap_index(std::floor(s), w, wrap_s), wrap_index(std::floor(t), h, wrap_t));
+  }
+  const double x = s - 0.5, y = t - 0.5;
+  const double fi = std::floor(x), fj = std::floor(y);
+  const double a = x - fi, b = y - fj;
+  const int i0 = wrap_index(fi, w, wrap_s), i1 = wrap_index(fi + 1.0, w, wrap_s);
+  const int j0 = wrap_index(fj, h, wrap_t), j1 = wrap_index(fj + 1.0, h, wrap_t);
+  const Vec3d& t00 = level.at(i0, j0);
+  const Vec3d& t10 = level.at(i1, j0);
+  const Vec3d& t01 = level.at(i0, j1);
+  const Vec3d& t11 = level.at(i1, j1);
+  Vec3d r{};
+  for (size_t c = 0; c < 3; ++c)
+    r[c] =
+        (1 - a) * (1 - b) * t00[c] + a * (1 - b) * t10[c] + (1 - a) * b * t01[c] + a * b * t11[c];
+  return r;
+}
+
+Vec3d sample_texture(const RefTexture& texture, const RefParams& params, double u, double v,
+                     double lambda) {
+  if (texture.levels.empty() || !level_ok(texture.levels[0])) return {0, 0, 0};  // incomplete
+  // q: the last usable level (a broken level ends the chain).
+  size_t nlev = 1;
+  while (nlev < texture.levels.size() && level_ok(texture.levels[nlev])) ++nlev;
+  const double q = static_cast<double>(nlev - 1);
+  auto at_level = [&](double d) {
+    return sample_level(texture.levels[static_cast<size_t>(d)], u, v, params.filter, params.wrap_s,
+                        params.wrap_t);
+  };
+  // Magnification (lambda <= 0, -infinity or NaN) and non-mipmapped filters: level 0.
+  if (params.mip == RefMipMode::None || !(lambda > 0.0)) return at_level(0.0);
+  if (params.mip == RefMipMode::Nearest) {
+    const double d = std::ceil(std::min(lambda, q + 1.0) + 0.5) - 1.0;  // lambda <= 1/2 -> 0
+    return at_level(std::clamp(d, 0.0, q));
+  }
+  const double l = std::min(lambda, q);
+  const double d1 = std::floor(l);
+  const double d2 = std::min(d1 + 1.0, q);
+  const double f = l - d1;
+  return lerp3(at_level(d1), at_level(d2), f);
+}
+
+double texture_lod(double du_dx, double dv_dx, double du_dy, double dv_dy, int width0,
+                   int height0) {
+  const double w = width0, h = height0;
+  const double rx = std::hypot(du_dx * w, dv_dx * h);
+  const double ry = std::hypot(du_dy * w, dv_dy * h);
+  return std::log2(std::max(rx, ry));  // log2(0) = -infinity
+}
+
 void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) {
   const int W = std::max(params.width, 0), H = std::max(params.height, 0);
   const size_t npix = static_cast<size_t>(W) * static_cast<size_t>(H);
@@ -250,6 +363,7 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
     for (size_t q = 0; q < 3; ++q) out.rgb8[p * 3 + q] = to_byte(params.background[q]);
   out.depth.assign(npix, 1.0);
   out.owner.assign(npix, -1);
+  out.lod.assign(npix, std::numeric_limits<double>::quiet_NaN());
   if (npix == 0) return;
 
   const int bits = clamp_bits(params.subpixel_bits);
@@ -261,10 +375,15 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
   const size_t nv = mesh.positions.size();
   const bool have_colors = mesh.colors.size() == nv && nv > 0;
   const bool have_normals = mesh.normals.size() == nv;
+  const RefTexture* tex = params.texture;
+  const bool have_uvs = mesh.uvs.size() == nv;
+  const int tex_w0 = tex && !tex->levels.empty() ? tex->levels[0].width : 0;
+  const int tex_h0 = tex && !tex->levels.empty() ? tex->levels[0].height : 0;
 
-  // Per-vertex work: clip position, world position and (for Gouraud / unlit) the colour.
+  // Per-vertex work: clip position, world position and (for Gouraud / unlit) the colour; with a
+  // texture and lighting, the colour is the primary colour and vspec the secondary one.
   std::vector<Vec4d> clip(nv);
-  std::vector<Vec3d> world(nv), vcol(nv);
+  std::vector<Vec3d> world(nv), vcol(nv), vspec(nv, Vec3d{0, 0, 0});
   for (size_t v = 0; v < nv; ++v) {
     const Vec3d& p = mesh.positions[v];
     clip[v] = transform(mvp, Vec4d{p[0], p[1], p[2], 1.0});
@@ -273,7 +392,13 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
       if (!flat) {
         const Vec3d n =
             have_normals ? transform_normal(params.model, mesh.normals[v]) : Vec3d{0, 0, 0};
-        vcol[v] = lighting.at(n, world[v]);
+        if (tex) {
+          const RefLitColor lc = lighting.separate(n, world[v]);
+          vcol[v] = lc.primary;
+          vspec[v] = lc.secondary;
+        } else {
+          vcol[v] = lighting.at(n, world[v]);
+        }
       }
     } else {
       vcol[v] = have_colors ? mesh.colors[v] : params.material.diffuse;
@@ -287,20 +412,32 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
     if (!finite4(clip[vi[0]]) || !finite4(clip[vi[1]]) || !finite4(clip[vi[2]])) continue;
 
     // Flat: one colour for the whole triangle.
-    Vec3d face_col{0, 0, 0};
+    Vec3d face_col{0, 0, 0}, face_spec{0, 0, 0};
     if (flat) {
       if (lit) {
         const Vec3d n =
             normalize(cross(sub(world[vi[1]], world[vi[0]]), sub(world[vi[2]], world[vi[0]])));
         const Vec3d centroid = muls(add(add(world[vi[0]], world[vi[1]]), world[vi[2]]), 1.0 / 3.0);
-        face_col = lighting.at(n, centroid);
+        if (tex) {
+          const RefLitColor lc = lighting.separate(n, centroid);
+          face_col = lc.primary;
+          face_spec = lc.secondary;
+        } else {
+          face_col = lighting.at(n, centroid);
+        }
       } else {
         face_col = vcol[vi[2]];  // provoking vertex: the last one
       }
     }
 
     ClipVert poly_a[kMaxPoly], poly_b[kMaxPoly];
-    for (int k = 0; k < 3; ++k) poly_a[k] = {clip[vi[k]], flat ? face_col : vcol[vi[k]]};
+    for (int k = 0; k < 3; ++k) {
+      poly_a[k] = {clip[vi[k]], flat ? face_col : vcol[vi[k]], flat ? face_spec : vspec[vi[k]]};
+      if (have_uvs) {
+        poly_a[k].uv[0] = mesh.uvs[vi[k]][0];
+        poly_a[k].uv[1] = mesh.uvs[vi[k]][1];
+      }
+    }
     int n = clip_poly(poly_a, 3, poly_b, [](const Vec4d& c) { return c[2] + c[3]; });  // near
     if (n < 3) continue;
     n = clip_poly(poly_b, n, poly_a, [](const Vec4d& c) { return c[3] - c[2]; });  // far
@@ -342,6 +479,25 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
       if (!s.valid) continue;                                 // zero snapped area
       if (params.cull_back && area2_exact(st) > 0) continue;  // back face
       const double area = static_cast<double>(s.area);
+      // Texturing: d(barycentric b_q of vertex q)/d(window x, y in pixels) from the edge
+      // functions (constant over the triangle), hence the derivatives of the homogeneous sums
+      // A = sum b_q u_q / w_q and B = sum b_q / w_q; at every pixel u = A / B and
+      // du = (dA - u dB) / B exactly (likewise v).
+      double dB[2] = {0, 0}, dAu[2] = {0, 0}, dAv[2] = {0, 0};
+      if (tex) {
+        for (int k = 0; k < 3; ++k) {
+          const int k1 = (k + 1) % 3;
+          const int q = s.order[(k + 2) % 3];  // the vertex edge k weighs
+          const double g[2] = {-static_cast<double>(s.y[k1] - s.y[k]) * S / area,
+                               static_cast<double>(s.x[k1] - s.x[k]) * S / area};
+          const ClipVert& cv = poly_a[f[q]];
+          for (int a = 0; a < 2; ++a) {
+            dB[a] += g[a] * inv_w[f[q]];
+            dAu[a] += g[a] * inv_w[f[q]] * cv.uv[0];
+            dAv[a] += g[a] * inv_w[f[q]] * cv.uv[1];
+          }
+        }
+      }
       raster(s, W, H, bits, [&](int i, int j, const i128* w) {
         const double b[3] = {static_cast<double>(w[0]) / area, static_cast<double>(w[1]) / area,
                              static_cast<double>(w[2]) / area};
@@ -351,6 +507,34 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
         if (params.depth_test) {
           if (!(z < out.depth[p])) return;
           out.depth[p] = z;
+        }
+        if (tex) {
+          const double q0 = b[0] * inv_w[f[0]], q1 = b[1] * inv_w[f[1]], q2 = b[2] * inv_w[f[2]];
+          const double B = q0 + q1 + q2, qs = 1.0 / B;
+          const ClipVert &v0 = poly_a[f[0]], &v1 = poly_a[f[1]], &v2 = poly_a[f[2]];
+          const double u = (q0 * v0.uv[0] + q1 * v1.uv[0] + q2 * v2.uv[0]) * qs;
+          const double v = (q0 * v0.uv[1] + q1 * v1.uv[1] + q2 * v2.uv[1]) * qs;
+          const double lambda =
+              texture_lod((dAu[0] - u * dB[0]) * qs, (dAv[0] - v * dB[0]) * qs,
+                          (dAu[1] - u * dB[1]) * qs, (dAv[1] - v * dB[1]) * qs, tex_w0, tex_h0);
+          const Vec3d texel = sample_texture(*tex, params, u, v, lambda);
+          Vec3d col = texel;
+          if (params.tex_env == RefTexEnv::Modulate) {
+            Vec3d prim = face_col, sec = face_spec;
+            if (!flat) {
+              for (size_t ch = 0; ch < 3; ++ch) {
+                prim[ch] = (q0 * v0.col[ch] + q1 * v1.col[ch] + q2 * v2.col[ch]) * qs;
+                sec[ch] = (q0 * v0.spec[ch] + q1 * v1.spec[ch] + q2 * v2.spec[ch]) * qs;
+              }
+            }
+            col = add(cmul(texel, clamp01(prim)), clamp01(sec));
+          }
+          col = clamp01(col);
+          out.color[p] = col;
+          for (size_t ch = 0; ch < 3; ++ch) out.rgb8[p * 3 + ch] = to_byte(col[ch]);
+          out.owner[p] = static_cast<int32_t>(t);
+          out.lod[p] = lambda;
+          return;
         }
         Vec3d col = face_col;
         if (!flat) {

@@ -12,9 +12,15 @@
 //   x, y snapped to 1/2^bits pixel with std::llround; zero-area pieces dropped;
 //   back faces (signed display area > 0) dropped when cull_back;
 //   fill rule: centre inside, or exactly on a left or bottom edge (display coordinates, y down);
-//   depth interpolated linearly in screen space, test LESS, then written.
+//   depth interpolated linearly in screen space, test LESS, then written;
+//   with a texture: (u, v) interpolated perspective-correctly, level of detail from the exact
+//   analytic screen-space derivatives of (u, v) at the pixel centre, sampled per GL (section 8.14
+//   of the 4.x spec: GL_NEAREST / GL_LINEAR, GL_*_MIPMAP_NEAREST / _LINEAR, GL_REPEAT /
+//   GL_CLAMP_TO_EDGE), combined per DESIGN.md section 4 (GL_MODULATE with
+//   GL_SEPARATE_SPECULAR_COLOR, or GL_REPLACE).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -40,6 +46,33 @@ struct RefMaterial {
 
 enum class RefShading { Flat, Gouraud };
 
+// ---- Textures ----
+
+// One mip level: width x height texels, row-major, row 0 = the BOTTOM row (v near 0: GL's order,
+// the image file's last row). Texel (i, j) has its centre at u = (i + 0.5) / width,
+// v = (j + 0.5) / height. Colours in [0, 1].
+struct RefLevel {
+  int width = 0, height = 0;
+  std::vector<Vec3d> texels;
+
+  const Vec3d& at(int i, int j) const {
+    return texels[static_cast<size_t>(j) * static_cast<size_t>(width) + static_cast<size_t>(i)];
+  }
+};
+
+// Level 0 and its mip chain (each level GL's floor-halved size of the one before, at least 1).
+// The chain may stop early: the last level given is GL's TEXTURE_MAX_LEVEL (q). An empty texture
+// or one with an empty level 0 is incomplete: it samples as black, as GL's incomplete textures.
+// tests/reference/ref_texture_core.hpp builds one from a core lr::Texture.
+struct RefTexture {
+  std::vector<RefLevel> levels;
+};
+
+enum class RefFilter { Nearest, Bilinear };       // GL_NEAREST, GL_LINEAR
+enum class RefWrap { Repeat, ClampToEdge };       // GL_REPEAT, GL_CLAMP_TO_EDGE
+enum class RefMipMode { None, Nearest, Linear };  // level 0 only, GL_*_MIPMAP_NEAREST, _LINEAR
+enum class RefTexEnv { Modulate, Replace };       // see RefParams::tex_env
+
 struct RefParams {
   int width = 320, height = 240;
   Mat4d model, view, projection;  // identity by default
@@ -57,6 +90,23 @@ struct RefParams {
   bool local_viewer = false;
   Vec3d background{0, 0, 0};
   int subpixel_bits = 8;  // 1..16; screen x, y snapped to 1/2^bits pixel, round to nearest
+
+  // Texturing (off when null; the texture must outlive render()). Texture coordinates come from
+  // mesh.uvs (one per vertex; absent or of the wrong size: every vertex has (0, 0)). Defaults
+  // mirror lr::Sampler's. The same filter serves magnification and minification (GL's
+  // TEXTURE_MAG_FILTER = the min filter's base), so the switch point is lambda = 0.
+  const RefTexture* texture = nullptr;
+  RefFilter filter = RefFilter::Bilinear;
+  RefWrap wrap_s = RefWrap::Repeat;  // u
+  RefWrap wrap_t = RefWrap::Repeat;  // v
+  RefMipMode mip = RefMipMode::None;
+  // Modulate, lit: clamp(texel * primary + secondary), primary = emission + ambient + diffuse
+  // (clamped to [0, 1]), secondary = specular (clamped): GL_MODULATE with
+  // GL_SEPARATE_SPECULAR_COLOR. Gouraud interpolates primary and secondary separately
+  // (perspective-correct); flat computes them once per face. Unlit: texel * vertex colour (or
+  // material.diffuse; flat: the last vertex's colour).
+  // Replace: the texel alone, lit or not.
+  RefTexEnv tex_env = RefTexEnv::Modulate;
 };
 
 struct RefFrame {
@@ -65,6 +115,9 @@ struct RefFrame {
   std::vector<uint8_t> rgb8;   // round(255 * c) per channel, 3 bytes per pixel, row 0 = top
   std::vector<double> depth;   // window depth [0, 1]; 1.0 (cleared) where nothing drawn
   std::vector<int32_t> owner;  // index of the mesh triangle that wrote the pixel last, -1 = none
+  // Level of detail lambda = log2(rho) of the textured fragment that wrote the pixel (-infinity
+  // where the derivatives vanish); NaN where no textured fragment was written.
+  std::vector<double> lod;
 
   size_t index(int x, int y) const {
     return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
@@ -78,6 +131,39 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out);
 // params.material, params.lights, params.global_ambient and params.local_viewer.
 // normal_world must be unit length; position_world is used only for the local viewer.
 Vec3d light_point(const RefParams& params, const Vec3d& normal_world, const Vec3d& position_world);
+
+// The same lighting split as GL_SEPARATE_SPECULAR_COLOR does: primary = emission + global
+// ambient * Ka + sum of (La * Ka + max(N.L, 0) * Ld * Kd), secondary = sum over lights with
+// N.L > 0 of max(N.H, 0)^shininess * Ls * Ks; each clamped to [0, 1].
+struct RefLitColor {
+  Vec3d primary{0, 0, 0};
+  Vec3d secondary{0, 0, 0};
+};
+RefLitColor light_point_separate(const RefParams& params, const Vec3d& normal_world,
+                                 const Vec3d& position_world);
+
+// ---- Texture sampling (what render() does per textured fragment) ----
+
+// GL_NEAREST or GL_LINEAR sample of one level at (u, v): s = u * width, t = v * height;
+// nearest: texel (floor(s), floor(t)); bilinear: i0 = floor(s - 0.5), alpha = frac(s - 0.5),
+// i1 = i0 + 1 (likewise j, beta), each index wrapped (repeat: mod size, non-negative; clamp to
+// edge: clamped to [0, size - 1]), blended (1-a)(1-b) T00 + a(1-b) T10 + (1-a)b T01 + ab T11.
+// An empty level gives black.
+Vec3d sample_level(const RefLevel& level, double u, double v, RefFilter filter, RefWrap wrap_s,
+                   RefWrap wrap_t);
+
+// The full GL texture lookup at (u, v) with level of detail lambda (log2 of rho, in level-0
+// texels per pixel; -infinity allowed) under params' filter, wraps and mip mode:
+//   None: level 0. lambda <= 0 (magnification): level 0 in every mode.
+//   Nearest: level ceil(lambda + 0.5) - 1, clamped to [0, q] (q = last level).
+//   Linear: lambda clamped to q; d1 = floor(lambda), d2 = min(d1 + 1, q), blended with
+//   frac(lambda).
+Vec3d sample_texture(const RefTexture& texture, const RefParams& params, double u, double v,
+                     double lambda);
+
+// lambda = log2(max(sqrt(ds/dx^2 + dt/dx^2), sqrt(ds/dy^2 + dt/dy^2))) from the derivatives of
+// u and v with respect to window x and y (pixels) and level 0's size. -infinity when rho = 0.
+double texture_lod(double du_dx, double dv_dx, double du_dy, double dv_dy, int width0, int height0);
 
 // ---- Screen-space coverage ----
 

@@ -9,6 +9,7 @@
 
 #include "host_sim/scene.hpp"
 #include "tests/reference/ref_renderer.hpp"
+#include "tests/reference/ref_texture_core.hpp"
 
 namespace lr::test {
 
@@ -72,7 +73,19 @@ inline host::SceneOptions gold_options(host::SceneOptions o = {}) {
 inline bool compare_scene(const host::HostMesh& mesh, const host::SceneOptions& o, Comparison& c,
                           std::string& error) {
   if (!host::render_scene(mesh, o, c.core, error)) return false;
-  ref::render(mesh, ref_params(mesh, o), c.reference);
+  ref::RefParams rp = ref_params(mesh, o);
+  ref::RefTexture rt;
+  if (o.texture_object != nullptr) {
+    rt = ref::from_core(*o.texture_object);
+    rp.texture = &rt;
+    Sampler smp;
+    smp.filter = o.filter;
+    smp.wrap_s = smp.wrap_t = o.wrap;
+    smp.mip = o.mipmap;
+    smp.env = o.unlit ? TexEnv::kReplace : TexEnv::kModulate;
+    ref::set_sampler(rp, smp);
+  }
+  ref::render(mesh, rp, c.reference);
   const size_t n = size_t(o.width) * size_t(o.height);
   double sum = 0, sq = 0;
   for (size_t p = 0; p < n; ++p) {

@@ -1,0 +1,404 @@
+// lineraster-asset's round trip: the headers generated at build time (tests/asset/CMakeLists.txt)
+// hold, value for value, what the simulator's own conversion (build_fixed_draws + load_texture)
+// makes of the same files, and render the same frames with the core. Also the tool's errors:
+// one line, exit status 2, no output file.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <span>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/camera.hpp"
+#include "cube_rgb565.hpp"
+#include "cube_rgb888.hpp"
+#include "host_sim/asset_writer.hpp"
+#include "host_sim/obj_loader.hpp"
+#include "host_sim/scene.hpp"
+#include "host_sim/texture_load.hpp"
+#include "knot_l8.hpp"
+#include "knot_palette8.hpp"
+#include "tests/support/core_harness.hpp"
+
+namespace lr::host {
+namespace {
+
+const std::string kData = LR_SOURCE_DIR "/tests/host/data/";
+
+// A generated header seen through spans.
+struct AssetView {
+  std::span<const Mesh> meshes;
+  std::span<const Material> materials;
+  std::span<const bool> textured;
+  const Texture* texture;
+};
+#define LR_ASSET_VIEW(ns)                                 \
+  AssetView {                                             \
+    ns::meshes, ns::materials, ns::textured, &ns::texture \
+  }
+
+// What the simulator makes of the same files.
+struct Loaded {
+  std::vector<FixedDraw> draws;
+  HostTexture texture;
+};
+
+Loaded load(const std::string& obj, const std::string& png, TexelFormat format, bool mipmaps,
+            bool fit) {
+  Loaded l;
+  HostMesh mesh;
+  std::string error;
+  EXPECT_TRUE(load_obj(kData + obj, mesh, error)) << error;
+  SceneOptions o;
+  o.fit = fit;
+  o.use_mesh_materials = true;
+  EXPECT_TRUE(build_fixed_draws(mesh, o, l.draws, error)) << error;
+  EXPECT_TRUE(load_texture(kData + png, format, mipmaps, l.texture, error)) << error;
+  return l;
+}
+
+template <class T>
+void expect_same(std::span<const T> header, const std::vector<T>& loaded, const char* what,
+                 size_t draw) {
+  ASSERT_EQ(header.size(), loaded.size()) << what << " of draw " << draw;
+  for (size_t i = 0; i < loaded.size(); ++i)
+    ASSERT_TRUE(header[i] == loaded[i]) << what << " " << i << " of draw " << draw;
+}
+
+void expect_same_material(const Material& a, const Material& b) {
+  EXPECT_EQ(a.ambient, b.ambient);
+  EXPECT_EQ(a.diffuse, b.diffuse);
+  EXPECT_EQ(a.specular, b.specular);
+  EXPECT_EQ(a.emission, b.emission);
+  EXPECT_EQ(a.shininess_q8, b.shininess_q8);
+}
+
+void expect_same_texture(const Texture& h, const Texture& l) {
+  ASSERT_EQ(h.format, l.format);
+  ASSERT_EQ(h.level_count, l.level_count);
+  EXPECT_EQ(validate(h), Status::kOk);
+  for (int i = 0; i < l.level_count; ++i) {
+    const TextureLevel& a = h.levels[static_cast<size_t>(i)];
+    const TextureLevel& b = l.levels[static_cast<size_t>(i)];
+    ASSERT_EQ(a.width, b.width) << "level " << i;
+    ASSERT_EQ(a.height, b.height) << "level " << i;
+    ASSERT_EQ(a.rgb565.size(), b.rgb565.size()) << "level " << i;
+    ASSERT_EQ(a.bytes.size(), b.bytes.size()) << "level " << i;
+    for (size_t k = 0; k < b.rgb565.size(); ++k)
+      ASSERT_EQ(a.rgb565[k], b.rgb565[k]) << "level " << i << " texel " << k;
+    for (size_t k = 0; k < b.bytes.size(); ++k)
+      ASSERT_EQ(a.bytes[k], b.bytes[k]) << "level " << i << " byte " << k;
+  }
+  for (int i = l.level_count; i < kMaxMipLevels; ++i) {
+    EXPECT_EQ(h.levels[static_cast<size_t>(i)].width, 0);
+    EXPECT_TRUE(h.levels[static_cast<size_t>(i)].rgb565.empty());
+    EXPECT_TRUE(h.levels[static_cast<size_t>(i)].bytes.empty());
+  }
+  ASSERT_EQ(h.palette.size(), l.palette.size());
+  for (size_t k = 0; k < l.palette.size(); ++k) EXPECT_EQ(h.palette[k], l.palette[k]) << k;
+}
+
+void expect_same_data(const AssetView& h, const Loaded& l) {
+  ASSERT_EQ(h.meshes.size(), l.draws.size());
+  ASSERT_EQ(h.materials.size(), l.draws.size());
+  ASSERT_EQ(h.textured.size(), l.draws.size());
+  for (size_t d = 0; d < l.draws.size(); ++d) {
+    const FixedDraw& fd = l.draws[d];
+    const Mesh& m = h.meshes[d];
+    expect_same(m.positions, fd.positions, "position", d);
+    expect_same(m.normals, fd.normals, "normal", d);
+    expect_same(m.colors, fd.colors, "colour", d);
+    expect_same(m.uvs, fd.uvs, "uv", d);
+    expect_same(m.triangles, fd.triangles, "triangle", d);
+    expect_same_material(h.materials[d], fd.material);
+  }
+  expect_same_texture(*h.texture, l.texture.texture);
+}
+
+TEST(AssetRoundTrip, CubeWithMapKdRgb565MipmappedEqualsTheLoadedFiles) {
+  const Loaded l = load("cube.obj", "checker.png", TexelFormat::kRgb565, true, false);
+  expect_same_data(LR_ASSET_VIEW(cube_rgb565), l);
+  // cube.mtl: cube_red (4 faces, no map_Kd), then cube_white (2 faces, map_Kd checker.png).
+  ASSERT_EQ(l.draws.size(), 2u);
+  EXPECT_EQ(l.draws[0].triangles.size(), 8u);
+  EXPECT_EQ(l.draws[1].triangles.size(), 4u);
+  EXPECT_FALSE(cube_rgb565::textured[0]);
+  EXPECT_TRUE(cube_rgb565::textured[1]);
+  EXPECT_EQ(cube_rgb565::texture.level_count, 4);
+  // Spot values: the cube's corner (1, -1, -1) in Q16.16 and cube_white's Ns 96 in Q8.8.
+  EXPECT_EQ(cube_rgb565::positions_0[0],
+            (Vec3{Fixed::from_int(1), Fixed::from_int(-1), Fixed::from_int(-1)}));
+  EXPECT_EQ(cube_rgb565::material_1.shininess_q8, 96 * 256);
+  EXPECT_EQ(cube_rgb565::uvs_1[2], (TexCoord{1 << 20, 1 << 20}));
+}
+
+TEST(AssetRoundTrip, CubeFittedRgb888EqualsTheLoadedFiles) {
+  const Loaded l = load("cube.obj", "checker.png", TexelFormat::kRgb888, false, true);
+  expect_same_data(LR_ASSET_VIEW(cube_rgb888), l);
+  EXPECT_EQ(cube_rgb888::texture.level_count, 1);
+}
+
+TEST(AssetRoundTrip, TorusKnotWithTexturePalette8EqualsTheLoadedFiles) {
+  const Loaded l = load("torus_knot.obj", "checker.png", TexelFormat::kPalette8, true, true);
+  expect_same_data(LR_ASSET_VIEW(knot_palette8), l);
+  for (bool t : knot_palette8::textured) EXPECT_TRUE(t);  // --texture: every draw with uvs
+  EXPECT_FALSE(knot_palette8::texture.palette.empty());
+}
+
+TEST(AssetRoundTrip, TorusKnotWithTextureL8EqualsTheLoadedFiles) {
+  const Loaded l = load("torus_knot.obj", "checker.png", TexelFormat::kL8, true, false);
+  expect_same_data(LR_ASSET_VIEW(knot_l8), l);
+  EXPECT_EQ(knot_l8::meshes[0].triangles.size(), 4000u);
+}
+
+// ---- Frames ------------------------------------------------------------------------------------
+
+// Sets the draw state's texture when lr::DrawState has texture fields (they arrive with the
+// textured span routines); until then the frames are compared untextured.
+template <class State>
+bool set_texture(State& st, const Texture* texture) {
+  if constexpr (requires { st.texture = texture; }) {
+    st.texture = texture;
+    st.sampler.filter = Filter::kNearest;
+    st.sampler.mip = texture->level_count > 1 ? MipMode::kNearest : MipMode::kNone;
+    return true;
+  } else {
+    return false;
+  }
+}
+
+struct Frame {
+  ImageRgb8 image;
+  size_t covered = 0;
+  bool textured = false;
+};
+
+// Renders meshes[i] with materials[i] (textured where textured[i]) at 160x120 from a corner,
+// the model scaled by `scale`.
+Frame render(std::span<const Mesh> meshes, std::span<const Material> materials,
+             std::span<const bool> textured, const Texture* texture, Fixed scale) {
+  constexpr int kW = 160, kH = 120;
+  test::CoreHarness<8> h(kW, kH);
+  EXPECT_EQ(h.configured(), Status::kOk);
+  Camera cam;
+  EXPECT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(kW, kH), Fixed::from_double(0.1),
+                          Fixed::from_int(100), cam.projection));
+  cam.eye = {Fixed::from_double(2.5), Fixed::from_int(2), Fixed::from_double(3.5)};
+  EXPECT_TRUE(look_at(cam.eye, {}, {Fixed{}, Fixed::from_int(1), Fixed{}}, cam.view));
+  LightSet lights;
+  const Fixed c = Fixed::from_double(0.57735);
+  lights.lights[0] = DirectionalLight::of_color({c, c, c}, {32768, 32768, 32768});
+  lights.count = 1;
+  EXPECT_EQ(h.begin(Rgb8{0, 0, 0}, cam, lights), Status::kOk);
+  Frame f;
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    DrawState st;
+    if (textured[i] && texture) f.textured = set_texture(st, texture) || f.textured;
+    EXPECT_EQ(h.renderer().draw(meshes[i], lr::scale(scale), materials[i], st), Status::kOk);
+  }
+  Status s;
+  f.image = h.render(&s);
+  EXPECT_EQ(s, Status::kOk);
+  for (size_t p = 0; p < h.depth().size(); ++p) f.covered += h.depth()[p] != 0xFFFF;
+  return f;
+}
+
+Frame render_loaded(const Loaded& l, std::span<const bool> textured, Fixed scale) {
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  for (const FixedDraw& d : l.draws) {
+    meshes.push_back(d.mesh());
+    materials.push_back(d.material);
+  }
+  return render(meshes, materials, textured, &l.texture.texture, scale);
+}
+
+// Fitted models (radius 1) are drawn 1.6 times larger, to fill about as much of the frame.
+void expect_same_frame(const AssetView& h, const Loaded& l, bool fitted) {
+  const Fixed scale = fitted ? Fixed::from_double(1.6) : Fixed::from_int(1);
+  const Frame a = render(h.meshes, h.materials, h.textured, h.texture, scale);
+  const Frame b = render_loaded(l, h.textured, scale);
+  ASSERT_EQ(a.image.rgb.size(), b.image.rgb.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < a.image.rgb.size(); ++i) differing += a.image.rgb[i] != b.image.rgb[i];
+  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(a.covered, b.covered);
+  EXPECT_GT(a.covered, 160u * 120u / 20) << "the model should fill a good part of the frame";
+  if (!a.textured) {
+    std::printf("note: lr::DrawState has no texture fields yet: frames compared untextured\n");
+  } else {
+    // The texture must show: the textured frame differs from the same draws untextured.
+    const auto off = std::make_unique<bool[]>(h.textured.size());  // all false
+    const Frame plain = render(h.meshes, h.materials,
+                               std::span<const bool>(off.get(), h.textured.size()), nullptr, scale);
+    EXPECT_NE(plain.image.rgb, a.image.rgb);
+  }
+}
+
+TEST(AssetRoundTripFrames, CubeRgb565RendersTheSameFrameAsTheLoadedFiles) {
+  expect_same_frame(LR_ASSET_VIEW(cube_rgb565),
+                    load("cube.obj", "checker.png", TexelFormat::kRgb565, true, false), false);
+}
+
+TEST(AssetRoundTripFrames, CubeRgb888RendersTheSameFrameAsTheLoadedFiles) {
+  expect_same_frame(LR_ASSET_VIEW(cube_rgb888),
+                    load("cube.obj", "checker.png", TexelFormat::kRgb888, false, true), true);
+}
+
+TEST(AssetRoundTripFrames, KnotPalette8RendersTheSameFrameAsTheLoadedFiles) {
+  expect_same_frame(LR_ASSET_VIEW(knot_palette8),
+                    load("torus_knot.obj", "checker.png", TexelFormat::kPalette8, true, true),
+                    true);
+}
+
+TEST(AssetRoundTripFrames, KnotL8RendersTheSameFrameAsTheLoadedFiles) {
+  expect_same_frame(LR_ASSET_VIEW(knot_l8),
+                    load("torus_knot.obj", "checker.png", TexelFormat::kL8, true, false), false);
+}
+
+// ---- The tool's command line
+// ---------------------------------------------------------------------
+
+class TmpDir {
+ public:
+  TmpDir() {
+    char tmpl[] = "/tmp/lr_asset_test_XXXXXX";
+    const char* p = mkdtemp(tmpl);
+    path_ = p ? p : "/tmp";
+  }
+  ~TmpDir() {
+    std::error_code ec;
+    if (path_ != "/tmp") std::filesystem::remove_all(path_, ec);
+  }
+  std::string file(const std::string& name) const { return path_ + "/" + name; }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(path_))
+      names.push_back(e.path().filename().string());
+    return names;
+  }
+
+ private:
+  std::string path_;
+};
+
+struct ToolRun {
+  int status = -1;
+  std::string err;
+};
+
+ToolRun run_tool(const std::string& args, const TmpDir& dir) {
+  const std::string err_file = dir.file("stderr.txt");
+  const std::string cmd =
+      std::string(LR_ASSET_TOOL) + " " + args + " 2>" + err_file + " >/dev/null";
+  ToolRun r;
+  const int raw = std::system(cmd.c_str());
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(err_file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.err = ss.str();
+  std::filesystem::remove(err_file);
+  return r;
+}
+
+void expect_error(const TmpDir& dir, const std::string& args, const std::string& message) {
+  const ToolRun r = run_tool(args, dir);
+  EXPECT_EQ(r.status, 2) << args;
+  EXPECT_EQ(r.err, "lineraster-asset: " + message + "\n") << args;
+  EXPECT_TRUE(dir.entries().empty()) << args << ": output written";
+}
+
+TEST(AssetTool, ErrorsAreOneLineExitTwoAndNoOutput) {
+  TmpDir dir;
+  const std::string out = " --out " + dir.file("a.hpp");
+  const std::string cube = " --obj " + kData + "cube.obj";
+  expect_error(dir, "--name a" + out, "--obj FILE is required");
+  expect_error(dir, cube + out, "--name IDENT is required");
+  expect_error(dir, cube + " --name a", "--out FILE.hpp is required");
+  expect_error(dir, cube + " --name 9lives" + out,
+               "--name '9lives' is not a usable C++ identifier");
+  expect_error(dir, cube + " --name class" + out, "--name 'class' is not a usable C++ identifier");
+  expect_error(dir, cube + " --name a__b" + out, "--name 'a__b' is not a usable C++ identifier");
+  expect_error(dir, cube + " --name a --format rgb555" + out,
+               "--format needs rgb565, rgb888, l8 or palette8");
+  expect_error(dir, cube + " --name a --bogus" + out,
+               "unknown option '--bogus' (--help lists them)");
+  expect_error(dir, "--obj --name a" + out, "--obj needs a file name");
+  expect_error(dir, "--obj " + dir.file("missing.obj") + " --name a" + out,
+               dir.file("missing.obj") + ": cannot open: No such file or directory");
+  expect_error(dir, cube + " --texture " + dir.file("missing.png") + " --name a" + out,
+               dir.file("missing.png") + ": cannot open: No such file or directory");
+  // A texture the mesh has no coordinates for.
+  { std::ofstream(dir.file("tri.obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"; }
+  const ToolRun r = run_tool(
+      "--obj " + dir.file("tri.obj") + " --texture " + kData + "checker.png --name a" + out, dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "lineraster-asset: " + dir.file("tri.obj") +
+                       ": no texture coordinates (vt) for the texture " + kData + "checker.png\n");
+  std::filesystem::remove(dir.file("tri.obj"));
+  // Into a missing directory: refused, nothing left behind.
+  const ToolRun m = run_tool(cube + " --name a --out " + dir.file("no/such/dir.hpp"), dir);
+  EXPECT_EQ(m.status, 2);
+  EXPECT_EQ(m.err.rfind("lineraster-asset: " + dir.file("no/such/dir.hpp") + ": cannot write: ", 0),
+            0u)
+      << m.err;
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(AssetTool, WritesAHeaderAndReplacesAnOldOneWhole) {
+  TmpDir dir;
+  const std::string out = dir.file("cube.hpp");
+  { std::ofstream(out) << "old"; }
+  const ToolRun r =
+      run_tool("--obj " + kData + "cube.obj --format l8 --name cube --out " + out, dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"cube.hpp"});  // no .tmp left
+  std::ifstream in(out);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  EXPECT_EQ(text.rfind("// Generated by lineraster-asset", 0), 0u);
+  EXPECT_NE(text.find("//   mesh:    " + kData + "cube.obj"), std::string::npos);
+  EXPECT_NE(text.find("//   texture: " + kData + "checker.png: 8x8 l8, 1 level(s)"),
+            std::string::npos);
+  EXPECT_NE(text.find("namespace cube {"), std::string::npos);
+  EXPECT_NE(text.find("inline constexpr lr::Texture texture{"), std::string::npos);
+  // Compact: no line longer than 110 characters.
+  std::istringstream lines(text);
+  std::string line;
+  size_t longest = 0;
+  while (std::getline(lines, line))
+    if (line.rfind("//", 0) != 0) longest = std::max(longest, line.size());
+  EXPECT_LE(longest, 110u);
+  // Same conversion as the library call.
+  AssetOptions o;
+  o.obj_path = kData + "cube.obj";
+  o.format = TexelFormat::kL8;
+  o.name = "cube";
+  AssetData d;
+  std::string error;
+  ASSERT_TRUE(load_asset(o, d, error)) << error;
+  const std::string body = asset_header_text(o, d);
+  EXPECT_EQ(text.substr(text.find("#pragma once")), body.substr(body.find("#pragma once")));
+}
+
+TEST(AssetTool, NamesAreCheckedAsCppIdentifiers) {
+  for (const char* ok : {"a", "_a", "cube_2", "Cube", "my_asset_x"})
+    EXPECT_TRUE(valid_asset_name(ok)) << ok;
+  for (const char* bad : {"", "2a", "a-b", "a b", "int", "namespace", "_Cube", "a__b", "lr", "std",
+                          "uint16_t", "a.b", "\xc3\xa9"})
+    EXPECT_FALSE(valid_asset_name(bad)) << bad;
+}
+
+}  // namespace
+}  // namespace lr::host
