@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -151,6 +152,71 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
     fs::remove(out);
     Outcome r = run(c.args + " --out " + out);
     if (c.args.find("--out x.jpg") != std::string::npos) r = run(c.args);
+    EXPECT_EQ(r.status, 2) << c.args;
+    EXPECT_EQ(lines(r.err), 1u) << c.args << ": " << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+const std::string kData = std::string(LR_SOURCE_DIR) + "/tests/host/data/";
+
+size_t distinct_colours(const lr::host::ImageRgb8& img) {
+  std::vector<uint32_t> c;
+  for (size_t p = 0; p < img.rgb.size() / 3; ++p)
+    c.push_back(uint32_t(img.rgb[3 * p]) << 16 | uint32_t(img.rgb[3 * p + 1]) << 8 | img.rgb[3 * p + 2]);
+  std::sort(c.begin(), c.end());
+  return size_t(std::unique(c.begin(), c.end()) - c.begin());
+}
+
+TEST(Cli, MaterialMapKdTexturesTheMeshAndTextureOverridesIt) {
+  std::string a = tmpdir() + "/t1.png", b = tmpdir() + "/t2.png", c = tmpdir() + "/t3.png";
+  ASSERT_EQ(run("--obj " + kData + "cube.obj --eye 2.2,1.8,3 --filter nearest --out " + a).status, 0);
+  ASSERT_EQ(run("--obj " + kData + "cube.obj --eye 2.2,1.8,3 --filter nearest --texture " + kData +
+                "tiles64.png --out " + b).status, 0);
+  ASSERT_EQ(run("--obj " + kData + "cube.obj --eye 2.2,1.8,3 --filter nearest --texture " + kData +
+                "tiles64.png --perspective span16 --mipmap linear --wrap clamp --texture-format palette8 --out " + c)
+                .status, 0);
+  lr::host::ImageRgb8 ia, ib, ic;
+  std::string err;
+  ASSERT_TRUE(lr::host::read_png(a, ia, err));
+  ASSERT_TRUE(lr::host::read_png(b, ib, err));
+  ASSERT_TRUE(lr::host::read_png(c, ic, err));
+  EXPECT_NE(ia.rgb, ib.rgb);
+  EXPECT_NE(ib.rgb, ic.rgb);
+  // A material option replaces the MTL materials, and with them map_Kd: three flat-lit faces
+  // and the background. The textured renders show more colours than that.
+  std::string d = tmpdir() + "/t4.png";
+  ASSERT_EQ(run("--obj " + kData + "cube.obj --eye 2.2,1.8,3 --diffuse 0.8,0.8,0.8 --out " + d).status, 0);
+  lr::host::ImageRgb8 id;
+  ASSERT_TRUE(lr::host::read_png(d, id, err));
+  EXPECT_LE(distinct_colours(id), 4u);
+  EXPECT_GT(distinct_colours(ia), distinct_colours(id));
+  EXPECT_GT(distinct_colours(ib), distinct_colours(id) + 4);
+}
+
+TEST(Cli, BadTexturesFailCleanlyWithoutOutput) {
+  std::string dir = tmpdir();
+  {
+    std::ofstream bad(dir + "/garbage.png");
+    bad << "this is not a png";
+    std::ofstream no_uv(dir + "/no_uv.obj");
+    no_uv << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  }
+  const BadCase cases[] = {
+      {"--obj " + kData + "cube.obj --texture " + dir + "/garbage.png", "garbage.png"},
+      {"--obj " + kData + "cube.obj --texture " + dir + "/absent.png", "absent.png"},
+      {"--obj " + dir + "/no_uv.obj --texture " + kData + "tiles64.png", "no texture coordinates"},
+      {"--obj " + kData + "cube.obj --filter cubic", "--filter: bad value 'cubic'"},
+      {"--obj " + kData + "cube.obj --wrap mirror", "--wrap: bad value 'mirror'"},
+      {"--obj " + kData + "cube.obj --perspective span12", "--perspective: bad value 'span12'"},
+      {"--obj " + kData + "cube.obj --mipmap trilinear", "--mipmap: bad value 'trilinear'"},
+      {"--obj " + kData + "cube.obj --texture-format rgb444", "--texture-format: bad value 'rgb444'"},
+  };
+  for (const BadCase& c : cases) {
+    std::string out = dir + "/never_t.png";
+    fs::remove(out);
+    Outcome r = run(c.args + " --out " + out);
     EXPECT_EQ(r.status, 2) << c.args;
     EXPECT_EQ(lines(r.err), 1u) << c.args << ": " << r.err;
     EXPECT_NE(r.err.find(c.expect), std::string::npos) << c.args << ": " << r.err;
