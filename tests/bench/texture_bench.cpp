@@ -1,0 +1,419 @@
+// Texture benchmark (issue 3, item 9): filter x perspective mode x mip mode on two 320x240
+// scenes rendered with the core (RGB565 big-endian strips of 8 rows into a null sink):
+//   cube    a perspective-correct textured cube (6 faces, uv 0..1 each, 64x64 RGB565 texture
+//           with its mip chain), rotated so three faces show, lit by one light (modulate);
+//   ground  the ground plane to the horizon: two triangles (y = 0, half-size 200, 200 repeats
+//           of the texture), eye about 1 unit above it, far plane 400, unlit (replace).
+// Per configuration: host time per frame, pixels written, and the error against the double
+// reference over the pixels both cover (max and mean absolute channel error, PSNR), measured
+// once per configuration with test::compare_scene, outside any timing.
+//
+// Modes:
+//   (no mode)                          Google Benchmark, one entry per configuration
+//   --table FILE.csv                   one CSV row per configuration (median of 15 timed runs)
+//   --once SCENE FILTER PERSP MIP      one frame through texture_bench_frame() only, for
+//                                      valgrind --tool=callgrind --toggle-collect='*texture_bench_frame*'
+//                                      (FILTER "none": the same scene untextured, a baseline)
+// Benchmarks print figures; they never pass or fail on time.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/camera.hpp"
+#include "core/renderer.hpp"
+#include "host_sim/capture_display.hpp"
+#include "host_sim/mesh_prep.hpp"
+#include "host_sim/texture_load.hpp"
+#include "tests/support/scene_compare.hpp"
+
+namespace {
+
+using namespace lr;
+
+constexpr int kWidth = 320, kHeight = 240, kStrip = 8;
+
+// A sink that checksums strips as a DMA link would consume them: no frame in memory.
+template <class PF>
+class NullSink final : public StripSink<PF> {
+ public:
+  explicit NullSink(size_t n) : a_(n), b_(n) {}
+  Status begin_frame(uint16_t, uint16_t) override { return Status::kOk; }
+  Status acquire(StripLease<PF>& out) override {
+    flip_ = !flip_;
+    auto& buf = flip_ ? a_ : b_;
+    out = this->lend(buf.data(), buf.size(), flip_ ? 0 : 1);
+    return Status::kOk;
+  }
+  Status submit(const StripRect& r, StripLease<PF>&& lease) override {
+    std::span<typename PF::Storage> px;
+    this->take_back(lease, px);
+    Rgb8 a = PF::decode(px[0]), b = PF::decode(px[size_t(r.width) * r.height - 1]);
+    sum_ += a.r + a.g + a.b + b.r + b.g + b.b;
+    return Status::kOk;
+  }
+  Status end_frame() override { return Status::kOk; }
+  uint64_t sum_ = 0;
+
+ private:
+  std::vector<typename PF::Storage> a_, b_;
+  bool flip_ = false;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Configurations
+
+enum class SceneId { kCube, kGround };
+const char* name(SceneId s) { return s == SceneId::kCube ? "cube" : "ground"; }
+const char* name(Filter f) { return f == Filter::kNearest ? "nearest" : "bilinear"; }
+const char* name(Perspective p) {
+  switch (p) {
+    case Perspective::kExact:
+      return "exact";
+    case Perspective::kSpan8:
+      return "span8";
+    case Perspective::kSpan16:
+      return "span16";
+    case Perspective::kSpan32:
+      return "span32";
+    case Perspective::kAffine:
+      return "affine";
+  }
+  return "?";
+}
+const char* name(MipMode m) {
+  return m == MipMode::kNone ? "none" : m == MipMode::kNearest ? "nearest" : "linear";
+}
+
+const SceneId kScenes[] = {SceneId::kCube, SceneId::kGround};
+const Filter kFilters[] = {Filter::kNearest, Filter::kBilinear};
+const Perspective kModes[] = {Perspective::kExact, Perspective::kSpan8, Perspective::kSpan16,
+                              Perspective::kSpan32, Perspective::kAffine};
+const MipMode kMips[] = {MipMode::kNone, MipMode::kNearest, MipMode::kLinear};
+
+struct Config {
+  SceneId scene = SceneId::kCube;
+  Filter filter = Filter::kBilinear;
+  Perspective perspective = Perspective::kExact;
+  MipMode mip = MipMode::kNone;
+  bool textured = true;  // false: the same scene without texture (--once baseline only)
+};
+
+template <class E, size_t N>
+bool parse(const char* s, const E (&all)[N], E& out) {
+  for (E e : all)
+    if (std::strcmp(s, name(e)) == 0) {
+      out = e;
+      return true;
+    }
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scenes
+
+// 64 x 64: 8 x 8-texel checker cells in two colour ramps, a one-texel dark grid line on every
+// cell border and a diagonal stripe: edges for nearest/bilinear, fine detail for the mipmaps.
+host::ImageRgb8 pattern64() {
+  host::ImageRgb8 img;
+  img.width = img.height = 64;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const bool odd = ((x / 8) + (y / 8)) % 2 != 0;
+      int r = odd ? 230 - 2 * y : 40 + 3 * x;
+      int g = odd ? 200 - x : 60 + 2 * y;
+      int b = odd ? 60 : 220 - 2 * x;
+      if (x % 8 == 0 || y % 8 == 0) r = g = b = 20;
+      if ((x + y) % 16 == 3) r = g = b = 250;
+      img.rgb.push_back(static_cast<uint8_t>(r));
+      img.rgb.push_back(static_cast<uint8_t>(g));
+      img.rgb.push_back(static_cast<uint8_t>(b));
+    }
+  return img;
+}
+
+const host::HostTexture& texture() {
+  static const host::HostTexture tex = [] {
+    host::HostTexture t;
+    std::string err;
+    if (!host::texture_from_image(pattern64(), TexelFormat::kRgb565, true, t, err)) {
+      std::fprintf(stderr, "texture_bench: %s\n", err.c_str());
+      std::exit(2);
+    }
+    return t;
+  }();
+  return tex;
+}
+
+host::HostMesh ground_mesh() {
+  const double half = 200, repeats = 200;
+  host::HostMesh m;
+  m.positions = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
+  m.normals.assign(4, {0, 1, 0});
+  m.uvs = {{0, repeats}, {repeats, repeats}, {repeats, 0}, {0, 0}};
+  m.triangles = {{0, 3, 2}, {0, 2, 1}};
+  m.triangle_material = {-1, -1};
+  return m;
+}
+
+host::HostMesh scene_mesh(SceneId s) { return s == SceneId::kCube ? host::make_cube() : ground_mesh(); }
+
+host::SceneOptions scene_options(const Config& c) {
+  host::SceneOptions o;
+  o.width = kWidth;
+  o.height = kHeight;
+  o.strip_height = kStrip;
+  if (c.scene == SceneId::kCube) {
+    // Looking down from above and in front on the cube turned by 35 degrees: top, front and
+    // right faces show. Lit by one light (default material, specular added after the texel).
+    o.eye = {0, 2.2, 3.4};
+    o.target = {0, 0, 0};
+    o.model_rotate_y = 35;
+    o.cull = Cull::kBack;
+    o.light_dirs = {{0.6, 1.0, 0.8}};
+  } else {
+    // Eye about 1 unit above the plane, looking level: the plane fills the lower half of the
+    // screen up to the horizon. Odd offsets keep pixel centres off texel boundaries.
+    o.eye = {0.0173, 1.0131, 0.0219};
+    o.target = {0.0173, 1.0131, -5};
+    o.far = 400;
+    o.unlit = true;
+  }
+  o.texture_object = c.textured ? &texture().texture : nullptr;
+  o.filter = c.filter;
+  o.wrap = Wrap::kRepeat;
+  o.mipmap = c.mip;
+  o.perspective = c.perspective;
+  return o;
+}
+
+// A scene in the core's formats, prepared once: meshes, camera, lights, model, draw state
+// (built exactly as host::render_scene builds them, so the timed frame is the compared one).
+struct Prepared {
+  std::vector<host::FixedDraw> draws;
+  Camera camera;
+  LightSet lights;
+  Rgb8 background{0, 0, 0};
+  Mat4 model = Mat4::identity();
+  DrawState state;
+};
+
+bool fixed3(const host::Vec3d& v, Vec3& out) {
+  return host::to_fixed(v[0], out.x) && host::to_fixed(v[1], out.y) && host::to_fixed(v[2], out.z);
+}
+
+void die(const std::string& what) {
+  std::fprintf(stderr, "texture_bench: %s\n", what.c_str());
+  std::exit(2);
+}
+
+Prepared prepare(const host::HostMesh& mesh, const host::SceneOptions& o) {
+  Prepared p;
+  std::string err;
+  if (!host::build_fixed_draws(mesh, o, p.draws, err)) die(err);
+  Fixed fovy, near, far, scale, rot;
+  Vec3 eye, target, up, tr;
+  if (!host::to_fixed(o.fovy, fovy) || !host::to_fixed(o.near, near) || !host::to_fixed(o.far, far) ||
+      !fixed3(o.eye, eye) || !fixed3(o.target, target) || !fixed3(o.up, up) ||
+      !host::to_fixed(o.model_scale, scale) || !host::to_fixed(o.model_rotate_y, rot) ||
+      !fixed3(o.model_translate, tr))
+    die("scene values out of range");
+  p.camera.eye = eye;
+  if (!perspective(fovy, Fixed::ratio(o.width, o.height), near, far, p.camera.projection) ||
+      !look_at(eye, target, up, p.camera.view))
+    die("bad camera");
+  for (const host::Vec3d& d : o.light_dirs) {
+    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    Vec3 fd;
+    if (!fixed3({d[0] / len, d[1] / len, d[2] / len}, fd)) die("bad light");
+    p.lights.lights[p.lights.count++] =
+        DirectionalLight::of_color(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
+  }
+  p.lights.global_ambient = host::to_color15(o.global_ambient);
+  p.lights.local_viewer = o.local_viewer;
+  p.background = to_rgb8(host::to_color15(o.background));
+  p.model = translate(tr) * rotate_y(rot) * lr::scale(scale);
+  p.state.shading = o.shading;
+  p.state.lighting = !o.unlit;
+  p.state.depth_test = o.depth_test;
+  p.state.cull = o.cull;
+  p.state.perspective = o.perspective;
+  p.state.texture = o.texture_object;
+  p.state.sampler.filter = o.filter;
+  p.state.sampler.wrap_s = p.state.sampler.wrap_t = o.wrap;
+  p.state.sampler.mip = o.mipmap;
+  p.state.sampler.env = o.unlit ? TexEnv::kReplace : TexEnv::kModulate;
+  return p;
+}
+
+template <class PF>
+struct Frame {
+  std::vector<ScreenVertex> vertices = std::vector<ScreenVertex>(1024);
+  std::vector<BinnedTriangle> triangles = std::vector<BinnedTriangle>(2048);
+  std::vector<DrawRecord> draws = std::vector<DrawRecord>(8);
+  std::vector<uint16_t> buckets = std::vector<uint16_t>((kHeight + kStrip - 1) / kStrip);
+  std::vector<ActiveTriangle> active = std::vector<ActiveTriangle>(256);
+  std::vector<uint16_t> index = std::vector<uint16_t>(512);
+  std::vector<uint16_t> depth = std::vector<uint16_t>(kWidth * kStrip);
+  Renderer<PF, kStrip> renderer;
+  Frame() {
+    if (renderer.configure({vertices, triangles, draws, buckets, active, index, depth}, kWidth,
+                           kHeight) != Status::kOk)
+      die("configure failed");
+  }
+};
+
+// The measured work of one frame: begin_frame, the draws (vertex stage, setup, binning) and
+// render (every strip, into the sink). Nothing else is inside.
+template <class PF>
+__attribute__((noinline)) Status texture_bench_frame(Frame<PF>& f, const Prepared& p,
+                                                     StripSink<PF>& sink) {
+  Status s = f.renderer.begin_frame(p.camera, p.lights, p.background);
+  if (s != Status::kOk) return s;
+  for (const host::FixedDraw& d : p.draws) {
+    s = f.renderer.draw(d.mesh(), p.model, d.material, p.state);
+    if (s != Status::kOk) return s;
+  }
+  return f.renderer.render(sink);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Measurements
+
+struct Errors {
+  test::Comparison c;
+  uint32_t pixels = 0;        // pixels written by the RGB565 frame that is timed
+  size_t image_mismatch = 0;  // RGB888 re-render of the prepared scene vs compare_scene's frame
+};
+
+// Error against the double reference (compare_scene renders through host::render_scene), and a
+// check that the prepared scene is that same frame.
+Errors measure_errors(const Config& cfg, const Prepared& p) {
+  Errors e;
+  const host::HostMesh mesh = scene_mesh(cfg.scene);
+  std::string err;
+  if (!test::compare_scene(mesh, scene_options(cfg), e.c, err)) die(err);
+  auto f = std::make_unique<Frame<Rgb888>>();
+  host::CaptureDisplay<Rgb888> cap(size_t(kWidth) * kStrip);
+  if (texture_bench_frame(*f, p, cap) != Status::kOk) die("render failed");
+  const host::ImageRgb8 img = cap.image();
+  for (size_t i = 0; i < img.rgb.size() && i < e.c.core.image.rgb.size(); i += 3)
+    e.image_mismatch += img.rgb[i] != e.c.core.image.rgb[i] ||
+                        img.rgb[i + 1] != e.c.core.image.rgb[i + 1] ||
+                        img.rgb[i + 2] != e.c.core.image.rgb[i + 2];
+  auto f565 = std::make_unique<Frame<Rgb565Be>>();
+  NullSink<Rgb565Be> sink(size_t(kWidth) * kStrip);
+  if (texture_bench_frame(*f565, p, sink) != Status::kOk) die("render failed");
+  e.pixels = f565->renderer.stats().pixels_written;
+  if (e.image_mismatch != 0 || e.pixels != e.c.core.stats.pixels_written)
+    std::fprintf(stderr,
+                 "texture_bench: %s %s %s %s: prepared frame differs from compare_scene's "
+                 "(%zu pixels, %u vs %u written)\n",
+                 name(cfg.scene), name(cfg.filter), name(cfg.perspective), name(cfg.mip),
+                 e.image_mismatch, e.pixels, e.c.core.stats.pixels_written);
+  if (e.c.coverage_diff != 0)
+    std::fprintf(stderr, "texture_bench: %s %s %s %s: %zu coverage differences\n", name(cfg.scene),
+                 name(cfg.filter), name(cfg.perspective), name(cfg.mip), e.c.coverage_diff);
+  return e;
+}
+
+void BM_Texture(benchmark::State& state, Config cfg) {
+  const Prepared p = prepare(scene_mesh(cfg.scene), scene_options(cfg));
+  const Errors e = measure_errors(cfg, p);
+  auto f = std::make_unique<Frame<Rgb565Be>>();
+  NullSink<Rgb565Be> sink(size_t(kWidth) * kStrip);
+  for (auto _ : state) benchmark::DoNotOptimize(texture_bench_frame(*f, p, sink));
+  state.counters["pixels_written"] = f->renderer.stats().pixels_written;
+  state.counters["max_err"] = e.c.max_error;
+  state.counters["mean_err"] = e.c.mean_error;
+  state.counters["psnr_db"] = e.c.psnr;
+}
+
+int run_table(const char* path) {
+  std::FILE* out = std::fopen(path, "w");
+  if (!out) die(std::string(path) + ": cannot open for writing");
+  std::fprintf(out,
+               "scene,filter,perspective,mip,pixels_written,host_ns_per_frame,max_err,mean_err,"
+               "psnr_db\n");
+  for (SceneId s : kScenes)
+    for (Filter fi : kFilters)
+      for (Perspective pm : kModes)
+        for (MipMode m : kMips) {
+          const Config cfg{s, fi, pm, m, true};
+          const Prepared p = prepare(scene_mesh(s), scene_options(cfg));
+          const Errors e = measure_errors(cfg, p);
+          auto f = std::make_unique<Frame<Rgb565Be>>();
+          NullSink<Rgb565Be> sink(size_t(kWidth) * kStrip);
+          texture_bench_frame(*f, p, sink);  // warm-up
+          std::vector<double> ns;
+          for (int run = 0; run < 15; ++run) {
+            const auto t0 = std::chrono::steady_clock::now();
+            const Status st = texture_bench_frame(*f, p, sink);
+            const auto t1 = std::chrono::steady_clock::now();
+            benchmark::DoNotOptimize(st);
+            ns.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count());
+          }
+          std::nth_element(ns.begin(), ns.begin() + 7, ns.end());
+          std::fprintf(out, "%s,%s,%s,%s,%u,%.0f,%d,%.4f,%.2f\n", name(s), name(fi), name(pm),
+                       name(m), e.pixels, ns[7], e.c.max_error, e.c.mean_error, e.c.psnr);
+          std::fflush(out);
+        }
+  std::fclose(out);
+  return 0;
+}
+
+int run_once(int argc, char** argv) {
+  Config cfg;
+  bool ok = argc == 6 && parse(argv[2], kScenes, cfg.scene) && parse(argv[4], kModes, cfg.perspective) &&
+            parse(argv[5], kMips, cfg.mip);
+  if (ok && std::strcmp(argv[3], "none") == 0)
+    cfg.textured = false;
+  else
+    ok = ok && parse(argv[3], kFilters, cfg.filter);
+  if (!ok) {
+    std::fprintf(stderr,
+                 "usage: lr_texture_bench --once cube|ground nearest|bilinear|none "
+                 "exact|span8|span16|span32|affine none|nearest|linear\n");
+    return 2;
+  }
+  const Prepared p = prepare(scene_mesh(cfg.scene), scene_options(cfg));
+  auto f = std::make_unique<Frame<Rgb565Be>>();
+  NullSink<Rgb565Be> sink(size_t(kWidth) * kStrip);
+  const Status s = texture_bench_frame(*f, p, sink);
+  const FrameStats& st = f->renderer.stats();
+  std::printf("status=%s triangles_in=%u binned=%u pixels_written=%u strips=%u\n", to_string(s),
+              st.triangles_in, st.triangles_binned, st.pixels_written, st.strips);
+  return s == Status::kOk ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc > 1 && std::strcmp(argv[1], "--once") == 0) return run_once(argc, argv);
+  if (argc > 1 && std::strcmp(argv[1], "--table") == 0) {
+    if (argc != 3) {
+      std::fprintf(stderr, "usage: lr_texture_bench --table FILE.csv\n");
+      return 2;
+    }
+    return run_table(argv[2]);
+  }
+  for (SceneId s : kScenes)
+    for (Filter fi : kFilters)
+      for (Perspective pm : kModes)
+        for (MipMode m : kMips) {
+          const std::string n = std::string("BM_Texture/") + name(s) + "/" + name(fi) + "/" +
+                                name(pm) + "/mip_" + name(m);
+          benchmark::RegisterBenchmark(n.c_str(), BM_Texture, Config{s, fi, pm, m, true})
+              ->Unit(benchmark::kMicrosecond);
+        }
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
