@@ -256,7 +256,7 @@ std::string asset_header_text(const AssetOptions& o, const AssetData& d) {
       s += std::string("inline constexpr ") + (is565 ? "uint16_t" : "uint8_t") + " texture_level_" +
            id + "[] = {\n";
       {
-        ListWriter w(s, is565 ? 12 : 16);
+        ListWriter w(s, 12);
         if (is565) {
           for (uint16_t v : lv.rgb565) w.add(hex16(v));
         } else {
