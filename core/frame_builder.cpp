@@ -106,8 +106,8 @@ bool FrameBuilder::project(const ClipCoord& c, ScreenVertex& v) const {
   return true;
 }
 
-Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_planes,
-                                     size_t vertices, uint32_t triangles, uint8_t& index) {
+Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_planes, size_t vertices,
+                                     uint32_t triangles, uint8_t& index) {
   // Without a draw record or room for every vertex the whole draw is dropped, and counted.
   if (draw_count_ >= storage_.draws.size()) {
     stats_.dropped_triangle_capacity += triangles;
@@ -123,24 +123,38 @@ Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_plan
   if (state.texture != nullptr) {
     const Texture& tex = *state.texture;
     r.texture = &tex;
-    r.fetch = fetch_routine(tex.format, state.sampler.filter, state.sampler.wrap_s, state.sampler.wrap_t);
+    r.fetch =
+        fetch_routine(tex.format, state.sampler.filter, state.sampler.wrap_s, state.sampler.wrap_t);
     r.env = state.sampler.env;
     r.mip = state.sampler.mip;
     r.wrap_s = state.sampler.wrap_s;
     r.wrap_t = state.sampler.wrap_t;
     switch (state.perspective) {
-      case Perspective::kExact: r.persp = TexPersp::kExact; break;
-      case Perspective::kAffine: r.persp = TexPersp::kAffine; break;
-      case Perspective::kSpan8: r.persp = TexPersp::kSpan; r.span_len = 8; break;
-      case Perspective::kSpan16: r.persp = TexPersp::kSpan; r.span_len = 16; break;
-      case Perspective::kSpan32: r.persp = TexPersp::kSpan; r.span_len = 32; break;
+      case Perspective::kExact:
+        r.persp = TexPersp::kExact;
+        break;
+      case Perspective::kAffine:
+        r.persp = TexPersp::kAffine;
+        break;
+      case Perspective::kSpan8:
+        r.persp = TexPersp::kSpan;
+        r.span_len = 8;
+        break;
+      case Perspective::kSpan16:
+        r.persp = TexPersp::kSpan;
+        r.span_len = 16;
+        break;
+      case Perspective::kSpan32:
+        r.persp = TexPersp::kSpan;
+        r.span_len = 32;
+        break;
     }
   }
   if (state.shading == Shading::kFlat || !has_color_planes) {
     r.colors = ColorPlanes::kNone;
   } else {
-    r.colors =
-        state.perspective == Perspective::kAffine ? ColorPlanes::kAffine : ColorPlanes::kPerspective;
+    r.colors = state.perspective == Perspective::kAffine ? ColorPlanes::kAffine
+                                                         : ColorPlanes::kPerspective;
   }
   index = static_cast<uint8_t>(draw_count_);
   storage_.draws[draw_count_++] = r;
@@ -235,7 +249,8 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
   const bool textured = state.texture != nullptr;
   if (textured) {
     if (validate(*state.texture) != Status::kOk) return Status::kInvalidArgument;
-    if (state.sampler.mip != MipMode::kNone && state.texture->level_count < 2) return Status::kInvalidArgument;
+    if (state.sampler.mip != MipMode::kNone && state.texture->level_count < 2)
+      return Status::kInvalidArgument;
     if (!mesh.uvs.empty() && mesh.uvs.size() != n) return Status::kInvalidArgument;
   }
   // Textured, lit and modulated: primary and specular colours kept apart (GL's separate
@@ -382,8 +397,9 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     vertex_count_ += static_cast<size_t>(m);
     int binned = 0, last = 5;
     for (int k = 1; k + 1 < m; ++k) {
-      BinResult r = bin(first, static_cast<uint16_t>(first + k),
-                        static_cast<uint16_t>(first + k + 1), draw_index, flat, flat_spec, state.cull);
+      BinResult r =
+          bin(first, static_cast<uint16_t>(first + k), static_cast<uint16_t>(first + k + 1),
+              draw_index, flat, flat_spec, state.cull);
       if (r == BinResult::kBinned)
         ++binned;
       else

@@ -16,8 +16,8 @@
 #include "core/lighting.hpp"
 #include "core/material.hpp"
 #include "core/mesh.hpp"
-#include "core/screen_vertex.hpp"
 #include "core/sampler.hpp"
+#include "core/screen_vertex.hpp"
 #include "core/status.hpp"
 #include "core/triangle_setup.hpp"
 
@@ -28,12 +28,12 @@ inline constexpr size_t kMaxStoreEntries = 0xFFFF;  // indices are uint16; 0xFFF
 
 // A triangle in the edge table: 16 bytes.
 struct BinnedTriangle {
-  uint16_t v[3];  // vertex store indices
-  uint16_t next;  // next triangle of the same bucket (lists are built by prepending, so
-                  // they run from the latest submission to the earliest)
-  uint8_t draw;   // draw record
-  Rgb8 flat;      // flat-shaded colour (the primary colour when textured)
-  Rgb8 flat_spec; // flat-shaded secondary colour of textured, lit draws
+  uint16_t v[3];   // vertex store indices
+  uint16_t next;   // next triangle of the same bucket (lists are built by prepending, so
+                   // they run from the latest submission to the earliest)
+  uint8_t draw;    // draw record
+  Rgb8 flat;       // flat-shaded colour (the primary colour when textured)
+  Rgb8 flat_spec;  // flat-shaded secondary colour of textured, lit draws
   uint8_t reserved;
 };
 static_assert(sizeof(BinnedTriangle) == 16);

@@ -59,8 +59,7 @@ LitColor light_point_split(const PreparedLighting& pl, const Unit30& n, Vec3 p) 
     int64_t ndl = dot30(n, li.l);
     if (ndl <= 0) continue;  // no diffuse, and GL gives no specular where N.L <= 0
     // ndl <= 2^30: Q1.30 times Q1.15 is < 2^46 before the shift.
-    for (int c = 0; c < 3; ++c)
-      prim[c] += static_cast<int32_t>((ndl * li.kd[c] + (1 << 29)) >> 30);
+    for (int c = 0; c < 3; ++c) prim[c] += static_cast<int32_t>((ndl * li.kd[c] + (1 << 29)) >> 30);
     Unit30 h = pl.local_viewer ? half_vector(li.l, v) : li.h;
     int64_t ndh = dot30(n, h);
     if (ndh <= 0) continue;

@@ -31,6 +31,8 @@ enum class Shading : uint8_t {
 enum class Cull : uint8_t { kNone, kBack, kFront };
 
 // How attributes (texture coordinates, Gouraud colours) are interpolated: a quality setting.
+// The span modes apply to textured draws; untextured Gouraud colours are exact in them (their
+// per-pixel reciprocal is a 17-bit one, cheaper than a textured span's setup).
 enum class Perspective : uint8_t {
   kExact,   // a/w and 1/w linear in screen space, one reciprocal per pixel (default)
   kSpan8,   // exact every 8 pixels (and at the end of the span), linear in between

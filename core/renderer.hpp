@@ -170,8 +170,9 @@ void Renderer<PF, K>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, 
       size_t off =
           static_cast<size_t>(r - y0) * static_cast<size_t>(width_) + static_cast<size_t>(left);
       int32_t n = right - left;
-      stats_.pixels_written += tex_fn ? tex_fn(t, dr, pixels + off, storage_.depth.data() + off, left, r, n)
-                                      : fn(t, pixels + off, storage_.depth.data() + off, left, r, n);
+      stats_.pixels_written +=
+          tex_fn ? tex_fn(t, dr, pixels + off, storage_.depth.data() + off, left, r, n)
+                 : fn(t, pixels + off, storage_.depth.data() + off, left, r, n);
       stats_.pixels_tested += static_cast<uint32_t>(n);
       ++stats_.spans;
     }

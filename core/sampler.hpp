@@ -39,8 +39,12 @@ constexpr Texel expand565(uint32_t v) {
   return (r << 16) | (g << 8) | b;
 }
 
-constexpr uint32_t spread565(uint32_t v) { return (v | (v << 16)) & 0x07E0F81Fu; }
-constexpr uint32_t unspread565(uint32_t x) { return (x | (x >> 16)) & 0xFFFFu; }
+constexpr uint32_t spread565(uint32_t v) {
+  return (v | (v << 16)) & 0x07E0F81Fu;
+}
+constexpr uint32_t unspread565(uint32_t x) {
+  return (x | (x >> 16)) & 0xFFFFu;
+}
 // Rounding constant: half of 32 in each spread field.
 inline constexpr uint32_t kSpreadHalf = (16u << 21) | (16u << 11) | 16u;
 // a + (b - a) w / 32 on spread values, w in [0, 32].
@@ -125,11 +129,13 @@ constexpr bool kPacked565 = F == TexelFormat::kRgb565 || F == TexelFormat::kPale
 }  // namespace detail
 
 template <TexelFormat F, Filter kFilter, Wrap kWs, Wrap kWt>
-void fetch_batch(const Texture& tex, int level, const int32_t* s, const int32_t* t, int n, Texel* out) {
+void fetch_batch(const Texture& tex, int level, const int32_t* s, const int32_t* t, int n,
+                 Texel* out) {
   const TextureLevel& l = tex.levels[static_cast<size_t>(level)];
   const detail::Reduce<kWs> reduce_s(tex.levels[0].width);
   const detail::Reduce<kWt> reduce_t(tex.levels[0].height);
-  const detail::LevelScale scale_s(tex.levels[0].width, l.width), scale_t(tex.levels[0].height, l.height);
+  const detail::LevelScale scale_s(tex.levels[0].width, l.width),
+      scale_t(tex.levels[0].height, l.height);
   const auto w = static_cast<int32_t>(l.width), h = static_cast<int32_t>(l.height);
   for (int k = 0; k < n; ++k) {
     const int32_t sl = scale_s(reduce_s(s[k]));

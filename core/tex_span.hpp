@@ -11,12 +11,13 @@
 //
 // Perspective modes (DESIGN.md §4):
 //   kExact: s = (s q)/q per pixel with a ~30-bit reciprocal of q (a 17-bit estimate by one
-//           32-bit division, one Newton step in 64 bits); level of detail every 16 pixels.
+//           32-bit division, one Newton step in 64 bits); level of detail every 8 pixels.
 //   kSpan:  exact at the first pixel of each chunk of span_len (8, 16, 32) pixels and at the
 //           chunk's end (the last chunk ends on the span's last pixel), linear in between.
 //   kAffine: s linear in screen space; level of detail once per span.
 // Level of detail: L = max(|(ds/dx, dt/dx)|, |(ds/dy, dt/dy)|) in level-0 texels, from exact
-// differences over one pixel; D = log2 L in Q.8 (a 256-entry table for the mantissa).
+// differences over one pixel at the chunk's centre pixel; D = log2 L in Q.8 (a 256-entry table
+// for the mantissa).
 #pragma once
 
 #include <array>
@@ -40,8 +41,8 @@ struct PreciseRecip {
     const int32_t qi = static_cast<int32_t>(plane_q);
     const uint32_t q = qi < 1 ? 1u : static_cast<uint32_t>(qi);
     shift = clz32(q);
-    const uint32_t qn = q << shift;                                  // [2^31, 2^32)
-    const uint64_t r0 = uint64_t{0xFFFFFFFFu / (qn >> 16)} << 15;     // 17 bits, <= 2^32
+    const uint32_t qn = q << shift;                                // [2^31, 2^32)
+    const uint64_t r0 = uint64_t{0xFFFFFFFFu / (qn >> 16)} << 15;  // 17 bits, <= 2^32
     const auto e = static_cast<int64_t>((uint64_t{1} << 63) - uint64_t{qn} * r0);  // |e| < 2^49
     const int64_t r1 = static_cast<int64_t>(r0) + ((static_cast<int64_t>(r0) * (e >> 18)) >> 45);
     r = r1 > 0xFFFFFFFF ? 0xFFFFFFFFu : r1 < 0 ? 0u : static_cast<uint32_t>(r1);
@@ -176,8 +177,9 @@ inline uint32_t modulate(uint32_t texel8, uint32_t prim15, uint32_t spec15) {
 }  // namespace detail
 
 template <class PF>
-using TexSpanFn = uint32_t (*)(const ActiveTriangle& t, const DrawRecord& d, typename PF::Storage* px,
-                               uint16_t* depth, int32_t col, int32_t row, int32_t count);
+using TexSpanFn = uint32_t (*)(const ActiveTriangle& t, const DrawRecord& d,
+                               typename PF::Storage* px, uint16_t* depth, int32_t col, int32_t row,
+                               int32_t count);
 
 template <class PF, bool kDepth, TexPersp kPersp, TexEnv kEnv, MipMode kMip>
 uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename PF::Storage* px,
@@ -187,7 +189,10 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
   constexpr int kMaxChunk = 32;
   const Texture& tex = *d.texture;
   const int last_level = tex.level_count - 1;
-  const int chunk = kPersp == TexPersp::kSpan ? d.span_len : kPersp == TexPersp::kExact ? 16 : kMaxChunk;
+  // Exact mode: chunks of 8 pixels (one level of detail each) when mipmapping, else 32.
+  const int chunk = kPersp == TexPersp::kSpan    ? d.span_len
+                    : kPersp == TexPersp::kExact ? (kMip == MipMode::kNone ? kMaxChunk : 8)
+                                                 : kMaxChunk;
 
   uint32_t z = 0;
   const uint32_t dz = tri.z.gx;
@@ -207,8 +212,9 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
 
   int32_t affine_lod = 0;
   if constexpr (kPersp == TexPersp::kAffine && kMip != MipMode::kNone)
-    affine_lod = detail::lod_q8(static_cast<int32_t>(tri.s.gx) >> tri.m_s, static_cast<int32_t>(tri.t.gx) >> tri.m_t,
-                                static_cast<int32_t>(tri.s.gy) >> tri.m_s, static_cast<int32_t>(tri.t.gy) >> tri.m_t);
+    affine_lod = detail::lod_q8(
+        static_cast<int32_t>(tri.s.gx) >> tri.m_s, static_cast<int32_t>(tri.t.gx) >> tri.m_t,
+        static_cast<int32_t>(tri.s.gy) >> tri.m_s, static_cast<int32_t>(tri.t.gy) >> tri.m_t);
 
   TexAttrs a0;  // span mode: exact attributes at the chunk start
   if constexpr (kPersp == TexPersp::kSpan) a0 = detail::exact_attrs(tri, pv, kColors);
@@ -227,14 +233,21 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
     if constexpr (kMip != MipMode::kNone) {
       int32_t lod = affine_lod;
       if constexpr (kPersp != TexPersp::kAffine) {
-        detail::PlaneValues px1 = pv, py1 = pv;
+        // At the chunk's centre pixel: the level of detail changes along a row on faces seen at
+        // a grazing angle, and the centre halves the error of taking it at one end.
+        const auto half = static_cast<uint32_t>(len / 2);
+        detail::PlaneValues pc = pv;
+        pc.q += gx.q * half;
+        pc.s += gx.s * half;
+        pc.t += gx.t * half;
+        detail::PlaneValues px1 = pc, py1 = pc;
         px1.q += gx.q;
         px1.s += gx.s;
         px1.t += gx.t;
         py1.q += tri.q.gy;
         py1.s += tri.s.gy;
         py1.t += tri.t.gy;
-        const TexAttrs b = detail::exact_attrs(tri, pv, false);
+        const TexAttrs b = detail::exact_attrs(tri, pc, false);
         const TexAttrs bx = detail::exact_attrs(tri, px1, false);
         const TexAttrs by = detail::exact_attrs(tri, py1, false);
         lod = detail::lod_q8(bx.s - b.s, bx.t - b.t, by.s - b.s, by.t - b.t);
@@ -326,12 +339,14 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
       if constexpr (kMip == MipMode::kLinear) {
         if (lv.weight != 0) {
           d.fetch(tex, lv.level1, cs, ct, m, texels1);
-          for (int j = 0; j < m; ++j) texels[j] = detail::lerp_texel(texels[j], texels1[j], lv.weight);
+          for (int j = 0; j < m; ++j)
+            texels[j] = detail::lerp_texel(texels[j], texels1[j], lv.weight);
         }
       }
       for (int j = 0; j < m; ++j) {
         const Texel tx = texels[j];
-        Rgb8 out{static_cast<uint8_t>(tx >> 16), static_cast<uint8_t>(tx >> 8), static_cast<uint8_t>(tx)};
+        Rgb8 out{static_cast<uint8_t>(tx >> 16), static_cast<uint8_t>(tx >> 8),
+                 static_cast<uint8_t>(tx)};
         if constexpr (kColors) {
           out.r = static_cast<uint8_t>(detail::modulate(out.r, cc[j][0], cc[j][3]));
           out.g = static_cast<uint8_t>(detail::modulate(out.g, cc[j][1], cc[j][4]));
@@ -354,21 +369,22 @@ inline constexpr std::array<TexSpanFn<PF>, 3> kTexSpanMips = {
     &fill_tex_span<PF, kDepth, kP, kEnv, MipMode::kLinear>};
 template <class PF, bool kDepth, TexPersp kP>
 inline constexpr std::array<std::array<TexSpanFn<PF>, 3>, 2> kTexSpanEnvs = {
-    kTexSpanMips<PF, kDepth, kP, TexEnv::kModulate>, kTexSpanMips<PF, kDepth, kP, TexEnv::kReplace>};
+    kTexSpanMips<PF, kDepth, kP, TexEnv::kModulate>,
+    kTexSpanMips<PF, kDepth, kP, TexEnv::kReplace>};
 template <class PF, bool kDepth>
 inline constexpr std::array<std::array<std::array<TexSpanFn<PF>, 3>, 2>, 3> kTexSpanPersps = {
     kTexSpanEnvs<PF, kDepth, TexPersp::kExact>, kTexSpanEnvs<PF, kDepth, TexPersp::kSpan>,
     kTexSpanEnvs<PF, kDepth, TexPersp::kAffine>};
 template <class PF>
-inline constexpr std::array<std::array<std::array<std::array<TexSpanFn<PF>, 3>, 2>, 3>, 2> kTexSpanTable = {
-    kTexSpanPersps<PF, false>, kTexSpanPersps<PF, true>};
+inline constexpr std::array<std::array<std::array<std::array<TexSpanFn<PF>, 3>, 2>, 3>, 2>
+    kTexSpanTable = {kTexSpanPersps<PF, false>, kTexSpanPersps<PF, true>};
 }  // namespace detail
 
 // The textured span routine for a draw: generated from the template, indexed by its state.
 template <class PF>
 constexpr TexSpanFn<PF> tex_span_routine(const DrawRecord& d) {
-  return detail::kTexSpanTable<PF>[d.depth ? 1 : 0][static_cast<size_t>(d.persp)][static_cast<size_t>(d.env)]
-                                  [static_cast<size_t>(d.mip)];
+  return detail::kTexSpanTable<PF>[d.depth ? 1 : 0][static_cast<size_t>(d.persp)]
+                                  [static_cast<size_t>(d.env)][static_cast<size_t>(d.mip)];
 }
 
 }  // namespace lr

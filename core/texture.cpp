@@ -5,7 +5,8 @@ namespace lr {
 Status validate(const Texture& t) {
   if (t.level_count < 1 || t.level_count > kMaxMipLevels) return Status::kInvalidArgument;
   const uint16_t w0 = t.levels[0].width, h0 = t.levels[0].height;
-  if (w0 < 1 || h0 < 1 || w0 > kMaxTextureSize || h0 > kMaxTextureSize) return Status::kInvalidArgument;
+  if (w0 < 1 || h0 < 1 || w0 > kMaxTextureSize || h0 > kMaxTextureSize)
+    return Status::kInvalidArgument;
   uint16_t w = w0, h = h0;
   for (int i = 0; i < t.level_count; ++i) {
     const TextureLevel& l = t.levels[static_cast<size_t>(i)];

@@ -62,7 +62,9 @@ struct Texture {
 Status validate(const Texture& texture);
 
 // Bytes (or uint16 values for kRgb565) one level of w x h texels occupies.
-constexpr size_t level_texels(uint16_t w, uint16_t h) { return size_t{w} * h; }
+constexpr size_t level_texels(uint16_t w, uint16_t h) {
+  return size_t{w} * h;
+}
 constexpr size_t bytes_per_texel(TexelFormat f) {
   return f == TexelFormat::kRgb565 ? 2 : f == TexelFormat::kRgb888 ? 3 : 1;
 }

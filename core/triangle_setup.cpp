@@ -34,7 +34,8 @@ void texture_axis(const int32_t uv[3], uint32_t size, Wrap wrap, bool perspectiv
   const int64_t period = int64_t{size} * 256;
   // Repeat: only the origin's place in the period matters. Clamp: the origin itself
   // (|base| <= 2^30 since |u| < 2048 and size <= 2048).
-  off = static_cast<int32_t>(wrap == Wrap::kRepeat ? base - floor_div(base, period) * period : base);
+  off =
+      static_cast<int32_t>(wrap == Wrap::kRepeat ? base - floor_div(base, period) * period : base);
   constexpr int64_t kMaxRel = (int64_t{1} << 30) - 1;
   uint32_t rel[3];
   uint32_t hi = 0;

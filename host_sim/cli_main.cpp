@@ -203,25 +203,41 @@ int main(int argc, char** argv) {
         if (!lr::host::parse_texel_format(v, o.texture_format))
           return fail(bad + " (rgb565, rgb888, l8 or palette8)");
       } else if (a == "--filter") {
-        if (v == "nearest") o.filter = lr::Filter::kNearest;
-        else if (v == "bilinear") o.filter = lr::Filter::kBilinear;
-        else return fail(bad + " (nearest or bilinear)");
+        if (v == "nearest")
+          o.filter = lr::Filter::kNearest;
+        else if (v == "bilinear")
+          o.filter = lr::Filter::kBilinear;
+        else
+          return fail(bad + " (nearest or bilinear)");
       } else if (a == "--wrap") {
-        if (v == "repeat") o.wrap = lr::Wrap::kRepeat;
-        else if (v == "clamp") o.wrap = lr::Wrap::kClampToEdge;
-        else return fail(bad + " (repeat or clamp)");
+        if (v == "repeat")
+          o.wrap = lr::Wrap::kRepeat;
+        else if (v == "clamp")
+          o.wrap = lr::Wrap::kClampToEdge;
+        else
+          return fail(bad + " (repeat or clamp)");
       } else if (a == "--perspective") {
-        if (v == "exact") o.perspective = lr::Perspective::kExact;
-        else if (v == "span8") o.perspective = lr::Perspective::kSpan8;
-        else if (v == "span16") o.perspective = lr::Perspective::kSpan16;
-        else if (v == "span32") o.perspective = lr::Perspective::kSpan32;
-        else if (v == "affine") o.perspective = lr::Perspective::kAffine;
-        else return fail(bad + " (exact, span8, span16, span32 or affine)");
+        if (v == "exact")
+          o.perspective = lr::Perspective::kExact;
+        else if (v == "span8")
+          o.perspective = lr::Perspective::kSpan8;
+        else if (v == "span16")
+          o.perspective = lr::Perspective::kSpan16;
+        else if (v == "span32")
+          o.perspective = lr::Perspective::kSpan32;
+        else if (v == "affine")
+          o.perspective = lr::Perspective::kAffine;
+        else
+          return fail(bad + " (exact, span8, span16, span32 or affine)");
       } else if (a == "--mipmap") {
-        if (v == "none") o.mipmap = lr::MipMode::kNone;
-        else if (v == "nearest") o.mipmap = lr::MipMode::kNearest;
-        else if (v == "linear") o.mipmap = lr::MipMode::kLinear;
-        else return fail(bad + " (none, nearest or linear)");
+        if (v == "none")
+          o.mipmap = lr::MipMode::kNone;
+        else if (v == "nearest")
+          o.mipmap = lr::MipMode::kNearest;
+        else if (v == "linear")
+          o.mipmap = lr::MipMode::kLinear;
+        else
+          return fail(bad + " (none, nearest or linear)");
       } else if (a == "--cull") {
         if (v == "back")
           o.cull = lr::Cull::kBack;

@@ -161,7 +161,8 @@ bool load_draw_textures(const HostMesh& mesh, const std::vector<FixedDraw>& draw
       if (p == path) found = t.get();
     if (!found) {
       auto t = std::make_unique<HostTexture>();
-      if (!load_texture(path, o.texture_format, o.mipmap != MipMode::kNone, *t, error)) return false;
+      if (!load_texture(path, o.texture_format, o.mipmap != MipMode::kNone, *t, error))
+        return false;
       found = t.get();
       out.loaded.emplace_back(path, std::move(t));
     }

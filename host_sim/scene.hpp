@@ -76,8 +76,8 @@ ModelTransform model_transform(const HostMesh& mesh, const SceneOptions& options
 struct FixedDraw {
   std::vector<Vec3> positions;
   std::vector<Normal16> normals;
-  std::vector<Rgb8> colors;     // empty when the mesh has none
-  std::vector<TexCoord> uvs;    // empty when the mesh has none
+  std::vector<Rgb8> colors;   // empty when the mesh has none
+  std::vector<TexCoord> uvs;  // empty when the mesh has none
   std::vector<std::array<uint16_t, 3>> triangles;
   Material material;
   int32_t material_index = -1;  // the HostMesh material it came from, -1 for the options' one
@@ -86,8 +86,8 @@ struct FixedDraw {
 
 // Converts the mesh (with the options' fit applied) to the core's formats, split by material
 // and into pieces of at most 65535 vertices. The asset converter uses the same conversion.
-bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& options, std::vector<FixedDraw>& draws,
-                       std::string& error);
+bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& options,
+                       std::vector<FixedDraw>& draws, std::string& error);
 
 // Renders; on failure returns false with a one-line error (nothing rendered).
 bool render_scene(const HostMesh& mesh, const SceneOptions& options, RenderResult& out,

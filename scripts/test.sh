@@ -26,4 +26,5 @@ cmake --preset release >/dev/null
 cmake --build --preset release -j"$jobs" --target lr_frame_bench
 ./build/release/tests/bench/lr_frame_bench --benchmark_min_time=0.2
 bash scripts/count_instructions.sh build/release
+bash scripts/texture_bench.sh
 echo "== all tests passed"

@@ -164,19 +164,26 @@ const std::string kData = std::string(LR_SOURCE_DIR) + "/tests/host/data/";
 size_t distinct_colours(const lr::host::ImageRgb8& img) {
   std::vector<uint32_t> c;
   for (size_t p = 0; p < img.rgb.size() / 3; ++p)
-    c.push_back(uint32_t(img.rgb[3 * p]) << 16 | uint32_t(img.rgb[3 * p + 1]) << 8 | img.rgb[3 * p + 2]);
+    c.push_back(uint32_t(img.rgb[3 * p]) << 16 | uint32_t(img.rgb[3 * p + 1]) << 8 |
+                img.rgb[3 * p + 2]);
   std::sort(c.begin(), c.end());
   return size_t(std::unique(c.begin(), c.end()) - c.begin());
 }
 
 TEST(Cli, MaterialMapKdTexturesTheMeshAndTextureOverridesIt) {
   std::string a = tmpdir() + "/t1.png", b = tmpdir() + "/t2.png", c = tmpdir() + "/t3.png";
-  ASSERT_EQ(run("--obj " + kData + "cube.obj --eye 2.2,1.8,3 --filter nearest --out " + a).status, 0);
+  ASSERT_EQ(run("--obj " + kData + "cube.obj --eye 2.2,1.8,3 --filter nearest --out " + a).status,
+            0);
   ASSERT_EQ(run("--obj " + kData + "cube.obj --eye 2.2,1.8,3 --filter nearest --texture " + kData +
-                "tiles64.png --out " + b).status, 0);
+                "tiles64.png --out " + b)
+                .status,
+            0);
   ASSERT_EQ(run("--obj " + kData + "cube.obj --eye 2.2,1.8,3 --filter nearest --texture " + kData +
-                "tiles64.png --perspective span16 --mipmap linear --wrap clamp --texture-format palette8 --out " + c)
-                .status, 0);
+                "tiles64.png --perspective span16 --mipmap linear --wrap clamp --texture-format "
+                "palette8 --out " +
+                c)
+                .status,
+            0);
   lr::host::ImageRgb8 ia, ib, ic;
   std::string err;
   ASSERT_TRUE(lr::host::read_png(a, ia, err));
@@ -187,7 +194,9 @@ TEST(Cli, MaterialMapKdTexturesTheMeshAndTextureOverridesIt) {
   // A material option replaces the MTL materials, and with them map_Kd: three flat-lit faces
   // and the background. The textured renders show more colours than that.
   std::string d = tmpdir() + "/t4.png";
-  ASSERT_EQ(run("--obj " + kData + "cube.obj --eye 2.2,1.8,3 --diffuse 0.8,0.8,0.8 --out " + d).status, 0);
+  ASSERT_EQ(
+      run("--obj " + kData + "cube.obj --eye 2.2,1.8,3 --diffuse 0.8,0.8,0.8 --out " + d).status,
+      0);
   lr::host::ImageRgb8 id;
   ASSERT_TRUE(lr::host::read_png(d, id, err));
   EXPECT_LE(distinct_colours(id), 4u);
@@ -211,7 +220,8 @@ TEST(Cli, BadTexturesFailCleanlyWithoutOutput) {
       {"--obj " + kData + "cube.obj --wrap mirror", "--wrap: bad value 'mirror'"},
       {"--obj " + kData + "cube.obj --perspective span12", "--perspective: bad value 'span12'"},
       {"--obj " + kData + "cube.obj --mipmap trilinear", "--mipmap: bad value 'trilinear'"},
-      {"--obj " + kData + "cube.obj --texture-format rgb444", "--texture-format: bad value 'rgb444'"},
+      {"--obj " + kData + "cube.obj --texture-format rgb444",
+       "--texture-format: bad value 'rgb444'"},
   };
   for (const BadCase& c : cases) {
     std::string out = dir + "/never_t.png";
