@@ -12,37 +12,13 @@
 #include "core/camera.hpp"
 #include "core/renderer.hpp"
 #include "host_sim/obj_loader.hpp"
+#include "tests/bench/null_sink.hpp"
 
 namespace {
 
 using namespace lr;
 
-// A sink that checksums strips as a DMA link would consume them: no frame in memory.
-template <class PF>
-class NullSink final : public StripSink<PF> {
- public:
-  explicit NullSink(size_t n) : a_(n), b_(n) {}
-  Status begin_frame(uint16_t, uint16_t) override { return Status::kOk; }
-  Status acquire(StripLease<PF>& out) override {
-    flip_ = !flip_;
-    auto& buf = flip_ ? a_ : b_;
-    out = this->lend(buf.data(), buf.size(), flip_ ? 0 : 1);
-    return Status::kOk;
-  }
-  Status submit(const StripRect& r, StripLease<PF>&& lease) override {
-    std::span<typename PF::Storage> px;
-    this->take_back(lease, px);
-    Rgb8 a = PF::decode(px[0]), b = PF::decode(px[size_t(r.width) * r.height - 1]);
-    sum_ += a.r + a.g + a.b + b.r + b.g + b.b;
-    return Status::kOk;
-  }
-  Status end_frame() override { return Status::kOk; }
-  uint64_t sum_ = 0;
-
- private:
-  std::vector<typename PF::Storage> a_, b_;
-  bool flip_ = false;
-};
+using bench::NullSink;
 
 struct Scene {
   std::vector<Vec3> positions;
