@@ -27,9 +27,12 @@
 #include "knot_l8.hpp"
 #include "knot_palette8.hpp"
 #include "tests/support/core_harness.hpp"
+#include "tests/support/tmp_dir.hpp"
 
 namespace lr::host {
 namespace {
+
+using test::TmpDir;
 
 const std::string kData = LR_SOURCE_DIR "/tests/host/data/";
 
@@ -267,29 +270,6 @@ TEST(AssetRoundTripFrames, KnotL8RendersTheSameFrameAsTheLoadedFiles) {
 // ---- The tool's command line
 // ---------------------------------------------------------------------
 
-class TmpDir {
- public:
-  TmpDir() {
-    char tmpl[] = "/tmp/lr_asset_test_XXXXXX";
-    const char* p = mkdtemp(tmpl);
-    path_ = p ? p : "/tmp";
-  }
-  ~TmpDir() {
-    std::error_code ec;
-    if (path_ != "/tmp") std::filesystem::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return path_ + "/" + name; }
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& e : std::filesystem::directory_iterator(path_))
-      names.push_back(e.path().filename().string());
-    return names;
-  }
-
- private:
-  std::string path_;
-};
-
 struct ToolRun {
   int status = -1;
   std::string err;
@@ -318,7 +298,7 @@ void expect_error(const TmpDir& dir, const std::string& args, const std::string&
 }
 
 TEST(AssetTool, ErrorsAreOneLineExitTwoAndNoOutput) {
-  TmpDir dir;
+  TmpDir dir("lr_asset_test");
   const std::string out = " --out " + dir.file("a.hpp");
   const std::string cube = " --obj " + kData + "cube.obj";
   expect_error(dir, "--name a" + out, "--obj FILE is required");
@@ -355,7 +335,7 @@ TEST(AssetTool, ErrorsAreOneLineExitTwoAndNoOutput) {
 }
 
 TEST(AssetTool, WritesAHeaderAndReplacesAnOldOneWhole) {
-  TmpDir dir;
+  TmpDir dir("lr_asset_test");
   const std::string out = dir.file("cube.hpp");
   { std::ofstream(out) << "old"; }
   const ToolRun r =

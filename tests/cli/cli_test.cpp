@@ -11,6 +11,7 @@
 #include <string>
 
 #include "host_sim/image_io.hpp"
+#include "tests/support/tmp_dir.hpp"
 
 namespace {
 
@@ -21,10 +22,10 @@ struct Outcome {
   std::string out, err;
 };
 
+// One directory per test process, removed when it ends.
 std::string tmpdir() {
-  fs::path p = fs::temp_directory_path() / ("lr_cli_test_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p.string();
+  static const lr::test::TmpDir dir("lr_cli_test");
+  return dir.path();
 }
 
 Outcome run(const std::string& args) {

@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 #include <png.h>
-#include <stdlib.h>
 #include <zlib.h>
 
 #include <cmath>
@@ -16,46 +15,24 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/file_bytes.hpp"
+#include "tests/support/raw_png.hpp"
+#include "tests/support/tmp_dir.hpp"
+
 namespace lr::host {
 namespace {
 
-class TmpDir {
- public:
-  TmpDir() {
-    char tmpl[] = "/tmp/lr_image_test_XXXXXX";
-    const char* p = mkdtemp(tmpl);
-    path_ = p ? p : "/tmp";
-  }
-  ~TmpDir() {
-    std::error_code ec;
-    if (path_ != "/tmp") std::filesystem::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return path_ + "/" + name; }
-
- private:
-  std::string path_;
-};
+using test::raw_png;
+using test::RawPng;
+using test::read_bytes;
+using test::scale16;
+using test::TmpDir;
+using test::write_bytes;
+using test::write_raw_png;
 
 bool exists(const std::string& path) {
   std::error_code ec;
   return std::filesystem::exists(path, ec);
-}
-
-std::vector<uint8_t> read_bytes(const std::string& path) {
-  std::vector<uint8_t> data;
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return data;
-  int c;
-  while ((c = std::getc(f)) != EOF) data.push_back(static_cast<uint8_t>(c));
-  std::fclose(f);
-  return data;
-}
-
-void write_bytes(const std::string& path, const std::vector<uint8_t>& data) {
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  ASSERT_NE(f, nullptr);
-  if (!data.empty()) std::fwrite(data.data(), 1, data.size(), f);
-  std::fclose(f);
 }
 
 ImageRgb8 random_image(int w, int h, unsigned seed) {
@@ -66,57 +43,6 @@ ImageRgb8 random_image(int w, int h, unsigned seed) {
   img.rgb.resize(static_cast<size_t>(w) * static_cast<size_t>(h) * 3);
   for (uint8_t& b : img.rgb) b = static_cast<uint8_t>(rng());
   return img;
-}
-
-uint8_t scale16(unsigned v) {
-  return static_cast<uint8_t>(std::lround(v * 255.0 / 65535.0));
-}
-
-// --- Writing test PNGs with libpng directly (setjmp frame holds no C++ objects) -------------
-
-struct RawPng {
-  std::string path;  // used only outside the setjmp frame
-  uint32_t width, height;
-  int bit_depth, color_type, interlace;
-  const uint8_t* rows;  // packed rows, big-endian 16-bit samples, `stride` bytes each
-  size_t stride;
-  const png_color* palette;
-  int palette_size;
-  const png_byte* trns;
-  int trns_size;
-};
-
-bool write_raw_png_impl(const RawPng* r, png_structp png, png_infop info, std::FILE* f) {
-  if (setjmp(png_jmpbuf(png))) return false;
-  png_init_io(png, f);
-  png_set_IHDR(png, info, r->width, r->height, r->bit_depth, r->color_type, r->interlace,
-               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  if (r->palette) png_set_PLTE(png, info, r->palette, r->palette_size);
-  if (r->trns) png_set_tRNS(png, info, r->trns, r->trns_size, nullptr);
-  png_write_info(png, info);
-  const int passes = png_set_interlace_handling(png);
-  for (int pass = 0; pass < passes; ++pass) {
-    for (uint32_t y = 0; y < r->height; ++y) png_write_row(png, r->rows + y * r->stride);
-  }
-  png_write_end(png, nullptr);
-  return true;
-}
-
-bool write_raw_png(const RawPng& r) {
-  std::FILE* f = std::fopen(r.path.c_str(), "wb");
-  if (!f) return false;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png_create_info_struct(png);
-  const bool ok = write_raw_png_impl(&r, png, info, f);
-  png_destroy_write_struct(&png, &info);
-  std::fclose(f);
-  return ok;
-}
-
-RawPng raw(const std::string& path, uint32_t w, uint32_t h, int depth, int type,
-           const std::vector<uint8_t>& rows, size_t stride) {
-  return RawPng{path,        w,      h,       depth, type,    PNG_INTERLACE_NONE,
-                rows.data(), stride, nullptr, 0,     nullptr, 0};
 }
 
 ImageRgb8 read_ok(const std::string& path) {
@@ -155,7 +81,7 @@ bool read_gray16_impl(Gray16Read* g, png_structp png, png_infop info, std::FILE*
 // --- Round trips -------------------------------------------------------------------------------
 
 TEST(ImageIo, PngRoundTripIsExact) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const ImageRgb8 img = random_image(37, 23, 1);
   std::string error;
   ASSERT_TRUE(write_png(dir.file("a.png"), img, error)) << error;
@@ -167,7 +93,7 @@ TEST(ImageIo, PngRoundTripIsExact) {
 }
 
 TEST(ImageIo, PpmRoundTripIsExact) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const ImageRgb8 img = random_image(19, 31, 2);
   std::string error;
   ASSERT_TRUE(write_ppm(dir.file("a.ppm"), img, error)) << error;
@@ -183,7 +109,7 @@ TEST(ImageIo, PpmRoundTripIsExact) {
 }
 
 TEST(ImageIo, WriteAndReadImageChooseTheFormat) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const ImageRgb8 img = random_image(5, 4, 3);
   std::string error;
   ASSERT_TRUE(write_image(dir.file("x.PNG"), img, error)) << error;
@@ -205,7 +131,7 @@ TEST(ImageIo, WriteAndReadImageChooseTheFormat) {
 }
 
 TEST(ImageIo, Gray16PngKeepsAll16Bits) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const std::vector<uint16_t> depth = {0, 1, 255, 256, 0x12FF, 0x8000, 0xFFFE, 0xFFFF};
   std::string error;
   ASSERT_TRUE(write_png_gray16(dir.file("d.png"), 4, 2, depth, error)) << error;
@@ -234,9 +160,9 @@ TEST(ImageIo, Gray16PngKeepsAll16Bits) {
 // --- Every PNG colour type --------------------------------------------------------------------
 
 TEST(ImageIoPngTypes, Grey8) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const std::vector<uint8_t> rows = {0, 10, 200, 255, 1, 128};
-  ASSERT_TRUE(write_raw_png(raw(dir.file("g.png"), 3, 2, 8, PNG_COLOR_TYPE_GRAY, rows, 3)));
+  ASSERT_TRUE(write_raw_png(raw_png(dir.file("g.png"), 3, 2, 8, PNG_COLOR_TYPE_GRAY, rows, 3)));
   const ImageRgb8 img = read_ok(dir.file("g.png"));
   ASSERT_EQ(img.rgb.size(), 18u);
   for (size_t i = 0; i < 6; ++i) {
@@ -247,26 +173,26 @@ TEST(ImageIoPngTypes, Grey8) {
 }
 
 TEST(ImageIoPngTypes, Grey1And4BitAreScaledUp) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const std::vector<uint8_t> one = {0b10110000};  // 4 pixels: 1 0 1 1
-  ASSERT_TRUE(write_raw_png(raw(dir.file("g1.png"), 4, 1, 1, PNG_COLOR_TYPE_GRAY, one, 1)));
+  ASSERT_TRUE(write_raw_png(raw_png(dir.file("g1.png"), 4, 1, 1, PNG_COLOR_TYPE_GRAY, one, 1)));
   const ImageRgb8 a = read_ok(dir.file("g1.png"));
   EXPECT_EQ(a.rgb, (std::vector<uint8_t>{255, 255, 255, 0, 0, 0, 255, 255, 255, 255, 255, 255}));
   const std::vector<uint8_t> four = {0x0F, 0x71};  // 0, 15, 7, 1
-  ASSERT_TRUE(write_raw_png(raw(dir.file("g4.png"), 4, 1, 4, PNG_COLOR_TYPE_GRAY, four, 2)));
+  ASSERT_TRUE(write_raw_png(raw_png(dir.file("g4.png"), 4, 1, 4, PNG_COLOR_TYPE_GRAY, four, 2)));
   const ImageRgb8 b = read_ok(dir.file("g4.png"));
   EXPECT_EQ(b.rgb, (std::vector<uint8_t>{0, 0, 0, 255, 255, 255, 119, 119, 119, 17, 17, 17}));
 }
 
 TEST(ImageIoPngTypes, Grey16IsRoundedTo8Bits) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const unsigned v[4] = {0x0000, 0x12FF, 0x8080, 0xFFFF};
   std::vector<uint8_t> rows;
   for (unsigned s : v) {
     rows.push_back(static_cast<uint8_t>(s >> 8));
     rows.push_back(static_cast<uint8_t>(s & 0xFF));
   }
-  ASSERT_TRUE(write_raw_png(raw(dir.file("g16.png"), 2, 2, 16, PNG_COLOR_TYPE_GRAY, rows, 4)));
+  ASSERT_TRUE(write_raw_png(raw_png(dir.file("g16.png"), 2, 2, 16, PNG_COLOR_TYPE_GRAY, rows, 4)));
   const ImageRgb8 img = read_ok(dir.file("g16.png"));
   ASSERT_EQ(img.rgb.size(), 12u);
   for (size_t i = 0; i < 4; ++i) EXPECT_EQ(img.rgb[3 * i], scale16(v[i])) << i;
@@ -274,41 +200,42 @@ TEST(ImageIoPngTypes, Grey16IsRoundedTo8Bits) {
 }
 
 TEST(ImageIoPngTypes, GreyAlphaDropsAlpha) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const std::vector<uint8_t> rows = {50, 0, 100, 128, 150, 255};
-  ASSERT_TRUE(write_raw_png(raw(dir.file("ga.png"), 3, 1, 8, PNG_COLOR_TYPE_GRAY_ALPHA, rows, 6)));
+  ASSERT_TRUE(
+      write_raw_png(raw_png(dir.file("ga.png"), 3, 1, 8, PNG_COLOR_TYPE_GRAY_ALPHA, rows, 6)));
   const ImageRgb8 img = read_ok(dir.file("ga.png"));
   EXPECT_EQ(img.rgb, (std::vector<uint8_t>{50, 50, 50, 100, 100, 100, 150, 150, 150}));
 }
 
 TEST(ImageIoPngTypes, Rgb16IsRoundedTo8Bits) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const unsigned v[6] = {0xFFFF, 0x0000, 0x12FF, 0x0080, 0x7F7F, 0xABCD};
   std::vector<uint8_t> rows;
   for (unsigned s : v) {
     rows.push_back(static_cast<uint8_t>(s >> 8));
     rows.push_back(static_cast<uint8_t>(s & 0xFF));
   }
-  ASSERT_TRUE(write_raw_png(raw(dir.file("c16.png"), 2, 1, 16, PNG_COLOR_TYPE_RGB, rows, 12)));
+  ASSERT_TRUE(write_raw_png(raw_png(dir.file("c16.png"), 2, 1, 16, PNG_COLOR_TYPE_RGB, rows, 12)));
   const ImageRgb8 img = read_ok(dir.file("c16.png"));
   ASSERT_EQ(img.rgb.size(), 6u);
   for (size_t i = 0; i < 6; ++i) EXPECT_EQ(img.rgb[i], scale16(v[i])) << i;
 }
 
 TEST(ImageIoPngTypes, RgbaDropsAlpha) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const std::vector<uint8_t> rows = {1, 2, 3, 0, 4, 5, 6, 77, 7, 8, 9, 255, 10, 11, 12, 1};
-  ASSERT_TRUE(write_raw_png(raw(dir.file("rgba.png"), 2, 2, 8, PNG_COLOR_TYPE_RGBA, rows, 8)));
+  ASSERT_TRUE(write_raw_png(raw_png(dir.file("rgba.png"), 2, 2, 8, PNG_COLOR_TYPE_RGBA, rows, 8)));
   const ImageRgb8 img = read_ok(dir.file("rgba.png"));
   EXPECT_EQ(img.rgb, (std::vector<uint8_t>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}));
 }
 
 TEST(ImageIoPngTypes, PaletteWithTransparencyIsExpanded) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const png_color pal[3] = {{255, 0, 0}, {0, 128, 0}, {10, 20, 30}};
   const png_byte trns[2] = {0, 128};
   const std::vector<uint8_t> rows = {2, 0, 1, 1, 2, 0};
-  RawPng r = raw(dir.file("pal.png"), 3, 2, 8, PNG_COLOR_TYPE_PALETTE, rows, 3);
+  RawPng r = raw_png(dir.file("pal.png"), 3, 2, 8, PNG_COLOR_TYPE_PALETTE, rows, 3);
   r.palette = pal;
   r.palette_size = 3;
   r.trns = trns;
@@ -320,10 +247,10 @@ TEST(ImageIoPngTypes, PaletteWithTransparencyIsExpanded) {
 }
 
 TEST(ImageIoPngTypes, Palette2Bit) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const png_color pal[4] = {{0, 0, 0}, {1, 2, 3}, {4, 5, 6}, {7, 8, 9}};
   const std::vector<uint8_t> rows = {0b11100100};  // 3 2 1 0
-  RawPng r = raw(dir.file("pal2.png"), 4, 1, 2, PNG_COLOR_TYPE_PALETTE, rows, 1);
+  RawPng r = raw_png(dir.file("pal2.png"), 4, 1, 2, PNG_COLOR_TYPE_PALETTE, rows, 1);
   r.palette = pal;
   r.palette_size = 4;
   ASSERT_TRUE(write_raw_png(r));
@@ -332,9 +259,9 @@ TEST(ImageIoPngTypes, Palette2Bit) {
 }
 
 TEST(ImageIoPngTypes, InterlacedRgb) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const ImageRgb8 ref = random_image(13, 11, 4);
-  RawPng r = raw(dir.file("adam7.png"), 13, 11, 8, PNG_COLOR_TYPE_RGB, ref.rgb, 13 * 3);
+  RawPng r = raw_png(dir.file("adam7.png"), 13, 11, 8, PNG_COLOR_TYPE_RGB, ref.rgb, 13 * 3);
   r.interlace = PNG_INTERLACE_ADAM7;
   ASSERT_TRUE(write_raw_png(r));
   const ImageRgb8 img = read_ok(dir.file("adam7.png"));
@@ -344,7 +271,7 @@ TEST(ImageIoPngTypes, InterlacedRgb) {
 }
 
 TEST(ImageIoPngTypes, InterlacedGreyAlpha16) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   std::vector<uint8_t> rows;
   std::vector<unsigned> grey;
   for (unsigned i = 0; i < 9 * 9; ++i) {
@@ -353,7 +280,7 @@ TEST(ImageIoPngTypes, InterlacedGreyAlpha16) {
     rows.insert(rows.end(), {static_cast<uint8_t>(g >> 8), static_cast<uint8_t>(g),
                              static_cast<uint8_t>(a >> 8), static_cast<uint8_t>(a)});
   }
-  RawPng r = raw(dir.file("ga16i.png"), 9, 9, 16, PNG_COLOR_TYPE_GRAY_ALPHA, rows, 9 * 4);
+  RawPng r = raw_png(dir.file("ga16i.png"), 9, 9, 16, PNG_COLOR_TYPE_GRAY_ALPHA, rows, 9 * 4);
   r.interlace = PNG_INTERLACE_ADAM7;
   ASSERT_TRUE(write_raw_png(r));
   const ImageRgb8 img = read_ok(dir.file("ga16i.png"));
@@ -364,7 +291,7 @@ TEST(ImageIoPngTypes, InterlacedGreyAlpha16) {
 // --- Failures -----------------------------------------------------------------------------------
 
 TEST(ImageIoErrors, TruncatedPngFailsCleanly) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const ImageRgb8 img = random_image(64, 48, 5);
   std::string error;
   ASSERT_TRUE(write_png(dir.file("full.png"), img, error));
@@ -390,7 +317,7 @@ TEST(ImageIoErrors, TruncatedPngFailsCleanly) {
 }
 
 TEST(ImageIoErrors, CorruptCrcAndGarbageFail) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const ImageRgb8 img = random_image(16, 16, 6);
   std::string error;
   ASSERT_TRUE(write_png(dir.file("ok.png"), img, error));
@@ -426,7 +353,7 @@ TEST(ImageIoErrors, CorruptCrcAndGarbageFail) {
 }
 
 TEST(ImageIoErrors, RandomByteFlipsNeverCrash) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const ImageRgb8 img = random_image(24, 24, 8);
   std::string error;
   ASSERT_TRUE(write_png(dir.file("ok.png"), img, error));
@@ -449,10 +376,10 @@ TEST(ImageIoErrors, RandomByteFlipsNeverCrash) {
 }
 
 TEST(ImageIoErrors, HugeDimensionsAreRefusedBeforeAllocating) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   // A valid 1x1 PNG whose IHDR is then patched to 100000 x 100000 (CRC fixed up).
   const std::vector<uint8_t> px = {1, 2, 3};
-  ASSERT_TRUE(write_raw_png(raw(dir.file("one.png"), 1, 1, 8, PNG_COLOR_TYPE_RGB, px, 3)));
+  ASSERT_TRUE(write_raw_png(raw_png(dir.file("one.png"), 1, 1, 8, PNG_COLOR_TYPE_RGB, px, 3)));
   std::vector<uint8_t> data = read_bytes(dir.file("one.png"));
   const uint8_t big[4] = {0x00, 0x01, 0x86, 0xA0};  // 100000
   for (size_t i = 0; i < 4; ++i) data[16 + i] = data[20 + i] = big[i];
@@ -470,7 +397,7 @@ TEST(ImageIoErrors, HugeDimensionsAreRefusedBeforeAllocating) {
 }
 
 TEST(ImageIoErrors, WriteIntoMissingDirectoryFailsAndLeavesNoFile) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const ImageRgb8 img = random_image(4, 4, 10);
   std::string error;
   const std::string png = dir.file("no/such/dir/a.png");
@@ -485,7 +412,7 @@ TEST(ImageIoErrors, WriteIntoMissingDirectoryFailsAndLeavesNoFile) {
 }
 
 TEST(ImageIoErrors, InvalidImageIsRefusedAndExistingFileKept) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const ImageRgb8 img = random_image(4, 4, 11);
   std::string error;
   ASSERT_TRUE(write_png(dir.file("keep.png"), img, error));
@@ -515,7 +442,7 @@ ImageRgb8 read_ppm_text(const TmpDir& dir, const std::string& content, bool expe
 }
 
 TEST(ImageIoPpm, AsciiP3WithComments) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const ImageRgb8 img = read_ppm_text(dir,
                                       "P3\n# a comment\n2 # width\n1\n255\n"
                                       "255 0 0  # red\n 0 128 7\n",
@@ -526,7 +453,7 @@ TEST(ImageIoPpm, AsciiP3WithComments) {
 }
 
 TEST(ImageIoPpm, OtherMaxvalsAreScaled) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   ImageRgb8 img = read_ppm_text(dir, "P3 1 1 15 15 7 0", true);
   EXPECT_EQ(img.rgb, (std::vector<uint8_t>{255, 119, 0}));
   // P6 with 16-bit big-endian samples.
@@ -538,7 +465,7 @@ TEST(ImageIoPpm, OtherMaxvalsAreScaled) {
 }
 
 TEST(ImageIoPpm, GreyPgmIsReplicated) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   ImageRgb8 img =
       read_ppm_text(dir, std::string("P5\n3 1\n255\n") + '\x00' + '\x40' + '\xFF', true);
   EXPECT_EQ(img.rgb, (std::vector<uint8_t>{0, 0, 0, 64, 64, 64, 255, 255, 255}));
@@ -547,7 +474,7 @@ TEST(ImageIoPpm, GreyPgmIsReplicated) {
 }
 
 TEST(ImageIoPpm, MalformedFilesGiveErrors) {
-  TmpDir dir;
+  TmpDir dir("lr_image_test");
   const std::string f = dir.file("p.ppm");
   std::string error;
   read_ppm_text(dir, "P6\n2 2\n255\nabc", false, &error);

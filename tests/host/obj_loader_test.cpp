@@ -3,48 +3,21 @@
 #include "host_sim/obj_loader.hpp"
 
 #include <gtest/gtest.h>
-#include <stdlib.h>
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
+
+#include "tests/support/tmp_dir.hpp"
 
 namespace lr::host {
 namespace {
 
 const std::string kSourceDir = LR_SOURCE_DIR;
 
-// A fresh directory under /tmp, removed with its content at the end of the test.
-class TmpDir {
- public:
-  TmpDir() {
-    char tmpl[] = "/tmp/lr_obj_test_XXXXXX";
-    const char* p = mkdtemp(tmpl);
-    path_ = p ? p : "/tmp";
-  }
-  ~TmpDir() {
-    std::error_code ec;
-    if (path_ != "/tmp") std::filesystem::remove_all(path_, ec);
-  }
-  const std::string& path() const { return path_; }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string full = path_ + "/" + name;
-    std::error_code ec;
-    std::filesystem::create_directories(std::filesystem::path(full).parent_path(), ec);
-    std::FILE* f = std::fopen(full.c_str(), "wb");
-    if (f) {
-      std::fwrite(text.data(), 1, text.size(), f);
-      std::fclose(f);
-    }
-    return full;
-  }
-
- private:
-  std::string path_;
-};
+using test::TmpDir;
 
 HostMesh parse_ok(const std::string& text, const std::string& base_dir = "") {
   HostMesh m;
@@ -341,7 +314,7 @@ TEST(ObjLoader, SmoothNormalsSurviveHugeCoordinates) {
 // Materials
 
 TEST(ObjLoader, MtllibAndUsemtlReadValuesAndResolveTexturePaths) {
-  TmpDir dir;
+  TmpDir dir("lr_obj_test");
   dir.write("sub/a.mtl",
             "# two materials\n"
             "newmtl red\n"
@@ -415,7 +388,7 @@ TEST(ObjLoader, LaterMaterialDefinitionReplacesEarlierOne) {
   ASSERT_TRUE(
       parse_mtl("newmtl a\nKd 1 0 0\nnewmtl b\nnewmtl a\nKd 0 1 0\n", "m.mtl", "", mats, error));
   ASSERT_EQ(mats.size(), 3u);  // parse_mtl keeps the file as written ...
-  TmpDir dir;
+  TmpDir dir("lr_obj_test");
   dir.write("m.mtl", "newmtl a\nKd 1 0 0\nnewmtl b\n");
   dir.write("n.mtl", "newmtl a\nKd 0 1 0\n");
   const HostMesh m = parse_ok("mtllib m.mtl n.mtl\nv 0 0 0\nusemtl a\nf 1 1 1\n", dir.path());
@@ -491,7 +464,7 @@ TEST(ObjLoaderErrors, UnknownMaterial) {
 }
 
 TEST(ObjLoaderErrors, MissingMaterialLibrary) {
-  TmpDir dir;
+  TmpDir dir("lr_obj_test");
   expect_error(std::string(kTri) + "mtllib missing.mtl\nf 1 2 3\n",
                "t.obj:4: cannot open material library '" + dir.path() +
                    "/missing.mtl': No such file or directory",
@@ -499,7 +472,7 @@ TEST(ObjLoaderErrors, MissingMaterialLibrary) {
 }
 
 TEST(ObjLoaderErrors, ErrorInsideMaterialLibraryNamesTheMtlFile) {
-  TmpDir dir;
+  TmpDir dir("lr_obj_test");
   dir.write("bad.mtl", "newmtl a\n\nKd 1 zero 0\n");
   dir.write("early.mtl", "Kd 1 1 1\n");
   dir.write("count.mtl", "newmtl a\nKs 1 1\n");
@@ -542,14 +515,14 @@ TEST(ObjLoaderErrors, MissingFile) {
   EXPECT_FALSE(load_obj("/nonexistent-dir/none.obj", m, error));
   EXPECT_EQ(error, "/nonexistent-dir/none.obj: cannot open: No such file or directory");
   expect_sentinel(m);
-  TmpDir dir;
+  TmpDir dir("lr_obj_test");
   EXPECT_FALSE(load_obj(dir.path(), m, error));  // a directory
   EXPECT_EQ(error, dir.path() + ": cannot open: Is a directory");
   expect_sentinel(m);
 }
 
 TEST(ObjLoaderErrors, LoadObjNamesTheFileAsGiven) {
-  TmpDir dir;
+  TmpDir dir("lr_obj_test");
   const std::string path = dir.write("x.obj", "v 0 0 0\n\nf 1 1 1 \\\n  1 0\n");
   HostMesh m = sentinel();
   std::string error;

@@ -6,91 +6,28 @@
 
 #include <gtest/gtest.h>
 #include <png.h>
-#include <stdlib.h>
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "core/mipmap.hpp"
+#include "tests/support/file_bytes.hpp"
+#include "tests/support/raw_png.hpp"
+#include "tests/support/tmp_dir.hpp"
 
 namespace lr::host {
 namespace {
 
-class TmpDir {
- public:
-  TmpDir() {
-    char tmpl[] = "/tmp/lr_texture_test_XXXXXX";
-    const char* p = mkdtemp(tmpl);
-    path_ = p ? p : "/tmp";
-  }
-  ~TmpDir() {
-    std::error_code ec;
-    if (path_ != "/tmp") std::filesystem::remove_all(path_, ec);
-  }
-  std::string file(const std::string& name) const { return path_ + "/" + name; }
-
- private:
-  std::string path_;
-};
-
-// --- PNG files of every colour type, written with libpng directly ------------------------------
-
-struct RawPng {
-  std::string path;
-  uint32_t width, height;
-  int bit_depth, color_type, interlace;
-  const uint8_t* rows;  // packed rows, big-endian 16-bit samples, `stride` bytes each
-  size_t stride;
-  const png_color* palette;
-  int palette_size;
-};
-
-bool write_raw_png_impl(const RawPng* r, png_structp png, png_infop info, std::FILE* f) {
-  if (setjmp(png_jmpbuf(png))) return false;
-  png_init_io(png, f);
-  png_set_IHDR(png, info, r->width, r->height, r->bit_depth, r->color_type, r->interlace,
-               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  if (r->palette) png_set_PLTE(png, info, r->palette, r->palette_size);
-  png_write_info(png, info);
-  const int passes = png_set_interlace_handling(png);
-  for (int pass = 0; pass < passes; ++pass) {
-    for (uint32_t y = 0; y < r->height; ++y) png_write_row(png, r->rows + y * r->stride);
-  }
-  png_write_end(png, nullptr);
-  return true;
-}
-
-bool write_raw_png(const RawPng& r) {
-  std::FILE* f = std::fopen(r.path.c_str(), "wb");
-  if (!f) return false;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png_create_info_struct(png);
-  const bool ok = write_raw_png_impl(&r, png, info, f);
-  png_destroy_write_struct(&png, &info);
-  std::fclose(f);
-  return ok;
-}
-
-std::vector<uint8_t> read_bytes(const std::string& path) {
-  std::vector<uint8_t> data;
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return data;
-  int c;
-  while ((c = std::getc(f)) != EOF) data.push_back(static_cast<uint8_t>(c));
-  std::fclose(f);
-  return data;
-}
-
-void write_bytes(const std::string& path, const std::vector<uint8_t>& data) {
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  ASSERT_NE(f, nullptr);
-  if (!data.empty()) std::fwrite(data.data(), 1, data.size(), f);
-  std::fclose(f);
-}
+using test::raw_png;
+using test::RawPng;
+using test::read_bytes;
+using test::scale16;
+using test::TmpDir;
+using test::write_bytes;
+using test::write_raw_png;
 
 // The 8-bit RGB colour of each pixel (row 0 = top), what the file stands for.
 using Pixels = std::vector<Rgb8>;
@@ -159,20 +96,11 @@ void expect_texels_all_formats(const std::string& path, int w, int h, const Pixe
   }
 }
 
-uint8_t scale16(unsigned v) {
-  return static_cast<uint8_t>(std::lround(v * 255.0 / 65535.0));
-}
-
-RawPng raw(const std::string& path, uint32_t w, uint32_t h, int depth, int type,
-           const std::vector<uint8_t>& rows, size_t stride) {
-  return RawPng{path, w, h, depth, type, PNG_INTERLACE_NONE, rows.data(), stride, nullptr, 0};
-}
-
 TEST(TextureLoad, Grey8And16AndLowBitDepths) {
-  TmpDir dir;
+  TmpDir dir("lr_texture_test");
   {  // 8-bit grey, 3x2
     const std::vector<uint8_t> rows = {0, 10, 200, 255, 1, 128};
-    ASSERT_TRUE(write_raw_png(raw(dir.file("g8.png"), 3, 2, 8, PNG_COLOR_TYPE_GRAY, rows, 3)));
+    ASSERT_TRUE(write_raw_png(raw_png(dir.file("g8.png"), 3, 2, 8, PNG_COLOR_TYPE_GRAY, rows, 3)));
     Pixels px;
     for (uint8_t g : rows) px.push_back({g, g, g});
     expect_texels_all_formats(dir.file("g8.png"), 3, 2, px);
@@ -186,45 +114,46 @@ TEST(TextureLoad, Grey8And16AndLowBitDepths) {
       rows.push_back(static_cast<uint8_t>(s & 0xFF));
       px.push_back({scale16(s), scale16(s), scale16(s)});
     }
-    ASSERT_TRUE(write_raw_png(raw(dir.file("g16.png"), 2, 2, 16, PNG_COLOR_TYPE_GRAY, rows, 4)));
+    ASSERT_TRUE(
+        write_raw_png(raw_png(dir.file("g16.png"), 2, 2, 16, PNG_COLOR_TYPE_GRAY, rows, 4)));
     expect_texels_all_formats(dir.file("g16.png"), 2, 2, px);
   }
   {                                                 // 1-, 2- and 4-bit grey, 4x1 each
     const std::vector<uint8_t> one = {0b10110000};  // 1 0 1 1
-    ASSERT_TRUE(write_raw_png(raw(dir.file("g1.png"), 4, 1, 1, PNG_COLOR_TYPE_GRAY, one, 1)));
+    ASSERT_TRUE(write_raw_png(raw_png(dir.file("g1.png"), 4, 1, 1, PNG_COLOR_TYPE_GRAY, one, 1)));
     expect_texels_all_formats(dir.file("g1.png"), 4, 1,
                               {{255, 255, 255}, {0, 0, 0}, {255, 255, 255}, {255, 255, 255}});
     const std::vector<uint8_t> two = {0b00011011};  // 0 1 2 3 -> 0 85 170 255
-    ASSERT_TRUE(write_raw_png(raw(dir.file("g2.png"), 4, 1, 2, PNG_COLOR_TYPE_GRAY, two, 1)));
+    ASSERT_TRUE(write_raw_png(raw_png(dir.file("g2.png"), 4, 1, 2, PNG_COLOR_TYPE_GRAY, two, 1)));
     expect_texels_all_formats(dir.file("g2.png"), 4, 1,
                               {{0, 0, 0}, {85, 85, 85}, {170, 170, 170}, {255, 255, 255}});
     const std::vector<uint8_t> four = {0x0F, 0x71};  // 0, 15, 7, 1 -> x17
-    ASSERT_TRUE(write_raw_png(raw(dir.file("g4.png"), 4, 1, 4, PNG_COLOR_TYPE_GRAY, four, 2)));
+    ASSERT_TRUE(write_raw_png(raw_png(dir.file("g4.png"), 4, 1, 4, PNG_COLOR_TYPE_GRAY, four, 2)));
     expect_texels_all_formats(dir.file("g4.png"), 4, 1,
                               {{0, 0, 0}, {255, 255, 255}, {119, 119, 119}, {17, 17, 17}});
   }
 }
 
 TEST(TextureLoad, GreyAlphaRgbRgbaIgnoreAlpha) {
-  TmpDir dir;
+  TmpDir dir("lr_texture_test");
   {  // grey + alpha, 8-bit, 3x1
     const std::vector<uint8_t> rows = {50, 0, 100, 128, 150, 255};
     ASSERT_TRUE(
-        write_raw_png(raw(dir.file("ga.png"), 3, 1, 8, PNG_COLOR_TYPE_GRAY_ALPHA, rows, 6)));
+        write_raw_png(raw_png(dir.file("ga.png"), 3, 1, 8, PNG_COLOR_TYPE_GRAY_ALPHA, rows, 6)));
     expect_texels_all_formats(dir.file("ga.png"), 3, 1,
                               {{50, 50, 50}, {100, 100, 100}, {150, 150, 150}});
   }
   {  // grey + alpha, 16-bit, 2x1
     const std::vector<uint8_t> rows = {0x12, 0xFF, 0, 0, 0xAB, 0xCD, 0xFF, 0xFF};
     ASSERT_TRUE(
-        write_raw_png(raw(dir.file("ga16.png"), 2, 1, 16, PNG_COLOR_TYPE_GRAY_ALPHA, rows, 8)));
+        write_raw_png(raw_png(dir.file("ga16.png"), 2, 1, 16, PNG_COLOR_TYPE_GRAY_ALPHA, rows, 8)));
     const uint8_t a = scale16(0x12FF), b = scale16(0xABCD);
     expect_texels_all_formats(dir.file("ga16.png"), 2, 1, {{a, a, a}, {b, b, b}});
   }
   {  // RGB 8-bit, 3x2 (NPOT), primaries and mixtures
     const std::vector<uint8_t> rows = {255, 0,   0,  0,   255, 0,  0,   0,   255,  //
                                        10,  200, 30, 128, 64,  32, 255, 255, 255};
-    ASSERT_TRUE(write_raw_png(raw(dir.file("rgb.png"), 3, 2, 8, PNG_COLOR_TYPE_RGB, rows, 9)));
+    ASSERT_TRUE(write_raw_png(raw_png(dir.file("rgb.png"), 3, 2, 8, PNG_COLOR_TYPE_RGB, rows, 9)));
     Pixels px;
     for (size_t i = 0; i < rows.size(); i += 3) px.push_back({rows[i], rows[i + 1], rows[i + 2]});
     expect_texels_all_formats(dir.file("rgb.png"), 3, 2, px);
@@ -236,21 +165,24 @@ TEST(TextureLoad, GreyAlphaRgbRgbaIgnoreAlpha) {
       rows.push_back(static_cast<uint8_t>(s >> 8));
       rows.push_back(static_cast<uint8_t>(s & 0xFF));
     }
-    ASSERT_TRUE(write_raw_png(raw(dir.file("rgb16.png"), 2, 1, 16, PNG_COLOR_TYPE_RGB, rows, 12)));
+    ASSERT_TRUE(
+        write_raw_png(raw_png(dir.file("rgb16.png"), 2, 1, 16, PNG_COLOR_TYPE_RGB, rows, 12)));
     expect_texels_all_formats(dir.file("rgb16.png"), 2, 1,
                               {{scale16(v[0]), scale16(v[1]), scale16(v[2])},
                                {scale16(v[3]), scale16(v[4]), scale16(v[5])}});
   }
   {  // RGBA 8-bit, 2x2
     const std::vector<uint8_t> rows = {1, 2, 3, 0, 4, 5, 6, 77, 7, 8, 9, 255, 10, 11, 12, 1};
-    ASSERT_TRUE(write_raw_png(raw(dir.file("rgba.png"), 2, 2, 8, PNG_COLOR_TYPE_RGBA, rows, 8)));
+    ASSERT_TRUE(
+        write_raw_png(raw_png(dir.file("rgba.png"), 2, 2, 8, PNG_COLOR_TYPE_RGBA, rows, 8)));
     expect_texels_all_formats(dir.file("rgba.png"), 2, 2,
                               {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}, {10, 11, 12}});
   }
   {  // RGBA 16-bit, 1x2
     const std::vector<uint8_t> rows = {0xFF, 0xFF, 0x00, 0x80, 0x12, 0xFF, 0x00, 0x00,
                                        0x7F, 0x7F, 0xAB, 0xCD, 0x00, 0x00, 0xFF, 0xFF};
-    ASSERT_TRUE(write_raw_png(raw(dir.file("rgba16.png"), 1, 2, 16, PNG_COLOR_TYPE_RGBA, rows, 8)));
+    ASSERT_TRUE(
+        write_raw_png(raw_png(dir.file("rgba16.png"), 1, 2, 16, PNG_COLOR_TYPE_RGBA, rows, 8)));
     expect_texels_all_formats(
         dir.file("rgba16.png"), 1, 2,
         {{255, scale16(0x0080), scale16(0x12FF)}, {scale16(0x7F7F), scale16(0xABCD), 0}});
@@ -258,11 +190,11 @@ TEST(TextureLoad, GreyAlphaRgbRgbaIgnoreAlpha) {
 }
 
 TEST(TextureLoad, PaletteAndInterlacedFiles) {
-  TmpDir dir;
+  TmpDir dir("lr_texture_test");
   {  // 8-bit palette, 3x2
     const png_color pal[3] = {{255, 0, 0}, {0, 128, 0}, {10, 20, 30}};
     const std::vector<uint8_t> rows = {2, 0, 1, 1, 2, 0};
-    RawPng r = raw(dir.file("pal.png"), 3, 2, 8, PNG_COLOR_TYPE_PALETTE, rows, 3);
+    RawPng r = raw_png(dir.file("pal.png"), 3, 2, 8, PNG_COLOR_TYPE_PALETTE, rows, 3);
     r.palette = pal;
     r.palette_size = 3;
     ASSERT_TRUE(write_raw_png(r));
@@ -273,7 +205,7 @@ TEST(TextureLoad, PaletteAndInterlacedFiles) {
   {  // 4-bit palette, 5x1 (odd width)
     const png_color pal[4] = {{0, 0, 0}, {1, 2, 3}, {250, 5, 6}, {7, 8, 249}};
     const std::vector<uint8_t> rows = {0x32, 0x10, 0x20};  // 3 2 1 0 2
-    RawPng r = raw(dir.file("pal4.png"), 5, 1, 4, PNG_COLOR_TYPE_PALETTE, rows, 3);
+    RawPng r = raw_png(dir.file("pal4.png"), 5, 1, 4, PNG_COLOR_TYPE_PALETTE, rows, 3);
     r.palette = pal;
     r.palette_size = 4;
     ASSERT_TRUE(write_raw_png(r));
@@ -285,7 +217,7 @@ TEST(TextureLoad, PaletteAndInterlacedFiles) {
     std::mt19937 rng(4);
     std::vector<uint8_t> rows(13 * 11 * 3);
     for (uint8_t& b : rows) b = static_cast<uint8_t>(rng() % 6 * 51);  // <= 216 colours
-    RawPng r = raw(dir.file("adam7.png"), 13, 11, 8, PNG_COLOR_TYPE_RGB, rows, 13 * 3);
+    RawPng r = raw_png(dir.file("adam7.png"), 13, 11, 8, PNG_COLOR_TYPE_RGB, rows, 13 * 3);
     r.interlace = PNG_INTERLACE_ADAM7;
     ASSERT_TRUE(write_raw_png(r));
     Pixels px;
@@ -374,7 +306,7 @@ TEST(TextureLoad, PaletteKeepsFirstAppearanceOrderUpTo256Colours) {
   // 257 colours: refused with the promised message, `out` untouched.
   px.push_back({255, 255, 255});
   px.resize(17 * 16, Rgb8{255, 255, 255});
-  const TmpDir dir;
+  const TmpDir dir("lr_texture_test");
   ASSERT_TRUE(write_png(dir.file("many.png"), image(17, 16, px), error)) << error;
   HostTexture kept = t;
   EXPECT_FALSE(load_texture(dir.file("many.png"), TexelFormat::kPalette8, false, t, error));
@@ -497,7 +429,7 @@ TEST(TextureLoad, CopiesAndMovesPointAtTheirOwnStorage) {
 }
 
 TEST(TextureLoad, BadFilesGiveOneLineNamingTheFile) {
-  TmpDir dir;
+  TmpDir dir("lr_texture_test");
   std::string error;
   HostTexture t;
   ASSERT_TRUE(texture_from_image(image(1, 1, {{1, 2, 3}}), TexelFormat::kRgb888, false, t, error));
