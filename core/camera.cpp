@@ -24,9 +24,12 @@ bool perspective(Fixed fovy_degrees, Fixed aspect, Fixed near, Fixed far, Mat4& 
 }
 
 bool look_at(Vec3 eye, Vec3 target, Vec3 up, Mat4& out) {
-  Vec3 fwd = target - eye;
-  if (fwd.x.raw == 0 && fwd.y.raw == 0 && fwd.z.raw == 0) return false;
-  Vec3 f = normalize(fwd);
+  // The difference of two Q16.16 values needs 33 bits: normalised straight from int64.
+  Unit30 fu;
+  if (!normalize_unit30(int64_t{target.x.raw} - eye.x.raw, int64_t{target.y.raw} - eye.y.raw,
+                        int64_t{target.z.raw} - eye.z.raw, fu))
+    return false;
+  Vec3 f = to_vec3(fu);
   Vec3 u0 = normalize(up);
   Vec3 side = cross(f, u0);
   // Parallel up: the cross product of two unit vectors is (near) zero.

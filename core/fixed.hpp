@@ -6,6 +6,7 @@
 // overflow the intermediate; a result outside the Q16.16 range saturates (see mul()).
 #pragma once
 
+#include <compare>
 #include <cstdint>
 #include <limits>
 

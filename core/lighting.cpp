@@ -17,6 +17,14 @@ Unit30 unit_of(Vec3 v) {
   return u;
 }
 
+// Unit vector from a to b: the difference of two Q16.16 values needs 33 bits.
+Unit30 direction(Vec3 a, Vec3 b) {
+  Unit30 u{0, 0, 1 << 30};
+  normalize_unit30(int64_t{b.x.raw} - a.x.raw, int64_t{b.y.raw} - a.y.raw,
+                   int64_t{b.z.raw} - a.z.raw, u);
+  return u;
+}
+
 Unit30 half_vector(const Unit30& l, const Unit30& v) {
   Unit30 h = v;
   normalize_unit30(int64_t{l.x} + v.x, int64_t{l.y} + v.y, int64_t{l.z} + v.z, h);
@@ -53,7 +61,7 @@ LitColor light_point_split(const PreparedLighting& pl, const Unit30& n, Vec3 p) 
   int32_t prim[3] = {pl.base[0], pl.base[1], pl.base[2]};
   int32_t spec[3] = {0, 0, 0};
   Unit30 v = pl.view;
-  if (pl.local_viewer) v = unit_of(pl.eye - p);
+  if (pl.local_viewer) v = direction(p, pl.eye);
   for (int i = 0; i < pl.count; ++i) {
     const PreparedLighting::Light& li = pl.lights[static_cast<size_t>(i)];
     int64_t ndl = dot30(n, li.l);

@@ -82,8 +82,8 @@ inline int32_t log2_q8(uint64_t x) {
 }
 
 // Level of detail (Q.8, log2 of level-0 texels per pixel) from derivatives in level-0 Q.8 texels.
-inline int32_t lod_q8(int32_t dsdx, int32_t dtdx, int32_t dsdy, int32_t dtdy) {
-  auto sq = [](int32_t d) {
+inline int32_t lod_q8(int64_t dsdx, int64_t dtdx, int64_t dsdy, int64_t dtdy) {
+  auto sq = [](int64_t d) {
     const int64_t c = d < -(1 << 30) ? -(1 << 30) : d > (1 << 30) ? (1 << 30) : d;
     return static_cast<uint64_t>(c * c);
   };
@@ -162,6 +162,11 @@ inline TexAttrs exact_attrs(const ActiveTriangle& tri, const PlaneValues& p, boo
   if (colors)
     for (int k = 0; k < 6; ++k) a.c[k] = rc.div(p.c[k], Color15::kFracBits);
   return a;
+}
+
+// a + b modulo 2^32, without signed overflow.
+inline int32_t wrap_add(int32_t a, int32_t b) {
+  return static_cast<int32_t>(static_cast<uint32_t>(a) + static_cast<uint32_t>(b));
 }
 
 inline uint32_t clamp_c15(int32_t v) {
@@ -250,7 +255,8 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
         const TexAttrs b = detail::exact_attrs(tri, pc, false);
         const TexAttrs bx = detail::exact_attrs(tri, px1, false);
         const TexAttrs by = detail::exact_attrs(tri, py1, false);
-        lod = detail::lod_q8(bx.s - b.s, bx.t - b.t, by.s - b.s, by.t - b.t);
+        lod = detail::lod_q8(int64_t{bx.s} - b.s, int64_t{bx.t} - b.t, int64_t{by.s} - b.s,
+                             int64_t{by.t} - b.t);
       }
       lv = detail::choose_levels<kMip>(lod, last_level);
     }
@@ -295,8 +301,8 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
         if constexpr (kPersp == TexPersp::kExact) {
           a = detail::exact_attrs(tri, pv, kColors);
         } else if constexpr (kPersp == TexPersp::kSpan) {
-          a.s = a0.s + (acc_s >> 8);
-          a.t = a0.t + (acc_t >> 8);
+          a.s = detail::wrap_add(a0.s, acc_s >> 8);
+          a.t = detail::wrap_add(a0.t, acc_t >> 8);
           if constexpr (kColors)
             for (int c = 0; c < 6; ++c) a.c[c] = a0.c[c] + (acc_c[c] >> 8);
         } else {
@@ -306,8 +312,10 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
             for (int c = 0; c < 6; ++c) a.c[c] = static_cast<int32_t>(pv.c[c]) >> 15;
         }
         idx[m] = static_cast<int16_t>(k);
-        cs[m] = a.s + tri.off_s;
-        ct[m] = a.t + tri.off_t;
+        // Modular: coordinates only overflow for degenerate inputs, where any texel will do,
+        // and repeat wrapping is modular anyway.
+        cs[m] = detail::wrap_add(a.s, tri.off_s);
+        ct[m] = detail::wrap_add(a.t, tri.off_t);
         if constexpr (kColors)
           for (int c = 0; c < 6; ++c) cc[m][c] = static_cast<uint16_t>(detail::clamp_c15(a.c[c]));
         ++m;

@@ -5,8 +5,10 @@ set -euo pipefail
 what=${1:-test}
 pkgs=(g++ make cmake libpng-dev)
 if [ "$what" = test ]; then
-  pkgs+=(libgtest-dev libbenchmark-dev valgrind gcc-arm-none-eabi libnewlib-arm-none-eabi
-         libstdc++-arm-none-eabi-newlib qemu-system-arm)
+  pkgs+=(libgtest-dev libbenchmark-dev valgrind libosmesa6-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
+         libstdc++-arm-none-eabi-newlib qemu-system-arm
+         g++-arm-linux-gnueabihf qemu-user python3-matplotlib
+         clang libclang-rt-14-dev)
 fi
 missing=()
 for p in "${pkgs[@]}"; do

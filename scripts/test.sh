@@ -1,7 +1,8 @@
 #!/bin/bash
 # Installs what is missing, builds and runs every test: the debug build, the same suite under
 # AddressSanitizer + UndefinedBehaviorSanitizer, the Cortex-M4F cross build with its link guard,
-# and the frame benchmark's figures (printed, never asserted).
+# the 32-bit ARM Linux build run under qemu-arm (frames hash as on x86-64), and the frame
+# benchmark's figures (printed, never asserted).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh test
@@ -21,10 +22,17 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
 echo "== Cortex-M4F cross build + link guard + run under QEMU, frame compared with the host's"
 LR_CROSS_RUN_QEMU=1 LR_HOST_SMOKE=build/debug/tests/firmware_host/lr_smoke_host bash scripts/ci_cross.sh
 
+echo "== 32-bit ARM Linux build + tests under qemu-arm, frames hashed against x86-64's"
+bash scripts/ci_armhf.sh
+
+echo "== fuzzing: libFuzzer targets (clang, ASan + UBSan), about 45 s each; crashes become regressions"
+bash scripts/fuzz.sh 45
+
 echo "== figures (benchmarks print, they do not pass or fail)"
 cmake --preset release >/dev/null
 cmake --build --preset release -j"$jobs" --target lr_frame_bench
 ./build/release/tests/bench/lr_frame_bench --benchmark_min_time=0.2
 bash scripts/count_instructions.sh build/release
 bash scripts/texture_bench.sh
+bash scripts/quality_bench.sh
 echo "== all tests passed"

@@ -6,10 +6,16 @@
 #include <cstddef>
 #include <limits>
 
+#include "tests/reference/int128.hpp"
+
 namespace lr::ref {
 namespace {
 
+#if defined(__SIZEOF_INT128__)
 __extension__ typedef __int128 i128;
+#else
+using i128 = Int128;  // 32-bit targets (the armhf test build): the same exact values
+#endif
 
 // Largest |snapped coordinate| accepted: differences fit in int64 and edge-function products
 // (< 2^61 * 2^62) fit in __int128 with room to spare.

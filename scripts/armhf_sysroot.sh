@@ -1,0 +1,68 @@
+#!/bin/bash
+# Builds the private armhf sysroot the 32-bit ARM Linux test build links against
+# (toolchain/arm-linux-gnueabihf.cmake): Debian 12's armhf GoogleTest, libpng and zlib, downloaded
+# with apt-get and unpacked with dpkg-deb -x into build/armhf-sysroot.
+#
+# Everything apt needs lives in build/armhf-apt (sources, package lists, cache, an empty dpkg
+# status): the system's dpkg is never told about armhf (no `dpkg --add-architecture`, which would
+# make the host's apt want armhf versions of everything), nothing is installed, and root is not
+# needed. The C and C++ runtimes come from the cross toolchain (/usr/arm-linux-gnueabihf, packages
+# libc6-dev-armhf-cross and libstdc++-12-dev-armhf-cross), not from here.
+#
+# Usage: scripts/armhf_sysroot.sh [SYSROOT]   (default build/armhf-sysroot; skips the work when
+# the sysroot already holds this package list; delete the folder to refresh it)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+sysroot=$(realpath -m "${1:-build/armhf-sysroot}")
+apt_dir=$(realpath -m "$(dirname "$sysroot")/armhf-apt")
+
+# The -dev packages and the runtime packages their .so links point to. The tests link libpng and
+# zlib statically (the toolchain file prefers .a), the runtime packages keep the .so links whole.
+pkgs=(libgtest-dev libpng-dev libpng16-16 zlib1g-dev zlib1g)
+
+stamp="$sysroot/.lr-sysroot"
+if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "${pkgs[*]}" ]; then
+  echo "armhf sysroot: up to date ($sysroot)"
+  exit 0
+fi
+
+if ! command -v apt-get >/dev/null || ! command -v dpkg-deb >/dev/null; then
+  echo "armhf sysroot: needs apt-get and dpkg-deb (Debian)" >&2
+  exit 1
+fi
+
+mkdir -p "$apt_dir"/{etc/sources.list.d,etc/preferences.d,state/lists/partial} \
+  "$apt_dir"/{cache/archives/partial,debs}
+: >"$apt_dir/state/status"  # an empty dpkg database: nothing counts as installed
+keyring=/usr/share/keyrings/debian-archive-keyring.gpg
+cat >"$apt_dir/etc/sources.list" <<EOF
+deb [arch=armhf signed-by=$keyring] http://deb.debian.org/debian bookworm main
+deb [arch=armhf signed-by=$keyring] http://deb.debian.org/debian bookworm-updates main
+EOF
+# (No bookworm-security: the sysroot only feeds tests; the point release's packages are enough.)
+apt_opts=(
+  -o APT::Architecture=armhf -o APT::Architectures::=armhf
+  -o Dir::State="$apt_dir/state" -o Dir::State::status="$apt_dir/state/status"
+  -o Dir::Cache="$apt_dir/cache"
+  -o Dir::Etc::SourceList="$apt_dir/etc/sources.list"
+  -o Dir::Etc::SourceParts="$apt_dir/etc/sources.list.d"
+  -o Dir::Etc::Preferences="$apt_dir/etc/preferences"
+  -o Dir::Etc::PreferencesParts="$apt_dir/etc/preferences.d"
+  -o Debug::NoLocking=1
+  # Downloads go to folders this user owns; as root, do not hand them to the _apt user.
+  -o APT::Sandbox::User="$(id -un)"
+)
+
+echo "armhf sysroot: apt-get update (private state in $apt_dir)"
+apt-get "${apt_opts[@]}" -qq update
+rm -f "$apt_dir"/debs/*.deb
+(cd "$apt_dir/debs" && apt-get "${apt_opts[@]}" -qq download "${pkgs[@]}")
+
+rm -rf "$sysroot"
+mkdir -p "$sysroot"
+for deb in "$apt_dir"/debs/*.deb; do
+  echo "armhf sysroot: unpacking $(basename "$deb")"
+  dpkg-deb -x "$deb" "$sysroot"
+done
+echo "${pkgs[*]}" >"$stamp"
+echo "armhf sysroot: done ($sysroot)"

@@ -1,0 +1,70 @@
+#!/bin/bash
+# Builds the libFuzzer targets with clang (tests/fuzz/CMakeLists.txt, its own project, in
+# build/fuzz: ASan + UBSan + coverage), replays every committed input (tests/fuzz/corpus/<target>/
+# seeds and tests/fuzz/regressions/<target>/ crash inputs), then fuzzes each target for the given
+# time. The working corpus grows in build/fuzz/corpus/<target>/ and is kept between runs.
+# A crash (or a broken invariant, or a timeout or out-of-memory) is copied to
+# tests/fuzz/regressions/<target>/ (commit it: the main build's lr_fuzz_regression_test replays it
+# with g++) and the script fails.
+# Usage: scripts/fuzz.sh [seconds per target, default 60] [target ...]   (obj, png, pipeline)
+# Needs clang and libclang-rt-14-dev (scripts/setup.sh test installs them).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+secs=${1:-60}
+shift || true
+targets=("$@")
+[ ${#targets[@]} -eq 0 ] && targets=(obj png pipeline)
+jobs=$(nproc)
+
+CC=clang CXX=clang++ cmake -S tests/fuzz -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build build/fuzz -j"$jobs" --target "${targets[@]/#/lr_fuzz_}"
+
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0${ASAN_OPTIONS:+:$ASAN_OPTIONS}
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}
+failed=0
+for t in "${targets[@]}"; do
+  exe=build/fuzz/lr_fuzz_$t
+  seeds=tests/fuzz/corpus/$t
+  regressions=tests/fuzz/regressions/$t
+  work=build/fuzz/corpus/$t
+  artifacts=build/fuzz/artifacts/$t
+  mkdir -p "$work" "$artifacts" "$regressions"
+
+  echo "== fuzz $t: replay of seeds and regressions"
+  mapfile -t replay < <(find "$seeds" "$regressions" -type f ! -name '.*' ! -name 'README*' | sort)
+  if [ ${#replay[@]} -gt 0 ]; then
+    if ! "$exe" -timeout=10 "${replay[@]}" >"$artifacts/replay.log" 2>&1; then
+      tail -n 40 "$artifacts/replay.log"
+      echo "fuzz $t: a committed input fails (log: $artifacts/replay.log)" >&2
+      failed=1
+      continue
+    fi
+    echo "${#replay[@]} inputs replayed"
+  fi
+
+  echo "== fuzz $t: ${secs} s"
+  log=$artifacts/fuzz.log
+  set +e
+  "$exe" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$artifacts/" "$work" "$seeds" >"$log" 2>&1
+  rc=$?
+  set -e
+  grep -E '^#[0-9]+[[:space:]]+(INITED|DONE)' "$log" | tail -n 2 || true
+  grep -E 'stat::(number_of_executed_units|average_exec_per_sec|new_units_added|peak_rss_mb)' "$log" || true
+  if [ $rc -ne 0 ]; then
+    failed=1
+    tail -n 60 "$log"
+    for a in "$artifacts"/crash-* "$artifacts"/leak-* "$artifacts"/timeout-* "$artifacts"/oom-* \
+             "$artifacts"/slow-unit-*; do
+      [ -f "$a" ] || continue
+      cp "$a" "$regressions/"
+      echo "fuzz $t: new regression input $regressions/$(basename "$a") (commit it)" >&2
+      rm -f "$a"
+    done
+  fi
+done
+if [ $failed -ne 0 ]; then
+  echo "fuzz: FAILED (inputs in tests/fuzz/regressions/; reproduce: build/fuzz/lr_fuzz_<target> FILE)" >&2
+  exit 1
+fi
+echo "== fuzz: no crash"

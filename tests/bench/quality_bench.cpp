@@ -1,0 +1,606 @@
+// Quality benchmark (issue 5, items 1-2): time, instructions, RAM and error against the double
+// reference for every quality setting the core offers, on five 320x240 scenes:
+//   knot     the 4,000-triangle torus knot, gold (the demo scene), one light;
+//   sphere   a 40 x 60 UV sphere, four lights, shininess 96, a global ambient;
+//   clipped  an unlit ground plane with vertex colours, cut by the near plane (guard band);
+//   cube     the textured, lit cube of texture_bench (64x64 texture with its mip chain);
+//   ground   the textured ground plane to the horizon of texture_bench (unlit, far plane 400).
+// Settings varied per scene (the ones that matter to it):
+//   untextured (knot, sphere, clipped): shading {flat, gouraud} x perspective {exact, span8,
+//     span16, span32, affine} x strip height {1, 8, 32};
+//   textured (cube, ground): filter {nearest, bilinear} x perspective x mip {none, nearest,
+//     linear} x texture format {rgb565, rgb888}, Gouraud, strips of 8.
+// The timed frame: RGB565 (big-endian) strips into a null sink, prepared fixed-point data (no
+// conversion inside), through the noinline quality_bench_frame() (begin_frame + draws + render).
+//
+// Error: the same prepared frame rendered into RGB888 strips (the core's arithmetic, before the
+// display's RGB565 rounding that every setting shares) against tests/reference's double
+// renderer. The reference always samples the 8-bit source texture and its 8-bit mip chain (the
+// RGB888 texture), so the texture format's quantization counts as error. Over the pixels both
+// cover: max and mean absolute channel error (0..255), PSNR (99 when identical), % of pixels
+// whose worst channel is off by more than 1 / 4 / 16 levels. coverage_mismatch: pixels covered by
+// one renderer only. depth_order_errors: pixels both cover where the core shows another surface
+// than the reference: the core's 16-bit depth lies outside [min - 16, max + 16] of the
+// reference's depths (x 65535) over the 3x3 pixels around it that the reference covers. A surface
+// seen through its own interpolation error stays within that range (16 units is far more than
+// rounding); an occlusion boundary moved by up to one pixel (vertices snapped differently) is
+// not counted, only a wrong front surface inside a region is.
+// RAM (bytes): transformed vertices x bytes_per_vertex + binned triangles x bytes_per_binned +
+// peak active triangles x bytes_per_active + two colour strips (double buffering) + one depth
+// strip + the edge table's buckets + draw records. texture_bytes: the texels the setting reads
+// (level 0, or the whole mip chain with mipmaps), flash or RAM.
+//
+// Modes:
+//   --table FILE.csv                   one CSV row per configuration (median of 21 timed frames)
+//   --list                             the configurations, one per line, as --once arguments
+//   --once SCENE SHADING PERSP STRIP FILTER MIP FORMAT
+//                                      one frame through quality_bench_frame() only, for
+//                                      valgrind --tool=callgrind
+//                                      --toggle-collect='*quality_bench_frame*'
+//                                      (FILTER, MIP, FORMAT "-" for untextured scenes)
+// Benchmarks print figures; they never pass or fail on time.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/camera.hpp"
+#include "core/renderer.hpp"
+#include "host_sim/capture_display.hpp"
+#include "host_sim/mesh_prep.hpp"
+#include "host_sim/obj_loader.hpp"
+#include "host_sim/texture_load.hpp"
+#include "tests/bench/null_sink.hpp"
+#include "tests/support/scene_compare.hpp"
+
+namespace {
+
+using namespace lr;
+
+constexpr int kWidth = 320, kHeight = 240;
+constexpr int kTimedRuns = 21;
+constexpr int kDepthSlack = 16;  // 16-bit depth units, see depth_order_errors above
+
+using bench::NullSink;
+
+[[noreturn]] void die(const std::string& what) {
+  std::fprintf(stderr, "quality_bench: %s\n", what.c_str());
+  std::exit(2);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Configurations
+
+enum class SceneId { kKnot, kSphere, kClipped, kCube, kGround };
+const char* name(SceneId s) {
+  switch (s) {
+    case SceneId::kKnot:
+      return "knot";
+    case SceneId::kSphere:
+      return "sphere";
+    case SceneId::kClipped:
+      return "clipped";
+    case SceneId::kCube:
+      return "cube";
+    case SceneId::kGround:
+      return "ground";
+  }
+  return "?";
+}
+bool textured(SceneId s) {
+  return s == SceneId::kCube || s == SceneId::kGround;
+}
+const char* name(Shading s) {
+  return s == Shading::kFlat ? "flat" : "gouraud";
+}
+const char* name(Filter f) {
+  return f == Filter::kNearest ? "nearest" : "bilinear";
+}
+const char* name(Perspective p) {
+  switch (p) {
+    case Perspective::kExact:
+      return "exact";
+    case Perspective::kSpan8:
+      return "span8";
+    case Perspective::kSpan16:
+      return "span16";
+    case Perspective::kSpan32:
+      return "span32";
+    case Perspective::kAffine:
+      return "affine";
+  }
+  return "?";
+}
+const char* name(MipMode m) {
+  return m == MipMode::kNone ? "none" : m == MipMode::kNearest ? "nearest" : "linear";
+}
+const char* name(TexelFormat f) {
+  return f == TexelFormat::kRgb565 ? "rgb565" : "rgb888";
+}
+
+const SceneId kScenes[] = {SceneId::kKnot, SceneId::kSphere, SceneId::kClipped, SceneId::kCube,
+                           SceneId::kGround};
+const Shading kShadings[] = {Shading::kFlat, Shading::kGouraud};
+const Perspective kModes[] = {Perspective::kExact, Perspective::kSpan8, Perspective::kSpan16,
+                              Perspective::kSpan32, Perspective::kAffine};
+const int kStrips[] = {1, 8, 32};
+const Filter kFilters[] = {Filter::kNearest, Filter::kBilinear};
+const MipMode kMips[] = {MipMode::kNone, MipMode::kNearest, MipMode::kLinear};
+const TexelFormat kFormats[] = {TexelFormat::kRgb565, TexelFormat::kRgb888};
+
+struct Config {
+  SceneId scene = SceneId::kKnot;
+  Shading shading = Shading::kGouraud;
+  Perspective perspective = Perspective::kExact;
+  int strip = 8;
+  Filter filter = Filter::kBilinear;
+  MipMode mip = MipMode::kNone;
+  TexelFormat format = TexelFormat::kRgb565;
+
+  // The columns scene .. format; untextured scenes show "-" for the texture settings.
+  std::string key(char sep) const {
+    const bool t = textured(scene);
+    std::string s = name(scene);
+    for (const char* part : {name(shading), name(perspective)}) s += sep + std::string(part);
+    s += sep + std::to_string(strip);
+    for (const char* part : {t ? name(filter) : "-", t ? name(mip) : "-", t ? name(format) : "-"})
+      s += sep + std::string(part);
+    return s;
+  }
+};
+
+std::vector<Config> all_configs() {
+  std::vector<Config> out;
+  for (SceneId s : kScenes) {
+    if (textured(s)) {
+      for (Filter fi : kFilters)
+        for (Perspective pm : kModes)
+          for (MipMode m : kMips)
+            for (TexelFormat tf : kFormats) out.push_back({s, Shading::kGouraud, pm, 8, fi, m, tf});
+    } else {
+      for (Shading sh : kShadings)
+        for (Perspective pm : kModes)
+          for (int k : kStrips) out.push_back({s, sh, pm, k});
+    }
+  }
+  return out;
+}
+
+template <class E, size_t N>
+bool parse(const char* s, const E (&all)[N], E& out) {
+  for (E e : all)
+    if (std::strcmp(s, name(e)) == 0) {
+      out = e;
+      return true;
+    }
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scenes
+
+// The texture of texture_bench: 64 x 64, 8 x 8-texel checker cells in two colour ramps, a dark
+// grid line on every cell border and a diagonal stripe.
+host::ImageRgb8 pattern64() {
+  host::ImageRgb8 img;
+  img.width = img.height = 64;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const bool odd = ((x / 8) + (y / 8)) % 2 != 0;
+      int r = odd ? 230 - 2 * y : 40 + 3 * x;
+      int g = odd ? 200 - x : 60 + 2 * y;
+      int b = odd ? 60 : 220 - 2 * x;
+      if (x % 8 == 0 || y % 8 == 0) r = g = b = 20;
+      if ((x + y) % 16 == 3) r = g = b = 250;
+      img.rgb.push_back(static_cast<uint8_t>(r));
+      img.rgb.push_back(static_cast<uint8_t>(g));
+      img.rgb.push_back(static_cast<uint8_t>(b));
+    }
+  return img;
+}
+
+const host::HostTexture& texture(TexelFormat f) {
+  static std::map<TexelFormat, host::HostTexture> cache;
+  auto it = cache.find(f);
+  if (it == cache.end()) {
+    host::HostTexture t;
+    std::string err;
+    if (!host::texture_from_image(pattern64(), f, true, t, err)) die(err);
+    it = cache.emplace(f, std::move(t)).first;
+  }
+  return it->second;
+}
+
+size_t texture_bytes(const Texture& t, MipMode m) {
+  const int levels = m == MipMode::kNone ? 1 : t.level_count;
+  size_t n = 0;
+  for (int l = 0; l < levels; ++l) {
+    const TextureLevel& lv = t.levels[size_t(l)];
+    n += level_texels(lv.width, lv.height) * bytes_per_texel(t.format);
+  }
+  return n;
+}
+
+host::HostMesh plane(double half, double repeats, bool colors) {
+  host::HostMesh m;
+  m.positions = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
+  m.normals.assign(4, {0, 1, 0});
+  if (colors) m.colors = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}};
+  if (repeats > 0) m.uvs = {{0, repeats}, {repeats, repeats}, {repeats, 0}, {0, 0}};
+  m.triangles = {{0, 3, 2}, {0, 2, 1}};
+  m.triangle_material = {-1, -1};
+  return m;
+}
+
+const host::HostMesh& scene_mesh(SceneId s) {
+  static std::map<SceneId, host::HostMesh> cache;
+  auto it = cache.find(s);
+  if (it != cache.end()) return it->second;
+  host::HostMesh m;
+  std::string err;
+  switch (s) {
+    case SceneId::kKnot:
+      if (!host::load_obj(std::string(LR_SOURCE_DIR) + "/tests/host/data/torus_knot.obj", m, err))
+        die(err);
+      break;
+    case SceneId::kSphere:
+      m = host::make_uv_sphere(40, 60);
+      break;
+    case SceneId::kClipped:
+      m = plane(50, 0, true);
+      break;
+    case SceneId::kCube:
+      m = host::make_cube();
+      break;
+    case SceneId::kGround:
+      m = plane(200, 200, false);
+      break;
+  }
+  return cache.emplace(s, std::move(m)).first->second;
+}
+
+host::SceneOptions scene_options(const Config& c) {
+  host::SceneOptions o;
+  switch (c.scene) {
+    case SceneId::kKnot:  // the demo scene (accuracy_test, frame_bench)
+      o = test::gold_options();
+      break;
+    case SceneId::kSphere:  // accuracy_test's sphere, 320 wide
+      o.light_dirs = {{1, 1, 1}, {-1, 0.5, 0.2}, {0, -1, 1}, {0.3, 0.2, 1}};
+      o.material.shininess = 96;
+      o.global_ambient = {0.05, 0.05, 0.1};
+      o.eye = {0.5, 0.8, 3.2};
+      break;
+    case SceneId::kClipped:  // clipping_test: near corners at |x_ndc| ~ 100
+      o.unlit = true;
+      o.eye = {0, 1, 0};
+      o.target = {0, 0.7, -5};
+      o.far = 200;
+      break;
+    case SceneId::kCube:  // texture_bench's cube: top and two side faces, one light
+      o.eye = {0, 1.5, 2.3};
+      o.target = {0, 0, 0};
+      o.model_rotate_y = 35;
+      o.cull = Cull::kBack;
+      o.light_dirs = {{-0.3, 1.0, 0.8}};
+      break;
+    case SceneId::kGround:  // texture_bench's ground plane, level camera 1 unit above it
+      o.eye = {0.0173, 1.0131, 0.0219};
+      o.target = {0.0173, 1.0131, -5};
+      o.far = 400;
+      o.unlit = true;
+      break;
+  }
+  o.width = kWidth;
+  o.height = kHeight;
+  o.strip_height = c.strip;
+  o.shading = c.shading;
+  o.perspective = c.perspective;
+  if (textured(c.scene)) {
+    o.texture_format = c.format;
+    o.texture_object = &texture(c.format).texture;
+    o.filter = c.filter;
+    o.wrap = Wrap::kRepeat;
+    o.mipmap = c.mip;
+  }
+  return o;
+}
+
+// A scene in the core's formats, prepared once (as host::render_scene builds it, so the timed
+// frame is the compared one; checked below).
+struct Prepared {
+  std::vector<host::FixedDraw> draws;
+  Camera camera;
+  LightSet lights;
+  Rgb8 background{0, 0, 0};
+  Mat4 model = Mat4::identity();
+  DrawState state;
+};
+
+bool fixed3(const host::Vec3d& v, Vec3& out) {
+  return host::to_fixed(v[0], out.x) && host::to_fixed(v[1], out.y) && host::to_fixed(v[2], out.z);
+}
+
+Prepared prepare(const host::HostMesh& mesh, const host::SceneOptions& o) {
+  Prepared p;
+  std::string err;
+  if (!host::build_fixed_draws(mesh, o, p.draws, err)) die(err);
+  Fixed fovy, near, far, scale, rot;
+  Vec3 eye, target, up, tr;
+  if (!host::to_fixed(o.fovy, fovy) || !host::to_fixed(o.near, near) ||
+      !host::to_fixed(o.far, far) || !fixed3(o.eye, eye) || !fixed3(o.target, target) ||
+      !fixed3(o.up, up) || !host::to_fixed(o.model_scale, scale) ||
+      !host::to_fixed(o.model_rotate_y, rot) || !fixed3(o.model_translate, tr))
+    die("scene values out of range");
+  p.camera.eye = eye;
+  if (!perspective(fovy, Fixed::ratio(o.width, o.height), near, far, p.camera.projection) ||
+      !look_at(eye, target, up, p.camera.view))
+    die("bad camera");
+  for (const host::Vec3d& d : o.light_dirs) {
+    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    Vec3 fd;
+    if (!fixed3({d[0] / len, d[1] / len, d[2] / len}, fd)) die("bad light");
+    p.lights.lights[p.lights.count++] =
+        DirectionalLight::of_color(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
+  }
+  p.lights.global_ambient = host::to_color15(o.global_ambient);
+  p.lights.local_viewer = o.local_viewer;
+  p.background = to_rgb8(host::to_color15(o.background));
+  p.model = translate(tr) * rotate_y(rot) * lr::scale(scale);
+  p.state.shading = o.shading;
+  p.state.lighting = !o.unlit;
+  p.state.depth_test = o.depth_test;
+  p.state.cull = o.cull;
+  p.state.perspective = o.perspective;
+  p.state.texture = o.texture_object;
+  p.state.sampler.filter = o.filter;
+  p.state.sampler.wrap_s = p.state.sampler.wrap_t = o.wrap;
+  p.state.sampler.mip = o.mipmap;
+  p.state.sampler.env = o.unlit ? TexEnv::kReplace : TexEnv::kModulate;
+  return p;
+}
+
+template <class PF, int K>
+struct Frame {
+  std::vector<ScreenVertex> vertices = std::vector<ScreenVertex>(8192);
+  std::vector<BinnedTriangle> triangles = std::vector<BinnedTriangle>(8192);
+  std::vector<DrawRecord> draws = std::vector<DrawRecord>(16);
+  std::vector<uint16_t> buckets = std::vector<uint16_t>((kHeight + K - 1) / K);
+  std::vector<ActiveTriangle> active = std::vector<ActiveTriangle>(4096);
+  std::vector<uint16_t> index = std::vector<uint16_t>(8192);
+  std::vector<uint16_t> depth = std::vector<uint16_t>(kWidth * K);
+  Renderer<PF, K> renderer;
+  Frame() {
+    if (renderer.configure({vertices, triangles, draws, buckets, active, index, depth}, kWidth,
+                           kHeight) != Status::kOk)
+      die("configure failed");
+  }
+};
+
+// The measured work of one frame: begin_frame, the draws (vertex stage, setup, binning) and
+// render (every strip, into the sink). Nothing else is inside.
+template <class PF, int K>
+__attribute__((noinline)) Status quality_bench_frame(Frame<PF, K>& f, const Prepared& p,
+                                                     StripSink<PF>& sink,
+                                                     DepthSink* depth = nullptr) {
+  Status s = f.renderer.begin_frame(p.camera, p.lights, p.background);
+  if (s != Status::kOk) return s;
+  for (const host::FixedDraw& d : p.draws) {
+    s = f.renderer.draw(d.mesh(), p.model, d.material, p.state);
+    if (s != Status::kOk) return s;
+  }
+  return f.renderer.render(sink, depth);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Measurements
+
+struct Row {
+  uint32_t pixels = 0, triangles_binned = 0;
+  double host_ns = 0;
+  uint64_t ram_bytes = 0, texture_bytes = 0;
+  size_t both = 0, coverage_mismatch = 0, depth_order_errors = 0;
+  size_t over1 = 0, over4 = 0, over16 = 0;
+  int max_error = 0;
+  double mean_error = 0, psnr = 0;
+};
+
+// The reference frame depends only on the scene, shading and texture sampling (not on the
+// perspective mode, strip height or texture format): rendered once per key.
+const ref::RefFrame& reference(const Config& c, const host::SceneOptions& o) {
+  static std::map<std::string, ref::RefFrame> cache;
+  const bool t = textured(c.scene);
+  const std::string key = std::string(name(c.scene)) + name(c.shading) +
+                          (t ? std::string(name(c.filter)) + name(c.mip) : std::string());
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  const host::HostMesh& mesh = scene_mesh(c.scene);
+  ref::RefParams rp = test::ref_params(mesh, o);
+  ref::RefTexture rt;
+  if (t) {
+    rt = ref::from_core(texture(TexelFormat::kRgb888).texture);  // the 8-bit truth
+    rp.texture = &rt;
+    Sampler smp;
+    smp.filter = o.filter;
+    smp.wrap_s = smp.wrap_t = o.wrap;
+    smp.mip = o.mipmap;
+    smp.env = o.unlit ? TexEnv::kReplace : TexEnv::kModulate;
+    ref::set_sampler(rp, smp);
+  }
+  ref::RefFrame f;
+  ref::render(mesh, rp, f);
+  return cache.emplace(key, std::move(f)).first->second;
+}
+
+void compare(const host::ImageRgb8& img, const std::vector<uint16_t>& depth, const ref::RefFrame& r,
+             Row& row) {
+  double sum = 0, sq = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const size_t p = r.index(x, y);
+      const bool core_cov = depth[p] != 0xFFFF, ref_cov = r.owner[p] >= 0;
+      if (core_cov != ref_cov) {
+        ++row.coverage_mismatch;
+        continue;
+      }
+      if (!core_cov) continue;
+      ++row.both;
+      int worst = 0;
+      for (size_t k = 0; k < 3; ++k) {
+        const int e = std::abs(int(img.rgb[3 * p + k]) - int(r.rgb8[3 * p + k]));
+        worst = std::max(worst, e);
+        sum += e;
+        sq += double(e) * e;
+      }
+      row.max_error = std::max(row.max_error, worst);
+      row.over1 += worst > 1;
+      row.over4 += worst > 4;
+      row.over16 += worst > 16;
+      double lo = 1e30, hi = -1e30;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx < 0 || ny < 0 || nx >= kWidth || ny >= kHeight) continue;
+          const size_t q = r.index(nx, ny);
+          if (r.owner[q] < 0) continue;
+          lo = std::min(lo, r.depth[q] * 65535.0);
+          hi = std::max(hi, r.depth[q] * 65535.0);
+        }
+      row.depth_order_errors += depth[p] < lo - kDepthSlack || depth[p] > hi + kDepthSlack;
+    }
+  if (row.both) {
+    row.mean_error = sum / (3.0 * double(row.both));
+    const double mse = sq / (3.0 * double(row.both));
+    row.psnr = mse > 0 ? 10 * std::log10(255.0 * 255.0 / mse) : 99.0;
+  }
+}
+
+template <int K>
+Row measure_k(const Config& c, int timed_runs) {
+  const host::SceneOptions o = scene_options(c);
+  const host::HostMesh& mesh = scene_mesh(c.scene);
+  const Prepared p = prepare(mesh, o);
+  Row row;
+
+  // Timed: RGB565 strips into the null sink.
+  auto f = std::make_unique<Frame<Rgb565Be, K>>();
+  NullSink<Rgb565Be> sink(size_t(kWidth) * K);
+  if (quality_bench_frame(*f, p, sink) != Status::kOk) die("render failed: " + c.key(' '));
+  if (timed_runs == 0) return row;
+  std::vector<double> ns;
+  for (int run = 0; run < timed_runs; ++run) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Status st = quality_bench_frame(*f, p, sink);
+    const auto t1 = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(st);
+    ns.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count());
+  }
+  std::nth_element(ns.begin(), ns.begin() + timed_runs / 2, ns.end());
+  row.host_ns = ns[size_t(timed_runs / 2)];
+  const FrameStats& st = f->renderer.stats();
+  row.pixels = st.pixels_written;
+  row.triangles_binned = st.triangles_binned;
+  row.ram_bytes = uint64_t(st.vertices_transformed) * st.bytes_per_vertex +
+                  uint64_t(st.triangles_binned) * st.bytes_per_binned_triangle +
+                  uint64_t(st.max_active) * st.bytes_per_active_triangle + st.bytes_per_strip +
+                  uint64_t(kWidth) * K * sizeof(Rgb565Be::Storage) +
+                  f->buckets.size() * sizeof(uint16_t) + p.draws.size() * sizeof(DrawRecord);
+  if (o.texture_object) row.texture_bytes = texture_bytes(*o.texture_object, o.mipmap);
+
+  // Error: the same prepared frame in RGB888 with its depth, against the reference.
+  auto f888 = std::make_unique<Frame<Rgb888, K>>();
+  host::CaptureDisplay<Rgb888> cap(size_t(kWidth) * K);
+  host::DepthCapture depth;
+  depth.resize(kWidth, kHeight);
+  if (quality_bench_frame(*f888, p, cap, &depth) != Status::kOk) die("render failed");
+  const host::ImageRgb8 img = cap.image();
+  if (f888->renderer.stats().pixels_written != row.pixels)
+    die("RGB565 and RGB888 frames differ in pixels: " + c.key(' '));
+
+  // The prepared frame must be host::render_scene's (which the reference comparisons use).
+  host::RenderResult rs;
+  std::string err;
+  if (!host::render_scene(mesh, o, rs, err)) die(err);
+  if (rs.image.rgb != img.rgb || rs.depth != depth.depth())
+    std::fprintf(stderr, "quality_bench: %s: the prepared frame differs from render_scene's\n",
+                 c.key(' ').c_str());
+
+  compare(img, depth.depth(), reference(c, o), row);
+  return row;
+}
+
+Row measure(const Config& c, int timed_runs) {
+  switch (c.strip) {
+    case 1:
+      return measure_k<1>(c, timed_runs);
+    case 8:
+      return measure_k<8>(c, timed_runs);
+    case 32:
+      return measure_k<32>(c, timed_runs);
+  }
+  die("strip height must be 1, 8 or 32");
+}
+
+int run_table(const char* path) {
+  std::FILE* out = std::fopen(path, "w");
+  if (!out) die(std::string(path) + ": cannot open for writing");
+  std::fprintf(out,
+               "scene,shading,perspective,strip,filter,mip,format,pixels,triangles_binned,"
+               "host_ns_per_frame,ram_bytes,texture_bytes,max_err,mean_err,psnr_db,pct_off_gt1,"
+               "pct_off_gt4,pct_off_gt16,coverage_mismatch,depth_order_errors\n");
+  for (const Config& c : all_configs()) {
+    const Row r = measure(c, kTimedRuns);
+    const double both = r.both ? double(r.both) : 1.0;
+    std::fprintf(out, "%s,%u,%u,%.0f,%llu,%llu,%d,%.4f,%.2f,%.3f,%.3f,%.3f,%zu,%zu\n",
+                 c.key(',').c_str(), r.pixels, r.triangles_binned, r.host_ns,
+                 static_cast<unsigned long long>(r.ram_bytes),
+                 static_cast<unsigned long long>(r.texture_bytes), r.max_error, r.mean_error,
+                 r.psnr, 100.0 * double(r.over1) / both, 100.0 * double(r.over4) / both,
+                 100.0 * double(r.over16) / both, r.coverage_mismatch, r.depth_order_errors);
+    std::fflush(out);
+  }
+  std::fclose(out);
+  return 0;
+}
+
+int run_once(int argc, char** argv) {
+  Config c;
+  bool ok = argc == 9 && parse(argv[2], kScenes, c.scene) && parse(argv[3], kShadings, c.shading) &&
+            parse(argv[4], kModes, c.perspective);
+  if (ok) {
+    c.strip = std::atoi(argv[5]);
+    ok = std::find(std::begin(kStrips), std::end(kStrips), c.strip) != std::end(kStrips);
+  }
+  if (ok && textured(c.scene))
+    ok = parse(argv[6], kFilters, c.filter) && parse(argv[7], kMips, c.mip) &&
+         parse(argv[8], kFormats, c.format);
+  if (!ok) {
+    std::fprintf(stderr,
+                 "usage: lr_quality_bench --once knot|sphere|clipped|cube|ground flat|gouraud "
+                 "exact|span8|span16|span32|affine 1|8|32 nearest|bilinear|- none|nearest|linear|- "
+                 "rgb565|rgb888|-\n");
+    return 2;
+  }
+  measure(c, 0);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc > 1 && std::strcmp(argv[1], "--once") == 0) return run_once(argc, argv);
+  if (argc == 2 && std::strcmp(argv[1], "--list") == 0) {
+    for (const Config& c : all_configs()) std::printf("%s\n", c.key(' ').c_str());
+    return 0;
+  }
+  if (argc == 3 && std::strcmp(argv[1], "--table") == 0) return run_table(argv[2]);
+  std::fprintf(stderr, "usage: lr_quality_bench --table FILE.csv | --list | --once (see --list)\n");
+  return 2;
+}

@@ -1,0 +1,359 @@
+// Inputs at the limits of each fixed-point format, NaN / Inf / huge values through the host API,
+// and depth precision (16-bit window depth).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+
+#include "core/camera.hpp"
+#include "host_sim/scene.hpp"
+#include "tests/stress/random_stress.hpp"
+
+namespace lr {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// ---- Host conversions and render_scene ----
+
+TEST(Limits, HostConversionsRejectWhatTheFormatsCannotHold) {
+  Fixed f;
+  for (double bad : {kNaN, kInf, -kInf, 1e30, -1e30, 32767.5, -32767.5, 32768.0, 1e300})
+    EXPECT_FALSE(host::to_fixed(bad, f)) << bad;
+  ASSERT_TRUE(host::to_fixed(32767.49, f));
+  EXPECT_EQ(f.raw, std::lround(32767.49 * 65536));
+  ASSERT_TRUE(host::to_fixed(-32767.49, f));
+  EXPECT_EQ(f.raw, -std::lround(32767.49 * 65536));
+  TexCoord t;
+  for (double bad : {kNaN, kInf, -kInf, 1e30, 2047.999, -2047.999, 4096.0}) {
+    EXPECT_FALSE(host::to_texcoord({bad, 0.5}, t)) << bad;
+    EXPECT_FALSE(host::to_texcoord({0.5, bad}, t)) << bad;
+  }
+  ASSERT_TRUE(host::to_texcoord({2047.998, -2047.998}, t));
+  EXPECT_EQ(t.u, std::lround(2047.998 * (1 << TexCoord::kFracBits)));
+  EXPECT_EQ(t.v, -std::lround(2047.998 * (1 << TexCoord::kFracBits)));
+  // Colours clamp (GL clamps colours), NaN becomes 0.
+  Color15 c = host::to_color15({kNaN, kInf, -kInf});
+  EXPECT_EQ(c.r, 0);
+  EXPECT_EQ(c.g, Color15::kOne);
+  EXPECT_EQ(c.b, 0);
+}
+
+host::HostMesh quad_mesh() {
+  host::HostMesh m;
+  m.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  m.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return m;
+}
+
+TEST(Limits, RenderSceneRejectsNonFiniteAndHugeCoordinatesWithAnError) {
+  host::SceneOptions o;
+  o.width = 32;
+  o.height = 24;
+  host::RenderResult r;
+  std::string error;
+  ASSERT_TRUE(host::render_scene(quad_mesh(), o, r, error)) << error;
+  EXPECT_GT(r.stats.pixels_written, 0u);
+  for (double bad : {kNaN, kInf, -kInf, 1e30, -1e30, 40000.0}) {
+    for (int axis = 0; axis < 3; ++axis) {
+      host::HostMesh m = quad_mesh();
+      m.positions[2][static_cast<size_t>(axis)] = bad;
+      host::RenderResult out;
+      error.clear();
+      EXPECT_FALSE(host::render_scene(m, o, out, error)) << bad;
+      EXPECT_NE(error.find("not finite or outside"), std::string::npos) << error;
+      EXPECT_EQ(out.stats.pixels_written, 0u);
+    }
+  }
+  for (double bad : {kNaN, kInf, 1e30}) {
+    host::HostMesh m = quad_mesh();
+    m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    m.uvs[1][0] = bad;
+    host::RenderResult out;
+    error.clear();
+    EXPECT_FALSE(host::render_scene(m, o, out, error));
+    EXPECT_NE(error.find("texture coordinate"), std::string::npos) << error;
+  }
+  // Non-finite camera, projection or model options are errors too, never a frame.
+  for (int which = 0; which < 5; ++which) {
+    host::SceneOptions b = o;
+    if (which == 0) b.eye = {kNaN, 0, 3};
+    if (which == 1) b.fovy = kInf;
+    if (which == 2) b.near = kNaN;
+    if (which == 3) b.model_scale = 1e30;
+    if (which == 4) b.light_dirs = {{kNaN, 1, 1}};
+    host::RenderResult out;
+    error.clear();
+    EXPECT_FALSE(host::render_scene(quad_mesh(), b, out, error)) << which;
+    EXPECT_FALSE(error.empty());
+  }
+}
+
+// ---- Q16.16 positions and matrix entries at their limits ----
+
+TEST(Limits, HugePositionsAndMatrixEntriesAreClippedOrRejectedNeverDrawnWrong) {
+  // Identity camera: the clip coordinates are exactly model * p, computed here in double too.
+  // Matrix entries of every magnitude up to 32767, positions up to +-32767: clip coordinates
+  // beyond 2^19 are rejected (counted in rejected_invalid), the rest clipped and drawn inside
+  // the triangle's exactly projected box.
+  std::mt19937_64 rng(5);
+  test::CoreHarness<8> core(stress::kW, stress::kH);
+  uint64_t frames = 0, rejected = 0, drawn = 0, clipped = 0, outside = 0, stats_bad = 0;
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 3000; ++i) {
+    Mat4 m{};
+    const double mag = std::ldexp(1.0, static_cast<int>(rng() % 16)) * (1 - 1.0 / 65536);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c) m.m[r][c] = stress::fixed_of(u(rng) * mag);
+    m.m[3][2] = Fixed::from_int(-1);  // w = -z_model: a perspective divide
+    if (rng() % 4 == 0) m.m[3][3] = stress::fixed_of(u(rng) * mag);
+    Vec3 p[3];
+    const double pm = rng() % 2 ? 32767.0 : std::ldexp(1.0, static_cast<int>(rng() % 15));
+    for (auto& v : p)
+      v = {stress::fixed_of(u(rng) * pm), stress::fixed_of(u(rng) * pm),
+           stress::fixed_of(u(rng) * pm)};
+    if (rng() % 8 == 0)
+      p[0] = {Fixed::from_raw(INT32_MAX), Fixed::from_raw(INT32_MIN), Fixed::from_raw(-INT32_MAX)};
+    std::vector<Rgb8> col(3, Rgb8{1, 0, 0});
+    std::vector<std::array<uint16_t, 3>> tri = {{0, 1, 2}};
+    core.begin();
+    ASSERT_EQ(core.renderer().draw(Mesh{std::span<const Vec3>(p, 3), {}, col, {}, tri}, m,
+                                   Material{}, test::coverage_state()),
+              Status::kOk);
+    host::ImageRgb8 img = core.render();
+    const FrameStats& s = core.renderer().stats();
+    stats_bad += stress::accounted(s) != 1;
+    rejected += s.rejected_invalid;
+    clipped += s.clipped;
+    ++frames;
+    double box[4];
+    bool has = stress::projected_bbox(m, p, stress::kW, stress::kH, box);
+    for (int y = 0; y < stress::kH; ++y)
+      for (int x = 0; x < stress::kW; ++x) {
+        if (test::id_of(img, static_cast<size_t>(y * stress::kW + x)) < 0) continue;
+        ++drawn;
+        double cx = x + 0.5, cy = y + 0.5;
+        outside += !has || cx < box[0] - 1 || cx > box[2] + 1 || cy < box[1] - 1 || cy > box[3] + 1;
+      }
+  }
+  EXPECT_EQ(stats_bad, 0u);
+  EXPECT_EQ(outside, 0u);
+  EXPECT_GT(rejected, 100u);
+  EXPECT_GT(drawn, 1000u);
+  std::printf(
+      "[ stress ] %llu triangles with matrix entries up to 32767 and positions up to +-32767: "
+      "%llu rejected out of range (counted), %llu clipped, %llu pixels drawn, 0 outside\n",
+      (unsigned long long)frames, (unsigned long long)rejected, (unsigned long long)clipped,
+      (unsigned long long)drawn);
+}
+
+// ---- Screen-space limits: depth 0 and 1, coordinate limit ----
+
+ScreenVertex sv(int64_t x, int64_t y, uint32_t z, Rgb8 c) {
+  ScreenVertex v;
+  v.x = static_cast<int32_t>(x);
+  v.y = static_cast<int32_t>(y);
+  v.z = z;
+  v.color = from_rgb8(c);
+  return v;
+}
+
+DrawState flat_depth() {
+  DrawState s = test::coverage_state();
+  s.depth_test = true;
+  return s;
+}
+
+// A full-viewport quad (two triangles) with the given depths at its four corners.
+void quad(std::vector<ScreenVertex>& v, std::vector<std::array<uint16_t, 3>>& t, int w, int h,
+          const uint32_t z[4], Rgb8 c) {
+  auto b = static_cast<uint16_t>(v.size());
+  const int64_t S = kSubpixel;
+  v.push_back(sv(0, 0, z[0], c));
+  v.push_back(sv(0, h * S, z[1], c));
+  v.push_back(sv(w * S, h * S, z[2], c));
+  v.push_back(sv(w * S, 0, z[3], c));
+  t.push_back({b, uint16_t(b + 1), uint16_t(b + 2)});
+  t.push_back({b, uint16_t(b + 2), uint16_t(b + 3)});
+}
+
+TEST(Limits, DepthZeroIsDrawnDepthOneLosesToTheClearValueBeyondIsRejected) {
+  const int w = 16, h = 16;
+  for (uint32_t z : {0u, 1u, kDepthMax - (1u << 15), kDepthMax, kDepthMax + 1, 0xFFFFFFFFu}) {
+    std::vector<ScreenVertex> v;
+    std::vector<std::array<uint16_t, 3>> t;
+    const uint32_t zz[4] = {z, z, z, z};
+    quad(v, t, w, h, zz, {9, 9, 9});
+    test::CoreHarness<4> core(w, h);
+    core.begin();
+    core.renderer().draw_screen(v, t, flat_depth());
+    core.render();
+    const FrameStats& s = core.renderer().stats();
+    EXPECT_EQ(stress::accounted(s), 2u);
+    if (z > kDepthMax) {
+      EXPECT_EQ(s.rejected_invalid, 2u) << z;
+      EXPECT_EQ(s.pixels_written, 0u);
+    } else if (z >= kDepthMax - (1u << 15)) {
+      // Rounds to 65535, the cleared value: LESS fails, as in GL with depth 1.0.
+      EXPECT_EQ(s.pixels_written, 0u) << z;
+    } else {
+      EXPECT_EQ(s.pixels_written, uint32_t(w * h)) << z;
+      EXPECT_EQ(core.depth()[0], (z + (1u << 15)) >> 16);
+    }
+  }
+}
+
+// ---- Depth precision ----
+
+// Two planes drawn over the whole viewport; B's vertex depths are A's plus delta, so B's plane
+// is A's plus delta exactly at every pixel (same gradients, same rounding of the base).
+// Documented rule: 16-bit values (z + 2^15) >> 16 compared with LESS: where they differ the
+// nearer wins, where they are equal (planes closer than 1/65535 may tie) the first drawn wins.
+TEST(DepthPrecision, NearCoplanarScreenPlanesResolveAsTheSixteenBitRuleSays) {
+  const int w = 48, h = 40;
+  std::mt19937_64 rng(17);
+  std::uniform_int_distribution<uint32_t> base(0, kDepthMax - (3u << 16));
+  std::uniform_int_distribution<int32_t> slope(-(1 << 20), 1 << 20);
+  uint64_t pixels = 0, resolved = 0, ties = 0, wrong = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    uint32_t za[4];
+    const uint32_t b0 = base(rng);
+    for (auto& z : za) {
+      int64_t v = int64_t{b0} + (trial % 3 == 0 ? 0 : slope(rng));
+      z = static_cast<uint32_t>(std::clamp<int64_t>(v, 0, kDepthMax - (2u << 16)));
+    }
+    // delta: exactly 1/65535 (2^16 units), more, or less.
+    const uint32_t deltas[5] = {1u << 16, (1u << 16) + 1, 3u << 15, (1u << 16) - 1, 1u << 14};
+    const uint32_t delta = deltas[trial % 5];
+    uint32_t zb[4];
+    for (int k = 0; k < 4; ++k) zb[k] = za[k] + delta;
+    const bool a_first = trial % 2 == 0;
+    std::vector<ScreenVertex> v;
+    std::vector<std::array<uint16_t, 3>> t;
+    if (a_first) {
+      quad(v, t, w, h, za, {255, 0, 0});
+      quad(v, t, w, h, zb, {0, 255, 0});
+    } else {
+      quad(v, t, w, h, zb, {0, 255, 0});
+      quad(v, t, w, h, za, {255, 0, 0});
+    }
+    test::CoreHarness<8> core(w, h);
+    core.begin();
+    core.renderer().draw_screen(v, t, flat_depth());
+    host::ImageRgb8 img = core.render();
+    // A's plane exactly as setup builds it (vertices sorted by y; the fixed network keeps ties
+    // in order): each triangle of the quad has its own plane.
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t p = size_t(y) * w + size_t(x);
+        // Which of the two triangles covers the centre: the diagonal from (0,0) to (w,h).
+        const bool lower = double(y + 0.5) * w > double(x + 0.5) * h;
+        const size_t o = a_first ? 0 : 4;
+        const ScreenVertex* tv[3] = {&v[o], &v[o + (lower ? 1 : 2)], &v[o + (lower ? 2 : 3)]};
+        if (tv[1]->y < tv[0]->y) std::swap(tv[0], tv[1]);
+        if (tv[2]->y < tv[1]->y) std::swap(tv[1], tv[2]);
+        if (tv[1]->y < tv[0]->y) std::swap(tv[0], tv[1]);
+        const uint32_t zv[3] = {tv[0]->z, tv[1]->z, tv[2]->z};
+        const uint32_t zpa = make_plane(tv, zv).at(x, y);
+        const uint32_t da = (zpa + (1u << 15)) >> 16, db = (zpa + delta + (1u << 15)) >> 16;
+        const bool a_wins = da < db || (da == db && a_first);
+        const bool shows_a = img.rgb[3 * p] == 255;
+        ++pixels;
+        (da < db ? resolved : ties)++;
+        if (a_wins != shows_a) ++wrong;
+        if (delta >= (1u << 16) && !shows_a) ++wrong;  // >= 1/65535 apart: the nearer, always
+      }
+  }
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_GT(ties, 0u);
+  std::printf(
+      "[ stress ] depth: %llu pixels of near-coplanar plane pairs, %llu resolved by 16-bit depth "
+      "(all planes >= 1/65535 apart among them), %llu ties won by the first drawn, 0 wrong\n",
+      (unsigned long long)pixels, (unsigned long long)resolved, (unsigned long long)ties);
+}
+
+// Through the 3D path: two tilted quads 'eps' apart along the view axis. Where their exact window
+// depths (double, at the pixel centre) differ by at least 1/65535 plus a margin for vertex
+// snapping, the rounding of the projected depth and the plane's drift (1/65535 in all), the
+// nearer one must show.
+TEST(DepthPrecision, NearCoplanarSurfacesThroughThe3dPath) {
+  const int w = 64, h = 48;
+  Camera cam;
+  ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(w, h), Fixed::from_int(1),
+                          Fixed::from_int(20), cam.projection));
+  const double n = 1, f = 20;
+  uint64_t checked = 0, wrong = 0, close = 0;
+  for (int32_t eps_raw : {4, 12, 24, 48, 96, 400}) {
+    for (int order = 0; order < 2; ++order) {
+      for (double tilt : {0.0, 0.35, -0.8}) {
+        auto make = [&](int32_t dz, Rgb8 c, std::vector<Vec3>& pos, std::vector<Rgb8>& col,
+                        std::vector<std::array<uint16_t, 3>>& tri) {
+          auto b = uint16_t(pos.size());
+          for (auto [x, y] : {std::pair{-9.0, -9.0}, {9.0, -9.0}, {9.0, 9.0}, {-9.0, 9.0}}) {
+            Fixed z = Fixed::from_raw(stress::fixed_of(-6.0 + tilt * x * 0.3).raw - dz);
+            pos.push_back({stress::fixed_of(x), stress::fixed_of(y), z});
+            col.push_back(c);
+          }
+          tri.push_back({b, uint16_t(b + 1), uint16_t(b + 2)});
+          tri.push_back({b, uint16_t(b + 2), uint16_t(b + 3)});
+        };
+        std::vector<Vec3> pos;
+        std::vector<Rgb8> col;
+        std::vector<std::array<uint16_t, 3>> tri;
+        // A is nearer (dz = 0); B is eps further away.
+        if (order == 0) {
+          make(0, {255, 0, 0}, pos, col, tri);
+          make(eps_raw, {0, 255, 0}, pos, col, tri);
+        } else {
+          make(eps_raw, {0, 255, 0}, pos, col, tri);
+          make(0, {255, 0, 0}, pos, col, tri);
+        }
+        test::CoreHarness<8> core(w, h);
+        core.begin({0, 0, 0}, cam);
+        DrawState st = flat_depth();
+        ASSERT_EQ(
+            core.renderer().draw(Mesh{pos, {}, col, {}, tri}, Mat4::identity(), Material{}, st),
+            Status::kOk);
+        host::ImageRgb8 img = core.render();
+        // Exact window depth at a pixel centre: intersect the eye ray with the plane
+        // z = z0 + k x (z0 = -6 - dz, k = 0.3 tilt).
+        const double t = std::tan(30.0 * M_PI / 180);
+        for (int y = 0; y < h; ++y)
+          for (int x = 0; x < w; ++x) {
+            const double nx = (x + 0.5) / w * 2 - 1, ny = 1 - (y + 0.5) / h * 2;
+            const double rx = nx * t * w / h, ry = ny * t;  // ray (rx, ry, -1) * s
+            auto depth = [&](int32_t dz) {
+              const double z0 = stress::fixed_of(-6.0).raw / 65536.0 - dz / 65536.0;
+              const double k = tilt * 0.3;
+              const double s = -z0 / (1 + k * rx);  // -s = z0 + k s rx
+              const double ze = -s;
+              (void)ry;
+              return (f + n) / (f - n) / 2 + f * n / (f - n) / ze + 0.5;
+            };
+            const double da = depth(0), db = depth(eps_raw);
+            const size_t p = size_t(y) * w + size_t(x);
+            if (img.rgb[3 * p] == 0 && img.rgb[3 * p + 1] == 0) continue;  // not covered
+            if (db - da >= 2.0 / 65535) {
+              ++checked;
+              if (img.rgb[3 * p] != 255) ++wrong;
+            } else {
+              ++close;
+            }
+          }
+      }
+    }
+  }
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_GT(checked, 10000u);
+  std::printf(
+      "[ stress ] depth, 3D: %llu pixels with surfaces >= 2/65535 apart all resolved, %llu closer "
+      "(either may show)\n",
+      (unsigned long long)checked, (unsigned long long)close);
+}
+
+}  // namespace
+}  // namespace lr
