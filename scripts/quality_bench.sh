@@ -8,8 +8,9 @@
 #   3. callgrind per configuration (counting only inside quality_bench_frame: begin_frame, draws,
 #      render), JOBS at a time -> exact host instructions per frame (x86-64);
 #   4. joins them into build/release/quality_bench.csv, then scripts/plot_quality.py writes
-#      build/release/quality_bench.md (+ .json), the plot docs/images/quality_pareto.png and
-#      prints the Pareto front of each scene (instructions against mean error).
+#      build/release/quality_bench.md (+ .json), the plot build/release/quality_pareto.png
+#      (LR_PLOT_OUT=docs/images/quality_pareto.png to refresh the README's) and prints the
+#      Pareto front of each scene (instructions against mean error).
 # Benchmarks print figures; they never pass or fail on time. About 2-3 minutes on 2 cores.
 # Usage: scripts/quality_bench.sh [jobs for the callgrind runs, default 2]
 set -euo pipefail
@@ -68,4 +69,4 @@ awk -F, -v OFS=, -v dir="$tmp" '
   }' "$raw" >"$csv"
 
 echo "== table, plot and Pareto fronts"
-"$py" scripts/plot_quality.py "$csv" docs/images/quality_pareto.png
+"$py" scripts/plot_quality.py "$csv" "${LR_PLOT_OUT:-$build/quality_pareto.png}"
