@@ -57,8 +57,10 @@
 #include "host_sim/mesh_prep.hpp"
 #include "host_sim/obj_loader.hpp"
 #include "host_sim/texture_load.hpp"
+#include "tests/bench/bench_common.hpp"
 #include "tests/bench/null_sink.hpp"
 #include "tests/support/scene_compare.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace {
 
@@ -68,11 +70,16 @@ constexpr int kWidth = 320, kHeight = 240;
 constexpr int kTimedRuns = 21;
 constexpr int kDepthSlack = 16;  // 16-bit depth units, see depth_order_errors above
 
+using bench::kFilters;
+using bench::kMips;
+using bench::kModes;
+using bench::name;
 using bench::NullSink;
+using bench::parse;
+using bench::Prepared;
 
 [[noreturn]] void die(const std::string& what) {
-  std::fprintf(stderr, "quality_bench: %s\n", what.c_str());
-  std::exit(2);
+  bench::die("quality_bench", what);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -97,42 +104,10 @@ const char* name(SceneId s) {
 bool textured(SceneId s) {
   return s == SceneId::kCube || s == SceneId::kGround;
 }
-const char* name(Shading s) {
-  return s == Shading::kFlat ? "flat" : "gouraud";
-}
-const char* name(Filter f) {
-  return f == Filter::kNearest ? "nearest" : "bilinear";
-}
-const char* name(Perspective p) {
-  switch (p) {
-    case Perspective::kExact:
-      return "exact";
-    case Perspective::kSpan8:
-      return "span8";
-    case Perspective::kSpan16:
-      return "span16";
-    case Perspective::kSpan32:
-      return "span32";
-    case Perspective::kAffine:
-      return "affine";
-  }
-  return "?";
-}
-const char* name(MipMode m) {
-  return m == MipMode::kNone ? "none" : m == MipMode::kNearest ? "nearest" : "linear";
-}
-const char* name(TexelFormat f) {
-  return f == TexelFormat::kRgb565 ? "rgb565" : "rgb888";
-}
-
 const SceneId kScenes[] = {SceneId::kKnot, SceneId::kSphere, SceneId::kClipped, SceneId::kCube,
                            SceneId::kGround};
 const Shading kShadings[] = {Shading::kFlat, Shading::kGouraud};
-const Perspective kModes[] = {Perspective::kExact, Perspective::kSpan8, Perspective::kSpan16,
-                              Perspective::kSpan32, Perspective::kAffine};
 const int kStrips[] = {1, 8, 32};
-const Filter kFilters[] = {Filter::kNearest, Filter::kBilinear};
-const MipMode kMips[] = {MipMode::kNone, MipMode::kNearest, MipMode::kLinear};
 const TexelFormat kFormats[] = {TexelFormat::kRgb565, TexelFormat::kRgb888};
 
 struct Config {
@@ -173,38 +148,8 @@ std::vector<Config> all_configs() {
   return out;
 }
 
-template <class E, size_t N>
-bool parse(const char* s, const E (&all)[N], E& out) {
-  for (E e : all)
-    if (std::strcmp(s, name(e)) == 0) {
-      out = e;
-      return true;
-    }
-  return false;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Scenes
-
-// The texture of texture_bench: 64 x 64, 8 x 8-texel checker cells in two colour ramps, a dark
-// grid line on every cell border and a diagonal stripe.
-host::ImageRgb8 pattern64() {
-  host::ImageRgb8 img;
-  img.width = img.height = 64;
-  for (int y = 0; y < 64; ++y)
-    for (int x = 0; x < 64; ++x) {
-      const bool odd = ((x / 8) + (y / 8)) % 2 != 0;
-      int r = odd ? 230 - 2 * y : 40 + 3 * x;
-      int g = odd ? 200 - x : 60 + 2 * y;
-      int b = odd ? 60 : 220 - 2 * x;
-      if (x % 8 == 0 || y % 8 == 0) r = g = b = 20;
-      if ((x + y) % 16 == 3) r = g = b = 250;
-      img.rgb.push_back(static_cast<uint8_t>(r));
-      img.rgb.push_back(static_cast<uint8_t>(g));
-      img.rgb.push_back(static_cast<uint8_t>(b));
-    }
-  return img;
-}
 
 const host::HostTexture& texture(TexelFormat f) {
   static std::map<TexelFormat, host::HostTexture> cache;
@@ -212,7 +157,7 @@ const host::HostTexture& texture(TexelFormat f) {
   if (it == cache.end()) {
     host::HostTexture t;
     std::string err;
-    if (!host::texture_from_image(pattern64(), f, true, t, err)) die(err);
+    if (!host::texture_from_image(test::checker64(), f, true, t, err)) die(err);
     it = cache.emplace(f, std::move(t)).first;
   }
   return it->second;
@@ -226,17 +171,6 @@ size_t texture_bytes(const Texture& t, MipMode m) {
     n += level_texels(lv.width, lv.height) * bytes_per_texel(t.format);
   }
   return n;
-}
-
-host::HostMesh plane(double half, double repeats, bool colors) {
-  host::HostMesh m;
-  m.positions = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
-  m.normals.assign(4, {0, 1, 0});
-  if (colors) m.colors = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}};
-  if (repeats > 0) m.uvs = {{0, repeats}, {repeats, repeats}, {repeats, 0}, {0, 0}};
-  m.triangles = {{0, 3, 2}, {0, 2, 1}};
-  m.triangle_material = {-1, -1};
-  return m;
 }
 
 const host::HostMesh& scene_mesh(SceneId s) {
@@ -254,13 +188,13 @@ const host::HostMesh& scene_mesh(SceneId s) {
       m = host::make_uv_sphere(40, 60);
       break;
     case SceneId::kClipped:
-      m = plane(50, 0, true);
+      m = test::coloured_ground(50);
       break;
     case SceneId::kCube:
       m = host::make_cube();
       break;
     case SceneId::kGround:
-      m = plane(200, 200, false);
+      m = test::ground_plane(200, 200);
       break;
   }
   return cache.emplace(s, std::move(m)).first->second;
@@ -273,10 +207,7 @@ host::SceneOptions scene_options(const Config& c) {
       o = test::gold_options();
       break;
     case SceneId::kSphere:  // accuracy_test's sphere, 320 wide
-      o.light_dirs = {{1, 1, 1}, {-1, 0.5, 0.2}, {0, -1, 1}, {0.3, 0.2, 1}};
-      o.material.shininess = 96;
-      o.global_ambient = {0.05, 0.05, 0.1};
-      o.eye = {0.5, 0.8, 3.2};
+      o = test::sphere_four_lights();
       break;
     case SceneId::kClipped:  // clipping_test: near corners at |x_ndc| ~ 100
       o.unlit = true;
@@ -285,17 +216,10 @@ host::SceneOptions scene_options(const Config& c) {
       o.far = 200;
       break;
     case SceneId::kCube:  // texture_bench's cube: top and two side faces, one light
-      o.eye = {0, 1.5, 2.3};
-      o.target = {0, 0, 0};
-      o.model_rotate_y = 35;
-      o.cull = Cull::kBack;
-      o.light_dirs = {{-0.3, 1.0, 0.8}};
+      o = test::cube_view();
       break;
     case SceneId::kGround:  // texture_bench's ground plane, level camera 1 unit above it
-      o.eye = {0.0173, 1.0131, 0.0219};
-      o.target = {0.0173, 1.0131, -5};
-      o.far = 400;
-      o.unlit = true;
+      o = test::level_ground_view();
       break;
   }
   o.width = kWidth;
@@ -313,58 +237,8 @@ host::SceneOptions scene_options(const Config& c) {
   return o;
 }
 
-// A scene in the core's formats, prepared once (as host::render_scene builds it, so the timed
-// frame is the compared one; checked below).
-struct Prepared {
-  std::vector<host::FixedDraw> draws;
-  Camera camera;
-  LightSet lights;
-  Rgb8 background{0, 0, 0};
-  Mat4 model = Mat4::identity();
-  DrawState state;
-};
-
-bool fixed3(const host::Vec3d& v, Vec3& out) {
-  return host::to_fixed(v[0], out.x) && host::to_fixed(v[1], out.y) && host::to_fixed(v[2], out.z);
-}
-
 Prepared prepare(const host::HostMesh& mesh, const host::SceneOptions& o) {
-  Prepared p;
-  std::string err;
-  if (!host::build_fixed_draws(mesh, o, p.draws, err)) die(err);
-  Fixed fovy, near, far, scale, rot;
-  Vec3 eye, target, up, tr;
-  if (!host::to_fixed(o.fovy, fovy) || !host::to_fixed(o.near, near) ||
-      !host::to_fixed(o.far, far) || !fixed3(o.eye, eye) || !fixed3(o.target, target) ||
-      !fixed3(o.up, up) || !host::to_fixed(o.model_scale, scale) ||
-      !host::to_fixed(o.model_rotate_y, rot) || !fixed3(o.model_translate, tr))
-    die("scene values out of range");
-  p.camera.eye = eye;
-  if (!perspective(fovy, Fixed::ratio(o.width, o.height), near, far, p.camera.projection) ||
-      !look_at(eye, target, up, p.camera.view))
-    die("bad camera");
-  for (const host::Vec3d& d : o.light_dirs) {
-    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    Vec3 fd;
-    if (!fixed3({d[0] / len, d[1] / len, d[2] / len}, fd)) die("bad light");
-    p.lights.lights[p.lights.count++] =
-        DirectionalLight::of_color(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
-  }
-  p.lights.global_ambient = host::to_color15(o.global_ambient);
-  p.lights.local_viewer = o.local_viewer;
-  p.background = to_rgb8(host::to_color15(o.background));
-  p.model = translate(tr) * rotate_y(rot) * lr::scale(scale);
-  p.state.shading = o.shading;
-  p.state.lighting = !o.unlit;
-  p.state.depth_test = o.depth_test;
-  p.state.cull = o.cull;
-  p.state.perspective = o.perspective;
-  p.state.texture = o.texture_object;
-  p.state.sampler.filter = o.filter;
-  p.state.sampler.wrap_s = p.state.sampler.wrap_t = o.wrap;
-  p.state.sampler.mip = o.mipmap;
-  p.state.sampler.env = o.unlit ? TexEnv::kReplace : TexEnv::kModulate;
-  return p;
+  return bench::prepare(mesh, o, "quality_bench");
 }
 
 template <class PF, int K>

@@ -34,8 +34,10 @@
 #include "host_sim/capture_display.hpp"
 #include "host_sim/mesh_prep.hpp"
 #include "host_sim/texture_load.hpp"
+#include "tests/bench/bench_common.hpp"
 #include "tests/bench/null_sink.hpp"
 #include "tests/support/scene_compare.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace {
 
@@ -43,7 +45,17 @@ using namespace lr;
 
 constexpr int kWidth = 320, kHeight = 240, kStrip = 8;
 
+using bench::kFilters;
+using bench::kMips;
+using bench::kModes;
+using bench::name;
 using bench::NullSink;
+using bench::parse;
+using bench::Prepared;
+
+[[noreturn]] void die(const std::string& what) {
+  bench::die("texture_bench", what);
+}
 
 // ---------------------------------------------------------------------------------------------
 // Configurations
@@ -52,33 +64,7 @@ enum class SceneId { kCube, kGround };
 const char* name(SceneId s) {
   return s == SceneId::kCube ? "cube" : "ground";
 }
-const char* name(Filter f) {
-  return f == Filter::kNearest ? "nearest" : "bilinear";
-}
-const char* name(Perspective p) {
-  switch (p) {
-    case Perspective::kExact:
-      return "exact";
-    case Perspective::kSpan8:
-      return "span8";
-    case Perspective::kSpan16:
-      return "span16";
-    case Perspective::kSpan32:
-      return "span32";
-    case Perspective::kAffine:
-      return "affine";
-  }
-  return "?";
-}
-const char* name(MipMode m) {
-  return m == MipMode::kNone ? "none" : m == MipMode::kNearest ? "nearest" : "linear";
-}
-
 const SceneId kScenes[] = {SceneId::kCube, SceneId::kGround};
-const Filter kFilters[] = {Filter::kNearest, Filter::kBilinear};
-const Perspective kModes[] = {Perspective::kExact, Perspective::kSpan8, Perspective::kSpan16,
-                              Perspective::kSpan32, Perspective::kAffine};
-const MipMode kMips[] = {MipMode::kNone, MipMode::kNearest, MipMode::kLinear};
 
 struct Config {
   SceneId scene = SceneId::kCube;
@@ -88,89 +74,31 @@ struct Config {
   bool textured = true;  // false: the same scene without texture (--once baseline only)
 };
 
-template <class E, size_t N>
-bool parse(const char* s, const E (&all)[N], E& out) {
-  for (E e : all)
-    if (std::strcmp(s, name(e)) == 0) {
-      out = e;
-      return true;
-    }
-  return false;
-}
-
 // ---------------------------------------------------------------------------------------------
 // Scenes
-
-// 64 x 64: 8 x 8-texel checker cells in two colour ramps, a one-texel dark grid line on every
-// cell border and a diagonal stripe: edges for nearest/bilinear, fine detail for the mipmaps.
-host::ImageRgb8 pattern64() {
-  host::ImageRgb8 img;
-  img.width = img.height = 64;
-  for (int y = 0; y < 64; ++y)
-    for (int x = 0; x < 64; ++x) {
-      const bool odd = ((x / 8) + (y / 8)) % 2 != 0;
-      int r = odd ? 230 - 2 * y : 40 + 3 * x;
-      int g = odd ? 200 - x : 60 + 2 * y;
-      int b = odd ? 60 : 220 - 2 * x;
-      if (x % 8 == 0 || y % 8 == 0) r = g = b = 20;
-      if ((x + y) % 16 == 3) r = g = b = 250;
-      img.rgb.push_back(static_cast<uint8_t>(r));
-      img.rgb.push_back(static_cast<uint8_t>(g));
-      img.rgb.push_back(static_cast<uint8_t>(b));
-    }
-  return img;
-}
 
 const host::HostTexture& texture() {
   static const host::HostTexture tex = [] {
     host::HostTexture t;
     std::string err;
-    if (!host::texture_from_image(pattern64(), TexelFormat::kRgb565, true, t, err)) {
-      std::fprintf(stderr, "texture_bench: %s\n", err.c_str());
-      std::exit(2);
-    }
+    if (!host::texture_from_image(test::checker64(), TexelFormat::kRgb565, true, t, err)) die(err);
     return t;
   }();
   return tex;
 }
 
-host::HostMesh ground_mesh() {
-  const double half = 200, repeats = 200;
-  host::HostMesh m;
-  m.positions = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
-  m.normals.assign(4, {0, 1, 0});
-  m.uvs = {{0, repeats}, {repeats, repeats}, {repeats, 0}, {0, 0}};
-  m.triangles = {{0, 3, 2}, {0, 2, 1}};
-  m.triangle_material = {-1, -1};
-  return m;
-}
-
 host::HostMesh scene_mesh(SceneId s) {
-  return s == SceneId::kCube ? host::make_cube() : ground_mesh();
+  return s == SceneId::kCube ? host::make_cube() : test::ground_plane(200, 200);
 }
 
 host::SceneOptions scene_options(const Config& c) {
-  host::SceneOptions o;
+  // The cube: the top face and two side faces show (about 40,000 pixels); one light, default
+  // material: the texel modulates ambient + diffuse, specular is added after it. The ground:
+  // eye about 1 unit above the plane, looking level.
+  host::SceneOptions o = c.scene == SceneId::kCube ? test::cube_view() : test::level_ground_view();
   o.width = kWidth;
   o.height = kHeight;
   o.strip_height = kStrip;
-  if (c.scene == SceneId::kCube) {
-    // Looking down from above and in front on the cube turned by 35 degrees about y: the top
-    // face and two side faces show (about 40,000 pixels). One light, default material: the
-    // texel modulates ambient + diffuse, specular is added after it.
-    o.eye = {0, 1.5, 2.3};
-    o.target = {0, 0, 0};
-    o.model_rotate_y = 35;
-    o.cull = Cull::kBack;
-    o.light_dirs = {{-0.3, 1.0, 0.8}};
-  } else {
-    // Eye about 1 unit above the plane, looking level: the plane fills the lower half of the
-    // screen up to the horizon. Odd offsets keep pixel centres off texel boundaries.
-    o.eye = {0.0173, 1.0131, 0.0219};
-    o.target = {0.0173, 1.0131, -5};
-    o.far = 400;
-    o.unlit = true;
-  }
   o.texture_object = c.textured ? &texture().texture : nullptr;
   o.filter = c.filter;
   o.wrap = Wrap::kRepeat;
@@ -179,63 +107,8 @@ host::SceneOptions scene_options(const Config& c) {
   return o;
 }
 
-// A scene in the core's formats, prepared once: meshes, camera, lights, model, draw state
-// (built exactly as host::render_scene builds them, so the timed frame is the compared one).
-struct Prepared {
-  std::vector<host::FixedDraw> draws;
-  Camera camera;
-  LightSet lights;
-  Rgb8 background{0, 0, 0};
-  Mat4 model = Mat4::identity();
-  DrawState state;
-};
-
-bool fixed3(const host::Vec3d& v, Vec3& out) {
-  return host::to_fixed(v[0], out.x) && host::to_fixed(v[1], out.y) && host::to_fixed(v[2], out.z);
-}
-
-void die(const std::string& what) {
-  std::fprintf(stderr, "texture_bench: %s\n", what.c_str());
-  std::exit(2);
-}
-
 Prepared prepare(const host::HostMesh& mesh, const host::SceneOptions& o) {
-  Prepared p;
-  std::string err;
-  if (!host::build_fixed_draws(mesh, o, p.draws, err)) die(err);
-  Fixed fovy, near, far, scale, rot;
-  Vec3 eye, target, up, tr;
-  if (!host::to_fixed(o.fovy, fovy) || !host::to_fixed(o.near, near) ||
-      !host::to_fixed(o.far, far) || !fixed3(o.eye, eye) || !fixed3(o.target, target) ||
-      !fixed3(o.up, up) || !host::to_fixed(o.model_scale, scale) ||
-      !host::to_fixed(o.model_rotate_y, rot) || !fixed3(o.model_translate, tr))
-    die("scene values out of range");
-  p.camera.eye = eye;
-  if (!perspective(fovy, Fixed::ratio(o.width, o.height), near, far, p.camera.projection) ||
-      !look_at(eye, target, up, p.camera.view))
-    die("bad camera");
-  for (const host::Vec3d& d : o.light_dirs) {
-    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    Vec3 fd;
-    if (!fixed3({d[0] / len, d[1] / len, d[2] / len}, fd)) die("bad light");
-    p.lights.lights[p.lights.count++] =
-        DirectionalLight::of_color(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
-  }
-  p.lights.global_ambient = host::to_color15(o.global_ambient);
-  p.lights.local_viewer = o.local_viewer;
-  p.background = to_rgb8(host::to_color15(o.background));
-  p.model = translate(tr) * rotate_y(rot) * lr::scale(scale);
-  p.state.shading = o.shading;
-  p.state.lighting = !o.unlit;
-  p.state.depth_test = o.depth_test;
-  p.state.cull = o.cull;
-  p.state.perspective = o.perspective;
-  p.state.texture = o.texture_object;
-  p.state.sampler.filter = o.filter;
-  p.state.sampler.wrap_s = p.state.sampler.wrap_t = o.wrap;
-  p.state.sampler.mip = o.mipmap;
-  p.state.sampler.env = o.unlit ? TexEnv::kReplace : TexEnv::kModulate;
-  return p;
+  return bench::prepare(mesh, o, "texture_bench");
 }
 
 template <class PF>

@@ -4,6 +4,7 @@
 #include "host_sim/mesh_prep.hpp"
 #include "host_sim/obj_loader.hpp"
 #include "tests/support/scene_compare.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace lr {
 namespace {
@@ -36,11 +37,7 @@ TEST(Accuracy, GouraudTorusKnotWithinOneLevelOnAlmostEveryPixel) {
 
 TEST(Accuracy, GouraudSphereWithHighlightsFromSeveralLights) {
   host::HostMesh mesh = host::make_uv_sphere(40, 60);
-  host::SceneOptions o;
-  o.light_dirs = {{1, 1, 1}, {-1, 0.5, 0.2}, {0, -1, 1}, {0.3, 0.2, 1}};
-  o.material.shininess = 96;
-  o.global_ambient = {0.05, 0.05, 0.1};
-  o.eye = {0.5, 0.8, 3.2};
+  host::SceneOptions o = test::sphere_four_lights();
   o.width = 240;
   o.height = 240;
   test::Comparison c;

@@ -18,6 +18,7 @@
 #include "host_sim/scene.hpp"
 #include "host_sim/texture_load.hpp"
 #include "tests/support/scene_compare.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace lr {
 namespace {
@@ -64,32 +65,6 @@ std::string data(const char* name) {
   return std::string(LR_SOURCE_DIR) + "/tests/host/data/" + name;
 }
 
-// The textured ground plane to the horizon (as in texture_test.cpp): 2 x half units square,
-// `repeats` texture repeats, seen from 1 unit above it, far plane 400.
-host::HostMesh ground(double half, double repeats) {
-  host::HostMesh m;
-  m.positions = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
-  m.normals.assign(4, {0, 1, 0});
-  m.uvs = {{0, repeats}, {repeats, repeats}, {repeats, 0}, {0, 0}};
-  m.triangles = {{0, 3, 2}, {0, 2, 1}};
-  m.triangle_material = {-1, -1};
-  return m;
-}
-
-// A 64 x 64 texture of distinct texels (row 0 = top of the image).
-host::ImageRgb8 pattern(int w, int h) {
-  host::ImageRgb8 img;
-  img.width = w;
-  img.height = h;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      img.rgb.push_back(static_cast<uint8_t>(40 + 200 * x / (w - 1)));
-      img.rgb.push_back(static_cast<uint8_t>(40 + 200 * y / (h - 1)));
-      img.rgb.push_back(static_cast<uint8_t>((x * 7 + y * 13) % 2 ? 220 : 30));
-    }
-  return img;
-}
-
 TEST(FrameHash, GouraudTorusKnotGold) {
   host::HostMesh mesh;
   std::string err;
@@ -102,18 +77,16 @@ TEST(FrameHash, GouraudTorusKnotGold) {
 TEST(FrameHash, TexturedGroundPlaneTrilinear) {
   host::HostTexture tex;
   std::string err;
-  ASSERT_TRUE(host::texture_from_image(pattern(64, 64), TexelFormat::kRgb565, true, tex, err))
+  ASSERT_TRUE(host::texture_from_image(test::pattern(64, 64), TexelFormat::kRgb565, true, tex, err))
       << err;
-  host::SceneOptions o;
-  o.eye = {0.0173, 1.0131, 0.0219};
-  o.target = {0.0173, 0.7431, -5};
-  o.far = 400;
-  o.unlit = true;
+  // The textured ground plane to the horizon (as in texture_test.cpp), seen from 1 unit above it.
+  host::SceneOptions o = test::ground_view();
   o.texture_object = &tex.texture;
   o.filter = Filter::kBilinear;
   o.mipmap = MipMode::kLinear;
   o.perspective = Perspective::kExact;
-  expect_hashes("ground_trilinear", ground(200, 200), o, 0x0ff529cc215f7f38u, 0x37d5804807f04525u);
+  expect_hashes("ground_trilinear", test::ground_plane(200, 200), o, 0x0ff529cc215f7f38u,
+                0x37d5804807f04525u);
 }
 
 TEST(FrameHash, FlatSphereTwoLights) {
@@ -129,12 +102,7 @@ TEST(FrameHash, FlatSphereTwoLights) {
 
 TEST(FrameHash, GroundPlaneClippedByTheNearPlane) {
   // Both triangles cross the near plane; the near corners project to |x_ndc| ~ 100 (guard band).
-  host::HostMesh m;
-  m.positions = {{-50, 0, -50}, {50, 0, -50}, {50, 0, 50}, {-50, 0, 50}};
-  m.normals.assign(4, {0, 1, 0});
-  m.colors = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}};
-  m.triangles = {{0, 3, 2}, {0, 2, 1}};
-  m.triangle_material = {-1, -1};
+  const host::HostMesh m = test::coloured_ground(50);
   host::SceneOptions o;
   o.unlit = true;
   o.eye = {0, 1, 0};
@@ -146,12 +114,8 @@ TEST(FrameHash, GroundPlaneClippedByTheNearPlane) {
 
 TEST(FrameHash, GouraudSphereFourLightsLocalViewer) {
   // Specular highlights (the power table) from four lights, local viewer, global ambient.
-  host::SceneOptions o;
-  o.light_dirs = {{1, 1, 1}, {-1, 0.5, 0.2}, {0, -1, 1}, {0.3, 0.2, 1}};
-  o.material.shininess = 96;
-  o.global_ambient = {0.05, 0.05, 0.1};
+  host::SceneOptions o = test::sphere_four_lights();
   o.local_viewer = true;
-  o.eye = {0.5, 0.8, 3.2};
   expect_hashes("gouraud_sphere_4_lights", host::make_uv_sphere(40, 60), o, 0x2c671a5796833731u,
                 0xa52e2c2af7eade18u);
 }

@@ -8,25 +8,14 @@
 #include "host_sim/texture_load.hpp"
 #include "tests/support/core_harness.hpp"
 #include "tests/support/scene_compare.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace lr {
 namespace {
 
 constexpr int32_t S = kSubpixel;
 
-// A w x h image of distinct colours per texel (row 0 = top of the image file).
-host::ImageRgb8 pattern(int w, int h) {
-  host::ImageRgb8 img;
-  img.width = w;
-  img.height = h;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      img.rgb.push_back(static_cast<uint8_t>(40 + 200 * x / std::max(1, w - 1)));
-      img.rgb.push_back(static_cast<uint8_t>(40 + 200 * y / std::max(1, h - 1)));
-      img.rgb.push_back(static_cast<uint8_t>((x * 7 + y * 13) % 2 ? 220 : 30));
-    }
-  return img;
-}
+using test::pattern;
 
 host::HostTexture make_texture(const host::ImageRgb8& img, TexelFormat f, bool mips) {
   host::HostTexture t;
@@ -169,36 +158,14 @@ TEST(TextureWrap, RepeatAndClampAreExactForCoordinatesNearPlusMinusAThousand) {
   }
 }
 
-// The textured ground plane to the horizon: two triangles, far plane 400 units away.
-host::HostMesh ground(double half, double repeats) {
-  host::HostMesh m;
-  m.positions = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
-  m.normals.assign(4, {0, 1, 0});
-  m.uvs = {{0, repeats}, {repeats, repeats}, {repeats, 0}, {0, 0}};
-  m.triangles = {{0, 3, 2}, {0, 2, 1}};
-  m.triangle_material = {-1, -1};
-  return m;
-}
-
-host::SceneOptions ground_view() {
-  host::SceneOptions o;
-  // Heights chosen so that no pixel row lands exactly on a texel row boundary (a tie that either
-  // neighbour may win).
-  o.eye = {0.0173, 1.0131, 0.0219};
-  o.target = {0.0173, 0.7431, -5};
-  o.far = 400;
-  o.unlit = true;
-  return o;
-}
-
 struct ModeResult {
   test::Comparison c;
 };
 
 test::Comparison compare_ground(const host::HostTexture& tex, Filter f, Perspective p, MipMode mip,
                                 bool lit = false) {
-  host::HostMesh mesh = ground(200, 200);
-  host::SceneOptions o = ground_view();
+  host::HostMesh mesh = test::ground_plane(200, 200);
+  host::SceneOptions o = test::ground_view();
   o.unlit = !lit;
   o.texture_object = &tex.texture;
   o.filter = f;
@@ -211,7 +178,8 @@ test::Comparison compare_ground(const host::HostTexture& tex, Filter f, Perspect
 }
 
 // The exact (u, v) a pixel centre sees on the ground plane y = 0 (ray cast in double), for the
-// ground() mapping: u = (x + half) / (2 half) * repeats, v = (half - z) / (2 half) * repeats.
+// test::ground_plane() mapping: u = (x + half) / (2 half) * repeats, v = (half - z) / (2 half) *
+// repeats.
 bool ground_uv(const host::SceneOptions& o, double half, double repeats, int px, int py, double& u,
                double& v) {
   auto sub = [](host::Vec3d a, host::Vec3d b) {
@@ -250,7 +218,7 @@ TEST(TextureGroundPlane, NearestLandsOnTheExactTexelInExactAndSpanModes) {
   for (Perspective p :
        {Perspective::kExact, Perspective::kSpan8, Perspective::kSpan16, Perspective::kSpan32}) {
     test::Comparison c = compare_ground(tex, Filter::kNearest, p, MipMode::kNone);
-    const host::SceneOptions o = ground_view();
+    const host::SceneOptions o = test::ground_view();
     size_t checked = 0, wrong = 0;
     for (int y = 0; y < o.height; ++y)
       for (int x = 0; x < o.width; ++x) {
@@ -372,7 +340,7 @@ TEST(TextureMipmaps, LevelChoiceFollowsTheReference) {
 
 TEST(TextureLighting, ModulateWithSeparateSpecularMatchesTheReference) {
   host::HostTexture tex = make_texture(pattern(8, 8), TexelFormat::kRgb888, false);
-  host::HostMesh mesh = ground(4, 2);
+  host::HostMesh mesh = test::ground_plane(4, 2);
   host::SceneOptions o;
   o.eye = {0, 3, 3};
   o.target = {0, 0, 0};

@@ -20,6 +20,7 @@
 #include "host_sim/texture_load.hpp"
 #include "tests/glcheck/osmesa_scene.hpp"
 #include "tests/support/scene_compare.hpp"
+#include "tests/support/scenes.hpp"
 
 // Mesa's OSMesa keeps about 200 bytes per OSMesaMakeCurrent after the context is destroyed
 // (libOSMesa.so.8, Mesa 22.3): not ours to fix; LeakSanitizer (the ASan run) ignores it.
@@ -213,11 +214,7 @@ TEST(GlCheck, FlatTorusKnotWithFaceNormalsAndLocalViewer) {
 }
 
 TEST(GlCheck, GouraudSphereFourLights) {
-  host::SceneOptions o;
-  o.light_dirs = {{1, 1, 1}, {-1, 0.5, 0.2}, {0, -1, 1}, {0.3, 0.2, 1}};
-  o.material.shininess = 96;
-  o.global_ambient = {0.05, 0.05, 0.1};
-  o.eye = {0.5, 0.8, 3.2};
+  host::SceneOptions o = test::sphere_four_lights();
   o.width = 240;
   o.height = 240;
   const Triple t = render_three("sphere_4_lights", host::make_uv_sphere(40, 60), o);
@@ -228,25 +225,13 @@ TEST(GlCheck, GouraudSphereFourLights) {
 
 // ---- Unlit, clipped ----
 
-// A square ground plane y = 0 of half-size `half`, colours varying over its corners (as in
-// tests/core/clipping_test.cpp).
-host::HostMesh coloured_ground(double half) {
-  host::HostMesh m;
-  m.positions = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
-  m.normals.assign(4, {0, 1, 0});
-  m.colors = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}};
-  m.triangles = {{0, 3, 2}, {0, 2, 1}};
-  m.triangle_material = {-1, -1};
-  return m;
-}
-
 TEST(GlCheck, UnlitGroundPlaneThroughTheNearPlane) {
   host::SceneOptions o;
   o.unlit = true;
   o.eye = {0, 1, 0};
   o.target = {0, 0.7, -5};
   o.far = 200;
-  const Triple t = render_three("ground_unlit_near_plane", coloured_ground(50), o);
+  const Triple t = render_three("ground_unlit_near_plane", test::coloured_ground(50), o);
   EXPECT_EQ(t.c.core.stats.clipped, 2u);
   expect_coverage(t.core_gl);
   EXPECT_GE(t.core_gl.psnr, 40.0);
@@ -265,7 +250,7 @@ TEST(GlCheck, FlatUnlitGroundPlaneTakesTheLastVertexColourAndBreaksTiesAsGl) {
   o.shading = Shading::kFlat;
   o.eye = {0, 3, 4};
   o.target = {0, 0, 0};
-  const Triple t = render_three("ground_unlit_flat", coloured_ground(2), o);
+  const Triple t = render_three("ground_unlit_flat", test::coloured_ground(2), o);
   expect_coverage(t.core_gl);
   EXPECT_EQ(t.ref_gl.coverage_diff, 0u);
   EXPECT_EQ(t.ref_gl.max_error, 0);
@@ -274,30 +259,17 @@ TEST(GlCheck, FlatUnlitGroundPlaneTakesTheLastVertexColourAndBreaksTiesAsGl) {
 
 // ---- Textured ----
 
-// The textured ground plane (tests/core/texture_test.cpp): 400 x 400 units, the texture
-// repeated 200 times, far plane 400, eye 1 unit above it looking slightly down.
-host::HostMesh textured_ground(double half, double repeats) {
-  host::HostMesh m;
-  m.positions = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
-  m.normals.assign(4, {0, 1, 0});
-  m.uvs = {{0, repeats}, {repeats, repeats}, {repeats, 0}, {0, 0}};
-  m.triangles = {{0, 3, 2}, {0, 2, 1}};
-  m.triangle_material = {-1, -1};
-  return m;
-}
-
 TEST(GlCheck, NearestTexturedGroundPlane) {
   const host::HostTexture tex = tiles64();
-  host::SceneOptions o;
-  o.eye = {0.0173, 1.0131, 0.0219};
-  o.target = {0.0173, 0.7431, -5};
-  o.far = 400;
-  o.unlit = true;  // GL_REPLACE: every pixel is a texel
+  // The textured ground plane (tests/core/texture_test.cpp): 400 x 400 units, the texture
+  // repeated 200 times, far plane 400, eye 1 unit above it looking slightly down. Unlit
+  // (GL_REPLACE): every pixel is a texel.
+  host::SceneOptions o = test::ground_view();
   o.texture_object = &tex.texture;
   o.texture_format = TexelFormat::kRgb888;
   o.filter = Filter::kNearest;
   o.wrap = Wrap::kRepeat;
-  const host::HostMesh mesh = textured_ground(200, 200);
+  const host::HostMesh mesh = test::ground_plane(200, 200);
   const Triple t = render_three("ground_nearest", mesh, o);
   expect_coverage(t.core_gl);
   // Where a texel covers at least about a pixel (level of detail < 1, from the reference) the
@@ -322,12 +294,7 @@ TEST(GlCheck, NearestTexturedGroundPlane) {
 host::SceneOptions cube_options(const host::HostTexture& tex, Filter f) {
   // The texture benchmark's cube: seen from above and in front, turned 35 degrees about y,
   // back faces culled, one light, default material (specular 0.5, shininess 32).
-  host::SceneOptions o;
-  o.eye = {0, 1.5, 2.3};
-  o.target = {0, 0, 0};
-  o.model_rotate_y = 35;
-  o.cull = Cull::kBack;
-  o.light_dirs = {{-0.3, 1.0, 0.8}};
+  host::SceneOptions o = test::cube_view();
   o.texture_object = &tex.texture;
   o.texture_format = TexelFormat::kRgb888;
   o.filter = f;
