@@ -40,6 +40,11 @@ constexpr Rgb8 to_rgb8(Color15 c) {
   return {to_byte(c.r), to_byte(c.g), to_byte(c.b)};
 }
 
+// A channel value clamped to [0, 1] in Q1.15 (interpolation and rounding can step outside).
+constexpr uint32_t clamp_c15(int32_t v) {
+  return v < 0 ? 0u : v > Color15::kOne ? Color15::kOne : static_cast<uint32_t>(v);
+}
+
 // An 8-bit level as Q1.15, exact to rounding: v * 32768 / 255.
 constexpr uint16_t from_byte(uint8_t v) {
   return static_cast<uint16_t>((uint32_t{v} * Color15::kOne + 127u) / 255u);

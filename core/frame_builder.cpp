@@ -36,7 +36,7 @@ Unit30 face_normal_model(Vec3 p0, Vec3 p1, Vec3 p2) {
 }
 
 Rgb8 to_rgb8_sat(Color15 c) {
-  auto b = [](uint16_t v) { return to_byte(v > Color15::kOne ? Color15::kOne : v); };
+  auto b = [](uint16_t v) { return to_byte(clamp_c15(v)); };
   return {b(c.r), b(c.g), b(c.b)};
 }
 

@@ -16,10 +16,6 @@ namespace lr {
 
 namespace detail {
 
-constexpr uint32_t clamp15(uint32_t c15) {
-  return c15 > Color15::kOne ? Color15::kOne : c15;
-}
-
 // Perspective-correct channel value cq / q in Q1.15 with a 17-bit normalised reciprocal:
 // s = clz(q), qn = q << s in [2^31, 2^32), r = (2^32 - 1) / (qn >> 16) in (2^16, 2^17];
 // ((cq << s) >> 17) * r < 2^32 and ~ (cq / q) 2^31. Relative error < 2^-14 (under 0.02 of an
@@ -38,13 +34,13 @@ struct Reciprocal {
   uint32_t apply(uint32_t plane_cq) const {
     int32_t v = static_cast<int32_t>(plane_cq);
     v = v < 0 ? 0 : v > q ? q : v;
-    return clamp15((((static_cast<uint32_t>(v) << shift) >> 17) * r) >> 16);
+    return clamp_c15(static_cast<int32_t>((((static_cast<uint32_t>(v) << shift) >> 17) * r) >> 16));
   }
 };
 
 constexpr uint32_t affine15(uint32_t plane_c) {
   int32_t v = static_cast<int32_t>(plane_c);
-  return v <= 0 ? 0u : clamp15(static_cast<uint32_t>(v) >> 15);
+  return clamp_c15(v >> 15);
 }
 
 }  // namespace detail

@@ -26,6 +26,7 @@
 
 #include "core/color.hpp"
 #include "core/frame_builder.hpp"
+#include "core/pow_table.hpp"
 #include "core/sampler.hpp"
 #include "core/triangle_setup.hpp"
 
@@ -53,22 +54,12 @@ struct PreciseRecip {
   }
 };
 
-// round(256 log2(1 + i / 256)).
+// round(256 log2(1 + i / 256)), from the specular power table's log2 (Q8.24, 257 entries).
 consteval std::array<uint8_t, 256> make_log2_frac_table() {
   std::array<uint8_t, 256> t{};
-  for (int i = 0; i < 256; ++i) {
-    // log2 by repeated squaring of the mantissa (compile time only).
-    double x = 1.0 + i / 256.0, frac = 0, bit = 0.5;
-    for (int k = 0; k < 30; ++k) {
-      x *= x;
-      if (x >= 2) {
-        x /= 2;
-        frac += bit;
-      }
-      bit /= 2;
-    }
-    int v = static_cast<int>(frac * 256 + 0.5);
-    t[static_cast<size_t>(i)] = static_cast<uint8_t>(v > 255 ? 255 : v);
+  for (size_t i = 0; i < 256; ++i) {
+    const int32_t v = (DefaultPowTable::kLog2[i] + (1 << 15)) >> 16;
+    t[i] = static_cast<uint8_t>(v > 255 ? 255 : v);
   }
   return t;
 }
@@ -169,10 +160,6 @@ inline int32_t wrap_add(int32_t a, int32_t b) {
   return static_cast<int32_t>(static_cast<uint32_t>(a) + static_cast<uint32_t>(b));
 }
 
-inline uint32_t clamp_c15(int32_t v) {
-  return v < 0 ? 0u : v > Color15::kOne ? Color15::kOne : static_cast<uint32_t>(v);
-}
-
 // GL_MODULATE with separate specular, to a byte: round(255 (texel/255 x primary + secondary)).
 inline uint32_t modulate(uint32_t texel8, uint32_t prim15, uint32_t spec15) {
   const uint32_t v = (texel8 * prim15 + 255u * spec15 + (1u << 14)) >> 15;
@@ -264,10 +251,10 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
     // Span mode: exact attributes at the chunk's end, and the steps towards them (Q.8 extra).
     int32_t ds = 0, dt = 0, dc[6] = {0, 0, 0, 0, 0, 0};
     TexAttrs a1;
+    detail::PlaneValues pe{};
     if constexpr (kPersp == TexPersp::kSpan) {
       const bool last = done + len >= count;
       const int steps = last ? len - 1 : len;
-      detail::PlaneValues pe{};
       pe.load(tri, col + done + steps, row, kColors);
       a1 = detail::exact_attrs(tri, pe, kColors);
       if (steps > 0) {
@@ -317,7 +304,7 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
         cs[m] = detail::wrap_add(a.s, tri.off_s);
         ct[m] = detail::wrap_add(a.t, tri.off_t);
         if constexpr (kColors)
-          for (int c = 0; c < 6; ++c) cc[m][c] = static_cast<uint16_t>(detail::clamp_c15(a.c[c]));
+          for (int c = 0; c < 6; ++c) cc[m][c] = static_cast<uint16_t>(clamp_c15(a.c[c]));
         ++m;
       }
       if constexpr (kPersp == TexPersp::kSpan) {
@@ -335,8 +322,9 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
     }
     if constexpr (kPersp == TexPersp::kSpan) {
       if (done + len < count) {
-        // The next chunk starts where this one ended: plane values there, and a1 is exact.
-        pv.load(tri, col + done + len, row, kColors);
+        // The next chunk starts where this one ended (steps == len): its plane values and
+        // exact attributes are already known.
+        pv = pe;
         a0 = a1;
       }
     }
