@@ -19,6 +19,7 @@
 #include "core/sampler.hpp"
 #include "core/screen_vertex.hpp"
 #include "core/status.hpp"
+#include "core/surface_vertex.hpp"
 #include "core/triangle_setup.hpp"
 
 namespace lr {
@@ -65,6 +66,12 @@ struct FrameStorage {
   std::span<ActiveTriangle> active;  // triangles being rasterized at once
   std::span<uint16_t> active_index;  // 2 x active.size(): draw order and free slots
   std::span<uint16_t> depth;         // width x K (16-bit depth of one strip)
+  // Phong draws only (may stay empty otherwise): one SurfaceVertex per vertex-store entry
+  // (give it the size of `vertices`), and the pool the normal-indexed lighting tables of
+  // PixelLighting::kTable draws are filled into ((size + 1)^2 words per table, twice that for
+  // textured draws; draws with equal material, lights and table spec share one table).
+  std::span<SurfaceVertex> surfaces{};
+  std::span<uint32_t> lighting_tables{};
 };
 
 class FrameBuilder {

@@ -25,6 +25,14 @@ struct Normal16 {
   friend constexpr bool operator==(const Normal16&, const Normal16&) = default;
 };
 
+// A tangent for normal mapping: the direction of increasing u on the surface, unit Q1.14 like
+// Normal16, and w = +-1 (Q1.14: +-16384): the bitangent is w * cross(normal, tangent).
+struct Tangent16 {
+  int16_t x = 0, y = 0, z = 0, w = 16384;
+  static constexpr int kFracBits = 14;
+  friend constexpr bool operator==(const Tangent16&, const Tangent16&) = default;
+};
+
 struct Unit30 {
   int32_t x = 0, y = 0, z = 0;
   static constexpr int kFracBits = 30;

@@ -11,6 +11,7 @@ namespace lr::host {
 
 using Vec2d = std::array<double, 2>;
 using Vec3d = std::array<double, 3>;
+using Vec4d = std::array<double, 4>;
 
 // A material as read from an MTL file. Colours are linear [0, 1]; shininess is GL's [0, 128].
 struct HostMaterial {
@@ -32,6 +33,9 @@ struct HostMesh {
   std::vector<Vec3d> normals;    // unit length, one per vertex
   std::vector<Vec3d> colors;  // per vertex linear [0, 1]; empty when the OBJ has no `v x y z r g b`
   std::vector<Vec2d> uvs;     // per vertex; empty when the OBJ has no `vt` in use
+  // Per vertex (x, y, z, w): unit tangent along increasing u, orthogonal to the normal, and the
+  // handedness w = +-1 (bitangent = w * cross(normal, tangent)); empty until computed from uvs.
+  std::vector<Vec4d> tangents;
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<int32_t> triangle_material;  // per triangle: index into materials, or -1
   std::vector<HostMaterial> materials;

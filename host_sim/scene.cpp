@@ -220,7 +220,7 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
       return false;
     }
     lights.lights[lights.count++] =
-        DirectionalLight::of_color(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
+        Light::directional(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
   }
   lights.global_ambient = to_color15(o.global_ambient);
   lights.local_viewer = o.local_viewer;

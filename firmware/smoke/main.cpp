@@ -218,7 +218,7 @@ bool render_frame() {
   // One white directional light (GL's light 0 colours: no ambient, diffuse and specular 1),
   // GL's default global ambient of 0.2.
   lr::LightSet lights;
-  lights.lights[0].direction = {Fixed::from_double(0.4), Fixed::from_double(0.8),
+  lights.lights[0].position = {Fixed::from_double(0.4), Fixed::from_double(0.8),
                                 Fixed::from_double(0.6)};
   lights.count = 1;
   constexpr uint16_t kAmbient = 6554;  // 0.2 in Q1.15

@@ -198,7 +198,7 @@ Frame render(std::span<const Mesh> meshes, std::span<const Material> materials,
   EXPECT_TRUE(look_at(cam.eye, {}, {Fixed{}, Fixed::from_int(1), Fixed{}}, cam.view));
   LightSet lights;
   const Fixed c = Fixed::from_double(0.57735);
-  lights.lights[0] = DirectionalLight::of_color({c, c, c}, {32768, 32768, 32768});
+  lights.lights[0] = Light::directional({c, c, c}, {32768, 32768, 32768});
   lights.count = 1;
   EXPECT_EQ(h.begin(Rgb8{0, 0, 0}, cam, lights), Status::kOk);
   Frame f;

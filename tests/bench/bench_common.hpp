@@ -105,7 +105,7 @@ inline Prepared prepare(const host::HostMesh& mesh, const host::SceneOptions& o,
     Vec3 fd;
     if (!fixed3({d[0] / len, d[1] / len, d[2] / len}, fd)) die(who, "bad light");
     p.lights.lights[p.lights.count++] =
-        DirectionalLight::of_color(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
+        Light::directional(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
   }
   p.lights.global_ambient = host::to_color15(o.global_ambient);
   p.lights.local_viewer = o.local_viewer;

@@ -55,7 +55,7 @@ Scene load_scene() {
   look_at(s.camera.eye, {}, {Fixed{}, Fixed::from_int(1), Fixed{}}, s.camera.view);
   s.lights.count = 1;
   s.lights.lights[0] =
-      DirectionalLight::of_color({Fixed::from_int(1), Fixed::from_int(1), Fixed::from_int(1)},
+      Light::directional({Fixed::from_int(1), Fixed::from_int(1), Fixed::from_int(1)},
                                  {Color15::kOne, Color15::kOne, Color15::kOne});
   s.material = to_material(*find_material("gold"));
   return s;

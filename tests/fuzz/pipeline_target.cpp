@@ -154,9 +154,9 @@ void run(const Header& h, Bytes& in) {
   lights.local_viewer = (h.b[6] & 8) != 0;
   lights.global_ambient = in.color15();
   for (int i = 0; i < lights.count; ++i) {
-    DirectionalLight& l = lights.lights[static_cast<size_t>(i)];
-    l.direction = small_vec(in);
-    if (l.direction == Vec3{}) l.direction.z = Fixed::from_int(1);
+    Light& l = lights.lights[static_cast<size_t>(i)];
+    l.position = small_vec(in);
+    if (l.position == Vec3{}) l.position.z = Fixed::from_int(1);
     l.ambient = in.color15();
     l.diffuse = in.color15();
     l.specular = in.color15();
