@@ -62,6 +62,21 @@ ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, int64_t d_in, 
   // |u| < 2^31: the difference is < 2^32 and times t (< 2^30) stays inside int64.
   r.u = static_cast<int32_t>(in.u + ((int64_t{out.u} - in.u) * t >> 30));
   r.v = static_cast<int32_t>(in.v + ((int64_t{out.v} - in.v) * t >> 30));
+  // Surface attributes: normal and tangent components are within [-1, 1], positions are
+  // Q16.16 (differences < 2^32): every product with t stays inside int64. The normal needs no
+  // renormalising here (spans renormalise per pixel).
+  auto lerp32 = [t](int32_t a, int32_t b) {
+    return static_cast<int32_t>(a + ((int64_t{b} - a) * t >> 30));
+  };
+  const SurfaceVertex &sa = in.surface, &sb = out.surface;
+  r.surface.normal = {lerp32(sa.normal.x, sb.normal.x), lerp32(sa.normal.y, sb.normal.y),
+                      lerp32(sa.normal.z, sb.normal.z)};
+  r.surface.position = {Fixed::from_raw(lerp32(sa.position.x.raw, sb.position.x.raw)),
+                        Fixed::from_raw(lerp32(sa.position.y.raw, sb.position.y.raw)),
+                        Fixed::from_raw(lerp32(sa.position.z.raw, sb.position.z.raw))};
+  for (int k = 0; k < 3; ++k)
+    r.surface.tangent[k] = static_cast<int16_t>(lerp32(sa.tangent[k], sb.tangent[k]));
+  r.surface.handedness = sa.handedness;
   return r;
 }
 

@@ -12,6 +12,7 @@
 
 #include "core/color.hpp"
 #include "core/mat4.hpp"
+#include "core/surface_vertex.hpp"
 
 namespace lr {
 
@@ -37,6 +38,7 @@ struct ClipVertex {
   Color15 color;
   Color15 spec;
   int32_t u = 0, v = 0;  // texture coordinates, Q12.20
+  SurfaceVertex surface{};  // per-pixel lighting: interpolated linearly like the colours
 };
 
 uint8_t outcode(const ClipCoord& c, GuardBand g);

@@ -35,6 +35,42 @@ Unit30 face_normal_model(Vec3 p0, Vec3 p1, Vec3 p2) {
   return u;
 }
 
+// A model-space tangent (Q1.14) to world space (the model's upper 3x3), unit Q1.14.
+void transform_tangent(const Mat4& model, const Tangent16& t, int16_t out[3]) {
+  int64_t r[3];
+  for (int i = 0; i < 3; ++i)
+    r[i] = int64_t{model.m[i][0].raw} * t.x + int64_t{model.m[i][1].raw} * t.y +
+           int64_t{model.m[i][2].raw} * t.z;
+  Unit30 u{1 << 30, 0, 0};
+  normalize_unit30(r[0], r[1], r[2], u);
+  out[0] = static_cast<int16_t>(round_shift(u.x, 16));
+  out[1] = static_cast<int16_t>(round_shift(u.y, 16));
+  out[2] = static_cast<int16_t>(round_shift(u.z, 16));
+}
+
+constexpr Unit30 negate(Unit30 u) {
+  return {-u.x, -u.y, -u.z};
+}
+
+// Facing of a clip-space triangle from the sign of det[x y w] (homogeneous: valid for the part
+// in front of the eye even when a vertex is behind it): true when front-facing. Coordinates are
+// brought below 2^20 first so the products of three stay inside int64.
+bool front_facing_clip(const ClipCoord (&c)[3]) {
+  uint64_t m = 0;
+  for (const ClipCoord& p : c) m |= abs64(p.x) | abs64(p.y) | abs64(p.w);
+  const int s = m == 0 ? 0 : (63 - clz64(m)) - 19;
+  auto sh = [s](int64_t v) { return s > 0 ? v >> s : v; };
+  int64_t x[3], y[3], w[3];
+  for (int i = 0; i < 3; ++i) {
+    x[i] = sh(c[i].x);
+    y[i] = sh(c[i].y);
+    w[i] = sh(c[i].w);
+  }
+  const int64_t det = x[0] * (y[1] * w[2] - y[2] * w[1]) - x[1] * (y[0] * w[2] - y[2] * w[0]) +
+                      x[2] * (y[0] * w[1] - y[1] * w[0]);
+  return det > 0;  // counter-clockwise in NDC
+}
+
 Rgb8 to_rgb8_sat(Color15 c) {
   auto b = [](uint16_t v) { return to_byte(clamp_c15(v)); };
   return {b(c.r), b(c.g), b(c.b)};
@@ -76,6 +112,7 @@ Status FrameBuilder::begin_frame(const Camera& camera, const LightSet& lights, R
   lights_ = lights;
   background_ = background;
   vertex_count_ = triangle_count_ = draw_count_ = 0;
+  pixel_light_count_ = table_words_used_ = 0;
   for (int i = 0; i < strips_; ++i) storage_.buckets[static_cast<size_t>(i)] = kNoTriangle;
   stats_ = FrameStats{};
   stats_.bytes_per_vertex = sizeof(ScreenVertex);
@@ -158,6 +195,60 @@ Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_plan
   }
   index = static_cast<uint8_t>(draw_count_);
   storage_.draws[draw_count_++] = r;
+  return Status::kOk;
+}
+
+Status FrameBuilder::add_phong_state(const DrawState& state, const PreparedLighting& pl,
+                                     DrawRecord& r) {
+  // Prepared lighting: shared by the draws of equal materials.
+  const PreparedLighting* shared = nullptr;
+  for (size_t i = 0; i < pixel_light_count_; ++i)
+    if (storage_.pixel_lights[i].material == pl.material) shared = &storage_.pixel_lights[i];
+  if (shared == nullptr) {
+    if (pixel_light_count_ >= storage_.pixel_lights.size()) return Status::kCapacity;
+    storage_.pixel_lights[pixel_light_count_] = pl;
+    shared = &storage_.pixel_lights[pixel_light_count_++];
+  }
+  r.phong = true;
+  r.method = state.pixel_lighting;
+  r.two_sided = lights_.two_sided;
+  r.position = pl.needs_position();
+  r.lighting = shared;
+  r.view = camera_.view;
+  r.flat = false;
+  r.colors = ColorPlanes::kNone;
+  if (state.envmap != nullptr) {
+    r.envmap = state.envmap;
+    r.env_fetch = fetch_routine(state.envmap->format, Filter::kBilinear, Wrap::kClampToEdge,
+                                Wrap::kClampToEdge);
+  }
+  if (state.normal_map != nullptr) {
+    r.normal_map = state.normal_map;
+    r.nmap_fetch = fetch_routine(state.normal_map->format, state.sampler.filter,
+                                 state.sampler.wrap_s, state.sampler.wrap_t);
+  }
+  if (state.pixel_lighting == PixelLighting::kTable) {
+    const bool split = state.texture != nullptr || state.envmap != nullptr;
+    const uint16_t size = state.table.size;
+    r.table_bilinear = state.table.bilinear;
+    // Tables of equal prepared lighting, size and layout are shared.
+    for (size_t i = 0; i < draw_count_; ++i) {
+      const DrawRecord& o = storage_.draws[i];
+      if (&o != &r && o.phong && o.method == PixelLighting::kTable && o.lighting == shared &&
+          o.table.size == size && o.table.split == split) {
+        r.table = o.table;
+        return Status::kOk;
+      }
+    }
+    const size_t words = lighting_table_words(size, split);
+    if (storage_.lighting_tables.size() < table_words_used_ ||
+        words > storage_.lighting_tables.size() - table_words_used_)
+      return Status::kCapacity;
+    std::span<uint32_t> out = storage_.lighting_tables.subspan(table_words_used_, words);
+    fill_lighting_table(*shared, size, split, out);
+    table_words_used_ += words;
+    r.table = {out.data(), size, split};
+  }
   return Status::kOk;
 }
 
@@ -244,34 +335,74 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
       (!mesh.colors.empty() && mesh.colors.size() != n))
     return Status::kInvalidArgument;
   const bool lit = state.lighting;
-  const bool gouraud = state.shading == Shading::kGouraud;
-  if (lit && gouraud && mesh.normals.empty()) return Status::kInvalidArgument;
+  // Phong is per-pixel lighting; unlit, it is the same as Gouraud.
+  const bool phong = lit && state.shading == Shading::kPhong;
+  const bool gouraud = state.shading != Shading::kFlat && !phong;
+  if (lit && state.shading != Shading::kFlat && mesh.normals.empty())
+    return Status::kInvalidArgument;
   const bool textured = state.texture != nullptr;
   if (textured) {
     if (validate(*state.texture) != Status::kOk) return Status::kInvalidArgument;
     if (state.sampler.mip != MipMode::kNone && state.texture->level_count < 2)
       return Status::kInvalidArgument;
-    if (!mesh.uvs.empty() && mesh.uvs.size() != n) return Status::kInvalidArgument;
+  }
+  if ((textured || (phong && state.normal_map)) && !mesh.uvs.empty() && mesh.uvs.size() != n)
+    return Status::kInvalidArgument;
+  if (phong) {
+    if (state.envmap && validate(*state.envmap) != Status::kOk) return Status::kInvalidArgument;
+    if (state.normal_map && (validate(*state.normal_map) != Status::kOk ||
+                             mesh.tangents.size() != n || mesh.uvs.size() != n))
+      return Status::kInvalidArgument;
+    if (state.pixel_lighting == PixelLighting::kTable &&
+        (!lights_.normal_only() || state.table.size < kMinLightingTable ||
+         state.table.size > kMaxLightingTable))
+      return Status::kInvalidArgument;
   }
   // Textured, lit and modulated: primary and specular colours kept apart (GL's separate
   // specular colour), so that the texel modulates the primary only.
   const bool split = textured && lit && state.sampler.env == TexEnv::kModulate;
+  const bool two_sided = lit && lights_.two_sided && !phong;  // Phong flips at setup
   const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
   stats_.triangles_in += tri_count;
 
+  if (phong && !surfaces_fit(n)) {
+    stats_.dropped_vertex_capacity += tri_count;
+    return Status::kCapacity;
+  }
   // Unlit meshes without vertex colours have one colour: no colour planes needed.
   bool color_planes = gouraud && (lit || !mesh.colors.empty() || textured);
   uint8_t draw_index = 0;
   if (add_draw_record(state, color_planes, n, tri_count, draw_index) != Status::kOk)
     return Status::kCapacity;
-  const uint32_t dropped_before = stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity;
 
   const Mat4 mvp = camera_.projection * camera_.view * model;
   const Mat4 nm = normal_matrix(model);
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   PreparedLighting pl;
   if (lit) pl = prepare_lighting(lights_, material, view_dir, camera_.eye);
+  if (phong && add_phong_state(state, pl, storage_.draws[draw_index]) != Status::kOk) {
+    --draw_count_;
+    stats_.dropped_triangle_capacity += tri_count;
+    return Status::kCapacity;
+  }
+  const uint32_t dropped_before = stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity;
   const Color15 material_color = material.diffuse;
+  const bool need_position = pl.needs_position();
+
+  // Lit colour(s) of mesh vertex i with the normal negated or not.
+  auto light_vertex = [&](size_t i, bool back, ScreenVertex& sv) {
+    const Normal16& nn = mesh.normals[i];
+    Unit30 nw = transform_normal(nm, nn.x, nn.y, nn.z);
+    if (back) nw = negate(nw);
+    Vec3 pw = need_position ? transform_affine(model, mesh.positions[i]) : Vec3{};
+    if (split) {
+      LitColor lc = light_point_split(pl, nw, pw);
+      sv.color = lc.primary;
+      sv.spec = lc.secondary;
+    } else {
+      sv.color = light_point(pl, nw, pw);
+    }
+  };
 
   const size_t base = vertex_count_;
   vertex_count_ += n;
@@ -284,17 +415,21 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     sv.u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
     sv.v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
     sv.spec = Color15{};
-    if (lit && gouraud) {
+    if (phong) {
+      sv.color = Color15{};
+      SurfaceVertex& su = storage_.surfaces[base + i];
       const Normal16& nn = mesh.normals[i];
-      Unit30 nw = transform_normal(nm, nn.x, nn.y, nn.z);
-      Vec3 pw = pl.local_viewer ? transform_affine(model, mesh.positions[i]) : Vec3{};
-      if (split) {
-        LitColor lc = light_point_split(pl, nw, pw);
-        sv.color = lc.primary;
-        sv.spec = lc.secondary;
+      su.normal = transform_normal(nm, nn.x, nn.y, nn.z);
+      su.position = need_position ? transform_affine(model, mesh.positions[i]) : Vec3{};
+      if (state.normal_map) {
+        transform_tangent(model, mesh.tangents[i], su.tangent);
+        su.handedness = mesh.tangents[i].w < 0 ? -16384 : 16384;
       } else {
-        sv.color = light_point(pl, nw, pw);
+        su.tangent[0] = su.tangent[1] = su.tangent[2] = 0;
+        su.handedness = 16384;
       }
+    } else if (lit && gouraud) {
+      light_vertex(i, false, sv);
     } else if (!lit) {
       sv.color = mesh.colors.empty() ? material_color : from_rgb8(mesh.colors[i]);
     } else {
@@ -322,16 +457,37 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
       ++stats_.clipped_away;
       continue;
     }
+    // Two-sided lighting: back faces are lit with the negated normal (GL decides per polygon).
+    bool back = false;
+    ClipCoord clip[3];
+    if (oc_or != 0)
+      for (int k = 0; k < 3; ++k)
+        clip[k] = transform_point(mvp, mesh.positions[tri[static_cast<size_t>(k)]]);
+    if (two_sided) {
+      if (oc_or == 0) {
+        back = (int64_t{sv[1]->x} - sv[0]->x) * (int64_t{sv[2]->y} - sv[0]->y) -
+                   (int64_t{sv[2]->x} - sv[0]->x) * (int64_t{sv[1]->y} - sv[0]->y) >
+               0;
+      } else {
+        back = !front_facing_clip(clip);
+      }
+    }
+    ScreenVertex back_colors[3];
+    if (back && gouraud)
+      for (int k = 0; k < 3; ++k)
+        light_vertex(tri[static_cast<size_t>(k)], true, back_colors[k]);
+
     Rgb8 flat{}, flat_spec{};
-    if (!gouraud) {
+    if (!gouraud && !phong) {
       if (lit) {
         const Vec3& p0 = mesh.positions[tri[0]];
         const Vec3& p1 = mesh.positions[tri[1]];
         const Vec3& p2 = mesh.positions[tri[2]];
         Unit30 fm = face_normal_model(p0, p1, p2);
         Unit30 fw = transform_normal(nm, fm.x, fm.y, fm.z);
+        if (back) fw = negate(fw);
         Vec3 centroid{};
-        if (pl.local_viewer) {
+        if (need_position) {
           Vec3 w0 = transform_affine(model, p0), w1 = transform_affine(model, p1),
                w2 = transform_affine(model, p2);
           centroid = {
@@ -349,11 +505,26 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
       } else {
         flat = to_rgb8_sat(sv[2]->color);  // GL's provoking vertex: the last one
       }
-    } else if (!color_planes) {
+    } else if (!color_planes && !phong) {
       flat = to_rgb8_sat(material_color);
     }
 
     if (oc_or == 0) {
+      if (back && gouraud) {
+        // The back face's own copies of its vertices, with the back colours.
+        if (storage_.vertices.size() - vertex_count_ < 3) {
+          count_outcome(stats_, 0, 6);
+          continue;
+        }
+        for (int k = 0; k < 3; ++k) {
+          ScreenVertex& nv = storage_.vertices[vertex_count_ + static_cast<size_t>(k)];
+          nv = *sv[k];
+          nv.color = back_colors[k].color;
+          nv.spec = back_colors[k].spec;
+          vi[k] = static_cast<uint16_t>(vertex_count_ + static_cast<size_t>(k));
+        }
+        vertex_count_ += 3;
+      }
       BinResult r = bin(vi[0], vi[1], vi[2], draw_index, flat, flat_spec, state.cull);
       count_outcome(stats_, r == BinResult::kBinned ? 1 : 0, static_cast<int>(r));
       continue;
@@ -364,18 +535,21 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     ++stats_.clipped;
     ClipVertex poly[kMaxClipVertices];
     for (int k = 0; k < 3; ++k) {
-      poly[k].p = transform_point(mvp, mesh.positions[tri[static_cast<size_t>(k)]]);
-      poly[k].color = sv[k]->color;
-      poly[k].spec = sv[k]->spec;
+      const ScreenVertex& src = back && gouraud ? back_colors[k] : *sv[k];
+      poly[k].p = clip[k];
+      poly[k].color = src.color;
+      poly[k].spec = src.spec;
       poly[k].u = sv[k]->u;
       poly[k].v = sv[k]->v;
+      if (phong) poly[k].surface = storage_.surfaces[vi[k]];
     }
     int m = clip_polygon(poly, 3, oc_or, guard_);
     if (m < 3) {
       ++stats_.clipped_away;
       continue;
     }
-    if (static_cast<size_t>(m) > storage_.vertices.size() - vertex_count_) {
+    if (static_cast<size_t>(m) > storage_.vertices.size() - vertex_count_ ||
+        (phong && !surfaces_fit(static_cast<size_t>(m)))) {
       ++stats_.dropped_vertex_capacity;
       continue;
     }
@@ -389,6 +563,7 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
       nv.v = poly[k].v;
       nv.outcode = 0;
       if (project(poly[k].p, nv)) ++projected;
+      if (phong) storage_.surfaces[vertex_count_ + static_cast<size_t>(k)] = poly[k].surface;
     }
     if (projected != m) {
       ++stats_.clipped_away;

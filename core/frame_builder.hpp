@@ -14,6 +14,7 @@
 #include "core/clip.hpp"
 #include "core/frame_stats.hpp"
 #include "core/lighting.hpp"
+#include "core/lighting_table.hpp"
 #include "core/material.hpp"
 #include "core/mesh.hpp"
 #include "core/sampler.hpp"
@@ -54,6 +55,19 @@ struct DrawRecord {
   TexEnv env = TexEnv::kModulate;
   MipMode mip = MipMode::kNone;
   Wrap wrap_s = Wrap::kRepeat, wrap_t = Wrap::kRepeat;
+  // Phong (per-pixel lighting) draws.
+  bool phong = false;
+  PixelLighting method = PixelLighting::kExact;
+  bool two_sided = false;  // back faces get the negated normal
+  bool position = false;   // planes of the world position (point lights, local viewer)
+  bool table_bilinear = true;
+  const PreparedLighting* lighting = nullptr;  // exact mode; the viewer for environment maps
+  LightingTable table{};                       // table mode
+  const Texture* envmap = nullptr;
+  FetchFn env_fetch = nullptr;
+  const Texture* normal_map = nullptr;
+  FetchFn nmap_fetch = nullptr;
+  Mat4 view{};  // the camera's view matrix (environment maps: world to eye directions)
 };
 
 // Storage for one frame, owned by the caller. Capacities are the spans' sizes (at most 65535
@@ -72,6 +86,8 @@ struct FrameStorage {
   // textured draws; draws with equal material, lights and table spec share one table).
   std::span<SurfaceVertex> surfaces{};
   std::span<uint32_t> lighting_tables{};
+  // Phong draws: lighting prepared per material (draws of equal materials share an entry).
+  std::span<PreparedLighting> pixel_lights{};
 };
 
 class FrameBuilder {
@@ -113,6 +129,11 @@ class FrameBuilder {
   bool project(const ClipCoord& c, ScreenVertex& out) const;
   Status add_draw_record(const DrawState& state, bool has_color_planes, size_t vertices,
                          uint32_t triangles, uint8_t& index);
+  Status add_phong_state(const DrawState& state, const PreparedLighting& pl, DrawRecord& r);
+  bool surfaces_fit(size_t vertices) const {
+    return storage_.surfaces.size() >= vertex_count_ &&
+           vertices <= storage_.surfaces.size() - vertex_count_;
+  }
 
   FrameStorage storage_{};
   FrameStats stats_{};
@@ -122,6 +143,7 @@ class FrameBuilder {
   LightSet lights_{};
   Rgb8 background_{};
   size_t vertex_count_ = 0, triangle_count_ = 0, draw_count_ = 0;
+  size_t pixel_light_count_ = 0, table_words_used_ = 0;
   bool configured_ = false;
 };
 

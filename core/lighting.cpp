@@ -37,6 +37,7 @@ PreparedLighting prepare_lighting(const LightSet& set, const Material& m, Vec3 v
   PreparedLighting pl;
   pl.count = set.count > kMaxLights ? kMaxLights : set.count;
   pl.shininess_q8 = m.shininess_q8;
+  pl.material = m;
   pl.local_viewer = set.local_viewer;
   pl.eye = eye;
   pl.view = unit_of(view_dir);

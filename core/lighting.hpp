@@ -83,6 +83,7 @@ struct PreparedLighting {
   bool local_viewer = false;
   Vec3 eye{};     // world-space eye position (local viewer)
   Unit30 view{};  // world-space direction towards the viewer (infinite viewer)
+  Material material{};  // what it was prepared for: draws of equal materials share it
   // Whether lighting needs the surface position (a point light or the local viewer).
   bool needs_position() const { return any_point || local_viewer; }
 };

@@ -17,6 +17,7 @@ struct Material {
   Color15 specular{0, 0, 0};
   Color15 emission{0, 0, 0};
   uint16_t shininess_q8 = 0;
+  friend constexpr bool operator==(const Material&, const Material&) = default;
 };
 
 // An entry of the published table, values exactly as published, in units of 1e-8 (every

@@ -12,6 +12,7 @@
 #include <span>
 
 #include "core/frame_builder.hpp"
+#include "core/phong_span.hpp"
 #include "core/pixel_format.hpp"
 #include "core/span.hpp"
 #include "core/tex_span.hpp"
@@ -132,7 +133,27 @@ void Renderer<PF, K>::activate(int strip) {
     in.last_row = std::min<int32_t>(last_row_at_or_above(ymax), height_ - 1);
     in.colors = dr.texture ? ColorPlanes::kNone : dr.colors;
     in.depth = dr.depth;
-    if (dr.texture) {
+    if (dr.phong) {
+      for (int k = 0; k < 3; ++k) in.phong.s[k] = &storage_.surfaces[bt.v[k]];
+      in.phong.position = dr.position;
+      in.phong.tangent = dr.normal_map != nullptr;
+      if (dr.two_sided) {
+        // Back face: clockwise in NDC, positive area on the display (y down).
+        const int64_t area = (int64_t{in.v[1]->x} - in.v[0]->x) * (int64_t{in.v[2]->y} - in.v[0]->y) -
+                             (int64_t{in.v[2]->x} - in.v[0]->x) * (int64_t{in.v[1]->y} - in.v[0]->y);
+        in.phong.negate = area > 0;
+      }
+      in.colors = ColorPlanes::kNone;
+      // Texture coordinates in the texture's texels, or in the normal map's without one.
+      const Texture* uv_tex = dr.texture ? dr.texture : dr.normal_map;
+      if (uv_tex) {
+        in.tex.texture = uv_tex;
+        in.tex.perspective = true;
+        in.tex.colors = false;
+        in.tex.wrap_s = dr.wrap_s;
+        in.tex.wrap_t = dr.wrap_t;
+      }
+    } else if (dr.texture) {
       in.tex.texture = dr.texture;
       in.tex.perspective = dr.persp != TexPersp::kAffine;
       in.tex.colors = dr.env == TexEnv::kModulate;
@@ -157,7 +178,8 @@ template <class PF, int K>
 void Renderer<PF, K>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows) {
   const DrawRecord& dr = storage_.draws[t.draw];
   const SpanFn<PF> fn = span_routine<PF>(dr.depth, dr.colors);
-  const TexSpanFn<PF> tex_fn = dr.texture ? tex_span_routine<PF>(dr) : nullptr;
+  const TexSpanFn<PF> tex_fn = dr.texture && !dr.phong ? tex_span_routine<PF>(dr) : nullptr;
+  const PhongSpanFn<PF> phong_fn = dr.phong ? phong_span_routine<PF>(dr) : nullptr;
   const int end = std::min<int>(t.last_row, y0 + rows - 1);
   int r = t.row;
   for (; r <= end; ++r) {
@@ -170,9 +192,10 @@ void Renderer<PF, K>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, 
       size_t off =
           static_cast<size_t>(r - y0) * static_cast<size_t>(width_) + static_cast<size_t>(left);
       int32_t n = right - left;
-      stats_.pixels_written +=
-          tex_fn ? tex_fn(t, dr, pixels + off, storage_.depth.data() + off, left, r, n)
-                 : fn(t, pixels + off, storage_.depth.data() + off, left, r, n);
+      uint16_t* dp = storage_.depth.data() + off;
+      stats_.pixels_written += phong_fn ? phong_fn(t, dr, pixels + off, dp, left, r, n)
+                               : tex_fn ? tex_fn(t, dr, pixels + off, dp, left, r, n)
+                                        : fn(t, pixels + off, dp, left, r, n);
       stats_.pixels_tested += static_cast<uint32_t>(n);
       ++stats_.spans;
     }

@@ -155,6 +155,23 @@ inline TexAttrs exact_attrs(const ActiveTriangle& tri, const PlaneValues& p, boo
   return a;
 }
 
+// Level of detail at a pixel whose perspective plane values (q, s, t) are pc: from exact
+// differences over one pixel in x and in y.
+inline int32_t lod_at(const ActiveTriangle& tri, const PlaneValues& pc) {
+  PlaneValues px1 = pc, py1 = pc;
+  px1.q += tri.q.gx;
+  px1.s += tri.s.gx;
+  px1.t += tri.t.gx;
+  py1.q += tri.q.gy;
+  py1.s += tri.s.gy;
+  py1.t += tri.t.gy;
+  const TexAttrs b = exact_attrs(tri, pc, false);
+  const TexAttrs bx = exact_attrs(tri, px1, false);
+  const TexAttrs by = exact_attrs(tri, py1, false);
+  return lod_q8(int64_t{bx.s} - b.s, int64_t{bx.t} - b.t, int64_t{by.s} - b.s,
+                int64_t{by.t} - b.t);
+}
+
 // a + b modulo 2^32, without signed overflow.
 inline int32_t wrap_add(int32_t a, int32_t b) {
   return static_cast<int32_t>(static_cast<uint32_t>(a) + static_cast<uint32_t>(b));
@@ -227,23 +244,12 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
       if constexpr (kPersp != TexPersp::kAffine) {
         // At the chunk's centre pixel: the level of detail changes along a row on faces seen at
         // a grazing angle, and the centre halves the error of taking it at one end.
-        const auto half = static_cast<uint32_t>(len / 2);
         detail::PlaneValues pc = pv;
+        const auto half = static_cast<uint32_t>(len / 2);
         pc.q += gx.q * half;
         pc.s += gx.s * half;
         pc.t += gx.t * half;
-        detail::PlaneValues px1 = pc, py1 = pc;
-        px1.q += gx.q;
-        px1.s += gx.s;
-        px1.t += gx.t;
-        py1.q += tri.q.gy;
-        py1.s += tri.s.gy;
-        py1.t += tri.t.gy;
-        const TexAttrs b = detail::exact_attrs(tri, pc, false);
-        const TexAttrs bx = detail::exact_attrs(tri, px1, false);
-        const TexAttrs by = detail::exact_attrs(tri, py1, false);
-        lod = detail::lod_q8(int64_t{bx.s} - b.s, int64_t{bx.t} - b.t, int64_t{by.s} - b.s,
-                             int64_t{by.t} - b.t);
+        lod = detail::lod_at(tri, pc);
       }
       lv = detail::choose_levels<kMip>(lod, last_level);
     }

@@ -3,6 +3,10 @@
 #include <utility>
 
 namespace lr {
+
+void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3],
+                 const ScreenVertex* const v[3], const uint32_t q[3], ActiveTriangle& t);
+
 namespace {
 
 // 256 * n / area rounded, for area > 0, without forming 256 * n (n may be near 2^57).
@@ -90,10 +94,17 @@ Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]) {
 
 void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
   const ScreenVertex* v[3] = {in.v[0], in.v[1], in.v[2]};
+  const SurfaceVertex* sf[3] = {in.phong.s[0], in.phong.s[1], in.phong.s[2]};
   // Sort by y (display rows, top first); a fixed network keeps ties deterministic.
-  if (v[1]->y < v[0]->y) std::swap(v[0], v[1]);
-  if (v[2]->y < v[1]->y) std::swap(v[1], v[2]);
-  if (v[1]->y < v[0]->y) std::swap(v[0], v[1]);
+  auto order = [&](int a, int b) {
+    if (v[b]->y < v[a]->y) {
+      std::swap(v[a], v[b]);
+      std::swap(sf[a], sf[b]);
+    }
+  };
+  order(0, 1);
+  order(1, 2);
+  order(0, 1);
   int32_t x0 = v[0]->x, y0 = v[0]->y, x1 = v[1]->x, y1 = v[1]->y, x2 = v[2]->x, y2 = v[2]->y;
   int64_t cross = (int64_t{x1} - x0) * (int64_t{y2} - y0) - (int64_t{x2} - x0) * (int64_t{y1} - y0);
   t.long_is_left = cross > 0;  // middle vertex right of the long edge
@@ -119,7 +130,8 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
   }
   const bool tex = in.tex.texture != nullptr;
   uint32_t q[3] = {1u << 30, 1u << 30, 1u << 30};
-  if (in.colors == ColorPlanes::kPerspective || (tex && in.tex.perspective)) {
+  const bool phong = sf[0] != nullptr;
+  if (in.colors == ColorPlanes::kPerspective || (tex && in.tex.perspective) || phong) {
     uint32_t wmin = v[0]->w;
     for (int i = 1; i < 3; ++i) wmin = v[i]->w < wmin ? v[i]->w : wmin;
     for (int i = 0; i < 3; ++i) {
@@ -143,6 +155,60 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
     }
   }
   if (tex) setup_texture(in.tex, v, q, t);
+  if (phong) setup_phong(in.phong, sf, v, q, t);
+}
+
+void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3],
+                 const ScreenVertex* const v[3], const uint32_t q[3], ActiveTriangle& t) {
+  // Q1.30 values times q (Q1.30), biased: |x q| <= 2^30.
+  auto scaled = [&q](int64_t x, int i) {
+    return static_cast<uint32_t>(((x * q[i]) >> 30) + kPlaneBias);
+  };
+  for (int c = 0; c < 3; ++c) {
+    uint32_t a[3];
+    for (int i = 0; i < 3; ++i) {
+      const Unit30& n = s[i]->normal;
+      const int64_t x = c == 0 ? n.x : c == 1 ? n.y : n.z;
+      a[i] = scaled(ps.negate ? -x : x, i);
+    }
+    t.c[c] = make_plane(v, a);
+  }
+  t.handedness = s[0]->handedness;
+  if (ps.tangent) {
+    for (int c = 0; c < 3; ++c) {
+      uint32_t a[3];
+      for (int i = 0; i < 3; ++i) a[i] = scaled(int64_t{s[i]->tangent[c]} << 16, i);
+      t.tan[c] = make_plane(v, a);
+    }
+  }
+  if (ps.position) {
+    const Vec3& o = s[0]->position;
+    t.org[0] = o.x.raw;
+    t.org[1] = o.y.raw;
+    t.org[2] = o.z.raw;
+    int64_t rel[3][3];
+    uint64_t hi = 0;
+    for (int i = 0; i < 3; ++i) {
+      const Vec3& p = s[i]->position;
+      const int64_t d[3] = {int64_t{p.x.raw} - o.x.raw, int64_t{p.y.raw} - o.y.raw,
+                            int64_t{p.z.raw} - o.z.raw};
+      for (int c = 0; c < 3; ++c) {
+        // Triangles wider than 32768 units saturate (the spans read int32 offsets).
+        constexpr int64_t kMax = 0x7FFFFFFF;
+        rel[i][c] = d[c] > kMax ? kMax : d[c] < -kMax ? -kMax : d[c];
+        hi |= abs64(rel[i][c]);
+      }
+    }
+    const int bits = hi == 0 ? 0 : 64 - clz64(hi);  // <= 31
+    t.m_p = static_cast<uint8_t>(bits);
+    for (int c = 0; c < 3; ++c) {
+      uint32_t a[3];
+      // |rel| < 2^bits, q <= 2^30: |rel q| >> bits < 2^30.
+      for (int i = 0; i < 3; ++i)
+        a[i] = static_cast<uint32_t>(((rel[i][c] * q[i]) >> bits) + kPlaneBias);
+      t.spec[c] = make_plane(v, a);
+    }
+  }
 }
 
 void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const uint32_t q[3],

@@ -13,6 +13,11 @@
 //   q    w_min / w in Q1.30, (0, 2^30]                            (perspective: 1/w, normalised)
 //   cq_i colour channel i (Q1.15) times q, Q1.30, [0, q]          (perspective colours)
 //   c_i  colour channel i, Q1.15 scaled by 2^15 = Q2.30, [0, 2^30] (affine colours)
+// Phong triangles (signed values stored with a bias of 2^31 so that the planes stay unsigned):
+//   c_i  normal component i (Q1.30) times q, in Q1.30: |value| <= q <= 2^30
+//   spec_i world position component i relative to org (Q16.16, clamped to int32) times q,
+//        shifted right by m_p (the bit length of the largest relative value): |value| < 2^30
+//   tan_i tangent component i (Q1.14 << 16) times q: |value| <= 2^30
 // Gradient numerators are < 2^57; gradients beyond 2^38 per pixel only occur for needles
 // thinner than 1/256 pixel: such a triangle gets constant attributes (the vertex mean).
 #pragma once
@@ -22,6 +27,7 @@
 #include "core/color.hpp"
 #include "core/edge.hpp"
 #include "core/screen_vertex.hpp"
+#include "core/surface_vertex.hpp"
 #include "core/texture.hpp"
 
 namespace lr {
@@ -56,6 +62,26 @@ struct ActiveTriangle {
   Plane spec[3];  // secondary colour, in the format of c
   int32_t off_s = 0, off_t = 0;
   uint8_t m_s = 0, m_t = 0;
+  // Phong triangles: tangent planes, the position planes' origin (world Q16.16) and shift, and
+  // the bitangent's handedness (+-16384).
+  uint8_t m_p = 0;
+  int16_t handedness = 16384;
+  Plane tan[3];
+  int32_t org[3] = {0, 0, 0};
+};
+
+inline constexpr uint32_t kPlaneBias = 1u << 31;
+// A biased signed plane value back to int32.
+constexpr int32_t unbias(uint32_t v) {
+  return static_cast<int32_t>(v - kPlaneBias);
+}
+
+// Per-pixel lighting attributes of a Phong triangle.
+struct PhongSetup {
+  const SurfaceVertex* s[3] = {nullptr, nullptr, nullptr};  // nullptr: not a Phong triangle
+  bool negate = false;    // back face of a two-sided draw: negated normals
+  bool position = false;  // position planes
+  bool tangent = false;   // tangent planes (normal maps)
 };
 
 // How texture coordinates and colours of a textured triangle are laid out.
@@ -73,6 +99,7 @@ struct SetupInput {
   ColorPlanes colors;
   bool depth;
   TextureSetup tex;
+  PhongSetup phong;
   int32_t first_row;  // first row to draw (>= the triangle's own first row), viewport clamped
   int32_t last_row;   // inclusive
 };

@@ -26,9 +26,13 @@ class CoreHarness {
         active_(max_active),
         active_index_(2 * max_active),
         depth_(static_cast<size_t>(width) * K),
+        surfaces_(max_vertices),
+        tables_(4 * lighting_table_words(kMaxLightingTable, true)),
+        pixel_lights_(16),
         display_(static_cast<size_t>(width) * K),
         renderer_(std::make_unique<Renderer<PF, K>>()) {
-    FrameStorage s{vertices_, triangles_, draws_, buckets_, active_, active_index_, depth_};
+    FrameStorage s{vertices_, triangles_, draws_,    buckets_,       active_,
+                   active_index_, depth_, surfaces_, tables_, pixel_lights_};
     configured_ = renderer_->configure(s, width, height);
   }
   Status configured() const { return configured_; }
@@ -55,6 +59,9 @@ class CoreHarness {
   std::vector<ActiveTriangle> active_;
   std::vector<uint16_t> active_index_;
   std::vector<uint16_t> depth_;
+  std::vector<SurfaceVertex> surfaces_;
+  std::vector<uint32_t> tables_;
+  std::vector<PreparedLighting> pixel_lights_;
   host::CaptureDisplay<PF> display_;
   host::DepthCapture depth_capture_;
   std::unique_ptr<Renderer<PF, K>> renderer_;
