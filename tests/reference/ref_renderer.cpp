@@ -148,58 +148,139 @@ class Lighting {
     }
   }
 
+  // The unit vector from pos towards the viewer.
+  Vec3d view_dir(const Vec3d& pos) const {
+    return p_.local_viewer ? normalize(sub(eye_, pos)) : v_inf_;
+  }
+
   Vec3d at(const Vec3d& n, const Vec3d& pos) const {
-    const RefMaterial& m = p_.material;
-    Vec3d c = add(m.emission, cmul(p_.global_ambient, m.ambient));
-    const Vec3d v = p_.local_viewer ? normalize(sub(eye_, pos)) : v_inf_;
-    for (size_t i = 0; i < dirs_.size(); ++i) {
-      const Vec3d& lc = p_.lights[i].color;
-      const Vec3d& l = dirs_[i];
-      c = add(c, cmul(lc, m.ambient));
-      const double ndl = dot(n, l);
-      if (ndl > 0.0) {
-        c = add(c, muls(cmul(lc, m.diffuse), ndl));
-        const Vec3d h = normalize(add(l, v));
-        const double ndh = std::max(dot(n, h), 0.0);
-        c = add(c, muls(cmul(lc, m.specular), std::pow(ndh, m.shininess)));
-      }
-    }
+    Vec3d c, spec;
+    accumulate<false>(n, pos, c, spec);
     return clamp01(c);
   }
 
   // GL_SEPARATE_SPECULAR_COLOR: the same terms as at(), specular kept apart; each part clamped.
   RefLitColor separate(const Vec3d& n, const Vec3d& pos) const {
-    const RefMaterial& m = p_.material;
-    Vec3d c = add(m.emission, cmul(p_.global_ambient, m.ambient));
-    Vec3d spec{0, 0, 0};
-    const Vec3d v = p_.local_viewer ? normalize(sub(eye_, pos)) : v_inf_;
-    for (size_t i = 0; i < dirs_.size(); ++i) {
-      const Vec3d& lc = p_.lights[i].color;
-      const Vec3d& l = dirs_[i];
-      c = add(c, cmul(lc, m.ambient));
-      const double ndl = dot(n, l);
-      if (ndl > 0.0) {
-        c = add(c, muls(cmul(lc, m.diffuse), ndl));
-        const Vec3d h = normalize(add(l, v));
-        const double ndh = std::max(dot(n, h), 0.0);
-        spec = add(spec, muls(cmul(lc, m.specular), std::pow(ndh, m.shininess)));
-      }
-    }
+    Vec3d c, spec;
+    accumulate<true>(n, pos, c, spec);
     return {clamp01(c), clamp01(spec)};
   }
 
  private:
+  // c = emission + global ambient * Ka + per light (La Ka + max(N.L, 0) Ld Kd [+ specular]),
+  // specular = max(N.H, 0)^shininess Ls Ks where N.L > 0, added to c or (kSplit) to spec.
+  // Directional lights are not attenuated (the arithmetic of the original directional-only
+  // renderer, bit for bit); point lights multiply each of their terms by the attenuation.
+  template <bool kSplit>
+  void accumulate(const Vec3d& n, const Vec3d& pos, Vec3d& c, Vec3d& spec) const {
+    const RefMaterial& m = p_.material;
+    c = add(m.emission, cmul(p_.global_ambient, m.ambient));
+    spec = {0, 0, 0};
+    const Vec3d v = view_dir(pos);
+    for (size_t i = 0; i < dirs_.size(); ++i) {
+      const RefLight& light = p_.lights[i];
+      const Vec3d& la = light.separate_colors ? light.ambient : light.color;
+      const Vec3d& ld = light.separate_colors ? light.diffuse : light.color;
+      const Vec3d& ls = light.separate_colors ? light.specular : light.color;
+      const bool point = light.kind == RefLightKind::Point;
+      Vec3d l = dirs_[i];
+      double att = 1.0;
+      if (point) {
+        const Vec3d to_light = sub(light.position, pos);
+        const double d = length(to_light);
+        l = normalize(to_light);
+        att = 1.0 / (light.constant + light.linear * d + light.quadratic * d * d);
+      }
+      Vec3d amb = cmul(la, m.ambient);
+      if (point) amb = muls(amb, att);
+      c = add(c, amb);
+      const double ndl = dot(n, l);
+      if (ndl > 0.0) {
+        Vec3d dif = muls(cmul(ld, m.diffuse), ndl);
+        if (point) dif = muls(dif, att);
+        c = add(c, dif);
+        const Vec3d h = normalize(add(l, v));
+        const double ndh = std::max(dot(n, h), 0.0);
+        Vec3d spe = muls(cmul(ls, m.specular), std::pow(ndh, m.shininess));
+        if (point) spe = muls(spe, att);
+        if constexpr (kSplit) {
+          spec = add(spec, spe);
+        } else {
+          c = add(c, spe);
+        }
+      }
+    }
+  }
+
   const RefParams& p_;
   std::vector<Vec3d> dirs_;
   Vec3d v_inf_{0, 0, 1};
   Vec3d eye_{0, 0, 0};
 };
 
+Vec3d lerp3(const Vec3d& a, const Vec3d& b, double t) {
+  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+}
+
+// Perspective-correct interpolation: (q0 a + q1 b + q2 c) * qs per component.
+Vec3d persp3(const Vec3d& a, const Vec3d& b, const Vec3d& c, double q0, double q1, double q2,
+             double qs) {
+  Vec3d r{};
+  for (size_t k = 0; k < 3; ++k) r[k] = (q0 * a[k] + q1 * b[k] + q2 * c[k]) * qs;
+  return r;
+}
+
+Vec3d neg(const Vec3d& a) {
+  return {-a[0], -a[1], -a[2]};
+}
+
+// Spherical linear interpolation of unit vectors a and b; normalized lerp where the angle (or
+// its sine) is below 1e-9.
+Vec3d slerp(const Vec3d& a, const Vec3d& b, double t) {
+  const double th = std::acos(std::clamp(dot(a, b), -1.0, 1.0));
+  const double st = std::sin(th);
+  if (!(th >= 1e-9) || !(st >= 1e-9)) return normalize(lerp3(a, b, t));
+  return add(muls(a, std::sin((1.0 - t) * th) / st), muls(b, std::sin(t * th) / st));
+}
+
+// RefNormalInterp::Slerp at pixel centre (px, py) of the screen triangle (xs, ys) (pixels,
+// display coordinates) with unit vertex normals n.
+Vec3d scanline_slerp(const double xs[3], const double ys[3], const Vec3d n[3], double px,
+                     double py) {
+  bool found = false;
+  double xl = 0, xr = 0;
+  Vec3d nl{0, 0, 0}, nr{0, 0, 0};
+  for (int e = 0; e < 3; ++e) {
+    const int a = e, b = (e + 1) % 3;
+    if (ys[a] == ys[b]) continue;  // horizontal: its ends are crossings of the other edges
+    if (py < std::min(ys[a], ys[b]) || py > std::max(ys[a], ys[b])) continue;
+    const double t = std::clamp((py - ys[a]) / (ys[b] - ys[a]), 0.0, 1.0);
+    const double x = xs[a] + t * (xs[b] - xs[a]);
+    const Vec3d ne = slerp(n[a], n[b], t);
+    if (!found || x < xl) {
+      xl = x;
+      nl = ne;
+    }
+    if (!found || x > xr) {
+      xr = x;
+      nr = ne;
+    }
+    found = true;
+  }
+  if (!found) return n[0];  // not reached for covered pixel centres
+  if (!(xr > xl)) return nl;
+  return slerp(nl, nr, std::clamp((px - xl) / (xr - xl), 0.0, 1.0));
+}
+
 struct ClipVert {
   Vec4d c;                // clip coordinates
   Vec3d col;              // colour (Gouraud / unlit vertex colour); textured + lit: primary
   Vec3d spec{0, 0, 0};    // textured + lit: secondary (specular) colour
   double uv[2] = {0, 0};  // texture coordinates
+  // Two-sided Gouraud: col and spec lit with the negated normal (for back faces).
+  Vec3d col_b{0, 0, 0}, spec_b{0, 0, 0};
+  // Phong: world normal, world position, model position, world tangent.
+  Vec3d nrm{0, 0, 0}, wpos{0, 0, 0}, mpos{0, 0, 0}, tan{0, 0, 0};
 };
 
 constexpr int kMaxPoly = 9;
@@ -226,6 +307,12 @@ int clip_poly(const ClipVert* in, int n, ClipVert* out, Dist dist) {
       for (size_t q = 0; q < 3; ++q) r.col[q] = vi.col[q] + t * (vo.col[q] - vi.col[q]);
       for (size_t q = 0; q < 3; ++q) r.spec[q] = vi.spec[q] + t * (vo.spec[q] - vi.spec[q]);
       for (size_t q = 0; q < 2; ++q) r.uv[q] = vi.uv[q] + t * (vo.uv[q] - vi.uv[q]);
+      r.col_b = lerp3(vi.col_b, vo.col_b, t);
+      r.spec_b = lerp3(vi.spec_b, vo.spec_b, t);
+      r.nrm = lerp3(vi.nrm, vo.nrm, t);
+      r.wpos = lerp3(vi.wpos, vo.wpos, t);
+      r.mpos = lerp3(vi.mpos, vo.mpos, t);
+      r.tan = lerp3(vi.tan, vo.tan, t);
       out[m++] = r;
     }
   }
@@ -251,10 +338,6 @@ int wrap_index(double i, int size, RefWrap wrap) {
 double texel_coord(double u, int size) {
   const double s = u * static_cast<double>(size);
   return std::isfinite(s) ? s : 0.0;
-}
-
-Vec3d lerp3(const Vec3d& a, const Vec3d& b, double t) {
-  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
 }
 
 bool level_ok(const RefLevel& l) {
@@ -370,6 +453,7 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
   out.depth.assign(npix, 1.0);
   out.owner.assign(npix, -1);
   out.lod.assign(npix, std::numeric_limits<double>::quiet_NaN());
+  out.normal.assign(npix, Vec3d{0, 0, 0});
   if (npix == 0) return;
 
   const int bits = clamp_bits(params.subpixel_bits);
@@ -377,33 +461,66 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
   const Mat4d mvp = mul(params.projection, mul(params.view, params.model));
   const Lighting lighting(params);
   const bool flat = params.shading == RefShading::Flat;
+  const bool phong = params.shading == RefShading::Phong;
   const bool lit = !params.unlit;
+  const bool two_sided = params.two_sided && lit;
   const size_t nv = mesh.positions.size();
   const bool have_colors = mesh.colors.size() == nv && nv > 0;
   const bool have_normals = mesh.normals.size() == nv;
+  const bool have_tangents = mesh.tangents.size() == nv;
   const RefTexture* tex = params.texture;
   const bool have_uvs = mesh.uvs.size() == nv;
   const int tex_w0 = tex && !tex->levels.empty() ? tex->levels[0].width : 0;
   const int tex_h0 = tex && !tex->levels.empty() ? tex->levels[0].height : 0;
+  // Lit Phong's maps (level 0 only; an empty texture samples black like an incomplete one).
+  const RefLevel kNoLevel{};
+  const RefTexture* env = phong && lit ? params.envmap : nullptr;
+  const RefTexture* nmap = phong && lit ? params.normal_map : nullptr;
+  const RefLevel& env0 = env && !env->levels.empty() ? env->levels[0] : kNoLevel;
+  const RefLevel& nmap0 = nmap && !nmap->levels.empty() ? nmap->levels[0] : kNoLevel;
 
   // Per-vertex work: clip position, world position and (for Gouraud / unlit) the colour; with a
   // texture and lighting, the colour is the primary colour and vspec the secondary one.
+  // Two-sided Gouraud also lights every vertex with the negated normal (vcol_b, vspec_b); Phong
+  // keeps the world normal and tangent.
   std::vector<Vec4d> clip(nv);
   std::vector<Vec3d> world(nv), vcol(nv), vspec(nv, Vec3d{0, 0, 0});
+  std::vector<Vec3d> vcol_b, vspec_b, vnrm, vtan;
+  if (two_sided && !flat && !phong) {
+    vcol_b.assign(nv, Vec3d{0, 0, 0});
+    vspec_b.assign(nv, Vec3d{0, 0, 0});
+  }
+  if (phong) {
+    vnrm.assign(nv, Vec3d{0, 0, 0});
+    vtan.assign(nv, Vec3d{0, 0, 0});
+  }
   for (size_t v = 0; v < nv; ++v) {
     const Vec3d& p = mesh.positions[v];
     clip[v] = transform(mvp, Vec4d{p[0], p[1], p[2], 1.0});
     world[v] = transform_point(params.model, p);
+    if (phong) {
+      if (have_normals) vnrm[v] = transform_normal(params.model, mesh.normals[v]);
+      if (have_tangents) {
+        const auto& tg = mesh.tangents[v];
+        vtan[v] = normalize(transform_dir(params.model, Vec3d{tg[0], tg[1], tg[2]}));
+      }
+    }
     if (lit) {
-      if (!flat) {
+      if (!flat && !phong) {
         const Vec3d n =
             have_normals ? transform_normal(params.model, mesh.normals[v]) : Vec3d{0, 0, 0};
         if (tex) {
           const RefLitColor lc = lighting.separate(n, world[v]);
           vcol[v] = lc.primary;
           vspec[v] = lc.secondary;
+          if (two_sided) {
+            const RefLitColor lb = lighting.separate(neg(n), world[v]);
+            vcol_b[v] = lb.primary;
+            vspec_b[v] = lb.secondary;
+          }
         } else {
           vcol[v] = lighting.at(n, world[v]);
+          if (two_sided) vcol_b[v] = lighting.at(neg(n), world[v]);
         }
       }
     } else {
@@ -417,8 +534,8 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
     const size_t vi[3] = {tri[0], tri[1], tri[2]};
     if (!finite4(clip[vi[0]]) || !finite4(clip[vi[1]]) || !finite4(clip[vi[2]])) continue;
 
-    // Flat: one colour for the whole triangle.
-    Vec3d face_col{0, 0, 0}, face_spec{0, 0, 0};
+    // Flat: one colour for the whole triangle (and one for its back, two-sided).
+    Vec3d face_col{0, 0, 0}, face_spec{0, 0, 0}, face_col_b{0, 0, 0}, face_spec_b{0, 0, 0};
     if (flat) {
       if (lit) {
         const Vec3d n =
@@ -428,20 +545,42 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
           const RefLitColor lc = lighting.separate(n, centroid);
           face_col = lc.primary;
           face_spec = lc.secondary;
+          if (two_sided) {
+            const RefLitColor lb = lighting.separate(neg(n), centroid);
+            face_col_b = lb.primary;
+            face_spec_b = lb.secondary;
+          }
         } else {
           face_col = lighting.at(n, centroid);
+          if (two_sided) face_col_b = lighting.at(neg(n), centroid);
         }
       } else {
         face_col = vcol[vi[2]];  // provoking vertex: the last one
       }
     }
+    // Normal mapping: the handedness of the triangle's first vertex.
+    const double handedness = have_tangents ? mesh.tangents[vi[0]][3] : 1.0;
 
     ClipVert poly_a[kMaxPoly], poly_b[kMaxPoly];
     for (int k = 0; k < 3; ++k) {
-      poly_a[k] = {clip[vi[k]], flat ? face_col : vcol[vi[k]], flat ? face_spec : vspec[vi[k]]};
+      ClipVert& cv = poly_a[k];
+      const size_t v = vi[k];
+      cv.c = clip[v];
+      cv.col = flat ? face_col : vcol[v];
+      cv.spec = flat ? face_spec : vspec[v];
       if (have_uvs) {
-        poly_a[k].uv[0] = mesh.uvs[vi[k]][0];
-        poly_a[k].uv[1] = mesh.uvs[vi[k]][1];
+        cv.uv[0] = mesh.uvs[v][0];
+        cv.uv[1] = mesh.uvs[v][1];
+      }
+      if (!vcol_b.empty()) {
+        cv.col_b = vcol_b[v];
+        cv.spec_b = vspec_b[v];
+      }
+      if (phong) {
+        cv.nrm = vnrm[v];
+        cv.wpos = world[v];
+        cv.mpos = mesh.positions[v];
+        cv.tan = vtan[v];
       }
     }
     int n = clip_poly(poly_a, 3, poly_b, [](const Vec4d& c) { return c[2] + c[3]; });  // near
@@ -482,8 +621,20 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
         st.y[q] = sy[f[q]];
       }
       const TriSetup s = setup_tri(st);
-      if (!s.valid) continue;                                 // zero snapped area
-      if (params.cull_back && area2_exact(st) > 0) continue;  // back face
+      if (!s.valid) continue;  // zero snapped area
+      const bool back = area2_exact(st) > 0;
+      if (params.cull_back && back) continue;  // back face
+      const bool use_back = two_sided && back;
+      // The piece's three vertices; two-sided back faces take the colours lit with -n.
+      ClipVert pv[3] = {poly_a[f[0]], poly_a[f[1]], poly_a[f[2]]};
+      if (use_back && !phong) {
+        for (ClipVert& cv : pv) {
+          cv.col = cv.col_b;
+          cv.spec = cv.spec_b;
+        }
+      }
+      const Vec3d& fcol = use_back ? face_col_b : face_col;
+      const Vec3d& fspec = use_back ? face_spec_b : face_spec;
       const double area = static_cast<double>(s.area);
       // Texturing: d(barycentric b_q of vertex q)/d(window x, y in pixels) from the edge
       // functions (constant over the triangle), hence the derivatives of the homogeneous sums
@@ -504,6 +655,16 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
           }
         }
       }
+      // Phong, Slerp: the piece's screen vertices (pixels) and unit vertex normals.
+      double pxs[3] = {0, 0, 0}, pys[3] = {0, 0, 0};
+      Vec3d unit_n[3];
+      if (phong) {
+        for (int q = 0; q < 3; ++q) {
+          pxs[q] = static_cast<double>(sx[f[q]]) / S;
+          pys[q] = static_cast<double>(sy[f[q]]) / S;
+          unit_n[q] = normalize(pv[q].nrm);
+        }
+      }
       raster(s, W, H, bits, [&](int i, int j, const i128* w) {
         const double b[3] = {static_cast<double>(w[0]) / area, static_cast<double>(w[1]) / area,
                              static_cast<double>(w[2]) / area};
@@ -514,10 +675,79 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
           if (!(z < out.depth[p])) return;
           out.depth[p] = z;
         }
+        const ClipVert &v0 = pv[0], &v1 = pv[1], &v2 = pv[2];
+        if (phong) {
+          const double q0 = b[0] * inv_w[f[0]], q1 = b[1] * inv_w[f[1]], q2 = b[2] * inv_w[f[2]];
+          const double qs = 1.0 / (q0 + q1 + q2);
+          Vec3d nn;
+          switch (params.normal_interp) {
+            case RefNormalInterp::Slerp:
+              nn = normalize(scanline_slerp(pxs, pys, unit_n, i + 0.5, j + 0.5));
+              break;
+            case RefNormalInterp::SphereAnalytic:
+              nn = transform_normal(params.model,
+                                    normalize(persp3(v0.mpos, v1.mpos, v2.mpos, q0, q1, q2, qs)));
+              break;
+            case RefNormalInterp::Linear:
+            default:
+              nn = normalize(persp3(v0.nrm, v1.nrm, v2.nrm, q0, q1, q2, qs));
+              break;
+          }
+          if (use_back) nn = neg(nn);
+          if (lit) {
+            const double u = (q0 * v0.uv[0] + q1 * v1.uv[0] + q2 * v2.uv[0]) * qs;
+            const double v = (q0 * v0.uv[1] + q1 * v1.uv[1] + q2 * v2.uv[1]) * qs;
+            if (nmap) {
+              Vec3d tg = persp3(v0.tan, v1.tan, v2.tan, q0, q1, q2, qs);
+              tg = normalize(sub(tg, muls(nn, dot(nn, tg))));
+              const Vec3d bt = muls(cross(nn, tg), handedness);
+              const Vec3d c =
+                  sample_level(nmap0, u, v, params.filter, params.wrap_s, params.wrap_t);
+              const Vec3d tn{2.0 * c[0] - 1.0, 2.0 * c[1] - 1.0, 2.0 * c[2] - 1.0};
+              nn = normalize(add(add(muls(tg, tn[0]), muls(bt, tn[1])), muls(nn, tn[2])));
+            }
+            const Vec3d pos = persp3(v0.wpos, v1.wpos, v2.wpos, q0, q1, q2, qs);
+            Vec3d col;
+            double lambda = std::numeric_limits<double>::quiet_NaN();
+            Vec3d modulate{1, 1, 1};
+            if (tex) {
+              lambda =
+                  texture_lod((dAu[0] - u * dB[0]) * qs, (dAv[0] - v * dB[0]) * qs,
+                              (dAu[1] - u * dB[1]) * qs, (dAv[1] - v * dB[1]) * qs, tex_w0, tex_h0);
+              modulate = sample_texture(*tex, params, u, v, lambda);
+            }
+            if (env) {
+              const Vec3d vd = lighting.view_dir(pos);
+              const Vec3d r_world = sub(muls(nn, 2.0 * dot(nn, vd)), vd);
+              const Vec3d r = transform_dir(params.view, r_world);
+              const double m =
+                  2.0 * std::sqrt(r[0] * r[0] + r[1] * r[1] + (r[2] + 1.0) * (r[2] + 1.0));
+              const double es = m == 0.0 ? 0.5 : r[0] / m + 0.5;
+              const double et = m == 0.0 ? 0.5 : r[1] / m + 0.5;
+              modulate = cmul(modulate, sample_level(env0, es, et, RefFilter::Bilinear,
+                                                     RefWrap::ClampToEdge, RefWrap::ClampToEdge));
+            }
+            if (tex && params.tex_env == RefTexEnv::Replace) {
+              col = modulate;
+            } else if (tex || env) {
+              const RefLitColor lc = lighting.separate(nn, pos);
+              col = add(cmul(modulate, lc.primary), lc.secondary);
+            } else {
+              col = lighting.at(nn, pos);
+            }
+            col = clamp01(col);
+            out.color[p] = col;
+            for (size_t ch = 0; ch < 3; ++ch) out.rgb8[p * 3 + ch] = to_byte(col[ch]);
+            out.owner[p] = static_cast<int32_t>(t);
+            out.lod[p] = lambda;
+            out.normal[p] = nn;
+            return;
+          }
+          out.normal[p] = nn;  // unlit Phong: shaded as unlit Gouraud below
+        }
         if (tex) {
           const double q0 = b[0] * inv_w[f[0]], q1 = b[1] * inv_w[f[1]], q2 = b[2] * inv_w[f[2]];
           const double B = q0 + q1 + q2, qs = 1.0 / B;
-          const ClipVert &v0 = poly_a[f[0]], &v1 = poly_a[f[1]], &v2 = poly_a[f[2]];
           const double u = (q0 * v0.uv[0] + q1 * v1.uv[0] + q2 * v2.uv[0]) * qs;
           const double v = (q0 * v0.uv[1] + q1 * v1.uv[1] + q2 * v2.uv[1]) * qs;
           const double lambda =
@@ -526,7 +756,7 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
           const Vec3d texel = sample_texture(*tex, params, u, v, lambda);
           Vec3d col = texel;
           if (params.tex_env == RefTexEnv::Modulate) {
-            Vec3d prim = face_col, sec = face_spec;
+            Vec3d prim = fcol, sec = fspec;
             if (!flat) {
               for (size_t ch = 0; ch < 3; ++ch) {
                 prim[ch] = (q0 * v0.col[ch] + q1 * v1.col[ch] + q2 * v2.col[ch]) * qs;
@@ -542,14 +772,12 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
           out.lod[p] = lambda;
           return;
         }
-        Vec3d col = face_col;
+        Vec3d col = fcol;
         if (!flat) {
           const double q0 = b[0] * inv_w[f[0]], q1 = b[1] * inv_w[f[1]], q2 = b[2] * inv_w[f[2]];
           const double qs = 1.0 / (q0 + q1 + q2);
           for (size_t ch = 0; ch < 3; ++ch)
-            col[ch] = (q0 * poly_a[f[0]].col[ch] + q1 * poly_a[f[1]].col[ch] +
-                       q2 * poly_a[f[2]].col[ch]) *
-                      qs;
+            col[ch] = (q0 * v0.col[ch] + q1 * v1.col[ch] + q2 * v2.col[ch]) * qs;
         }
         col = clamp01(col);
         out.color[p] = col;

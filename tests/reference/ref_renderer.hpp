@@ -18,6 +18,9 @@
 //   of the 4.x spec: GL_NEAREST / GL_LINEAR, GL_*_MIPMAP_NEAREST / _LINEAR, GL_REPEAT /
 //   GL_CLAMP_TO_EDGE), combined per DESIGN.md section 4 (GL_MODULATE with
 //   GL_SEPARATE_SPECULAR_COLOR, or GL_REPLACE).
+// Phong shading carries world normals, world and model positions and tangents through clipping
+// like the colours and lights every covered pixel (see RefParams: normal_interp, envmap,
+// normal_map); two_sided picks the back-face lighting per screen triangle.
 #pragma once
 
 #include <cstddef>
@@ -29,11 +32,27 @@
 
 namespace lr::ref {
 
-// A directional light. direction: world space, from the surface towards the light (normalized
-// by the renderer). The light's ambient, diffuse and specular colours all equal color.
+enum class RefLightKind { Directional, Point };
+
+// A GL fixed-function light (no spot lights).
+// Directional: direction is in world space, from the surface towards the light (normalized by
+// the renderer). Point: position is the light's world position, L = normalize(position - P), and
+// the light's three terms are multiplied by GL's attenuation 1 / (constant + linear d +
+// quadratic d^2), d = the world distance from the lit point P to the light (directional lights
+// are never attenuated).
+// Colours: the light's ambient, diffuse and specular colours all equal color (the project's
+// convention), unless separate_colors is set: then ambient, diffuse and specular are used and
+// color is ignored.
 struct RefLight {
-  Vec3d direction{1, 1, 1};
+  Vec3d direction{1, 1, 1};  // directional lights
   Vec3d color{1, 1, 1};
+  RefLightKind kind = RefLightKind::Directional;
+  Vec3d position{0, 0, 0};  // point lights, world space
+  double constant = 1, linear = 0, quadratic = 0;
+  bool separate_colors = false;
+  Vec3d ambient{0, 0, 0};
+  Vec3d diffuse{1, 1, 1};
+  Vec3d specular{1, 1, 1};
 };
 
 struct RefMaterial {
@@ -44,7 +63,22 @@ struct RefMaterial {
   double shininess = 32;  // GL range [0, 128]
 };
 
-enum class RefShading { Flat, Gouraud };
+// Flat: the face normal, lit once per triangle. Gouraud: lit per vertex, colours interpolated.
+// Phong: normals (and world positions) interpolated, lit per pixel; see RefParams.
+enum class RefShading { Flat, Gouraud, Phong };
+
+// How Phong shading finds the pixel's normal (before normal mapping and two-sided negation).
+//   Linear: the perspective-correct interpolation of the three vertex world normals, normalized.
+//   Slerp: the scanline method: the pixel centre row y crosses the (clipped, snapped) screen
+//     triangle's left and right edges at xl and xr; the normal at each crossing is the slerp of
+//     that edge's two (normalized) vertex normals by the screen-space parameter along the edge,
+//     and the pixel's normal the slerp between the left and right normals by (x - xl) / (xr - xl)
+//     (x the pixel centre). slerp(a, b, t) = sin((1-t)th)/sin(th) a + sin(t th)/sin(th) b,
+//     th = acos(a.b); normalized lerp where th < 1e-9 or sin(th) < 1e-9.
+//   SphereAnalytic: normalize(the perspective-correct interpolated MODEL-space position),
+//     transformed to world by the model's normal matrix: the exact normal of a sphere centred at
+//     the model origin, for measuring the error of the other methods.
+enum class RefNormalInterp { Linear, Slerp, SphereAnalytic };
 
 // ---- Textures ----
 
@@ -107,6 +141,36 @@ struct RefParams {
   // material.diffuse; flat: the last vertex's colour).
   // Replace: the texel alone, lit or not.
   RefTexEnv tex_env = RefTexEnv::Modulate;
+
+  // GL_LIGHT_MODEL_TWO_SIDE: back faces (signed_area2 > 0 of the snapped screen triangle,
+  // clockwise in NDC) are lit with the negated normal: Gouraud lights their vertices with -n,
+  // Flat the negated face normal, Phong the negated per-pixel normal. Front faces unchanged.
+  bool two_sided = false;
+
+  // ---- Phong shading (shading == Phong) ----
+  // Per pixel: N from normal_interp; the world position P is the perspective-correct
+  // interpolation of the vertex world positions; clipped vertices interpolate normals, positions
+  // and tangents linearly in clip space as colours are. Vertex world normals as Gouraud's
+  // (normal matrix, normalized; zero without mesh normals). Untextured: light_point(N, P).
+  // With a texture and/or an envmap: clamp(base texel * env texel * primary + secondary) from
+  // light_point_separate(N, P) (a missing map counts as 1); Replace: the base texel alone (times
+  // the env texel if any). Unlit Phong shades as unlit Gouraud (RefFrame::normal still written);
+  // envmap and normal_map apply to lit Phong only.
+  RefNormalInterp normal_interp = RefNormalInterp::Linear;
+  // Sphere environment map (GL_SPHERE_MAP), must outlive render(). v = the unit vector towards
+  // the viewer (infinite viewer: the view's +Z axis in world space; local viewer:
+  // normalize(eye - P)); r = 2 (N.v) N - v in world space, taken to eye space by the view's
+  // upper 3x3; m = 2 sqrt(rx^2 + ry^2 + (rz + 1)^2); (u, v) = (rx / m + 0.5, ry / m + 0.5), or
+  // (0.5, 0.5) where m = 0; sampled with sample_level(level 0, Bilinear, ClampToEdge x 2).
+  const RefTexture* envmap = nullptr;
+  // Tangent-space normal map (RGB = (n + 1) / 2), must outlive render(). Needs mesh.uvs and
+  // mesh.tangents (absent or of the wrong size: every tangent is (0, 0, 0, 1)). Vertex world
+  // tangent = normalize(model's upper 3x3 * tangent.xyz). Per pixel: T = the perspective-correct
+  // interpolated world tangent, T = normalize(T - (N.T) N), B = w cross(N, T) with w the
+  // tangent.w of the mesh triangle's first vertex; c = sample_level(level 0, filter, wrap_s,
+  // wrap_t) at the pixel's (u, v); tn = 2c - 1; N' = normalize(tn.x T + tn.y B + tn.z N).
+  // Two-sided back faces negate N before the frame is built. Incomplete maps sample black.
+  const RefTexture* normal_map = nullptr;
 };
 
 struct RefFrame {
@@ -118,6 +182,9 @@ struct RefFrame {
   // Level of detail lambda = log2(rho) of the textured fragment that wrote the pixel (-infinity
   // where the derivatives vanish); NaN where no textured fragment was written.
   std::vector<double> lod;
+  // The final world-space shading normal (after normal mapping and two-sided negation) of the
+  // Phong fragment that wrote the pixel last; {0, 0, 0} where no Phong fragment was written.
+  std::vector<Vec3d> normal;
 
   size_t index(int x, int y) const {
     return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
@@ -129,7 +196,8 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out);
 
 // The lit colour (clamped to [0, 1]) of a surface point: OpenGL fixed-function lighting with
 // params.material, params.lights, params.global_ambient and params.local_viewer.
-// normal_world must be unit length; position_world is used only for the local viewer.
+// normal_world must be unit length; position_world is used only for point lights and the local
+// viewer.
 Vec3d light_point(const RefParams& params, const Vec3d& normal_world, const Vec3d& position_world);
 
 // The same lighting split as GL_SEPARATE_SPECULAR_COLOR does: primary = emission + global
