@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <numbers>
 
+#include "host_sim/tangents.hpp"
+
 namespace lr::host {
 namespace {
 
@@ -40,6 +42,7 @@ void add_quad(HostMesh& m, uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
 
 void finish(HostMesh& m) {
   m.triangle_material.assign(m.triangles.size(), -1);
+  compute_tangents(m);
 }
 
 // Appends the shortest round-trip form of v.

@@ -3,7 +3,8 @@
 //
 // Procedural meshes follow the conventions of host_mesh.hpp / DESIGN.md §4: counter-clockwise
 // triangles seen from outside, unit per-vertex normals pointing outwards (the analytic normals of
-// the surface), uvs in [0, 1] with v = 1 at the top of the image. Vertices are duplicated along
+// the surface), uvs in [0, 1] with v = 1 at the top of the image, and tangents from
+// compute_tangents (tangents.hpp) for normal mapping. Vertices are duplicated along
 // texture seams (and at the poles of the sphere, one per slice); the duplicates have bit-identical
 // positions, so the closed meshes are watertight when vertices are welded by position.
 // Counts are clamped to a valid range: at least the minimum stated, at most 2048.
