@@ -1,13 +1,16 @@
 #include "host_sim/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <unordered_map>
 
 #include "core/camera.hpp"
+#include "core/lighting_table.hpp"
 #include "core/renderer.hpp"
 #include "host_sim/capture_display.hpp"
 #include "host_sim/mesh_prep.hpp"
+#include "host_sim/tangents.hpp"
 #include "host_sim/texture_load.hpp"
 
 namespace lr::host {
@@ -46,6 +49,12 @@ bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<
                        std::string& error) {
   ModelTransform mt = model_transform(mesh, o);
   const size_t nt = mesh.triangles.size();
+  const bool tangents = !mesh.tangents.empty();
+  if (tangents && mesh.tangents.size() != mesh.positions.size()) {
+    error = "mesh: " + std::to_string(mesh.tangents.size()) + " tangents for " +
+            std::to_string(mesh.positions.size()) + " vertices";
+    return false;
+  }
   // Group triangles by material, in first-use order, keeping submission order inside a group.
   std::vector<int32_t> order_of;
   std::vector<std::vector<uint32_t>> groups;
@@ -120,6 +129,14 @@ bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<
             }
             d.uvs.push_back(tc);
           }
+          if (tangents) {
+            Tangent16 t;
+            if (!to_tangent16(mesh.tangents[vi], t)) {
+              error = "mesh: tangent of vertex " + std::to_string(vi) + " is not finite";
+              return false;
+            }
+            d.tangents.push_back(t);
+          }
         }
         tri[static_cast<size_t>(k)] = it->second;
       }
@@ -132,10 +149,13 @@ bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<
 
 namespace {
 
-// The texture of each draw (nullptr: untextured), loaded once per file.
+// The texture of each draw (nullptr: untextured), loaded once per file, and the frame's
+// environment and normal maps (nullptr: none).
 struct DrawTextures {
   std::vector<std::pair<std::string, std::unique_ptr<HostTexture>>> loaded;
   std::vector<const Texture*> per_draw;
+  HostTexture envmap, normal_map;
+  bool has_envmap = false, has_normal_map = false;
 };
 
 bool load_draw_textures(const HostMesh& mesh, const std::vector<FixedDraw>& draws,
@@ -171,6 +191,63 @@ bool load_draw_textures(const HostMesh& mesh, const std::vector<FixedDraw>& draw
   return true;
 }
 
+// The frame's lights: o.lights when given, else white directional lights along o.light_dirs.
+bool build_lights(const SceneOptions& o, LightSet& lights, std::string& error) {
+  std::vector<LightOption> list = o.lights;
+  if (list.empty()) {
+    for (const Vec3d& d : o.light_dirs) {
+      LightOption l;
+      l.xyz = d;
+      list.push_back(l);
+    }
+  }
+  if (list.size() > static_cast<size_t>(kMaxLights)) {
+    error = "lights: at most " + std::to_string(kMaxLights);
+    return false;
+  }
+  for (const LightOption& l : list) {
+    const Color15 c = to_color15(l.color);
+    if (!l.point) {
+      const Vec3d& d = l.xyz;
+      double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      Vec3 fd;
+      if (!(len > 0) || !std::isfinite(len) ||
+          !fixed_vec({d[0] / len, d[1] / len, d[2] / len}, fd)) {
+        error = "light: direction must be finite and non-zero";
+        return false;
+      }
+      lights.lights[lights.count++] = Light::directional(fd, c);
+      continue;
+    }
+    Vec3 pos;
+    if (!fixed_vec(l.xyz, pos)) {
+      error = "light: point light position is not finite or outside the core's range (|x| < 32768)";
+      return false;
+    }
+    Fixed kc, kl, kq;
+    if (!(l.constant >= 0) || !(l.linear >= 0) || !(l.quadratic >= 0) ||
+        !to_fixed(l.constant, kc) || !to_fixed(l.linear, kl) || !to_fixed(l.quadratic, kq) ||
+        (kc.raw == 0 && kl.raw == 0 && kq.raw == 0)) {
+      error = "light: attenuation coefficients must be finite, in [0, 32767] and not all 0";
+      return false;
+    }
+    lights.lights[lights.count++] = Light::point(pos, c, kc, kl, kq);
+  }
+  lights.global_ambient = to_color15(o.global_ambient);
+  lights.local_viewer = o.local_viewer;
+  lights.two_sided = o.two_sided;
+  return true;
+}
+
+// How many distinct materials the draws have (the core prepares lighting, and fills lighting
+// tables, once per material).
+size_t distinct_materials(const std::vector<FixedDraw>& draws) {
+  std::vector<Material> seen;
+  for (const FixedDraw& d : draws)
+    if (std::find(seen.begin(), seen.end(), d.material) == seen.end()) seen.push_back(d.material);
+  return seen.size();
+}
+
 template <int K>
 bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
               const SceneOptions& o, RenderResult& out, std::string& error) {
@@ -183,7 +260,18 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
   std::vector<ActiveTriangle> active(4096);
   std::vector<uint16_t> active_index(2 * active.size());
   std::vector<uint16_t> depth(w * K);
-  FrameStorage storage{vertices, triangles, records, buckets, active, active_index, depth};
+  // Phong only: a SurfaceVertex per vertex-store entry, the lighting prepared per material, and
+  // for kTable the table pool: one table per material, split (two words per sample) as textured
+  // or environment-mapped draws need it.
+  const bool phong = o.shading == Shading::kPhong;
+  const size_t materials = phong ? distinct_materials(draws) : 0;
+  std::vector<SurfaceVertex> surfaces(phong ? vertices.size() : 0);
+  std::vector<PreparedLighting> pixel_lights(materials);
+  std::vector<uint32_t> tables(o.pixel_lighting == PixelLighting::kTable
+                                   ? materials * lighting_table_words(o.table.size, true)
+                                   : 0);
+  FrameStorage storage{vertices,     triangles, records,  buckets, active,
+                       active_index, depth,     surfaces, tables,  pixel_lights};
   auto renderer = std::make_unique<Renderer<PF, K>>();
   if (renderer->configure(storage, o.width, o.height) != Status::kOk) {
     error = "viewport: width and height must be 1.." + std::to_string(kMaxViewport);
@@ -208,22 +296,12 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
     return false;
   }
   LightSet lights;
-  if (o.light_dirs.size() > static_cast<size_t>(kMaxLights)) {
-    error = "lights: at most " + std::to_string(kMaxLights);
+  if (!build_lights(o, lights, error)) return false;
+  if (phong && o.pixel_lighting == PixelLighting::kTable && !o.unlit && !lights.normal_only()) {
+    error =
+        "lighting table: needs directional lights only and no local viewer (use exact lighting)";
     return false;
   }
-  for (const Vec3d& d : o.light_dirs) {
-    double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    Vec3 fd;
-    if (!(len > 0) || !std::isfinite(len) || !fixed_vec({d[0] / len, d[1] / len, d[2] / len}, fd)) {
-      error = "light: direction must be finite and non-zero";
-      return false;
-    }
-    lights.lights[lights.count++] =
-        Light::directional(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
-  }
-  lights.global_ambient = to_color15(o.global_ambient);
-  lights.local_viewer = o.local_viewer;
   Rgb8 bg = to_rgb8(to_color15(o.background));
   renderer->begin_frame(cam, lights, bg);
 
@@ -241,6 +319,10 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
   st.depth_test = o.depth_test;
   st.cull = o.cull;
   st.perspective = o.perspective;
+  st.pixel_lighting = o.pixel_lighting;
+  st.table = o.table;
+  st.envmap = textures.has_envmap ? &textures.envmap.texture : nullptr;
+  st.normal_map = textures.has_normal_map ? &textures.normal_map.texture : nullptr;
   for (size_t i = 0; i < draws.size(); ++i) {
     const FixedDraw& d = draws[i];
     Mesh m = d.mesh();
@@ -283,6 +365,15 @@ bool to_texcoord(const Vec2d& uv, TexCoord& out) {
   return true;
 }
 
+bool to_tangent16(const Vec4d& t, Tangent16& out) {
+  for (double c : t)
+    if (!std::isfinite(c)) return false;
+  out = Tangent16{
+      n14(t[0]), n14(t[1]), n14(t[2]),
+      static_cast<int16_t>(t[3] >= 0 ? 1 << Tangent16::kFracBits : -(1 << Tangent16::kFracBits))};
+  return true;
+}
+
 bool to_fixed(double v, Fixed& out) {
   if (!std::isfinite(v) || std::fabs(v) >= 32767.5) return false;
   out = Fixed::from_raw(static_cast<int32_t>(std::lround(v * Fixed::kOne)));
@@ -305,14 +396,51 @@ ModelTransform model_transform(const HostMesh& mesh, const SceneOptions& o) {
 
 bool render_scene(const HostMesh& mesh, const SceneOptions& o, RenderResult& out,
                   std::string& error) {
+  const bool phong = o.shading == Shading::kPhong;
+  if (!o.envmap.empty() && !phong) {
+    error = o.envmap + ": an environment map needs Phong shading";
+    return false;
+  }
+  if (!o.normalmap.empty() && !phong) {
+    error = o.normalmap + ": a normal map needs Phong shading";
+    return false;
+  }
+  if (phong && o.pixel_lighting == PixelLighting::kTable &&
+      (o.table.size < 8 || o.table.size > 256)) {
+    error = "lighting table: size must be 8..256 cells per side";
+    return false;
+  }
+  // A normal map needs uvs and tangents: the mesh's, or computed here on a copy.
+  const HostMesh* src = &mesh;
+  HostMesh with_tangents;
+  if (!o.normalmap.empty()) {
+    if (!mesh.has_uvs()) {
+      error = o.normalmap + ": the mesh has no texture coordinates (vt) to map it with";
+      return false;
+    }
+    if (mesh.tangents.size() != mesh.positions.size()) {
+      with_tangents = mesh;
+      compute_tangents(with_tangents);
+      src = &with_tangents;
+    }
+  }
   std::vector<FixedDraw> draws;
-  if (!build_fixed_draws(mesh, o, draws, error)) return false;
+  if (!build_fixed_draws(*src, o, draws, error)) return false;
   if (draws.size() > 256) {
     error = "mesh: more than 256 draws (materials x 65535-vertex pieces)";
     return false;
   }
   DrawTextures textures;
-  if (!load_draw_textures(mesh, draws, o, textures, error)) return false;
+  if (!load_draw_textures(*src, draws, o, textures, error)) return false;
+  if (!o.envmap.empty()) {
+    if (!load_texture(o.envmap, o.texture_format, false, textures.envmap, error)) return false;
+    textures.has_envmap = true;
+  }
+  if (!o.normalmap.empty()) {
+    if (!load_texture(o.normalmap, TexelFormat::kRgb888, false, textures.normal_map, error))
+      return false;
+    textures.has_normal_map = true;
+  }
   switch (o.strip_height) {
     case 1:
       return render_k<1>(draws, textures, o, out, error);

@@ -24,6 +24,18 @@ struct MaterialOptions {
   double shininess = 32.0;  // GL range [0, 128]
 };
 
+// A light as the options describe it (GL's fixed-function light; see core/lighting.hpp).
+// Directional: xyz is the world-space direction from the surface towards the light (any
+// non-zero length). Point: xyz is the light's world position, and its terms are scaled by GL's
+// attenuation 1 / (constant + linear d + quadratic d^2) (coefficients >= 0, not all 0).
+// `color` in [0, 1] is its ambient, diffuse and specular colour (the project's convention).
+struct LightOption {
+  bool point = false;
+  Vec3d xyz{1, 1, 1};
+  Vec3d color{1, 1, 1};
+  double constant = 1, linear = 0, quadratic = 0;
+};
+
 // Everything lineraster-sim's options describe (defaults are the CLI's).
 struct SceneOptions {
   int width = 320, height = 240;
@@ -32,11 +44,21 @@ struct SceneOptions {
   bool fit = false;
   double model_scale = 1.0, model_rotate_y = 0.0;
   Vec3d model_translate{0, 0, 0};
-  Shading shading = Shading::kGouraud;
+  Shading shading = Shading::kGouraud;  // kFlat, kGouraud or kPhong (lit per pixel)
   bool unlit = false;
   std::vector<Vec3d> light_dirs{{1, 1, 1}};  // world space, towards the light; colour white
+  std::vector<LightOption> lights;  // when not empty: the lights, and light_dirs is not used
   Vec3d global_ambient{0, 0, 0};
   bool local_viewer = false;
+  bool two_sided = false;  // back faces lit with the negated normal (GL_LIGHT_MODEL_TWO_SIDE)
+  // Phong shading only: how a pixel is lit (kTable needs directional lights only and no local
+  // viewer), the table's size and filter, and the sphere environment map and tangent-space
+  // normal map (PNG files; the normal map is loaded as RGB888, the environment map in
+  // texture_format; both at level 0). A normal map needs texture coordinates in the mesh; its
+  // tangents are the mesh's, or computed (compute_tangents) when the mesh has none.
+  PixelLighting pixel_lighting = PixelLighting::kExact;
+  LightingTableSpec table{};
+  std::string envmap, normalmap;
   MaterialOptions material;
   bool use_mesh_materials =
       true;  // MTL materials of the mesh win unless material options were given
@@ -79,9 +101,10 @@ struct FixedDraw {
   std::vector<Rgb8> colors;   // empty when the mesh has none
   std::vector<TexCoord> uvs;  // empty when the mesh has none
   std::vector<std::array<uint16_t, 3>> triangles;
+  std::vector<Tangent16> tangents;  // empty when the mesh has none; Q1.14, w = +-16384
   Material material;
   int32_t material_index = -1;  // the HostMesh material it came from, -1 for the options' one
-  Mesh mesh() const { return {positions, normals, colors, uvs, triangles}; }
+  Mesh mesh() const { return {positions, normals, colors, uvs, triangles, tangents}; }
 };
 
 // Converts the mesh (with the options' fit applied) to the core's formats, split by material
@@ -89,7 +112,9 @@ struct FixedDraw {
 bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& options,
                        std::vector<FixedDraw>& draws, std::string& error);
 
-// Renders; on failure returns false with a one-line error (nothing rendered).
+// Renders; on failure returns false with a one-line error (nothing rendered). Phong frames get
+// the SurfaceVertex store (as large as the vertex store), one PreparedLighting per distinct
+// material and, for PixelLighting::kTable, one split table (2 (size + 1)^2 words) per material.
 bool render_scene(const HostMesh& mesh, const SceneOptions& options, RenderResult& out,
                   std::string& error);
 
@@ -97,5 +122,8 @@ bool render_scene(const HostMesh& mesh, const SceneOptions& options, RenderResul
 bool to_fixed(double v, Fixed& out);
 bool to_texcoord(const Vec2d& uv, TexCoord& out);
 Color15 to_color15(const Vec3d& c);
+// A unit tangent (x, y, z) in Q1.14 and w = +16384 for w >= 0, else -16384; false when a
+// component is not finite.
+bool to_tangent16(const Vec4d& t, Tangent16& out);
 
 }  // namespace lr::host
