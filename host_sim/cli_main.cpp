@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/lighting.hpp"
 #include "core/material.hpp"
 #include "host_sim/image_io.hpp"
 #include "host_sim/obj_loader.hpp"
@@ -21,12 +22,18 @@ constexpr const char* kUsage =
     "usage: lineraster-sim --obj FILE [--out FILE.png|.ppm] [--width N] [--height N] [--fovy DEG]\n"
     "  [--near Z] [--far Z] [--eye x,y,z] [--target x,y,z] [--up x,y,z] [--fit] [--model-scale S]\n"
     "  [--model-rotate-y DEG] [--model-translate x,y,z] [--shading flat|gouraud|phong] [--unlit]\n"
-    "  [--light-dir x,y,z] [--local-viewer] [--material NAME] [--ambient r,g,b] [--diffuse r,g,b]\n"
-    "  [--specular r,g,b] [--shininess N] [--bg r,g,b] [--no-depth] [--cull back|none]\n"
-    "  [--depth-out FILE.png] [--strip-height 1|2|4|8|16|32] [--stats]\n"
-    "  [--texture FILE.png] [--filter nearest|bilinear] [--wrap repeat|clamp]\n"
+    "  [--light-dir x,y,z] [--light dir:x,y,z[:r,g,b]] [--light point:x,y,z[:r,g,b[:c,l,q]]]\n"
+    "  [--global-ambient r,g,b] [--local-viewer] [--two-sided] [--material NAME]\n"
+    "  [--ambient r,g,b] [--diffuse r,g,b] [--specular r,g,b] [--shininess N] [--bg r,g,b]\n"
+    "  [--no-depth] [--cull back|none] [--depth-out FILE.png] [--strip-height 1|2|4|8|16|32]\n"
+    "  [--stats] [--texture FILE.png] [--filter nearest|bilinear] [--wrap repeat|clamp]\n"
     "  [--perspective exact|span8|span16|span32|affine] [--mipmap none|nearest|linear]\n"
-    "  [--texture-format rgb565|rgb888|l8|palette8]\n";
+    "  [--texture-format rgb565|rgb888|l8|palette8]\n"
+    "Phong only (--shading phong): [--lighting exact|table] [--lighting-table N]\n"
+    "  [--lighting-table-filter nearest|bilinear] [--envmap FILE.png] [--normalmap FILE.png]\n"
+    "--light: repeatable, at most 4, not with --light-dir; colour r,g,b default 1,1,1; c,l,q:\n"
+    "  GL attenuation 1 / (c + l d + q d^2), default 1,0,0. --lighting default exact;\n"
+    "  --lighting-table: 8..256 cells per side, default 32, bilinear; needs --lighting table.\n";
 
 int fail(const std::string& msg) {
   std::fprintf(stderr, "lineraster-sim: %s\n", msg.c_str());
@@ -55,9 +62,51 @@ bool parse_vec3(std::string_view s, Vec3d& out) {
          parse_double(s.substr(b + 1), out[2]);
 }
 
+// Splits s at every ':' ("a:b:" gives "a", "b", "").
+std::vector<std::string_view> split_colons(std::string_view s) {
+  std::vector<std::string_view> parts;
+  for (size_t start = 0;;) {
+    size_t c = s.find(':', start);
+    parts.push_back(s.substr(start, c == std::string_view::npos ? c : c - start));
+    if (c == std::string_view::npos) return parts;
+    start = c + 1;
+  }
+}
+
 bool unit_color(const Vec3d& c) {
   for (double v : c)
     if (v < 0 || v > 1) return false;
+  return true;
+}
+
+// --light dir:x,y,z[:r,g,b] or point:x,y,z[:r,g,b[:c,l,q]]. On failure `why` says what is
+// wrong, in the words of the option's error message.
+bool parse_light(std::string_view s, lr::host::LightOption& out, std::string& why) {
+  why = "expected dir:x,y,z[:r,g,b] or point:x,y,z[:r,g,b[:c,l,q]]";
+  const std::vector<std::string_view> p = split_colons(s);
+  if (p[0] != "dir" && p[0] != "point") return false;
+  out = lr::host::LightOption{};
+  out.point = p[0] == "point";
+  if (p.size() < 2 || p.size() > (out.point ? 4u : 3u) || !parse_vec3(p[1], out.xyz)) return false;
+  if (!out.point && out.xyz[0] == 0 && out.xyz[1] == 0 && out.xyz[2] == 0) {
+    why = "zero direction";
+    return false;
+  }
+  if (p.size() >= 3 && (!parse_vec3(p[2], out.color) || !unit_color(out.color))) {
+    why = "colour r,g,b in [0,1]";
+    return false;
+  }
+  if (p.size() == 4) {
+    Vec3d a;
+    if (!parse_vec3(p[3], a) || a[0] < 0 || a[1] < 0 || a[2] < 0 || a[0] > 32767 || a[1] > 32767 ||
+        a[2] > 32767 || a[0] + a[1] + a[2] <= 0) {
+      why = "attenuation c,l,q: each in [0, 32767], not all 0";
+      return false;
+    }
+    out.constant = a[0];
+    out.linear = a[1];
+    out.quadratic = a[2];
+  }
   return true;
 }
 
@@ -77,6 +126,10 @@ int main(int argc, char** argv) {
   std::string obj, out = "out.png", depth_out;
   bool stats = false;
   std::vector<Vec3d> lights;
+  std::vector<lr::host::LightOption> light_options;
+  // The first option given that only Phong shading uses, and the first that only the lighting
+  // table uses (checked once every option is read, since options come in any order).
+  std::string phong_only, table_only;
   for (int i = 1; i < argc; ++i) {
     std::string_view a = argv[i];
     // A value never starts with "--": "--obj --out x.png" is a missing value, not a file "--out".
@@ -95,6 +148,8 @@ int main(int argc, char** argv) {
       o.unlit = true;
     } else if (a == "--local-viewer") {
       o.local_viewer = true;
+    } else if (a == "--two-sided") {
+      o.two_sided = true;
     } else if (a == "--no-depth") {
       o.depth_test = false;
     } else if (a == "--stats") {
@@ -106,7 +161,9 @@ int main(int argc, char** argv) {
                a == "--material" || a == "--ambient" || a == "--diffuse" || a == "--specular" ||
                a == "--shininess" || a == "--bg" || a == "--cull" || a == "--strip-height" ||
                a == "--texture" || a == "--filter" || a == "--wrap" || a == "--perspective" ||
-               a == "--mipmap" || a == "--texture-format") {
+               a == "--mipmap" || a == "--texture-format" || a == "--light" ||
+               a == "--global-ambient" || a == "--lighting" || a == "--lighting-table" ||
+               a == "--lighting-table-filter" || a == "--envmap" || a == "--normalmap") {
       if (!value(v)) return fail(std::string(a) + ": missing value");
       const std::string bad = std::string(a) + ": bad value '" + std::string(v) + "'";
       if (a == "--obj") {
@@ -165,11 +222,14 @@ int main(int argc, char** argv) {
           if (p[0] == 0 && p[1] == 0 && p[2] == 0) return fail(bad + " (zero direction)");
           lights.push_back(p);
         }
-      } else if (a == "--ambient" || a == "--diffuse" || a == "--specular" || a == "--bg") {
+      } else if (a == "--ambient" || a == "--diffuse" || a == "--specular" || a == "--bg" ||
+                 a == "--global-ambient") {
         Vec3d c;
         if (!parse_vec3(v, c) || !unit_color(c)) return fail(bad + " (expected r,g,b in [0,1])");
         if (a == "--bg") {
           o.background = c;
+        } else if (a == "--global-ambient") {
+          o.global_ambient = c;
         } else {
           (a == "--ambient"   ? o.material.ambient
            : a == "--diffuse" ? o.material.diffuse
@@ -194,9 +254,42 @@ int main(int argc, char** argv) {
         else if (v == "gouraud")
           o.shading = lr::Shading::kGouraud;
         else if (v == "phong")
-          return fail("--shading phong: not supported yet (per-pixel lighting is a later issue)");
+          o.shading = lr::Shading::kPhong;
         else
           return fail(bad + " (flat, gouraud or phong)");
+      } else if (a == "--light") {
+        lr::host::LightOption l;
+        std::string why;
+        if (!parse_light(v, l, why)) return fail(bad + " (" + why + ")");
+        if (light_options.size() == static_cast<size_t>(lr::kMaxLights))
+          return fail("--light: at most " + std::to_string(lr::kMaxLights) + " lights");
+        light_options.push_back(l);
+      } else if (a == "--lighting") {
+        if (v == "exact")
+          o.pixel_lighting = lr::PixelLighting::kExact;
+        else if (v == "table")
+          o.pixel_lighting = lr::PixelLighting::kTable;
+        else
+          return fail(bad + " (exact or table)");
+        if (phong_only.empty()) phong_only = a;
+      } else if (a == "--lighting-table") {
+        int n;
+        if (!parse_int(v, n) || n < 8 || n > 256) return fail(bad + " (8..256)");
+        o.table.size = static_cast<uint16_t>(n);
+        if (phong_only.empty()) phong_only = a;
+        if (table_only.empty()) table_only = a;
+      } else if (a == "--lighting-table-filter") {
+        if (v == "nearest")
+          o.table.bilinear = false;
+        else if (v == "bilinear")
+          o.table.bilinear = true;
+        else
+          return fail(bad + " (nearest or bilinear)");
+        if (phong_only.empty()) phong_only = a;
+        if (table_only.empty()) table_only = a;
+      } else if (a == "--envmap" || a == "--normalmap") {
+        (a == "--envmap" ? o.envmap : o.normalmap) = v;
+        if (phong_only.empty()) phong_only = a;
       } else if (a == "--texture") {
         o.texture = v;
       } else if (a == "--texture-format") {
@@ -252,7 +345,14 @@ int main(int argc, char** argv) {
   }
   if (obj.empty()) return fail("--obj FILE is required (see --help)");
   if (o.far <= o.near) return fail("--far must be greater than --near");
+  if (!lights.empty() && !light_options.empty())
+    return fail("--light and --light-dir cannot be combined (use --light dir:x,y,z)");
   if (!lights.empty()) o.light_dirs = lights;
+  o.lights = light_options;
+  if (!phong_only.empty() && o.shading != lr::Shading::kPhong)
+    return fail(phong_only + " needs --shading phong");
+  if (!table_only.empty() && o.pixel_lighting != lr::PixelLighting::kTable)
+    return fail(table_only + " needs --lighting table");
 
   lr::host::HostMesh mesh;
   std::string error;

@@ -1,5 +1,5 @@
 // lineraster-sim as a user runs it: exit codes, one-line errors, no output on failure, outputs
-// by extension, --stats JSON, option order for --material.
+// by extension, --stats JSON, option order for --material, lights and per-pixel lighting options.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -135,7 +135,6 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
       {"--obj " + kMesh + " --bg 2,0,0", "--bg: bad value '2,0,0'"},
       {"--obj " + kMesh + " --material unobtainium", "unknown material"},
       {"--obj " + kMesh + " --shading toon", "--shading: bad value 'toon'"},
-      {"--obj " + kMesh + " --shading phong", "not supported yet"},
       {"--obj " + kMesh + " --cull front", "--cull: bad value 'front'"},
       {"--obj " + kMesh + " --strip-height 3", "--strip-height: bad value '3'"},
       {"--obj " + kMesh + " --near 5 --far 1", "--far must be greater than --near"},
@@ -240,6 +239,303 @@ TEST(Cli, UnwritableOutputFailsWithoutPartialFile) {
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(lines(r.err), 1u);
   EXPECT_NE(r.err.find("/nonexistent-dir/x.png"), std::string::npos) << r.err;
+}
+
+// ---- Lights and per-pixel (Phong) lighting ----
+
+bool read(const std::string& path, lr::host::ImageRgb8& img) {
+  std::string err;
+  return lr::host::read_png(path, img, err);
+}
+
+// Pixels that differ from the background colour (r, g, b).
+size_t drawn(const lr::host::ImageRgb8& img, int r, int g, int b) {
+  size_t n = 0;
+  for (size_t p = 0; p < img.rgb.size() / 3; ++p)
+    n += img.rgb[3 * p] != r || img.rgb[3 * p + 1] != g || img.rgb[3 * p + 2] != b;
+  return n;
+}
+
+// A flat tangent-space normal map ((0, 0, 1) everywhere: RGB 128, 128, 255) written as PNG.
+std::string flat_normal_map() {
+  std::string path = tmpdir() + "/flat_normals.png";
+  lr::host::ImageRgb8 img;
+  img.width = img.height = 16;
+  img.rgb.clear();
+  for (int p = 0; p < 16 * 16; ++p) img.rgb.insert(img.rgb.end(), {128, 128, 255});
+  std::string err;
+  EXPECT_TRUE(lr::host::write_png(path, img, err)) << err;
+  return path;
+}
+
+TEST(CliLights, LightOptionsAcceptGoodValues) {
+  // --light dir:1,1,1 (white by default) is the default light; so are --light-dir 1,1,1 and an
+  // explicit white colour.
+  std::string base = tmpdir() + "/l0.png";
+  ASSERT_EQ(run("--obj " + kMesh + " --fit --width 160 --height 120 --out " + base).status, 0);
+  lr::host::ImageRgb8 ref;
+  ASSERT_TRUE(read(base, ref));
+  for (std::string light : {"--light dir:1,1,1", "--light dir:2,2,2:1,1,1", "--light-dir 1,1,1",
+                            "--light dir:1,1,1 --global-ambient 0,0,0"}) {
+    std::string out = tmpdir() + "/l1.png";
+    Outcome r =
+        run("--obj " + kMesh + " --fit --width 160 --height 120 " + light + " --out " + out);
+    ASSERT_EQ(r.status, 0) << light << ": " << r.err;
+    lr::host::ImageRgb8 img;
+    ASSERT_TRUE(read(out, img));
+    EXPECT_EQ(img.rgb, ref.rgb) << light;
+  }
+  // Every light form with every optional part, up to 4 lights, with the lighting-model options.
+  const std::string good[] = {
+      "--light dir:0,1,0:1,0.5,0",
+      "--light point:0,0,3",
+      "--light point:0,0,3:0.2,0.4,1",
+      "--light point:0,0,3:1,1,1:1,0.5,0.25",
+      "--light point:0,0,3:1,1,1:0,0,1",
+      "--light dir:1,0,0 --light dir:0,1,0 --light point:0,0,2 --light point:-1,-1,1:1,0,0:1,1,0",
+      "--global-ambient 0.2,0.2,0.2",
+      "--two-sided",
+      "--two-sided --local-viewer --light point:-2,1,2",
+  };
+  for (const std::string& opts : good) {
+    std::string out = tmpdir() + "/l2.png";
+    Outcome r = run("--obj " + kMesh + " --fit --width 160 --height 120 " + opts + " --out " + out);
+    EXPECT_EQ(r.status, 0) << opts << ": " << r.err;
+    lr::host::ImageRgb8 img;
+    ASSERT_TRUE(read(out, img)) << opts;
+    EXPECT_EQ(img.width, 160);
+    EXPECT_EQ(img.height, 120);
+    EXPECT_GT(drawn(img, 0, 0, 0), 1000u) << opts;
+  }
+}
+
+TEST(CliLights, LightColourAndGlobalAmbientReachThePixels) {
+  // A pure red light on a grey material: every lit pixel is red only.
+  std::string red = tmpdir() + "/red.png";
+  ASSERT_EQ(
+      run("--obj " + kMesh + " --fit --diffuse 0.8,0.8,0.8 --light dir:1,1,1:1,0,0 --out " + red)
+          .status,
+      0);
+  lr::host::ImageRgb8 img;
+  ASSERT_TRUE(read(red, img));
+  size_t reds = 0, others = 0;
+  for (size_t p = 0; p < img.rgb.size() / 3; ++p) {
+    reds += img.rgb[3 * p] > 0;
+    others += img.rgb[3 * p + 1] > 0 || img.rgb[3 * p + 2] > 0;
+  }
+  EXPECT_GT(reds, 3000u);
+  EXPECT_EQ(others, 0u);
+  // A global ambient of 1 adds the material's ambient (0.1) to every drawn pixel: brighter
+  // wherever something is drawn (and not already saturated), never darker.
+  std::string dark = tmpdir() + "/ga0.png", bright = tmpdir() + "/ga1.png";
+  ASSERT_EQ(run("--obj " + kMesh + " --fit --bg 0,0,1 --out " + dark).status, 0);
+  ASSERT_EQ(
+      run("--obj " + kMesh + " --fit --bg 0,0,1 --global-ambient 1,1,1 --out " + bright).status, 0);
+  lr::host::ImageRgb8 a, b;
+  ASSERT_TRUE(read(dark, a));
+  ASSERT_TRUE(read(bright, b));
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  size_t brighter = 0, darker = 0;
+  for (size_t i = 0; i < a.rgb.size(); ++i) {
+    brighter += b.rgb[i] > a.rgb[i];
+    darker += b.rgb[i] < a.rgb[i];
+  }
+  EXPECT_GT(brighter, 3000u);
+  EXPECT_EQ(darker, 0u);
+}
+
+TEST(CliLights, PointLightAttenuationDarkens) {
+  std::string near = tmpdir() + "/att1.png", far = tmpdir() + "/att4.png";
+  ASSERT_EQ(run("--obj " + kMesh + " --fit --light point:0,0,3 --out " + near).status, 0);
+  ASSERT_EQ(run("--obj " + kMesh + " --fit --light point:0,0,3:1,1,1:4,0,0 --out " + far).status,
+            0);
+  lr::host::ImageRgb8 a, b;
+  ASSERT_TRUE(read(near, a));
+  ASSERT_TRUE(read(far, b));
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  uint64_t sa = 0, sb = 0;
+  for (size_t i = 0; i < a.rgb.size(); ++i) {
+    sa += a.rgb[i];
+    sb += b.rgb[i];
+    EXPECT_LE(b.rgb[i], a.rgb[i]) << i;
+  }
+  EXPECT_LT(sb, sa / 2);
+}
+
+TEST(CliPhong, BadLightingOptionsFailCleanlyWithoutOutput) {
+  std::string dir = tmpdir();
+  {
+    std::ofstream bad(dir + "/garbage_n.png");
+    bad << "this is not a png";
+    std::ofstream no_uv(dir + "/no_uv_n.obj");
+    no_uv << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  }
+  const std::string m = "--obj " + kMesh + " ", c = "--obj " + kData + "cube.obj ";
+  const std::string phong = "--shading phong ";
+  const std::string expected = "(expected dir:x,y,z[:r,g,b] or point:x,y,z[:r,g,b[:c,l,q]])";
+  const BadCase cases[] = {
+      // Values.
+      {m + phong + "--lighting fast", "--lighting: bad value 'fast' (exact or table)"},
+      {m + phong + "--lighting", "--lighting: missing value"},
+      {m + phong + "--lighting table --lighting-table 7",
+       "--lighting-table: bad value '7' (8..256)"},
+      {m + phong + "--lighting table --lighting-table 257", "--lighting-table: bad value '257'"},
+      {m + phong + "--lighting table --lighting-table 16.5", "--lighting-table: bad value '16.5'"},
+      {m + phong + "--lighting table --lighting-table x", "--lighting-table: bad value 'x'"},
+      {m + phong + "--lighting table --lighting-table-filter cubic",
+       "--lighting-table-filter: bad value 'cubic' (nearest or bilinear)"},
+      {m + "--light sun:1,1,1", "--light: bad value 'sun:1,1,1' " + expected},
+      {m + "--light 1,1,1", "--light: bad value '1,1,1' " + expected},
+      {m + "--light dir", "--light: bad value 'dir' " + expected},
+      {m + "--light dir:1,1", "--light: bad value 'dir:1,1' " + expected},
+      {m + "--light dir:1,1,1:", "--light: bad value 'dir:1,1,1:' (colour r,g,b in [0,1])"},
+      {m + "--light point:", "--light: bad value 'point:' " + expected},
+      {m + "--light dir:0,0,0", "--light: bad value 'dir:0,0,0' (zero direction)"},
+      {m + "--light dir:1,1,1:2,0,0",
+       "--light: bad value 'dir:1,1,1:2,0,0' (colour r,g,b in [0,1])"},
+      {m + "--light dir:1,1,1:1,1", "(colour r,g,b in [0,1])"},
+      {m + "--light dir:1,1,1:1,1,1:1,0,0",
+       "--light: bad value 'dir:1,1,1:1,1,1:1,0,0' " + expected},
+      {m + "--light point:0,0,3:1,1,1:0,0,0",
+       "--light: bad value 'point:0,0,3:1,1,1:0,0,0' (attenuation c,l,q: each in [0, 32767], not "
+       "all 0)"},
+      {m + "--light point:0,0,3:1,1,1:-1,1,0", "(attenuation c,l,q"},
+      {m + "--light point:0,0,3:1,1,1:1e6,0,0", "(attenuation c,l,q"},
+      {m + "--light point:0,0,3:1,1,1:1,0", "(attenuation c,l,q"},
+      {m + "--light point:0,0,3:1,1,1:1,0,0:5", expected},
+      {m + "--light point:nan,0,3", expected},
+      {m + "--light point:1e9,0,0", "light: point light position is not finite or outside"},
+      {m + "--light dir:1,0,0 --light dir:0,1,0 --light dir:0,0,1 --light dir:1,1,0 --light "
+           "dir:0,1,1",
+       "--light: at most 4 lights"},
+      {m + "--light dir:1,0,0 --light-dir 0,1,0", "--light and --light-dir cannot be combined"},
+      {m + "--light-dir 0,1,0 --light dir:1,0,0", "--light and --light-dir cannot be combined"},
+      {m + "--global-ambient 1.5,0,0", "--global-ambient: bad value '1.5,0,0' (expected r,g,b"},
+      {m + "--global-ambient 1,1", "--global-ambient: bad value '1,1'"},
+      {m + "--global-ambient", "--global-ambient: missing value"},
+      {c + phong + "--envmap", "--envmap: missing value"},
+      {c + phong + "--normalmap", "--normalmap: missing value"},
+      // Options that only Phong shading (or only the lighting table) uses.
+      {m + "--lighting table", "--lighting needs --shading phong"},
+      {m + "--shading gouraud --lighting exact", "--lighting needs --shading phong"},
+      {m + "--lighting-table 64", "--lighting-table needs --shading phong"},
+      {m + "--lighting-table-filter nearest", "--lighting-table-filter needs --shading phong"},
+      {c + "--envmap " + kData + "checker.png", "--envmap needs --shading phong"},
+      {c + "--shading flat --normalmap " + kData + "tiles64.png",
+       "--normalmap needs --shading phong"},
+      {m + phong + "--lighting-table 64", "--lighting-table needs --lighting table"},
+      {m + phong + "--lighting exact --lighting-table-filter nearest",
+       "--lighting-table-filter needs --lighting table"},
+      // What the lighting table cannot do.
+      {m + phong + "--lighting table --light point:0,0,3",
+       "lighting table: needs directional lights only and no local viewer"},
+      {m + phong + "--lighting table --local-viewer", "lighting table: needs directional lights"},
+      // Map files.
+      {c + phong + "--envmap " + dir + "/absent_e.png", "absent_e.png"},
+      {c + phong + "--envmap " + dir + "/garbage_n.png", "garbage_n.png"},
+      {c + phong + "--normalmap " + dir + "/absent_n.png", "absent_n.png"},
+      {c + phong + "--normalmap " + dir + "/garbage_n.png", "garbage_n.png"},
+      {"--obj " + dir + "/no_uv_n.obj " + phong + "--normalmap " + kData + "tiles64.png",
+       "tiles64.png: the mesh has no texture coordinates (vt) to map it with"},
+  };
+  for (const BadCase& bc : cases) {
+    std::string out = dir + "/never_p.png";
+    fs::remove(out);
+    Outcome r = run(bc.args + " --out " + out);
+    EXPECT_EQ(r.status, 2) << bc.args;
+    EXPECT_EQ(lines(r.err), 1u) << bc.args << ": " << r.err;
+    EXPECT_NE(r.err.find(bc.expect), std::string::npos) << bc.args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << bc.args;
+  }
+}
+
+TEST(CliPhong, HelpListsEveryNewOption) {
+  Outcome r = run("--help");
+  ASSERT_EQ(r.status, 0);
+  for (const char* opt :
+       {"--shading flat|gouraud|phong", "--lighting exact|table", "--lighting-table N",
+        "--lighting-table-filter nearest|bilinear", "--light dir:x,y,z[:r,g,b]",
+        "--light point:x,y,z[:r,g,b[:c,l,q]]", "--global-ambient r,g,b", "--two-sided",
+        "--envmap FILE.png", "--normalmap FILE.png"})
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+}
+
+TEST(CliPhong, ReadmeShowsTheHelpTextVerbatim) {
+  std::ifstream f(std::string(LR_SOURCE_DIR) + "/README.md");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string readme = ss.str(), start = "## lineraster-sim\n\n```\n";
+  const size_t a = readme.find(start);
+  ASSERT_NE(a, std::string::npos);
+  const size_t b = readme.find("```\n", a + start.size());
+  ASSERT_NE(b, std::string::npos);
+  Outcome r = run("--help");
+  ASSERT_EQ(r.status, 0);
+  EXPECT_EQ(readme.substr(a + start.size(), b - a - start.size()), r.out);
+}
+
+// Phong renders: an image of the requested size whose coverage and depth are Gouraud's (depth
+// does not depend on how a pixel is lit), for every per-pixel option. The colours are the core's
+// business (tests/core); here only that each option reaches a frame.
+TEST(CliPhong, RendersTheRequestedSizeWithGouraudsDepth) {
+  const std::string normals = flat_normal_map();
+  const std::string knot = "--obj " + kMesh + " --fit --material gold ";
+  const std::string cube = "--obj " + kData + "cube.obj --eye 2.2,1.8,3 ";
+  struct Case {
+    std::string scene, phong_opts;
+  };
+  const Case cases[] = {
+      {knot, ""},
+      {knot, "--lighting exact"},
+      {knot, "--lighting table"},
+      {knot, "--lighting table --lighting-table 8 --lighting-table-filter nearest"},
+      {knot, "--lighting table --lighting-table 256 --lighting-table-filter bilinear"},
+      {knot, "--light point:0,0,3:1,1,1:1,0.2,0.05 --light dir:-1,1,0:0.3,0.3,1"},
+      {knot, "--local-viewer --two-sided --global-ambient 0.2,0.2,0.2"},
+      {knot, "--lighting table --light dir:1,1,1 --light dir:-1,0,1:0,0,1 --two-sided"},
+      {cube, "--envmap " + kData + "checker.png"},
+      {cube, "--envmap " + kData + "checker.png --texture-format rgb888 --lighting table"},
+      {cube, "--normalmap " + normals},
+      {cube, "--normalmap " + normals + " --envmap " + kData + "checker.png --filter nearest"},
+      {cube, "--normalmap " + normals + " --texture " + kData + "tiles64.png --mipmap linear"},
+      {"--obj " + kData + "ground.obj --eye 0,2,6 ", "--normalmap " + normals},
+  };
+  for (const Case& c : cases) {
+    const std::string size = "--width 200 --height 150 ";
+    std::string g_out = tmpdir() + "/g.png", g_depth = tmpdir() + "/g_depth.png";
+    std::string p_out = tmpdir() + "/p.png", p_depth = tmpdir() + "/p_depth.png";
+    Outcome g = run(c.scene + size + "--out " + g_out + " --depth-out " + g_depth);
+    ASSERT_EQ(g.status, 0) << c.scene << ": " << g.err;
+    const std::string args = c.scene + size + "--shading phong " + c.phong_opts + " --out " +
+                             p_out + " --depth-out " + p_depth;
+    Outcome p = run(args);
+    EXPECT_EQ(p.status, 0) << args << ": " << p.err;
+    if (p.status != 0) continue;
+    EXPECT_TRUE(p.err.empty()) << args << ": " << p.err;
+    lr::host::ImageRgb8 img, gd, pd;
+    ASSERT_TRUE(read(p_out, img)) << args;
+    EXPECT_EQ(img.width, 200) << args;
+    EXPECT_EQ(img.height, 150) << args;
+    EXPECT_EQ(img.rgb.size(), 200u * 150u * 3u) << args;
+    ASSERT_TRUE(read(g_depth, gd));
+    ASSERT_TRUE(read(p_depth, pd));
+    EXPECT_EQ(pd.rgb, gd.rgb) << args;
+    EXPECT_GT(drawn(gd, 255, 255, 255), 1000u) << args;  // the scene is in view
+  }
+}
+
+TEST(CliPhong, NormalMapOnAMeshWithoutTangentsUsesComputedOnes) {
+  // cube.obj has vt but no tangents: the simulator computes them; the frame is made.
+  const std::string normals = flat_normal_map();
+  std::string out = tmpdir() + "/nm.png";
+  Outcome r = run("--obj " + kData + "cube.obj --eye 2.2,1.8,3 --shading phong --normalmap " +
+                  normals + " --stats --out " + out);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"triangles_in\":12"), std::string::npos) << r.out;
+  lr::host::ImageRgb8 img;
+  ASSERT_TRUE(read(out, img));
+  EXPECT_EQ(img.width, 320);
+  EXPECT_EQ(img.height, 240);
 }
 
 }  // namespace
