@@ -37,7 +37,7 @@ struct ClipVertex {
   ClipCoord p;
   Color15 color;
   Color15 spec;
-  int32_t u = 0, v = 0;  // texture coordinates, Q12.20
+  int32_t u = 0, v = 0;     // texture coordinates, Q12.20
   SurfaceVertex surface{};  // per-pixel lighting: interpolated linearly like the colours
 };
 

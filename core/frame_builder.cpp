@@ -341,6 +341,8 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
   if (lit && state.shading != Shading::kFlat && mesh.normals.empty())
     return Status::kInvalidArgument;
   const bool textured = state.texture != nullptr;
+  if (textured && !(features_ & kTexturedSpans)) return Status::kInvalidArgument;
+  if (phong && !(features_ & kPhongSpans)) return Status::kInvalidArgument;
   if (textured) {
     if (validate(*state.texture) != Status::kOk) return Status::kInvalidArgument;
     if (state.sampler.mip != MipMode::kNone && state.texture->level_count < 2)
@@ -474,8 +476,7 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     }
     ScreenVertex back_colors[3];
     if (back && gouraud)
-      for (int k = 0; k < 3; ++k)
-        light_vertex(tri[static_cast<size_t>(k)], true, back_colors[k]);
+      for (int k = 0; k < 3; ++k) light_vertex(tri[static_cast<size_t>(k)], true, back_colors[k]);
 
     Rgb8 flat{}, flat_spec{};
     if (!gouraud && !phong) {
@@ -590,6 +591,7 @@ Status FrameBuilder::draw_screen(std::span<const ScreenVertex> vertices,
                                  std::span<const std::array<uint16_t, 3>> triangles,
                                  const DrawState& state) {
   if (!configured_) return Status::kInvalidArgument;
+  if (state.texture && !(features_ & kTexturedSpans)) return Status::kInvalidArgument;
   const size_t n = vertices.size();
   const auto tri_count = static_cast<uint32_t>(triangles.size());
   stats_.triangles_in += tri_count;

@@ -51,7 +51,7 @@ struct DrawRecord {
   const Texture* texture = nullptr;  // textured draws
   FetchFn fetch = nullptr;
   TexPersp persp = TexPersp::kExact;
-  uint8_t span_len = 16;
+  uint8_t span_len = 0;  // kSpan: 8, 16 or 32 (zero default: static stores stay in .bss)
   TexEnv env = TexEnv::kModulate;
   MipMode mip = MipMode::kNone;
   Wrap wrap_s = Wrap::kRepeat, wrap_t = Wrap::kRepeat;
@@ -60,7 +60,7 @@ struct DrawRecord {
   PixelLighting method = PixelLighting::kExact;
   bool two_sided = false;  // back faces get the negated normal
   bool position = false;   // planes of the world position (point lights, local viewer)
-  bool table_bilinear = true;
+  bool table_bilinear = false;
   const PreparedLighting* lighting = nullptr;  // exact mode; the viewer for environment maps
   LightingTable table{};                       // table mode
   const Texture* envmap = nullptr;
@@ -68,6 +68,16 @@ struct DrawRecord {
   const Texture* normal_map = nullptr;
   FetchFn nmap_fetch = nullptr;
   Mat4 view{};  // the camera's view matrix (environment maps: world to eye directions)
+};
+
+// Span families a renderer links: Renderer<PF, K, kFeatures>. Firmware that draws no textures
+// or no Phong shading leaves them out and saves their routines' flash (the Phong routines are
+// about 290 KB of Thumb-2 code for one pixel format); draws that need a missing family are
+// refused with kInvalidArgument.
+enum SpanFeature : uint32_t {
+  kTexturedSpans = 1u << 0,
+  kPhongSpans = 1u << 1,
+  kAllSpans = kTexturedSpans | kPhongSpans,
 };
 
 // Storage for one frame, owned by the caller. Capacities are the spans' sizes (at most 65535
@@ -145,6 +155,7 @@ class FrameBuilder {
   size_t vertex_count_ = 0, triangle_count_ = 0, draw_count_ = 0;
   size_t pixel_light_count_ = 0, table_words_used_ = 0;
   bool configured_ = false;
+  uint32_t features_ = kAllSpans;  // set by the Renderer
 };
 
 }  // namespace lr

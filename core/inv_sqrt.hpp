@@ -35,9 +35,9 @@ struct InvSqrtTable {
     const size_t i = (x >> (32 - kBits)) - (size_t{1} << (kBits - 2));
     int64_t y = kTable[i];
     for (int k = 0; k < kNewton; ++k) {
-      const int64_t y2 = (y * y) >> 30;                         // <= 2^30
+      const int64_t y2 = (y * y) >> 30;                                  // <= 2^30
       const int64_t t = (int64_t{3} << 30) - ((int64_t{x} * y2) >> 30);  // ~2^31
-      y = (y * t) >> 31;                                        // < 2^62 before the shift
+      y = (y * t) >> 31;                                                 // < 2^62 before the shift
     }
     return static_cast<uint32_t>(y);
   }

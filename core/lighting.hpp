@@ -53,7 +53,7 @@ struct LightSet {
   uint8_t count = 0;
   Color15 global_ambient{0, 0, 0};
   bool local_viewer = false;  // V = direction to the eye per point (GL_LIGHT_MODEL_LOCAL_VIEWER)
-  bool two_sided = false;     // back faces are lit with the negated normal (GL_LIGHT_MODEL_TWO_SIDE)
+  bool two_sided = false;  // back faces are lit with the negated normal (GL_LIGHT_MODEL_TWO_SIDE)
   // True when the lit colour depends on the normal only: directional lights, infinite viewer.
   constexpr bool normal_only() const {
     for (int i = 0; i < count; ++i)
@@ -72,7 +72,7 @@ struct PreparedLighting {
     uint16_t kd[3];  // Ld * Kd, Q1.15
     uint16_t ks[3];  // Ls * Ks, Q1.15
     bool point = false;
-    Vec3 position{};  // point lights, world
+    Vec3 position{};                 // point lights, world
     int64_t kc = 0, kl = 0, kq = 0;  // attenuation coefficients, Q16.16
   };
   std::array<Light, kMaxLights> lights{};
@@ -81,8 +81,8 @@ struct PreparedLighting {
   int32_t base[3] = {0, 0, 0};  // emission + global ambient * Ka + sum of directional La * Ka
   uint16_t shininess_q8 = 0;
   bool local_viewer = false;
-  Vec3 eye{};     // world-space eye position (local viewer)
-  Unit30 view{};  // world-space direction towards the viewer (infinite viewer)
+  Vec3 eye{};           // world-space eye position (local viewer)
+  Unit30 view{};        // world-space direction towards the viewer (infinite viewer)
   Material material{};  // what it was prepared for: draws of equal materials share it
   // Whether lighting needs the surface position (a point light or the local viewer).
   bool needs_position() const { return any_point || local_viewer; }

@@ -43,8 +43,8 @@ enum class PixelLighting : uint8_t {
 
 // The normal-indexed lighting table of a PixelLighting::kTable draw: (size + 1)^2 samples.
 struct LightingTableSpec {
-  uint16_t size = 32;     // 8..256 cells per side
-  bool bilinear = true;   // blend the 4 nearest samples (false: the nearest one)
+  uint16_t size = 32;    // 8..256 cells per side
+  bool bilinear = true;  // blend the 4 nearest samples (false: the nearest one)
 };
 
 enum class Cull : uint8_t { kNone, kBack, kFront };

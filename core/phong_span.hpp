@@ -91,11 +91,10 @@ constexpr uint32_t channel8(Texel t, int c) {
 
 template <class PF, bool kDepth, PixelLighting kMethod, bool kSecond, bool kTexture,
           bool kNormalMap, bool kEnv>
-uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d,
-                         typename PF::Storage* px, uint16_t* depth, int32_t col, int32_t row,
-                         int32_t count) {
+uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typename PF::Storage* px,
+                         uint16_t* depth, int32_t col, int32_t row, int32_t count) {
   constexpr bool kExact = kMethod == PixelLighting::kExact;
-  constexpr bool kPosition = kExact && kSecond;  // exact: position planes
+  constexpr bool kPosition = kExact && kSecond;   // exact: position planes
   constexpr bool kBilinear = !kExact && kSecond;  // table: bilinear lookup
   constexpr bool kUv = kTexture || kNormalMap;
   constexpr bool kSplit = kTexture || kEnv;
@@ -131,9 +130,9 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d,
   [[maybe_unused]] const int last_level = kTexture ? d.texture->level_count - 1 : 0;
 
   int16_t idx[kChunk];
-  int32_t nv[kChunk][3];       // interpolated normal (Q1.30 when divided; else n q)
-  int32_t tv[kChunk][3];       // interpolated tangent, Q1.30
-  Vec3 pos[kChunk];            // world position
+  int32_t nv[kChunk][3];  // interpolated normal (Q1.30 when divided; else n q)
+  int32_t tv[kChunk][3];  // interpolated tangent, Q1.30
+  Vec3 pos[kChunk];       // world position
   int32_t cs[kChunk], ct[kChunk], ns[kChunk], nt[kChunk], es[kChunk], et[kChunk];
   Texel tex[kChunk], tex1[kChunk], nmap[kChunk], env[kChunk];
   Color15 prim[kChunk], sec[kChunk];
@@ -182,7 +181,9 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d,
             int32_t w[3];
             for (int c = 0; c < 3; ++c) {
               const int64_t v = int64_t{tri.org[c]} + rc.div(p[c] - kPlaneBias, tri.m_p);
-              w[c] = v > INT32_MAX ? INT32_MAX : v < INT32_MIN ? INT32_MIN : static_cast<int32_t>(v);
+              w[c] = v > INT32_MAX   ? INT32_MAX
+                     : v < INT32_MIN ? INT32_MIN
+                                     : static_cast<int32_t>(v);
             }
             pos[m] = {Fixed::from_raw(w[0]), Fixed::from_raw(w[1]), Fixed::from_raw(w[2])};
           }
@@ -223,10 +224,10 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d,
       if constexpr (kTexture) {
         if (nm_ratio_s != 0 || nm_ratio_t != 0) {
           for (int j = 0; j < m; ++j) {
-            ns[j] = nm_ratio_s == 0 ? cs[j]
-                                    : static_cast<int32_t>((int64_t{cs[j]} * nm_ratio_s) >> 16);
-            nt[j] = nm_ratio_t == 0 ? ct[j]
-                                    : static_cast<int32_t>((int64_t{ct[j]} * nm_ratio_t) >> 16);
+            ns[j] =
+                nm_ratio_s == 0 ? cs[j] : static_cast<int32_t>((int64_t{cs[j]} * nm_ratio_s) >> 16);
+            nt[j] =
+                nm_ratio_t == 0 ? ct[j] : static_cast<int32_t>((int64_t{ct[j]} * nm_ratio_t) >> 16);
           }
           ss = ns;
           tt = nt;
@@ -298,7 +299,9 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d,
         out = {static_cast<uint8_t>(ch[0]), static_cast<uint8_t>(ch[1]),
                static_cast<uint8_t>(ch[2])};
       } else if constexpr (kExact) {
-        auto sum = [](uint32_t a, uint32_t b) { return to_byte(clamp_c15(static_cast<int32_t>(a + b))); };
+        auto sum = [](uint32_t a, uint32_t b) {
+          return to_byte(clamp_c15(static_cast<int32_t>(a + b)));
+        };
         out = {sum(prim[j].r, sec[j].r), sum(prim[j].g, sec[j].g), sum(prim[j].b, sec[j].b)};
       } else {
         out = {to_byte(clamp_c15(prim[j].r)), to_byte(clamp_c15(prim[j].g)),
@@ -317,9 +320,9 @@ namespace detail {
 // 8 texture, 16 normal map, 32 environment map.
 template <class PF, size_t I>
 constexpr PhongSpanFn<PF> phong_instance() {
-  return &fill_phong_span<PF, (I & 1) != 0,
-                          (I & 2) != 0 ? PixelLighting::kTable : PixelLighting::kExact,
-                          (I & 4) != 0, (I & 8) != 0, (I & 16) != 0, (I & 32) != 0>;
+  return &fill_phong_span < PF, (I & 1) != 0,
+         (I & 2) != 0 ? PixelLighting::kTable : PixelLighting::kExact, (I & 4) != 0, (I & 8) != 0,
+         (I & 16) != 0, (I & 32) != 0 > ;
 }
 template <class PF, size_t... I>
 constexpr std::array<PhongSpanFn<PF>, sizeof...(I)> make_phong_table(std::index_sequence<I...>) {
@@ -336,8 +339,8 @@ template <class PF>
 constexpr PhongSpanFn<PF> phong_span_routine(const DrawRecord& d) {
   const bool table = d.method == PixelLighting::kTable;
   const size_t i = (d.depth ? 1u : 0u) | (table ? 2u : 0u) |
-                   ((table ? d.table_bilinear : d.position) ? 4u : 0u) |
-                   (d.texture ? 8u : 0u) | (d.normal_map ? 16u : 0u) | (d.envmap ? 32u : 0u);
+                   ((table ? d.table_bilinear : d.position) ? 4u : 0u) | (d.texture ? 8u : 0u) |
+                   (d.normal_map ? 16u : 0u) | (d.envmap ? 32u : 0u);
   return detail::kPhongSpanTable<PF>[i];
 }
 

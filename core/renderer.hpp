@@ -29,7 +29,7 @@ class DepthSink {
   ~DepthSink() = default;
 };
 
-template <class PF, int K>
+template <class PF, int K, uint32_t kFeatures = kAllSpans>
 class Renderer : public FrameBuilder {
   static_assert(K >= 1 && K <= 32, "strip height K must be 1..32");
 
@@ -38,6 +38,7 @@ class Renderer : public FrameBuilder {
   static constexpr int kStripHeight = K;
 
   Status configure(const FrameStorage& storage, int width, int height) {
+    features_ = kFeatures;
     return FrameBuilder::configure(storage, width, height, K);
   }
 
@@ -54,8 +55,8 @@ class Renderer : public FrameBuilder {
   size_t free_count_ = 0;
 };
 
-template <class PF, int K>
-Status Renderer<PF, K>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
+template <class PF, int K, uint32_t kFeatures>
+Status Renderer<PF, K, kFeatures>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
   if (!configured_) return Status::kInvalidArgument;
   const auto w = static_cast<size_t>(width_);
   stats_.bytes_per_strip = static_cast<uint32_t>(w * K * (sizeof(Pixel) + sizeof(uint16_t)));
@@ -100,8 +101,8 @@ Status Renderer<PF, K>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
   return sink.end_frame();
 }
 
-template <class PF, int K>
-void Renderer<PF, K>::activate(int strip) {
+template <class PF, int K, uint32_t kFeatures>
+void Renderer<PF, K, kFeatures>::activate(int strip) {
   uint16_t& head = storage_.buckets[static_cast<size_t>(strip)];
   size_t m = 0;
   for (uint16_t i = head; i != kNoTriangle; i = storage_.triangles[i].next) ++m;
@@ -139,8 +140,9 @@ void Renderer<PF, K>::activate(int strip) {
       in.phong.tangent = dr.normal_map != nullptr;
       if (dr.two_sided) {
         // Back face: clockwise in NDC, positive area on the display (y down).
-        const int64_t area = (int64_t{in.v[1]->x} - in.v[0]->x) * (int64_t{in.v[2]->y} - in.v[0]->y) -
-                             (int64_t{in.v[2]->x} - in.v[0]->x) * (int64_t{in.v[1]->y} - in.v[0]->y);
+        const int64_t area =
+            (int64_t{in.v[1]->x} - in.v[0]->x) * (int64_t{in.v[2]->y} - in.v[0]->y) -
+            (int64_t{in.v[2]->x} - in.v[0]->x) * (int64_t{in.v[1]->y} - in.v[0]->y);
         in.phong.negate = area > 0;
       }
       in.colors = ColorPlanes::kNone;
@@ -174,12 +176,16 @@ void Renderer<PF, K>::activate(int strip) {
   if (active_count_ > stats_.max_active) stats_.max_active = static_cast<uint32_t>(active_count_);
 }
 
-template <class PF, int K>
-void Renderer<PF, K>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows) {
+template <class PF, int K, uint32_t kFeatures>
+void Renderer<PF, K, kFeatures>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows) {
   const DrawRecord& dr = storage_.draws[t.draw];
   const SpanFn<PF> fn = span_routine<PF>(dr.depth, dr.colors);
-  const TexSpanFn<PF> tex_fn = dr.texture && !dr.phong ? tex_span_routine<PF>(dr) : nullptr;
-  const PhongSpanFn<PF> phong_fn = dr.phong ? phong_span_routine<PF>(dr) : nullptr;
+  TexSpanFn<PF> tex_fn = nullptr;
+  PhongSpanFn<PF> phong_fn = nullptr;
+  if constexpr ((kFeatures & kPhongSpans) != 0)
+    if (dr.phong) phong_fn = phong_span_routine<PF>(dr);
+  if constexpr ((kFeatures & kTexturedSpans) != 0)
+    if (dr.texture && !dr.phong) tex_fn = tex_span_routine<PF>(dr);
   const int end = std::min<int>(t.last_row, y0 + rows - 1);
   int r = t.row;
   for (; r <= end; ++r) {
@@ -205,8 +211,8 @@ void Renderer<PF, K>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, 
   t.row = static_cast<int16_t>(r);
 }
 
-template <class PF, int K>
-void Renderer<PF, K>::retire(int next_row) {
+template <class PF, int K, uint32_t kFeatures>
+void Renderer<PF, K, kFeatures>::retire(int next_row) {
   uint16_t* order = storage_.active_index.data();
   uint16_t* free_slots = order + storage_.active.size();
   size_t kept = 0;

@@ -10,8 +10,8 @@
 namespace lr {
 
 struct SurfaceVertex {
-  Unit30 normal{};         // world space, unit (Q1.30); negated for back faces of two-sided draws
-  Vec3 position{};         // world space, Q16.16 (point lights, local viewer)
+  Unit30 normal{};  // world space, unit (Q1.30); negated for back faces of two-sided draws
+  Vec3 position{};  // world space, Q16.16 (point lights, local viewer)
   int16_t tangent[3] = {0, 0, 0};  // world space, unit Q1.14 (normal maps)
   int16_t handedness = 0;          // +-16384: bitangent = handedness * cross(normal, tangent)
 };

@@ -168,8 +168,7 @@ inline int32_t lod_at(const ActiveTriangle& tri, const PlaneValues& pc) {
   const TexAttrs b = exact_attrs(tri, pc, false);
   const TexAttrs bx = exact_attrs(tri, px1, false);
   const TexAttrs by = exact_attrs(tri, py1, false);
-  return lod_q8(int64_t{bx.s} - b.s, int64_t{bx.t} - b.t, int64_t{by.s} - b.s,
-                int64_t{by.t} - b.t);
+  return lod_q8(int64_t{bx.s} - b.s, int64_t{bx.t} - b.t, int64_t{by.s} - b.s, int64_t{by.t} - b.t);
 }
 
 // a + b modulo 2^32, without signed overflow.

@@ -65,7 +65,7 @@ struct ActiveTriangle {
   // Phong triangles: tangent planes, the position planes' origin (world Q16.16) and shift, and
   // the bitangent's handedness (+-16384).
   uint8_t m_p = 0;
-  int16_t handedness = 16384;
+  int16_t handedness = 0;
   Plane tan[3];
   int32_t org[3] = {0, 0, 0};
 };
