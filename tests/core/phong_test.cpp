@@ -110,7 +110,8 @@ TEST(InvSqrt, RenormalisedNormalsAreUnitWithinOneQ14Lsb) {
             z = std::llround(u(rng) * scale);
     Unit30 n;
     if (!DefaultInvSqrt::normalize(x, y, z, n)) continue;
-    double len = std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z) / 1073741824.0;
+    double len =
+        std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z) / 1073741824.0;
     worst = std::max(worst, std::fabs(len - 1));
   }
   EXPECT_LE(worst, std::ldexp(1.0, -15));  // half an LSB of Q1.14
@@ -248,9 +249,10 @@ TEST(LightingTable, ErrorAgainstExactPerPixelLightingShrinksWithSize) {
   SphereScene sc;
   LightSet lights;
   lights.count = 2;
-  lights.lights[0] = Light::directional({Fixed::from_int(1), Fixed::from_int(1), Fixed::from_int(1)},
-                                        kWhite);
-  lights.lights[1] = Light::directional({Fixed::from_int(-1), Fixed{}, fx(0.5)}, c15(0.3, 0.3, 0.5));
+  lights.lights[0] =
+      Light::directional({Fixed::from_int(1), Fixed::from_int(1), Fixed::from_int(1)}, kWhite);
+  lights.lights[1] =
+      Light::directional({Fixed::from_int(-1), Fixed{}, fx(0.5)}, c15(0.3, 0.3, 0.5));
   DrawState exact;
   exact.shading = Shading::kPhong;
   host::ImageRgb8 ref = render_sphere(sc, exact, lights, shiny());
@@ -312,7 +314,8 @@ struct SmallStorage {
   SmallStorage(size_t n_surfaces, size_t n_table_words, size_t n_pls)
       : surfaces(n_surfaces), tables(n_table_words), pls(n_pls) {}
   FrameStorage storage() {
-    return {vertices, triangles, draws, buckets, active, active_index, depth, surfaces, tables, pls};
+    return {vertices,     triangles, draws,    buckets, active,
+            active_index, depth,     surfaces, tables,  pls};
   }
 };
 

@@ -31,8 +31,8 @@ class CoreHarness {
         pixel_lights_(16),
         display_(static_cast<size_t>(width) * K),
         renderer_(std::make_unique<Renderer<PF, K>>()) {
-    FrameStorage s{vertices_, triangles_, draws_,    buckets_,       active_,
-                   active_index_, depth_, surfaces_, tables_, pixel_lights_};
+    FrameStorage s{vertices_,     triangles_, draws_,    buckets_, active_,
+                   active_index_, depth_,     surfaces_, tables_,  pixel_lights_};
     configured_ = renderer_->configure(s, width, height);
   }
   Status configured() const { return configured_; }
