@@ -8,6 +8,8 @@
 #include <string>
 
 #include "host_sim/scene.hpp"
+#include "host_sim/tangents.hpp"
+#include "host_sim/texture_load.hpp"
 #include "tests/reference/ref_renderer.hpp"
 #include "tests/reference/ref_texture_core.hpp"
 
@@ -26,11 +28,28 @@ inline ref::RefParams ref_params(const host::HostMesh& mesh, const host::SceneOp
                      ref::mul(ref::scale({o.model_scale, o.model_scale, o.model_scale}), fit));
   p.view = ref::look_at(o.eye, o.target, o.up);
   p.projection = ref::perspective(o.fovy, double(o.width) / o.height, o.near, o.far);
-  for (const auto& d : o.light_dirs) p.lights.push_back(ref::RefLight{d, {1, 1, 1}});
+  if (o.lights.empty()) {
+    for (const auto& d : o.light_dirs) p.lights.push_back(ref::RefLight{d, {1, 1, 1}});
+  } else {
+    for (const host::LightOption& l : o.lights) {
+      ref::RefLight r{l.xyz, l.color};
+      if (l.point) {
+        r.kind = ref::RefLightKind::Point;
+        r.position = l.xyz;
+        r.constant = l.constant;
+        r.linear = l.linear;
+        r.quadratic = l.quadratic;
+      }
+      p.lights.push_back(r);
+    }
+  }
+  p.two_sided = o.two_sided;
   p.global_ambient = o.global_ambient;
   p.material = {o.material.ambient, o.material.diffuse, o.material.specular, o.material.emission,
                 o.material.shininess};
-  p.shading = o.shading == Shading::kFlat ? ref::RefShading::Flat : ref::RefShading::Gouraud;
+  p.shading = o.shading == Shading::kFlat      ? ref::RefShading::Flat
+              : o.shading == Shading::kGouraud ? ref::RefShading::Gouraud
+                                               : ref::RefShading::Phong;
   p.unlit = o.unlit;
   p.depth_test = o.depth_test;
   p.cull_back = o.cull == Cull::kBack;
@@ -74,7 +93,21 @@ inline bool compare_scene(const host::HostMesh& mesh, const host::SceneOptions& 
                           std::string& error) {
   if (!host::render_scene(mesh, o, c.core, error)) return false;
   ref::RefParams rp = ref_params(mesh, o);
-  ref::RefTexture rt;
+  ref::RefTexture rt, env, nmap;
+  // The environment and normal maps as the scene loads them (level 0 only).
+  host::HostTexture loaded;
+  if (!o.envmap.empty()) {
+    if (!host::load_texture(o.envmap, o.texture_format, false, loaded, error)) return false;
+    env = ref::from_core(loaded.texture);
+    rp.envmap = &env;
+  }
+  if (!o.normalmap.empty()) {
+    if (!host::load_texture(o.normalmap, TexelFormat::kRgb888, false, loaded, error)) return false;
+    nmap = ref::from_core(loaded.texture);
+    rp.normal_map = &nmap;
+    rp.filter = ref::from_core(o.filter);
+    rp.wrap_s = rp.wrap_t = ref::from_core(o.wrap);
+  }
   if (o.texture_object != nullptr) {
     rt = ref::from_core(*o.texture_object);
     rp.texture = &rt;
@@ -85,7 +118,13 @@ inline bool compare_scene(const host::HostMesh& mesh, const host::SceneOptions& 
     smp.env = o.unlit ? TexEnv::kReplace : TexEnv::kModulate;
     ref::set_sampler(rp, smp);
   }
-  ref::render(mesh, rp, c.reference);
+  if (!o.normalmap.empty() && mesh.tangents.empty()) {
+    host::HostMesh with_tangents = mesh;  // as the scene computes them
+    host::compute_tangents(with_tangents);
+    ref::render(with_tangents, rp, c.reference);
+  } else {
+    ref::render(mesh, rp, c.reference);
+  }
   const size_t n = size_t(o.width) * size_t(o.height);
   double sum = 0, sq = 0;
   for (size_t p = 0; p < n; ++p) {

@@ -81,6 +81,23 @@ inline host::SceneOptions sphere_four_lights() {
   return o;
 }
 
+// The per-pixel lighting sphere (Phong shading; make_uv_sphere(40, 60)), lit so that nothing
+// saturates: a key light, a bluish fill light from the other side, a small global ambient, an
+// orange material with a sharp highlight (shininess 64).
+inline host::SceneOptions phong_sphere() {
+  host::SceneOptions o;
+  o.shading = Shading::kPhong;
+  o.lights = {{false, {1, 1, 1}, {0.6, 0.6, 0.6}, 1, 0, 0},
+              {false, {-1, 0.3, 0.5}, {0.2, 0.25, 0.4}, 1, 0, 0}};
+  o.global_ambient = {0.05, 0.05, 0.05};
+  o.material.ambient = {0.2, 0.2, 0.2};
+  o.material.diffuse = {0.7, 0.5, 0.3};
+  o.material.specular = {0.6, 0.6, 0.6};
+  o.material.shininess = 64;
+  o.eye = {0.5, 0.8, 3.2};
+  return o;
+}
+
 // A w x h image of distinct colours per texel (row 0 = top of the image file).
 inline host::ImageRgb8 pattern(int w, int h) {
   host::ImageRgb8 img;
