@@ -35,4 +35,5 @@ cmake --build --preset release -j"$jobs" --target lr_frame_bench
 bash scripts/count_instructions.sh build/release
 bash scripts/texture_bench.sh
 bash scripts/quality_bench.sh
+bash scripts/lighting_bench.sh
 echo "== all tests passed"

@@ -24,7 +24,7 @@ namespace lr::bench {
 }
 
 inline const char* name(Shading s) {
-  return s == Shading::kFlat ? "flat" : "gouraud";
+  return s == Shading::kFlat ? "flat" : s == Shading::kGouraud ? "gouraud" : "phong";
 }
 inline const char* name(Filter f) {
   return f == Filter::kNearest ? "nearest" : "bilinear";
@@ -100,13 +100,33 @@ inline Prepared prepare(const host::HostMesh& mesh, const host::SceneOptions& o,
   if (!perspective(fovy, Fixed::ratio(o.width, o.height), near, far, p.camera.projection) ||
       !look_at(eye, target, up, p.camera.view))
     die(who, "bad camera");
-  for (const host::Vec3d& d : o.light_dirs) {
-    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    Vec3 fd;
-    if (!fixed3({d[0] / len, d[1] / len, d[2] / len}, fd)) die(who, "bad light");
-    p.lights.lights[p.lights.count++] =
-        Light::directional(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
+  if (o.lights.empty()) {
+    for (const host::Vec3d& d : o.light_dirs) {
+      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      Vec3 fd;
+      if (!fixed3({d[0] / len, d[1] / len, d[2] / len}, fd)) die(who, "bad light");
+      p.lights.lights[p.lights.count++] =
+          Light::directional(fd, {Color15::kOne, Color15::kOne, Color15::kOne});
+    }
+  } else {
+    // As host::render_scene builds them (directions normalised, colours and attenuation).
+    for (const host::LightOption& l : o.lights) {
+      Vec3 v;
+      Fixed kc, kl, kq;
+      host::Vec3d xyz = l.xyz;
+      if (!l.point) {
+        const double len = std::sqrt(xyz[0] * xyz[0] + xyz[1] * xyz[1] + xyz[2] * xyz[2]);
+        xyz = {xyz[0] / len, xyz[1] / len, xyz[2] / len};
+      }
+      if (!fixed3(xyz, v) || !host::to_fixed(l.constant, kc) || !host::to_fixed(l.linear, kl) ||
+          !host::to_fixed(l.quadratic, kq))
+        die(who, "bad light");
+      const Color15 c = host::to_color15(l.color);
+      p.lights.lights[p.lights.count++] =
+          l.point ? Light::point(v, c, kc, kl, kq) : Light::directional(v, c);
+    }
   }
+  p.lights.two_sided = o.two_sided;
   p.lights.global_ambient = host::to_color15(o.global_ambient);
   p.lights.local_viewer = o.local_viewer;
   p.background = to_rgb8(host::to_color15(o.background));
@@ -121,6 +141,8 @@ inline Prepared prepare(const host::HostMesh& mesh, const host::SceneOptions& o,
   p.state.sampler.wrap_s = p.state.sampler.wrap_t = o.wrap;
   p.state.sampler.mip = o.mipmap;
   p.state.sampler.env = o.unlit ? TexEnv::kReplace : TexEnv::kModulate;
+  p.state.pixel_lighting = o.pixel_lighting;
+  p.state.table = o.table;
   return p;
 }
 
