@@ -24,6 +24,29 @@
 
 namespace lr {
 
+namespace detail {
+
+consteval double ct_sqrt(double v) {
+  double g = v > 1 ? v : 1;
+  for (int k = 0; k < 60; ++k) g = 0.5 * (g + v / g);
+  return g;
+}
+
+// 1/sqrt over 3 * 2^(kBits - 2) buckets of [1, 4), Q1.30: the value with equal relative error
+// against 1/sqrt at both ends of its bucket.
+template <int kBits>
+consteval std::array<uint32_t, (size_t{3} << (kBits - 2))> make_inv_sqrt_table() {
+  std::array<uint32_t, (size_t{3} << (kBits - 2))> t{};
+  const double step = 1.0 / double(size_t{1} << (kBits - 2));
+  for (size_t i = 0; i < t.size(); ++i) {
+    const double lo = 1.0 + double(i) * step, hi = lo + step;
+    t[i] = static_cast<uint32_t>(2.0 / (ct_sqrt(lo) + ct_sqrt(hi)) * 1073741824.0 + 0.5);
+  }
+  return t;
+}
+
+}  // namespace detail
+
 template <int kBits, int kNewton>
 struct InvSqrtTable {
   static_assert(kBits >= 3 && kBits <= 12, "table of 6 to 3072 entries");
@@ -75,23 +98,7 @@ struct InvSqrtTable {
   }
 
  private:
-  static consteval double ct_sqrt(double v) {
-    double g = v > 1 ? v : 1;
-    for (int k = 0; k < 60; ++k) g = 0.5 * (g + v / g);
-    return g;
-  }
-  static consteval std::array<uint32_t, kEntries> make() {
-    std::array<uint32_t, kEntries> t{};
-    const double step = 1.0 / double(size_t{1} << (kBits - 2));  // bucket width in f
-    for (size_t i = 0; i < kEntries; ++i) {
-      const double lo = 1.0 + double(i) * step, hi = lo + step;
-      // The value with equal relative error against 1/sqrt at both ends of the bucket.
-      const double v = 2.0 / (ct_sqrt(lo) + ct_sqrt(hi));
-      t[i] = static_cast<uint32_t>(v * 1073741824.0 + 0.5);
-    }
-    return t;
-  }
-  static constexpr std::array<uint32_t, kEntries> kTable = make();
+  static constexpr std::array<uint32_t, kEntries> kTable = detail::make_inv_sqrt_table<kBits>();
 };
 
 using DefaultInvSqrt = InvSqrtTable<8, 1>;

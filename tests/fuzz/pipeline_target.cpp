@@ -4,7 +4,9 @@
 //   header, 16 bytes:
 //     0  width - 1 (mod 128)            1  height - 1 (mod 128)
 //     2  bits 0-1 strip height {1, 8, 32}[v % 3]; bit 2 RGB888 (else RGB565 big-endian);
-//        bit 3 depth sink; bit 4 small stores (capacities from bytes 13-14)
+//        bit 3 depth sink; bit 4 small stores (capacities from bytes 13-14); bit 5 point lights
+//        (attenuation read after each light's colours); bit 6 the texture is (also) the
+//        environment map; bit 7 the texture is (also) the normal map (tangents from the normals)
 //     3  bit 0 Gouraud (else flat); bit 1 lighting; bit 2 depth test; bits 3-4 cull (v % 3);
 //        bits 5-7 perspective mode (v % 5)
 //     4  bit 0 textured; bit 1 bilinear; bit 2 wrap s clamp; bit 3 wrap t clamp; bits 4-5 mip
@@ -16,7 +18,8 @@
 //     8  mesh vertex count            9  mesh triangle count
 //     10 screen vertex count          11 screen triangle count
 //     12 bits 0-3 right shift applied to raw screen x, y; bit 4 second draw of the mesh (model
-//        moved) after draw_screen
+//        moved) after draw_screen; bit 5 Phong shading; bit 6 lighting table (size 8 << (bits
+//        4-7 of byte 15) % 6, bilinear when bit 0 of byte 13); bit 7 two-sided lighting
 //     13 small stores: vertex capacity - 1; 14 triangle capacity - 1 (bits 0-6), draws 1 + bit 7
 //     15 small stores: active capacity - 1 (mod 16)
 //   texture texels (3 bytes each), material and lights, camera, model matrix, then the mesh:
@@ -110,8 +113,12 @@ void run(const Header& h, Bytes& in) {
   std::vector<ActiveTriangle> active(n_active);
   std::vector<uint16_t> active_index(2 * n_active);
   std::vector<uint16_t> depth(static_cast<size_t>(width) * K);
+  std::vector<SurfaceVertex> surfaces(small ? n_vertices / 2 + 1 : n_vertices);
+  std::vector<uint32_t> tables(small ? 200 : 2 * lighting_table_words(kMaxLightingTable, true));
+  std::vector<PreparedLighting> pixel_lights(small ? 1 : 4);
   auto renderer = std::make_unique<Renderer<PF, K>>();
-  FrameStorage storage{vertices, triangles, draws, buckets, active, active_index, depth};
+  FrameStorage storage{vertices,     triangles, draws,    buckets, active,
+                       active_index, depth,     surfaces, tables,  pixel_lights};
   LR_FUZZ_CHECK(renderer->configure(storage, width, height) == Status::kOk);
 
   // Draw state and texture.
@@ -126,6 +133,10 @@ void run(const Header& h, Bytes& in) {
   state.sampler.wrap_t = (h.b[4] & 8) ? Wrap::kClampToEdge : Wrap::kRepeat;
   state.sampler.mip = static_cast<MipMode>(((h.b[4] >> 4) & 3) % 3);
   state.sampler.env = (h.b[4] & 64) ? TexEnv::kReplace : TexEnv::kModulate;
+  if (h.b[12] & 32) state.shading = Shading::kPhong;
+  state.pixel_lighting = (h.b[12] & 64) ? PixelLighting::kTable : PixelLighting::kExact;
+  state.table.size = static_cast<uint16_t>(8u << ((h.b[15] >> 4) % 6));
+  state.table.bilinear = (h.b[13] & 1) != 0;
   host::HostTexture texture;
   if (h.b[4] & 1) {
     host::ImageRgb8 img;
@@ -141,6 +152,8 @@ void run(const Header& h, Bytes& in) {
       check_failed(__FILE__, __LINE__, error.c_str());
     }
     state.texture = &texture.texture;
+    if (h.b[2] & 64) state.envmap = &texture.texture;
+    if (h.b[2] & 128) state.normal_map = &texture.texture;
   }
 
   Material material;
@@ -152,6 +165,7 @@ void run(const Header& h, Bytes& in) {
   LightSet lights;
   lights.count = static_cast<uint8_t>((h.b[6] & 7) % (kMaxLights + 1));
   lights.local_viewer = (h.b[6] & 8) != 0;
+  lights.two_sided = (h.b[12] & 128) != 0;
   lights.global_ambient = in.color15();
   for (int i = 0; i < lights.count; ++i) {
     Light& l = lights.lights[static_cast<size_t>(i)];
@@ -160,6 +174,12 @@ void run(const Header& h, Bytes& in) {
     l.ambient = in.color15();
     l.diffuse = in.color15();
     l.specular = in.color15();
+    if (h.b[2] & 32) {
+      l.kind = LightKind::kPoint;
+      l.constant = Fixed::from_raw(static_cast<int32_t>(in.u32()));
+      l.linear = Fixed::from_raw(static_cast<int32_t>(in.u32()));
+      l.quadratic = Fixed::from_raw(static_cast<int32_t>(in.u32()));
+    }
   }
 
   Camera cam;
@@ -216,7 +236,12 @@ void run(const Header& h, Bytes& in) {
   };
   std::vector<std::array<uint16_t, 3>> tris(nt);
   for (auto& t : tris) t = {index(), index(), index()};
-  Mesh mesh{positions, normals, colors, uvs, tris};
+  // Tangents for normal maps: each normal turned a quarter about z (any direction will do).
+  std::vector<Tangent16> tangents(state.normal_map && !uvs.empty() ? nv : 0);
+  for (size_t i = 0; i < tangents.size() && i < normals.size(); ++i)
+    tangents[i] = {static_cast<int16_t>(-normals[i].y), normals[i].x, normals[i].z,
+                   static_cast<int16_t>((i & 1) ? -16384 : 16384)};
+  Mesh mesh{positions, normals, colors, uvs, tris, tangents};
 
   // Screen-space triangles.
   const size_t nsv = h.b[10], nst = h.b[11];
@@ -247,8 +272,8 @@ void run(const Header& h, Bytes& in) {
   counted(renderer->draw_screen(svs, stris, state), nst);
   if (h.b[12] & 16) {
     const int64_t moved = int64_t{model.m[0][3].raw} + int64_t{in.i16()} * 16;
-    model.m[0][3] = Fixed::from_raw(static_cast<int32_t>(
-        std::clamp<int64_t>(moved, INT32_MIN + 1, INT32_MAX)));
+    model.m[0][3] =
+        Fixed::from_raw(static_cast<int32_t>(std::clamp<int64_t>(moved, INT32_MIN + 1, INT32_MAX)));
     counted(renderer->draw(mesh, model, material, state), nt);
   }
 
