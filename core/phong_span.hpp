@@ -33,6 +33,7 @@
 #include "core/lighting.hpp"
 #include "core/lighting_table.hpp"
 #include "core/sampler.hpp"
+#include "core/span.hpp"
 #include "core/tex_span.hpp"
 #include "core/triangle_setup.hpp"
 
@@ -161,9 +162,7 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
       const int k = static_cast<int>(done) + i;
       bool pass = true;
       if constexpr (kDepth) {
-        const auto dd = static_cast<uint16_t>((z + (1u << 15)) >> 16);
-        pass = dd < depth[k];
-        if (pass) depth[k] = dd;
+        pass = detail::depth_pass(z, depth[k]);
         z += tri.z.gx;
       }
       if (pass) {

@@ -38,6 +38,14 @@ struct Reciprocal {
   }
 };
 
+// The depth test (LESS) and write of one pixel: z is the depth plane's value (kDepthMax scale).
+inline bool depth_pass(uint32_t z, uint16_t& stored) {
+  const auto d = static_cast<uint16_t>((z + (1u << 15)) >> 16);
+  const bool pass = d < stored;
+  if (pass) stored = d;
+  return pass;
+}
+
 constexpr uint32_t affine15(uint32_t plane_c) {
   int32_t v = static_cast<int32_t>(plane_c);
   return clamp_c15(v >> 15);
@@ -76,9 +84,7 @@ uint32_t fill_span(const ActiveTriangle& t, typename PF::Storage* px, uint16_t* 
   for (int32_t i = 0; i < count; ++i) {
     bool pass = true;
     if constexpr (kDepth) {
-      auto d = static_cast<uint16_t>((z + (1u << 15)) >> 16);
-      pass = d < depth[i];
-      if (pass) depth[i] = d;
+      pass = detail::depth_pass(z, depth[i]);
       z += dz;
     }
     if (pass) {

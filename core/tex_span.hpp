@@ -28,6 +28,7 @@
 #include "core/frame_builder.hpp"
 #include "core/pow_table.hpp"
 #include "core/sampler.hpp"
+#include "core/span.hpp"
 #include "core/triangle_setup.hpp"
 
 namespace lr {
@@ -283,9 +284,7 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
       const int k = static_cast<int>(done) + i;
       bool pass = true;
       if constexpr (kDepth) {
-        const auto dd = static_cast<uint16_t>((z + (1u << 15)) >> 16);
-        pass = dd < depth[k];
-        if (pass) depth[k] = dd;
+        pass = detail::depth_pass(z, depth[k]);
         z += dz;
       }
       if (pass) {

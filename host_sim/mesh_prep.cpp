@@ -1,5 +1,6 @@
 // Mesh preparation: bounds, --fit, procedural meshes, OBJ writer (see mesh_prep.hpp).
 #include "host_sim/mesh_prep.hpp"
+#include "host_sim/vec3d.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -19,12 +20,6 @@ int clamp_count(int n, int lo) {
   return std::clamp(n, lo, kMaxCount);
 }
 
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 Vec3d normalized(const Vec3d& v) {
   const double len = std::sqrt(dot(v, v));
   if (!(len > 0.0)) return {0.0, 0.0, 1.0};

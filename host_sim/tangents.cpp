@@ -1,5 +1,6 @@
 // Per-vertex tangents from positions and uvs (see tangents.hpp).
 #include "host_sim/tangents.hpp"
+#include "host_sim/vec3d.hpp"
 
 #include <cmath>
 #include <cstddef>
@@ -9,18 +10,6 @@
 namespace lr::host {
 namespace {
 
-Vec3d sub(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-double length(const Vec3d& a) {
-  return std::sqrt(dot(a, a));
-}
 // a / |a|, or false when a is zero or not finite.
 bool unit(const Vec3d& a, Vec3d& out) {
   const double len = length(a);

@@ -10,22 +10,10 @@
 #include <utility>
 
 #include "host_sim/obj_loader.hpp"
+#include "host_sim/vec3d.hpp"
 
 namespace lr::host {
 namespace {
-
-Vec3d sub(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-double length(const Vec3d& a) {
-  return std::sqrt(dot(a, a));
-}
 
 Vec3d face_normal(const HostMesh& m, const std::array<uint32_t, 3>& t) {
   return cross(sub(m.positions[t[1]], m.positions[t[0]]),

@@ -1,6 +1,7 @@
 // Tangents for normal mapping: along increasing u, orthogonal to the normal, handedness so that
 // w * cross(normal, tangent) points along increasing v; degenerate input gets a valid frame.
 #include "host_sim/tangents.hpp"
+#include "host_sim/vec3d.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,15 +15,6 @@ namespace {
 
 Vec3d xyz(const Vec4d& t) {
   return {t[0], t[1], t[2]};
-}
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-double length(const Vec3d& a) {
-  return std::sqrt(dot(a, a));
 }
 
 // Every tangent: one per vertex, unit, orthogonal to the normal, w exactly +1 or -1.
