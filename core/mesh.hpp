@@ -28,7 +28,8 @@ struct Mesh {
 enum class Shading : uint8_t {
   kFlat,     // one colour per triangle: lit with the face normal, or the last vertex's colour
   kGouraud,  // lit per vertex, colours interpolated perspective-correctly
-  kPhong,    // normals interpolated perspective-correctly, lit per pixel (see PixelLighting)
+  kPhong,    // normals interpolated perspective-correctly, lit per pixel (see PixelLighting);
+             // always exact perspective (DrawState::perspective does not apply)
 };
 
 // How Phong shading lights a pixel.
