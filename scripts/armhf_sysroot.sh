@@ -1,7 +1,7 @@
 #!/bin/bash
 # Builds the private armhf sysroot the 32-bit ARM Linux test build links against
-# (toolchain/arm-linux-gnueabihf.cmake): Debian 12's armhf GoogleTest, libpng and zlib, downloaded
-# with apt-get and unpacked with dpkg-deb -x into build/armhf-sysroot.
+# (toolchain/arm-linux-gnueabihf.cmake): Debian 12's armhf GoogleTest, libpng, zlib, libgpiod and
+# libusb-1.0, downloaded with apt-get and unpacked with dpkg-deb -x into build/armhf-sysroot.
 #
 # Everything apt needs lives in build/armhf-apt (sources, package lists, cache, an empty dpkg
 # status): the system's dpkg is never told about armhf (no `dpkg --add-architecture`, which would
@@ -18,7 +18,11 @@ apt_dir=$(realpath -m "$(dirname "$sysroot")/armhf-apt")
 
 # The -dev packages and the runtime packages their .so links point to. The tests link libpng and
 # zlib statically (the toolchain file prefers .a), the runtime packages keep the .so links whole.
-pkgs=(libgtest-dev libpng-dev libpng16-16 zlib1g-dev zlib1g)
+# libgpiod (1.6) and libusb-1.0 are for the Linux display backends (hal/linux, hal/usb); programs
+# link them as shared libraries, and libudev1 is there because libusb-1.0.so needs it (at link
+# time through -rpath-link, at run time in the emulated guest of scripts/ci_guest.sh).
+pkgs=(libgtest-dev libpng-dev libpng16-16 zlib1g-dev zlib1g
+      libgpiod-dev libgpiod2 libusb-1.0-0-dev libusb-1.0-0 libudev1)
 
 stamp="$sysroot/.lr-sysroot"
 if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "${pkgs[*]}" ]; then
