@@ -1,0 +1,74 @@
+#!/bin/busybox sh
+# shellcheck shell=dash
+# PID 1 of the emulated ARM guest that scripts/ci_guest.sh boots (the initramfs's /init): mounts
+# the kernel's file systems, loads the USB modules the host script listed in /etc/lr-modules
+# (dependencies first), makes a USB device with a configfs gadget on dummy_hcd, runs
+# /guest_test and powers the guest off. Everything it prints goes to the serial console, which
+# the host script reads: the test's PASS/FAIL lines and its summary decide the result.
+/bin/busybox mkdir -p /proc /sys /dev /tmp /sbin /usr/bin /usr/sbin
+/bin/busybox --install -s
+export PATH=/bin:/sbin:/usr/bin:/usr/sbin
+export LD_LIBRARY_PATH=/lib
+
+say() { echo "guest-init: $*"; }
+finish() {
+  say "powering off"
+  sync
+  poweroff -f
+}
+
+mount -t proc proc /proc
+mount -t sysfs sysfs /sys
+mount -t devtmpfs devtmpfs /dev
+mount -t debugfs debugfs /sys/kernel/debug
+say "kernel $(uname -r), spidev bufsiz $(cat /sys/module/spidev/parameters/bufsiz 2>/dev/null || echo '?')"
+
+while read -r mod; do
+  insmod "/lib/modules/$mod" || say "FAIL insmod $mod"
+done </etc/lr-modules
+mount -t configfs configfs /sys/kernel/config
+
+# The USB device: a SourceSink function (usb_f_ss_lb; mod63 data pattern, checked by the sink)
+# on the dummy_hcd device controller, seen by the same kernel's USB host side. IDs: pid.codes'
+# test VID:PID; guest_test.cpp looks for them and for this serial number.
+udc=
+for u in /sys/class/udc/*; do
+  [ -e "$u" ] && udc=${u##*/} && break
+done
+g=/sys/kernel/config/usb_gadget/lr
+if [ -n "$udc" ] && mkdir "$g"; then
+  echo 0x1209 >"$g/idVendor"
+  echo 0x0001 >"$g/idProduct"
+  mkdir "$g/strings/0x409"
+  echo lr-guest-0001 >"$g/strings/0x409/serialnumber"
+  echo lineraster >"$g/strings/0x409/manufacturer"
+  echo "guest source/sink" >"$g/strings/0x409/product"
+  mkdir "$g/configs/c.1"
+  mkdir "$g/functions/SourceSink.0"
+  echo 1 >"$g/functions/SourceSink.0/pattern"
+  ln -s "$g/functions/SourceSink.0" "$g/configs/c.1/"
+  echo "$udc" >"$g/UDC"
+  # Wait (at most 10 s) until the host side has enumerated it and devtmpfs made its node.
+  found=
+  i=0
+  while [ $i -lt 100 ] && [ -z "$found" ]; do
+    for d in /sys/bus/usb/devices/*; do
+      if [ "$(cat "$d/idVendor" 2>/dev/null)" = 1209 ] && [ -f "$d/busnum" ]; then
+        node=$(printf '/dev/bus/usb/%03d/%03d' "$(cat "$d/busnum")" "$(cat "$d/devnum")")
+        [ -e "$node" ] && found="$node"
+      fi
+    done
+    [ -n "$found" ] || usleep 100000
+    i=$((i + 1))
+  done
+  say "USB gadget on $udc: ${found:-not enumerated}"
+else
+  say "no USB device controller (dummy_hcd not loaded?)"
+fi
+
+say "gpio lines:"
+cat /sys/kernel/debug/gpio
+say "running /guest_test"
+/guest_test
+say "guest_test exited with $?"
+finish
