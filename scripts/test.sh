@@ -24,6 +24,7 @@ LR_CROSS_RUN_QEMU=1 LR_HOST_SMOKE=build/debug/tests/firmware_host/lr_smoke_host 
 
 echo "== 32-bit ARM Linux build + tests under qemu-arm, frames hashed against x86-64's"
 bash scripts/ci_armhf.sh
+bash scripts/ci_guest.sh  # the Linux display backends in an emulated ARM Linux guest (qemu-system-arm)
 
 echo "== fuzzing: libFuzzer targets (clang, ASan + UBSan), a fixed number of runs from a fixed seed; crashes become regressions"
 bash scripts/fuzz.sh --ci
