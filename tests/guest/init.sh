@@ -69,6 +69,7 @@ fi
 say "gpio lines:"
 cat /sys/kernel/debug/gpio
 say "running /guest_test"
-/guest_test
+# Bounded here too, so that a hung check ends with a message rather than the host's timeout.
+timeout 120 /guest_test
 say "guest_test exited with $?"
 finish
