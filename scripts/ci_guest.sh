@@ -13,7 +13,7 @@
 #
 # Usage: scripts/ci_guest.sh   (from any directory; as root it installs missing host packages:
 #                               qemu-system-arm, device-tree-compiler, cpio,
-#                               g++-arm-linux-gnueabihf)
+#                               g++-arm-linux-gnueabihf, pkgconf)
 #   LR_GUEST_TIMEOUT=300   seconds the whole boot may take (default 300)
 #
 # Everything comes from Debian 12's packages: the kernel (linux-image-armmp's current
@@ -54,7 +54,7 @@ elapsed() {
 declare -A tool_pkg=(
   [qemu-system-arm]=qemu-system-arm [dtc]=device-tree-compiler [cpio]=cpio
   [$triplet-g++]=g++-$triplet [$triplet-readelf]=binutils-$triplet
-  [$triplet-objcopy]=binutils-$triplet [cmake]=cmake [timeout]=coreutils
+  [$triplet-objcopy]=binutils-$triplet [cmake]=cmake [pkg-config]=pkgconf [timeout]=coreutils
 )
 missing=()
 for tool in "${!tool_pkg[@]}"; do
