@@ -9,7 +9,12 @@
 #   - a real USB device: a configfs gadget (SourceSink function) on dummy_hcd, enumerated by the
 #     same kernel's USB host side, which libusb opens and transfers to.
 # tests/guest/init.sh (the initramfs's /init) sets that up, runs the test and powers off; this
-# script reads the serial console and fails unless every check printed PASS.
+# script reads the serial console and fails unless every check printed PASS. The test
+# (tests/guest/guest_test.cpp, linked with lr_hal_linux and lr_hal_usb) opens SpidevBus on that
+# spidev with D/C, reset and backlight on PL061 lines and reads the lines back, sends commands
+# and a 320x240 RGB565 frame (150 transfers), runs out a bounded wait and a failing transfer,
+# checks the one-line errors (wrong device, line busy, no chip, no line), and moves data both
+# ways through UsbBulk on the gadget (the gadget's sink checks every byte).
 #
 # Usage: scripts/ci_guest.sh   (from any directory; as root it installs missing host packages:
 #                               qemu-system-arm, device-tree-compiler, cpio,
