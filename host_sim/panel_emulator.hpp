@@ -3,8 +3,9 @@
 // high, chip-select framing, the reset line, time). It keeps the controller's graphics RAM
 // (240 x 320, RGB565) and registers and answers with the image the module would show.
 //
-// The controller, as the datasheets define it (Sitronix ST7789V v1.4 and its family's
-// ST7735 tables, ILI9341 v1.11):
+// The controller, as the datasheets define it (Sitronix ST7789V, with the tables it shares with
+// its ST7735 sibling, and Ilitek ILI9341; where they leave a case open, the emulator says what it
+// assumes):
 //   * CASET (2Ah) / RASET (2Bh) set the address window XS..XE, YS..YE (16-bit values, each byte
 //     stored as it arrives); RAMWR (2Ch) resets the counters to (XS, YS), RAMWRC (3Ch) continues
 //     where the last write stopped. The column counter runs first: at XE it goes back to XS and
@@ -31,8 +32,8 @@
 //   * SLPIN / SLPOUT, DISPOFF / DISPON, INVOFF / INVON, IDMOFF / IDMON (8 colours: each channel's
 //     top bit), PTLON / NORON with PTLAR (rows outside the partial area are black), ILI9341
 //     DISCTRL (B6h) SS / GS (source / gate scan reversed: the glass mirrored).
-//   * Undefined commands are treated as NOP (datasheet note); read commands are accepted, but a
-//     PanelBus cannot read, so they are reported.
+//   * Undefined commands are treated as NOP (the Sitronix command list's note); read commands
+//     are accepted, but a PanelBus cannot read, so they are reported.
 //   * Sleep: "only the MCU interface and memory work": RAM writes while asleep land in RAM
 //     (reported as a note, kWriteWhileAsleep), the glass shows nothing.
 //   * Data pause: releasing chip select between bytes pauses a command; data after CS is asserted
