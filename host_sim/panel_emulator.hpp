@@ -58,8 +58,9 @@
 // early are executed anyway and reported as kTiming:
 //   * a reset pulse (RESX low) of at least 10 us;
 //   * 5 ms after releasing RESX, after SWRESET, SLPOUT or SLPIN before any command;
-//   * 120 ms after releasing RESX, after SWRESET or SLPIN before SLPOUT (the datasheets differ on
-//     whether SWRESET in sleep-in mode needs it; the emulator always asks for it);
+//   * 120 ms after releasing RESX, after SWRESET or SLPIN before SLPOUT (the datasheets tie the
+//     SWRESET case to the sleep mode it came in; the emulator asks for it after every SWRESET,
+//     which is safe either way);
 //   * 120 ms after SLPOUT before SLPIN or SWRESET ("cannot be sent during the Sleep Out
 //     sequence").
 #pragma once
