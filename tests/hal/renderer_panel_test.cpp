@@ -1,0 +1,136 @@
+// The renderer into a panel: lr::Renderer drives a PanelSink over a recording bus (an ILI9341
+// 320x240 module, rotation 90, whose glass is mirrored), and the image the module would show
+// equals the capture display's frame of the same scene, frame after frame, while unchanged
+// strips are skipped and moved ones narrowed.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "core/camera.hpp"
+#include "core/material.hpp"
+#include "core/renderer.hpp"
+#include "hal/panel_sink.hpp"
+#include "host_sim/capture_display.hpp"
+#include "tests/hal/recording_bus.hpp"
+
+namespace lr {
+namespace {
+
+using PF = Rgb565Be;
+constexpr int kWidth = 320, kHeight = 240, kRows = 8;
+constexpr size_t kStrips = (kHeight + kRows - 1) / kRows;
+
+// A regular octahedron with smooth normals (the smoke firmware's scene).
+const Fixed kR = Fixed::from_double(1.0);
+const Fixed k0 = Fixed::from_int(0);
+constexpr int16_t kN1 = 1 << Normal16::kFracBits;
+const std::array<Vec3, 6> kPositions = {
+    {{kR, k0, k0}, {-kR, k0, k0}, {k0, kR, k0}, {k0, -kR, k0}, {k0, k0, kR}, {k0, k0, -kR}}};
+const std::array<Normal16, 6> kNormals = {
+    {{kN1, 0, 0}, {-kN1, 0, 0}, {0, kN1, 0}, {0, -kN1, 0}, {0, 0, kN1}, {0, 0, -kN1}}};
+const std::array<std::array<uint16_t, 3>, 8> kTriangles = {
+    {{0, 2, 4}, {1, 4, 2}, {0, 4, 3}, {1, 3, 4}, {0, 5, 2}, {1, 2, 5}, {0, 3, 5}, {1, 5, 3}}};
+
+class Scene {
+ public:
+  Scene()
+      : vertices_(256),
+        triangles_(256),
+        draws_(4),
+        buckets_(kStrips),
+        active_(64),
+        active_index_(128),
+        depth_(size_t{kWidth} * kRows),
+        renderer_(std::make_unique<Renderer<PF, kRows, 0>>()) {
+    configured_ = renderer_->configure(
+        {vertices_, triangles_, draws_, buckets_, active_, active_index_, depth_}, kWidth, kHeight);
+  }
+  Status configured() const { return configured_; }
+
+  // The octahedron turned by `angle` degrees about y and moved by dx along x (both Q16.16).
+  Status render(StripSink<PF>& sink, Fixed angle, Fixed dx) {
+    Camera cam;
+    cam.eye = {Fixed::from_double(0.0), Fixed::from_double(1.0), Fixed::from_double(4.0)};
+    if (!perspective(Fixed::from_int(50), Fixed::ratio(kWidth, kHeight), Fixed::from_double(0.5),
+                     Fixed::from_int(20), cam.projection) ||
+        !look_at(cam.eye, {}, {k0, Fixed::from_int(1), k0}, cam.view))
+      return Status::kInvalidArgument;
+    LightSet lights;
+    lights.lights[0].position = {Fixed::from_double(0.4), Fixed::from_double(0.8),
+                                 Fixed::from_double(0.6)};
+    lights.count = 1;
+    lights.global_ambient = {6554, 6554, 6554};
+    Status st = renderer_->begin_frame(cam, lights, Rgb8{16, 24, 48});
+    if (st != Status::kOk) return st;
+    DrawState state;
+    state.shading = Shading::kGouraud;
+    const Mat4 model =
+        translate({dx, k0, k0}) * rotate_y(angle) * rotate_x(Fixed::from_double(-15.0));
+    const Mesh mesh{kPositions, kNormals, {}, {}, kTriangles};
+    st = renderer_->draw(mesh, model, to_material(*find_material("gold")), state);
+    if (st != Status::kOk) return st;
+    return renderer_->render(sink);
+  }
+
+ private:
+  std::vector<ScreenVertex> vertices_;
+  std::vector<BinnedTriangle> triangles_;
+  std::vector<DrawRecord> draws_;
+  std::vector<uint16_t> buckets_;
+  std::vector<ActiveTriangle> active_;
+  std::vector<uint16_t> active_index_;
+  std::vector<uint16_t> depth_;
+  std::unique_ptr<Renderer<PF, kRows, 0>> renderer_;
+  Status configured_ = Status::kInvalidArgument;
+};
+
+TEST(RendererToPanel, TheModuleShowsTheRenderedFrameAndSkipsWhatDidNotChange) {
+  test::RecordingBus bus;
+  Panel panel(bus, ili9341_320x240());
+  ASSERT_EQ(panel.init(), Status::kOk);
+  std::vector<PF::Storage> b0(size_t{kWidth} * kRows), b1(size_t{kWidth} * kRows);
+  std::vector<StripSignature> signatures(kStrips);
+  PanelSink sink(panel, b0, b1, signatures, 100);
+  host::CaptureDisplay<PF> capture(size_t{kWidth} * kRows);
+  Scene scene;
+  ASSERT_EQ(scene.configured(), Status::kOk);
+
+  auto expect_same = [&]() {
+    const std::vector<uint16_t> shown = test::view(bus.ram, panel.config());
+    const std::vector<PF::Storage>& want = capture.raw_frame();
+    ASSERT_EQ(shown.size(), want.size());
+    size_t wrong = 0;
+    for (size_t i = 0; i < shown.size(); ++i) wrong += shown[i] != PF::to_value(want[i]);
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_EQ(bus.ram.errors(), 0);
+    EXPECT_TRUE(bus.violations.empty());
+  };
+  const uint32_t full = uint32_t{kWidth} * kHeight * 2;
+
+  const Fixed a25 = Fixed::from_int(25), a40 = Fixed::from_int(40);
+  const Fixed still = Fixed::from_int(0), moved = Fixed::from_double(0.05);
+  ASSERT_EQ(scene.render(sink, a25, still), Status::kOk);
+  ASSERT_EQ(scene.render(capture, a25, still), Status::kOk);
+  EXPECT_EQ(sink.stats().pixel_bytes, full);
+  expect_same();
+
+  ASSERT_EQ(scene.render(sink, a25, still), Status::kOk);  // the same frame again
+  EXPECT_EQ(sink.stats().bytes(), 0u);
+  EXPECT_EQ(sink.stats().strips_skipped, kStrips);
+
+  ASSERT_EQ(scene.render(sink, a25, moved), Status::kOk);  // moved a few pixels
+  ASSERT_EQ(scene.render(capture, a25, moved), Status::kOk);
+  EXPECT_GT(sink.stats().strips_skipped, 0u);
+  EXPECT_GT(sink.stats().strips_narrowed, 0u);
+  EXPECT_LT(sink.stats().pixel_bytes, full / 2);
+  expect_same();
+
+  ASSERT_EQ(scene.render(sink, a40, moved), Status::kOk);  // turned
+  ASSERT_EQ(scene.render(capture, a40, moved), Status::kOk);
+  expect_same();
+}
+
+}  // namespace
+}  // namespace lr
