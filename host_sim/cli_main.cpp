@@ -1,18 +1,34 @@
 // lineraster-sim: renders an OBJ with the fixed-point core to PNG or PPM.
 // Any wrong option or bad file: one line on stderr, exit status 2, no output written.
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/lighting.hpp"
 #include "core/material.hpp"
+#include "core/pixel_format.hpp"
+#include "hal/panel.hpp"
+#include "hal/panel_sink.hpp"
+#include "host_sim/display_spec.hpp"
+#include "host_sim/emulator_bus.hpp"
 #include "host_sim/image_io.hpp"
 #include "host_sim/obj_loader.hpp"
+#include "host_sim/panel_emulator.hpp"
 #include "host_sim/scene.hpp"
 #include "host_sim/texture_load.hpp"
+#ifdef LR_HAVE_SPIDEV
+#include "hal/linux/spidev_bus.hpp"
+#endif
+#ifdef LR_HAVE_FT232H
+#include "hal/usb/ft232h_bus.hpp"
+#endif
 
 namespace {
 
@@ -33,7 +49,12 @@ constexpr const char* kUsage =
     "  [--lighting-table-filter nearest|bilinear] [--envmap FILE.png] [--normalmap FILE.png]\n"
     "--light: repeatable, at most 4, not with --light-dir; colour r,g,b default 1,1,1; c,l,q:\n"
     "  GL attenuation 1 / (c + l d + q d^2), default 1,0,0. --lighting default exact;\n"
-    "  --lighting-table: 8..256 cells per side, default 32, bilinear; needs --lighting table.\n";
+    "  --lighting-table: 8..256 cells per side, default 32, bilinear; needs --lighting table.\n"
+    "Panels: [--display emulator:PANEL] [--display ft232h[:SERIAL]] [--panel PANEL] [--frames N]\n"
+    "  [--display spidev:DEVICE,dc=CHIP:LINE,rst=CHIP:LINE[,bl=CHIP:LINE][,hz=N]]\n"
+    "PANEL: st7789:240x240|240x320|135x240|320x240[:ROT] or ili9341:240x320|320x240[:ROT], ROT\n"
+    "  0|90|180|270 (default 0); the frame is the panel's size. spidev and ft232h need --panel.\n"
+    "--frames N: N frames turning the model 360/N degrees about y each, statistics per frame.\n";
 
 int fail(const std::string& msg) {
   std::fprintf(stderr, "lineraster-sim: %s\n", msg.c_str());
@@ -119,6 +140,165 @@ std::string extension(const std::string& path) {
   return e;
 }
 
+// Sends a rendered frame to a strip sink as the renderer does: begin_frame, strips of k rows top
+// to bottom (acquire, fill, submit), end_frame. render_scene() renders RGB888, and every span
+// of the core stores PF::encode(Rgb8), so Rgb565Be::encode of the frame's pixels is exactly what
+// a Renderer<Rgb565Be, K> would have put in each strip.
+lr::Status send_frame(lr::StripSink<lr::Rgb565Be>& sink, const lr::host::ImageRgb8& img, int k) {
+  const auto w = static_cast<uint16_t>(img.width), h = static_cast<uint16_t>(img.height);
+  lr::Status st = sink.begin_frame(w, h);
+  if (st != lr::Status::kOk) return st;
+  for (int y0 = 0; y0 < h; y0 += k) {
+    const int rows = std::min(k, h - y0);
+    lr::StripLease<lr::Rgb565Be> lease;
+    st = sink.acquire(lease);
+    if (st != lr::Status::kOk) return st;
+    std::span<uint16_t> px = lease.pixels();
+    if (px.size() < size_t{w} * static_cast<size_t>(rows)) return lr::Status::kInvalidArgument;
+    for (int r = 0; r < rows; ++r) {
+      for (int c = 0; c < w; ++c) {
+        const uint8_t* p = &img.rgb[(static_cast<size_t>(y0 + r) * w + static_cast<size_t>(c)) * 3];
+        px[static_cast<size_t>(r) * w + static_cast<size_t>(c)] =
+            lr::Rgb565Be::encode({p[0], p[1], p[2]});
+      }
+    }
+    const lr::StripRect rect{0, static_cast<uint16_t>(y0), w, static_cast<uint16_t>(rows)};
+    st = sink.submit(rect, std::move(lease));
+    if (st != lr::Status::kOk) return st;
+  }
+  return sink.end_frame();
+}
+
+// A panel behind --display: its bus (the emulator's, or a real backend's), counted, the driver
+// and a double-buffered sink that skips unchanged strips.
+class PanelOutput {
+ public:
+  bool open(const lr::host::DisplaySpec& spec, const lr::PanelConfig& config, int strip_height,
+            std::string& error) {
+    config_ = config;
+    strip_height_ = strip_height;
+    lr::PanelBus* bus = nullptr;
+    switch (spec.kind) {
+      case lr::host::DisplayKind::kEmulator: {
+        emulator_ = std::make_unique<lr::host::PanelEmulator>(config);
+        lr::host::EmulatorBus::Options options;
+        options.deferred = true;  // transfers complete in wait(), as on a real bus
+        options.log = false;
+        emulator_bus_ = std::make_unique<lr::host::EmulatorBus>(*emulator_, options);
+        bus = emulator_bus_.get();
+        break;
+      }
+      case lr::host::DisplayKind::kSpidev: {
+#ifdef LR_HAVE_SPIDEV
+        lr::SpidevConfig c;
+        if (!lr::parse_spidev_spec(spec.device, c, error)) return false;
+        spidev_ = lr::SpidevBus::open(c, error);
+        if (!spidev_) return false;
+        bus = spidev_.get();
+        break;
+#else
+        error =
+            "--display spidev: this lineraster-sim was built without the spidev backend "
+            "(needs libgpiod 1.x: apt-get install libgpiod-dev, then rebuild)";
+        return false;
+#endif
+      }
+      case lr::host::DisplayKind::kFt232h: {
+#ifdef LR_HAVE_FT232H
+        lr::Ft232hConfig c;
+        if (!lr::parse_ft232h_spec(spec.device, c, error)) return false;
+        ft232h_ = lr::Ft232hBus::open(c, error);
+        if (!ft232h_) return false;
+        bus = ft232h_.get();
+        break;
+#else
+        error =
+            "--display ft232h: this lineraster-sim was built without the FT232H backend "
+            "(needs libusb-1.0: apt-get install libusb-1.0-0-dev, then rebuild)";
+        return false;
+#endif
+      }
+      case lr::host::DisplayKind::kNone:
+        error = "no display";
+        return false;
+    }
+    counting_ = std::make_unique<lr::host::CountingBus>(*bus);
+    panel_ = std::make_unique<lr::Panel>(*counting_, config);
+    if (const lr::Status st = panel_->init(); st != lr::Status::kOk) {
+      error = std::string("panel: init: ") + lr::to_string(st) + device_error();
+      return false;
+    }
+    const size_t strip = size_t{config.image_width()} * static_cast<size_t>(strip_height);
+    buffers_[0].assign(strip, 0);
+    buffers_[1].assign(strip, 0);
+    signatures_.assign((config.image_height() + static_cast<size_t>(strip_height) - 1) /
+                           static_cast<size_t>(strip_height),
+                       lr::StripSignature{});
+    sink_ = std::make_unique<lr::PanelSink>(*panel_, buffers_[0], buffers_[1], signatures_);
+    return true;
+  }
+
+  // One frame to the panel; the backlight goes on after the first (never showing the RAM's
+  // power-on noise).
+  bool send(const lr::host::ImageRgb8& img, std::string& error) {
+    const lr::Status st = send_frame(*sink_, img, strip_height_);
+    if (st != lr::Status::kOk) {
+      error = std::string("panel: frame: ") + lr::to_string(st) + device_error();
+      return false;
+    }
+    if (!backlight_) {
+      if (const lr::Status b = panel_->backlight(true); b != lr::Status::kOk) {
+        error = std::string("panel: backlight: ") + lr::to_string(b) + device_error();
+        return false;
+      }
+      backlight_ = true;
+    }
+    return true;
+  }
+
+  const lr::host::BusTotals& totals() const {
+    return counting_->totals();
+  }
+  const lr::PanelSinkStats& sink_stats() const {
+    return sink_->stats();
+  }
+  const lr::host::PanelEmulator* emulator() const {
+    return emulator_.get();
+  }
+  const lr::host::EmulatorBus* emulator_bus() const {
+    return emulator_bus_.get();
+  }
+
+ private:
+  std::string device_error() const {
+    std::string e;
+#ifdef LR_HAVE_SPIDEV
+    if (spidev_) e = spidev_->last_error();
+#endif
+#ifdef LR_HAVE_FT232H
+    if (ft232h_) e = ft232h_->last_error();
+#endif
+    return e.empty() ? e : " (" + e + ")";
+  }
+
+  lr::PanelConfig config_{};
+  int strip_height_ = 8;
+  std::unique_ptr<lr::host::PanelEmulator> emulator_;
+  std::unique_ptr<lr::host::EmulatorBus> emulator_bus_;
+#ifdef LR_HAVE_SPIDEV
+  std::unique_ptr<lr::SpidevBus> spidev_;
+#endif
+#ifdef LR_HAVE_FT232H
+  std::unique_ptr<lr::Ft232hBus> ft232h_;
+#endif
+  std::unique_ptr<lr::host::CountingBus> counting_;
+  std::unique_ptr<lr::Panel> panel_;
+  std::vector<uint16_t> buffers_[2];
+  std::vector<lr::StripSignature> signatures_;
+  std::unique_ptr<lr::PanelSink> sink_;
+  bool backlight_ = false;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -130,6 +310,10 @@ int main(int argc, char** argv) {
   // The first option given that only Phong shading uses, and the first that only the lighting
   // table uses (checked once every option is read, since options come in any order).
   std::string phong_only, table_only;
+  lr::host::DisplaySpec display;
+  lr::PanelConfig panel_config{};
+  bool has_panel = false, width_given = false, height_given = false;
+  int frames = 0;  // 0: no --frames
   for (int i = 1; i < argc; ++i) {
     std::string_view a = argv[i];
     // A value never starts with "--": "--obj --out x.png" is a missing value, not a file "--out".
@@ -163,7 +347,8 @@ int main(int argc, char** argv) {
                a == "--texture" || a == "--filter" || a == "--wrap" || a == "--perspective" ||
                a == "--mipmap" || a == "--texture-format" || a == "--light" ||
                a == "--global-ambient" || a == "--lighting" || a == "--lighting-table" ||
-               a == "--lighting-table-filter" || a == "--envmap" || a == "--normalmap") {
+               a == "--lighting-table-filter" || a == "--envmap" || a == "--normalmap" ||
+               a == "--display" || a == "--panel" || a == "--frames") {
       if (!value(v)) return fail(std::string(a) + ": missing value");
       const std::string bad = std::string(a) + ": bad value '" + std::string(v) + "'";
       if (a == "--obj") {
@@ -180,6 +365,18 @@ int main(int argc, char** argv) {
         int n;
         if (!parse_int(v, n) || n < 1 || n > 4096) return fail(bad + " (1..4096)");
         (a == "--width" ? o.width : o.height) = n;
+        (a == "--width" ? width_given : height_given) = true;
+      } else if (a == "--display") {
+        std::string why;
+        if (!lr::host::parse_display_spec(v, display, why)) return fail(bad + " (" + why + ")");
+      } else if (a == "--panel") {
+        std::string why;
+        if (!lr::host::parse_panel_spec(v, panel_config, why)) return fail(bad + " (" + why + ")");
+        has_panel = true;
+      } else if (a == "--frames") {
+        int n;
+        if (!parse_int(v, n) || n < 1 || n > 3600) return fail(bad + " (1..3600)");
+        frames = n;
       } else if (a == "--strip-height") {
         int n;
         if (!parse_int(v, n) || (n != 1 && n != 2 && n != 4 && n != 8 && n != 16 && n != 32))
@@ -354,12 +551,118 @@ int main(int argc, char** argv) {
   if (!table_only.empty() && o.pixel_lighting != lr::PixelLighting::kTable)
     return fail(table_only + " needs --lighting table");
 
+  // A panel decides the frame's size.
+  const bool to_panel = display.kind != lr::host::DisplayKind::kNone;
+  if (display.kind == lr::host::DisplayKind::kEmulator) {
+    if (has_panel)
+      return fail("--panel: not with --display emulator (the emulator's value names the panel)");
+    panel_config = display.panel;
+  } else if (to_panel && !has_panel) {
+    return fail("--display " + display.text + " needs --panel CONTROLLER:WxH[:ROT]");
+  } else if (!to_panel && has_panel) {
+    return fail("--panel needs --display spidev:... or --display ft232h");
+  }
+  if (to_panel) {
+    const int w = panel_config.image_width(), h = panel_config.image_height();
+    if ((width_given && o.width != w) || (height_given && o.height != h))
+      return fail("--width/--height: the panel shows " + std::to_string(w) + "x" +
+                  std::to_string(h) + " (" + lr::host::describe_panel(panel_config) + ")");
+    o.width = w;
+    o.height = h;
+  }
+
   lr::host::HostMesh mesh;
   std::string error;
   if (!lr::host::load_obj(obj, mesh, error)) return fail(error);
+  PanelOutput panel;  // opened after the first frame rendered: a bad scene leaves it alone
+
+  // One frame, or --frames N turning the model about y; each frame rendered, then sent.
   lr::host::RenderResult result;
-  if (!lr::host::render_scene(mesh, o, result, error)) return fail(error);
-  if (!lr::host::write_image(out, result.image, error)) return fail(error);
+  const double base_rotation = o.model_rotate_y;
+  const int count = frames > 0 ? frames : 1;
+  lr::host::BusTotals sent_total;
+  uint64_t strips_sent = 0, strips_narrowed = 0, strips_skipped = 0, pixels_total = 0;
+  double ms_total = 0;
+  for (int f = 0; f < count; ++f) {
+    if (frames > 0) o.model_rotate_y = std::fmod(base_rotation + 360.0 * f / frames, 360.0);
+    auto t0 = std::chrono::steady_clock::now();
+    if (!lr::host::render_scene(mesh, o, result, error)) return fail(error);
+    lr::host::BusTotals sent;
+    if (to_panel) {
+      if (f == 0) {  // the panel's start-up (reset and sleep-out delays) is not the frame's time
+        const auto o0 = std::chrono::steady_clock::now();
+        if (!panel.open(display, panel_config, o.strip_height, error)) return fail(error);
+        t0 += std::chrono::steady_clock::now() - o0;
+      }
+      const lr::host::BusTotals before = panel.totals();
+      if (!panel.send(result.image, error)) return fail(error);
+      sent = panel.totals() - before;
+    }
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    ms_total += ms;
+    pixels_total += result.stats.pixels_written;
+    if (frames == 0) continue;
+    std::printf("{\"frame\":%d,\"rotate_y\":%g,\"triangles_binned\":%u,\"pixels_written\":%u", f,
+                o.model_rotate_y, result.stats.triangles_binned, result.stats.pixels_written);
+    if (to_panel) {
+      const lr::PanelSinkStats& ss = panel.sink_stats();
+      strips_sent += ss.strips_sent;
+      strips_narrowed += ss.strips_narrowed;
+      strips_skipped += ss.strips_skipped;
+      sent_total.bytes += sent.bytes;
+      sent_total.pixel_bytes += sent.pixel_bytes;
+      sent_total.commands += sent.commands;
+      sent_total.pixel_transfers += sent.pixel_transfers;
+      sent_total.transactions += sent.transactions;
+      std::printf(
+          ",\"bytes\":%llu,\"pixel_bytes\":%llu,\"commands\":%llu,\"pixel_transfers\":%llu,"
+          "\"transactions\":%llu,\"strips_sent\":%u,\"strips_narrowed\":%u,\"strips_skipped\":%u",
+          static_cast<unsigned long long>(sent.bytes),
+          static_cast<unsigned long long>(sent.pixel_bytes),
+          static_cast<unsigned long long>(sent.commands),
+          static_cast<unsigned long long>(sent.pixel_transfers),
+          static_cast<unsigned long long>(sent.transactions), ss.strips_sent, ss.strips_narrowed,
+          ss.strips_skipped);
+    } else {
+      std::printf(",\"strips\":%u,\"empty_strips\":%u", result.stats.strips,
+                  result.stats.empty_strips);
+    }
+    std::printf(",\"ms\":%.2f}\n", ms);
+  }
+  if (frames > 0) {
+    std::printf("{\"frames\":%d,\"pixels_written\":%llu", frames,
+                static_cast<unsigned long long>(pixels_total));
+    if (to_panel)
+      std::printf(
+          ",\"bytes\":%llu,\"pixel_bytes\":%llu,\"commands\":%llu,\"pixel_transfers\":%llu,"
+          "\"transactions\":%llu,\"strips_sent\":%llu,\"strips_narrowed\":%llu,"
+          "\"strips_skipped\":%llu",
+          static_cast<unsigned long long>(sent_total.bytes),
+          static_cast<unsigned long long>(sent_total.pixel_bytes),
+          static_cast<unsigned long long>(sent_total.commands),
+          static_cast<unsigned long long>(sent_total.pixel_transfers),
+          static_cast<unsigned long long>(sent_total.transactions),
+          static_cast<unsigned long long>(strips_sent),
+          static_cast<unsigned long long>(strips_narrowed),
+          static_cast<unsigned long long>(strips_skipped));
+    std::printf(",\"ms\":%.2f}\n", ms_total);
+  }
+  // What the emulated panel found wrong in the driver's stream (warnings: the image is written).
+  if (const lr::host::PanelEmulator* emu = panel.emulator()) {
+    int shown = 0;
+    for (const lr::host::PanelDiagnostic& d : emu->diagnostics()) {
+      if (!lr::host::is_error(d.issue) || shown++ >= 10) continue;
+      std::fprintf(stderr, "lineraster-sim: warning: panel: %s: %s\n", lr::host::to_string(d.issue),
+                   d.text.c_str());
+    }
+    for (const std::string& m : panel.emulator_bus()->misuse())
+      std::fprintf(stderr, "lineraster-sim: warning: bus: %s\n", m.c_str());
+  }
+
+  const lr::host::ImageRgb8 shown =
+      panel.emulator() ? panel.emulator()->image() : std::move(result.image);
+  if (!lr::host::write_image(out, shown, error)) return fail(error);
   if (!depth_out.empty() &&
       !lr::host::write_png_gray16(depth_out, o.width, o.height, result.depth, error)) {
     std::remove(out.c_str());
