@@ -1,5 +1,7 @@
 #include "hal/linux/spidev_bus.hpp"
 
+#include "hal/linux/parse_number.hpp"
+
 #include <fcntl.h>
 #include <linux/spi/spidev.h>
 #include <sys/ioctl.h>
@@ -24,17 +26,7 @@ std::string errno_text(int e) {
   return std::generic_category().message(e);
 }
 
-bool parse_u32(std::string_view s, uint32_t& out) {
-  if (s.empty() || s.size() > 10) return false;
-  uint64_t v = 0;
-  for (char c : s) {
-    if (c < '0' || c > '9') return false;
-    v = v * 10 + static_cast<uint64_t>(c - '0');
-  }
-  if (v > 0xFFFFFFFFu) return false;
-  out = static_cast<uint32_t>(v);
-  return true;
-}
+using backend::parse_u32;
 
 // spidev's buffer size: the most bytes one SPI_IOC_MESSAGE may carry.
 size_t spidev_bufsiz() {

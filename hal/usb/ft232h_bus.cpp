@@ -1,5 +1,7 @@
 #include "hal/usb/ft232h_bus.hpp"
 
+#include "hal/linux/parse_number.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <exception>
@@ -25,17 +27,7 @@ constexpr const char* kSpecForm =
     "expected ft232h[:SERIAL][,hz=N][,cs=PIN][,dc=PIN][,rst=PIN|none][,bl=PIN|none], PIN being "
     "D3-D7 or C0-C7";
 
-bool parse_u32(std::string_view s, uint32_t& out) {
-  if (s.empty() || s.size() > 10) return false;
-  uint64_t v = 0;
-  for (char c : s) {
-    if (c < '0' || c > '9') return false;
-    v = v * 10 + static_cast<uint64_t>(c - '0');
-  }
-  if (v > 0xFFFFFFFFu) return false;
-  out = static_cast<uint32_t>(v);
-  return true;
-}
+using backend::parse_u32;
 
 }  // namespace
 
