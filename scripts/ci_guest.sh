@@ -42,7 +42,8 @@ sysroot="$repo_root/build/armhf-sysroot"
 
 # The machine: the same options for dumping QEMU's device tree and for the boot (the tree
 # depends on them). highmem=off: the armmp kernel is not LPAE, so nothing may sit above 4 GB.
-machine=(-M "virt,highmem=off" -cpu cortex-a15 -smp 1 -m 256)
+# No network: the default virtio NIC needs efi-virtio.rom (ipxe-qemu), which a minimal install lacks.
+machine=(-M "virt,highmem=off" -cpu cortex-a15 -smp 1 -m 256 -nic none)
 # spi-gpio, spidev and gpio-pl061 are built into Debian's armmp kernel; the USB pieces are modules.
 wanted_modules=(gpio_pl061 spi_gpio spidev dummy_hcd libcomposite usb_f_ss_lb)
 spidev_bufsiz=1024
