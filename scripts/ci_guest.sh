@@ -90,25 +90,10 @@ stamp="$debs/.lr-guest-debs"
 if [ -f "$stamp" ] && [ "$(head -n 1 "$stamp")" = "${guest_pkgs[*]}" ]; then
   echo "ci_guest: kernel and busybox packages up to date ($debs)"
 else
-  mkdir -p "$apt_dir"/{etc/sources.list.d,etc/preferences.d,state/lists/partial} \
-    "$apt_dir"/cache/archives/partial "$debs"
-  : >"$apt_dir/state/status"  # an empty dpkg database: nothing counts as installed
-  keyring=/usr/share/keyrings/debian-archive-keyring.gpg
-  cat >"$apt_dir/etc/sources.list" <<EOF
-deb [arch=armhf signed-by=$keyring] http://deb.debian.org/debian bookworm main
-deb [arch=armhf signed-by=$keyring] http://deb.debian.org/debian bookworm-updates main
-EOF
-  apt_opts=(
-    -o APT::Architecture=armhf -o APT::Architectures::=armhf
-    -o Dir::State="$apt_dir/state" -o Dir::State::status="$apt_dir/state/status"
-    -o Dir::Cache="$apt_dir/cache"
-    -o Dir::Etc::SourceList="$apt_dir/etc/sources.list"
-    -o Dir::Etc::SourceParts="$apt_dir/etc/sources.list.d"
-    -o Dir::Etc::Preferences="$apt_dir/etc/preferences"
-    -o Dir::Etc::PreferencesParts="$apt_dir/etc/preferences.d"
-    -o Debug::NoLocking=1
-    -o APT::Sandbox::User="$(id -un)"
-  )
+  # shellcheck source=scripts/armhf_apt.sh
+  source scripts/armhf_apt.sh
+  armhf_apt_setup "$apt_dir"
+  mkdir -p "$debs"
   echo "ci_guest: apt-get update (private state in $apt_dir)"
   apt-get "${apt_opts[@]}" -qq update
   # linux-image-armmp is a meta-package: fetch the versioned image it depends on.
