@@ -20,6 +20,14 @@ void write(const char* text);
 void write_dec(uint32_t v);
 void write_hex(uint32_t v);
 
+// Files on the host (SYS_OPEN, SYS_WRITE, SYS_CLOSE; QEMU resolves a relative path against its
+// working directory). open_write creates or truncates the file for binary writing ("wb") and
+// returns a handle, or -1 (no semihosting, or the host refused). write_file writes all `size`
+// bytes or returns false; close_file returns false if the host reports an error.
+int open_write(const char* path);
+bool write_file(int handle, const void* data, uint32_t size);
+bool close_file(int handle);
+
 // SYS_EXIT: ends the session; the host (QEMU) exits with status 0 on success, 1 otherwise.
 // Without semihosting: disables interrupts and waits forever.
 [[noreturn]] void exit(bool success);

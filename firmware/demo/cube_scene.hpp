@@ -1,0 +1,44 @@
+// A textured, lit cube seen from above one corner: the two-material cube of tests/host/data
+// (one material with a 64x64 checker texture in RGB565, sampled bilinear with perspective-exact
+// coordinates, the other untextured red), 320x240. Small enough for a 16 KB-RAM Cortex-M0+
+// (the micro:bit board). The same frame as
+// sim: --obj tests/host/data/cube.obj --fit --eye 2,1.6,2.6 --width 320 --height 240
+#pragma once
+
+#include <cstddef>
+
+#include "core/mesh.hpp"
+#include "firmware/demo/scene.hpp"
+#include "cube_asset.hpp"  // generated at build time: lineraster-asset --obj cube.obj --fit
+
+namespace lr::fw::demo::scene {
+
+namespace asset = ::cube_asset;
+inline constexpr const char* kName = "cube";
+inline constexpr int kWidth = 320, kHeight = 240;
+#ifndef LR_DEMO_STRIP_ROWS
+#define LR_DEMO_STRIP_ROWS 8
+#endif
+inline constexpr int kStripRows = LR_DEMO_STRIP_ROWS;
+inline constexpr size_t kActiveCapacity = 12;  // every triangle of the cube
+inline constexpr SceneView kView{kSimDefaultView.fovy, kSimDefaultView.near, kSimDefaultView.far,
+                                 vec(2, 1.6, 2.6), kSimDefaultView.target, kSimDefaultView.up};
+inline constexpr LightSet kLights = sim_default_lights();
+inline constexpr Rgb8 kBackground{0, 0, 0};
+
+// The mesh's own materials (cube.mtl), as the CLI uses them.
+inline Material material(size_t draw) { return asset::materials[draw]; }
+
+inline DrawState state(size_t draw) {
+  DrawState s;  // Gouraud, lit, depth test, no culling, perspective-exact: the CLI's defaults
+  if (asset::textured[draw]) {
+    s.texture = &asset::texture;
+    s.sampler.filter = Filter::kBilinear;
+    s.sampler.wrap_s = s.sampler.wrap_t = Wrap::kRepeat;
+    s.sampler.mip = MipMode::kNone;
+    s.sampler.env = TexEnv::kModulate;
+  }
+  return s;
+}
+
+}  // namespace lr::fw::demo::scene

@@ -1,0 +1,38 @@
+// The README's demo scene: the 4,000-triangle torus knot in the classic "gold" material, lit by
+// the CLI's default light, Gouraud-shaded, depth-tested, 320x240. The same frame as
+// sim: --obj tests/host/data/torus_knot.obj --fit --material gold --width 320 --height 240
+// (scripts/ci_firmware.sh runs lineraster-sim with the arguments after "sim:" above).
+#pragma once
+
+#include <cstddef>
+
+#include "core/material.hpp"
+#include "core/mesh.hpp"
+#include "firmware/demo/scene.hpp"
+#include "knot_asset.hpp"  // generated at build time: lineraster-asset --obj torus_knot.obj --fit
+
+namespace lr::fw::demo::scene {
+
+namespace asset = ::knot_asset;
+inline constexpr const char* kName = "knot";
+inline constexpr int kWidth = 320, kHeight = 240;
+inline constexpr int kStripRows = 8;
+// Triangles on one strip at once: 565 at most for this view (lineraster-sim --stats:
+// max_active), plus room for a slightly different view. 640 x 264 B = 165 KB.
+inline constexpr size_t kActiveCapacity = 640;
+inline constexpr SceneView kView = kSimDefaultView;
+inline constexpr LightSet kLights = sim_default_lights();
+inline constexpr Rgb8 kBackground{0, 0, 0};
+
+// --material gold replaces the mesh's material (the knot has none).
+inline Material material(size_t) {
+  const NamedMaterial* gold = find_material("gold");
+  return gold != nullptr ? to_material(*gold) : Material{};
+}
+
+inline DrawState state(size_t) {
+  DrawState s;  // Gouraud, lit, depth test, no culling: the CLI's defaults
+  return s;
+}
+
+}  // namespace lr::fw::demo::scene
