@@ -5,11 +5,17 @@
 # separate CMake run of this project with LR_HOST=ON and no tests; it needs libpng, as the
 # converter reads PNG textures).
 #
+# In a host build tree the converter is simply this project's own target.
+#
 # Defines LR_ASSET_TOOL (the program) and LR_ASSET_TOOL_TARGET (a target to depend on, or "").
+include_guard(GLOBAL)
 set(LR_HOST_TOOLS_DIR "" CACHE PATH
     "Host build tree with host_sim/lineraster-asset built (empty: build it in build/host-tools)")
 
-if(LR_HOST_TOOLS_DIR)
+if(NOT CMAKE_CROSSCOMPILING AND TARGET lineraster-asset)
+  set(LR_ASSET_TOOL $<TARGET_FILE:lineraster-asset>)
+  set(LR_ASSET_TOOL_TARGET lineraster-asset)
+elseif(LR_HOST_TOOLS_DIR)
   set(LR_ASSET_TOOL ${LR_HOST_TOOLS_DIR}/host_sim/lineraster-asset)
   if(NOT EXISTS ${LR_ASSET_TOOL})
     message(FATAL_ERROR "LR_HOST_TOOLS_DIR=${LR_HOST_TOOLS_DIR}: ${LR_ASSET_TOOL} does not exist "

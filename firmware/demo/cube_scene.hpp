@@ -11,7 +11,7 @@
 #include "firmware/demo/scene.hpp"
 #include "cube_asset.hpp"  // generated at build time: lineraster-asset --obj cube.obj --fit
 
-namespace lr::fw::demo::scene {
+namespace lr::fw::demo::cube {
 
 namespace asset = ::cube_asset;
 inline constexpr const char* kName = "cube";
@@ -41,4 +41,4 @@ inline DrawState state(size_t draw) {
   return s;
 }
 
-}  // namespace lr::fw::demo::scene
+}  // namespace lr::fw::demo::cube

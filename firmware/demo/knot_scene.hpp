@@ -11,7 +11,7 @@
 #include "firmware/demo/scene.hpp"
 #include "knot_asset.hpp"  // generated at build time: lineraster-asset --obj torus_knot.obj --fit
 
-namespace lr::fw::demo::scene {
+namespace lr::fw::demo::knot {
 
 namespace asset = ::knot_asset;
 inline constexpr const char* kName = "knot";
@@ -35,4 +35,4 @@ inline DrawState state(size_t) {
   return s;
 }
 
-}  // namespace lr::fw::demo::scene
+}  // namespace lr::fw::demo::knot

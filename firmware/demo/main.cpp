@@ -3,8 +3,9 @@
 // PPM file on the host (semihosting: QEMU -semihosting, or a debugger). scripts/ci_firmware.sh
 // renders the same scene with lineraster-sim on the PC and compares the two files byte for byte.
 //
-// The scene is chosen at compile time: LR_DEMO_SCENE names its header (knot_scene.hpp: the
-// README's demo; cube_scene.hpp: a textured cube that fits a 16 KB-RAM Cortex-M0+), LR_DEMO_OUTPUT
+// The scene is chosen at compile time: LR_DEMO_SCENE names its header and LR_DEMO_SCENE_NS its
+// namespace (knot_scene.hpp, knot: the README's demo; cube_scene.hpp, cube: a textured cube that
+// fits a 16 KB-RAM Cortex-M0+), LR_DEMO_OUTPUT
 // the file QEMU writes, relative to its working directory. All storage is static and sized from
 // the scene: no heap, no frame buffer (two strips of RGB888 and one strip of depth).
 #include <array>
@@ -18,7 +19,7 @@
 
 namespace {
 
-namespace scene = lr::fw::demo::scene;
+namespace scene = lr::fw::demo::LR_DEMO_SCENE_NS;
 namespace sh = lr::fw::semihost;
 using PF = lr::Rgb888;  // the format lineraster-sim writes; a panel firmware would use RGB565
 

@@ -1,0 +1,191 @@
+// The Cortex-M benchmark: every case of cases.hpp rendered twice at 320x240 in RGB565 strips of 8.
+//   1. into a sink that folds every pixel into an FNV-1a checksum: the frame, printed so that the
+//      host build of this file (tests/firmware_host: lr_bench_host) can be compared line by line;
+//   2. into a sink that does no per-pixel work (a DMA-driven panel costs the CPU nothing per
+//      pixel), between two calls of lr_bench_marker(): the instruction-counting QEMU plugin
+//      (tools/qemu_icount, scripts/bench_cortex_m.sh) prints its count each time the marker is
+//      entered, so the difference is the frame's instruction count: begin_frame, the draws
+//      (vertex transform, lighting, clipping, setup, binning) and render (every strip).
+// Nothing between the two markers calls semihosting or takes an exception (either would end a
+// translation block early and make the plugin's block counts inexact).
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "core/renderer.hpp"
+#include "firmware/bench/cases.hpp"
+#include "firmware/common/semihost.hpp"
+
+extern "C" {
+// The marker: entered right before and right after each measured frame. Its body is one
+// instruction (bx lr); noinline + used keep it a real call with a symbol the runner can find.
+[[gnu::noinline, gnu::used]] void lr_bench_marker() {
+  __asm__ volatile("" ::: "memory");
+}
+}
+
+namespace {
+
+namespace sh = lr::fw::semihost;
+namespace bench = lr::fw::bench;
+using PF = lr::Rgb565Be;
+using Pixel = PF::Storage;
+
+constexpr int kWidth = 320, kHeight = 240, kStripRows = 8;
+constexpr size_t kStrips = (kHeight + kStripRows - 1) / kStripRows;
+constexpr size_t kStripPixels = size_t{kWidth} * kStripRows;
+
+consteval size_t max_vertices() {
+  size_t knot = 0, cube = 0, ground = 0;
+  for (const lr::Mesh& m : bench_knot_asset::meshes) knot += m.positions.size();
+  for (const lr::Mesh& m : bench_cube_asset::meshes) cube += m.positions.size();
+  for (const lr::Mesh& m : bench_ground_asset::meshes) ground += m.positions.size();
+  return knot > cube ? (knot > ground ? knot : ground) : (cube > ground ? cube : ground);
+}
+// The near plane clips only the ground plane (two triangles): a little room suffices.
+constexpr size_t kVertexCapacity = max_vertices() + 32;
+constexpr size_t kTriangleCapacity = 4000 + 32;
+constexpr size_t kActive = 640;  // the knot: 565 at most at 2.4 units
+constexpr uint16_t kTableSize = 32;
+
+std::array<lr::ScreenVertex, kVertexCapacity> g_vertices{};
+std::array<lr::BinnedTriangle, kTriangleCapacity> g_triangles{};
+std::array<lr::DrawRecord, 4> g_draws{};
+std::array<uint16_t, kStrips> g_buckets{};
+std::array<lr::ActiveTriangle, kActive> g_active{};
+std::array<uint16_t, 2 * kActive> g_active_index{};
+std::array<uint16_t, kStripPixels> g_depth{};
+std::array<lr::SurfaceVertex, kVertexCapacity> g_surfaces{};
+std::array<uint32_t, lr::lighting_table_words(kTableSize, false)> g_tables{};
+std::array<lr::PreparedLighting, 1> g_pixel_lights{};
+std::array<std::array<Pixel, kStripPixels>, 2> g_strips{};
+
+lr::Renderer<PF, kStripRows> g_renderer;
+
+// Two buffers lent in turn; submit() either hashes the strip or only checks the lease.
+class BenchSink final : public lr::StripSink<PF> {
+ public:
+  void set_hashing(bool on) { hashing_ = on; }
+  lr::Status begin_frame(uint16_t, uint16_t) override {
+    hash_ = 2166136261u;
+    slot_ = 0;
+    return lr::Status::kOk;
+  }
+  lr::Status acquire(lr::StripLease<PF>& out) override {
+    out = lend(g_strips[slot_].data(), g_strips[slot_].size(), slot_);
+    slot_ ^= 1u;
+    return lr::Status::kOk;
+  }
+  lr::Status submit(const lr::StripRect& rect, lr::StripLease<PF>&& strip) override {
+    std::span<Pixel> px;
+    take_back(strip, px);
+    if (!hashing_) return lr::Status::kOk;
+    const size_t count = size_t{rect.width} * rect.height;
+    if (count > px.size()) return lr::Status::kInvalidArgument;
+    uint32_t h = hash_;
+    for (size_t i = 0; i < count; ++i) {
+      const unsigned v = PF::to_value(px[i]);
+      h = (h ^ (v >> 8)) * 16777619u;
+      h = (h ^ (v & 0xFFu)) * 16777619u;
+    }
+    hash_ = h;
+    return lr::Status::kOk;
+  }
+  lr::Status end_frame() override { return lr::Status::kOk; }
+  uint32_t checksum() const { return hash_; }
+
+ private:
+  bool hashing_ = false;
+  uint8_t slot_ = 0;
+  uint32_t hash_ = 0;
+};
+
+BenchSink g_sink;
+
+bool check(lr::Status st, const char* what) {
+  if (st == lr::Status::kOk) return true;
+  sh::write("lr_bench: ");
+  sh::write(what);
+  sh::write(" failed: ");
+  sh::write(lr::to_string(st));
+  sh::write("\n");
+  return false;
+}
+
+// Everything the measured region needs, prepared before it.
+struct Prepared {
+  lr::Camera camera;
+  lr::Mat4 model;
+  std::array<lr::Material, 4> materials;
+  lr::DrawState state;
+  std::span<const lr::Mesh> meshes;
+};
+
+bool prepare(const bench::BenchCase& c, Prepared& p) {
+  const lr::FrameStorage storage{g_vertices, g_triangles, g_draws,  g_buckets,
+                                 g_active,   g_active_index, g_depth, g_surfaces,
+                                 g_tables,   g_pixel_lights};
+  if (!check(g_renderer.configure(storage, kWidth, kHeight), "configure")) return false;
+  if (!lr::fw::demo::make_camera(c.view, kWidth, kHeight, p.camera)) {
+    sh::write("lr_bench: camera rejected\n");
+    return false;
+  }
+  p.model = lr::rotate_y(lr::Fixed::from_int(c.rotate_y_deg));
+  p.meshes = bench::meshes(c.mesh);
+  if (p.meshes.size() > p.materials.size()) return false;
+  for (size_t d = 0; d < p.meshes.size(); ++d) p.materials[d] = bench::material(c, d);
+  p.state = c.state;
+  if (c.mesh != bench::Mesh3::kKnot) p.state.texture = bench::texture(c);
+  return true;
+}
+
+// The measured work: one whole frame.
+[[gnu::noinline]] lr::Status render_frame(const bench::BenchCase& c, const Prepared& p) {
+  lr::Status s = g_renderer.begin_frame(p.camera, c.lights, lr::Rgb8{0, 0, 0});
+  for (size_t d = 0; d < p.meshes.size() && s == lr::Status::kOk; ++d)
+    s = g_renderer.draw(p.meshes[d], p.model, p.materials[d], p.state);
+  return s == lr::Status::kOk ? g_renderer.render(g_sink) : s;
+}
+
+bool run_case(const bench::BenchCase& c) {
+  Prepared p;
+  if (!prepare(c, p)) return false;
+  g_sink.set_hashing(true);
+  if (!check(render_frame(c, p), c.name)) return false;
+  const uint32_t sum = g_sink.checksum();
+  const lr::FrameStats st = g_renderer.stats();
+  const uint32_t dropped =
+      st.dropped_vertex_capacity + st.dropped_triangle_capacity + st.dropped_active_capacity;
+
+  g_sink.set_hashing(false);
+  lr_bench_marker();
+  const lr::Status s = render_frame(c, p);
+  lr_bench_marker();
+  if (!check(s, c.name)) return false;
+
+  // One line per case, after its two markers: the runner pairs them in order.
+  sh::write("lr_bench: case ");
+  sh::write(c.name);
+  sh::write(" checksum ");
+  sh::write_hex(sum);
+  sh::write(" pixels ");
+  sh::write_dec(st.pixels_written);
+  sh::write(" triangles ");
+  sh::write_dec(st.triangles_in);
+  sh::write(" binned ");
+  sh::write_dec(st.triangles_binned);
+  sh::write(" dropped ");
+  sh::write_dec(dropped);
+  sh::write("\n");
+  return dropped == 0 && st.pixels_written > 0;
+}
+
+}  // namespace
+
+int main() {
+  sh::write("lr_bench: 320x240 RGB565, strips of 8 rows\n");
+  bool ok = true;
+  for (const bench::BenchCase& c : bench::kCases) ok = run_case(c) && ok;
+  sh::write(ok ? "lr_bench: PASS\n" : "lr_bench: FAIL\n");
+  return ok ? 0 : 1;
+}
