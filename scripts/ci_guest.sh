@@ -14,11 +14,16 @@
 # spidev with D/C, reset and backlight on PL061 lines and reads the lines back, sends commands
 # and a 320x240 RGB565 frame (150 transfers), runs out a bounded wait and a failing transfer,
 # checks the one-line errors (wrong device, line busy, no chip, no line), and moves data both
-# ways through UsbBulk on the gadget (the gadget's sink checks every byte).
+# ways through UsbBulk on the gadget (the gadget's sink checks every byte). Then it runs
+# lr_panel_app (firmware/linux, the demo scene through the panel driver and PanelSink) on the same
+# spidev and lines for two frames and checks the bytes each frame sent (the figures of
+# tests/panel_app/panel_app_test.cpp: frames are bit-identical on every platform), and its exit
+# statuses for a missing spidev, a missing GPIO chip (1) and a bad option (2), and a run without
+# a frame count that SIGTERM ends cleanly (0).
 #
 # Usage: scripts/ci_guest.sh   (from any directory; as root it installs missing host packages:
 #                               qemu-system-arm, device-tree-compiler, cpio,
-#                               g++-arm-linux-gnueabihf, pkgconf)
+#                               g++-arm-linux-gnueabihf, pkgconf, qemu-user)
 #   LR_GUEST_TIMEOUT=300   seconds the whole boot may take (default 300)
 #
 # Everything comes from Debian 12's packages: the kernel (linux-image-armmp's current
@@ -26,6 +31,8 @@
 # private apt configuration in build/guest/apt (like scripts/armhf_sysroot.sh: the host's dpkg
 # never learns about armhf, nothing is installed), libgpiod and libusb for armhf come from the
 # armhf sysroot (scripts/armhf_sysroot.sh), the C and C++ runtimes from the cross toolchain.
+# lr_panel_app's mesh header is generated at build time by lineraster-asset built for armhf and
+# run under qemu-arm (qemu-user), as in the armhf test build.
 # Downloads and unpacked packages are kept under build/guest and reused; delete build/guest/debs
 # to fetch the current packages again.
 # Exit status: 0 when every check passed, 1 otherwise (with a message saying what failed).
@@ -61,6 +68,7 @@ declare -A tool_pkg=(
   [qemu-system-arm]=qemu-system-arm [dtc]=device-tree-compiler [cpio]=cpio
   [$triplet-g++]=g++-$triplet [$triplet-readelf]=binutils-$triplet
   [$triplet-objcopy]=binutils-$triplet [cmake]=cmake [pkg-config]=pkgconf [timeout]=coreutils
+  [qemu-arm]=qemu-user
 )
 missing=()
 for tool in "${!tool_pkg[@]}"; do
@@ -135,16 +143,16 @@ moddir="$work/kernel/lib/modules/$kver"
 [ -f "$moddir/modules.order" ] || fail "no modules.order in $moddir"
 elapsed "downloads (sysroot, kernel $kver, busybox)" "$t"
 
-# ---- the guest test, cross-built with the project's toolchain file
+# ---- the guest's programs (guest_test, lr_panel_app), cross-built with the project's toolchain
 t=$SECONDS
 testbuild="$work/test-build"
-if [ ! -f "$testbuild/CMakeCache.txt" ]; then
-  cmake -S tests/guest -B "$testbuild" -DCMAKE_TOOLCHAIN_FILE="$repo_root/toolchain/$triplet.cmake" \
-    -DCMAKE_BUILD_TYPE=Release >/dev/null || fail "configure of tests/guest failed"
-fi
-cmake --build "$testbuild" -j"$jobs" || fail "guest test build failed (see the compiler output above)"
+cmake -S tests/guest -B "$testbuild" -DCMAKE_TOOLCHAIN_FILE="$repo_root/toolchain/$triplet.cmake" \
+  -DCMAKE_BUILD_TYPE=Release >/dev/null || fail "configure of tests/guest failed"
+cmake --build "$testbuild" -j"$jobs" || fail "guest build failed (see the compiler output above)"
 guest_test="$testbuild/guest_test"
-elapsed "guest test build" "$t"
+panel_app=$(cat "$testbuild/lr_panel_app.path" 2>/dev/null || true)
+[ -x "$panel_app" ] || fail "lr_panel_app not built (${panel_app:-no $testbuild/lr_panel_app.path})"
+elapsed "guest programs build" "$t"
 
 # ---- the initramfs: busybox, /init, the test with its shared libraries, the USB modules
 t=$SECONDS
@@ -155,6 +163,7 @@ cp "$work/busybox/bin/busybox" "$root/bin/busybox"
 cp tests/guest/init.sh "$root/init"
 chmod 755 "$root/init"
 cp "$guest_test" "$root/guest_test"
+cp "$panel_app" "$root/lr_panel_app"
 
 # Shared libraries: the NEEDED entries, found in the sysroot or the toolchain's root, copied
 # into /lib (the init script sets LD_LIBRARY_PATH=/lib) with the dynamic loader.
@@ -176,6 +185,7 @@ copy_needed() {  # elf
   done
 }
 copy_needed "$guest_test"
+copy_needed "$panel_app"
 interp=$($triplet-readelf -l "$guest_test" | sed -n 's/.*interpreter: \(.*\)\]/\1/p')
 if [ -z "$interp" ] || [ ! -e "$toolchain_root/lib/$(basename "$interp")" ]; then
   fail "dynamic loader ${interp:-?} not found in $toolchain_root/lib"
@@ -266,4 +276,55 @@ fi
 if [ "$passed" = 0 ] || [ "$pass_lines" != "$passed" ]; then
   fail "the summary ($summary) does not match the $pass_lines PASS lines"
 fi
-echo "ci_guest: PASS ($passed checks on the emulated ARM Linux guest, kernel $kver)"
+
+# ---- lr_panel_app's runs (tests/guest/init.sh): figures and exit statuses
+# What PanelSink sent for each frame of the ST7789 240x240, as tests/panel_app/panel_app_test.cpp
+# asserts on the host (keep them in step): frame 0 everything, 30 strips of 8 rows, each CASET,
+# RASET and RAMWR (11 bytes) and 3,840 pixel bytes; frame 1, 3 degrees on, 13 strips unchanged
+# (skipped) and 17 narrowed to their changed columns.
+app_frames=(
+  "frame=0 degrees=0 bytes=115530 pixel_bytes=115200 command_bytes=330 strips_sent=30 strips_narrowed=0 strips_skipped=0 "
+  "frame=1 degrees=3 bytes=30907 pixel_bytes=30720 command_bytes=187 strips_sent=17 strips_narrowed=17 strips_skipped=13 "
+  "frames=2 bytes=146437 pixel_bytes=145920 "
+)
+app_failed=0
+starts_a_line() {  # TEXT PREFIX
+  local line
+  while IFS= read -r line; do
+    [[ "$line" == "$2"* ]] && return 0
+  done <<<"$1"
+  return 1
+}
+app_check() {  # NAME EXIT-STATUS LINE-PREFIX...: each prefix must start a line of NAME's output
+  local name=$1 status=$2 out prefix ok=1
+  shift 2
+  out=$(sed -n "s/^panel_app $name: //p" "$log")
+  starts_a_line "$out" "exit $status" || ok=
+  for prefix in "$@"; do
+    starts_a_line "$out" "$prefix" || ok=
+  done
+  if [ -n "$ok" ]; then
+    echo "ci_guest: PASS lr_panel_app $name (exit $status)"
+  else
+    echo "ci_guest: FAIL lr_panel_app $name: expected exit $status and lines starting with: $*" >&2
+    app_failed=$((app_failed + 1))
+  fi
+}
+app_check frames 0 "lr_panel_app: st7789 240x240" "${app_frames[@]}"
+app_check no_spidev 1 "lr_panel_app: /dev/spidev9.9: no such device"
+app_check no_chip 1 "lr_panel_app: gpiochip7: no such GPIO chip"
+app_check bad_option 2 "lr_panel_app: --frames: bad value 'two'"
+# --frames 0 stopped by SIGTERM after 4 s: a clean end with its summary, whatever the count.
+app_check until_term 0 "frame=0 degrees=0 bytes=115530 " "frames="
+# Each error is one line: the run's output is that line and its exit status.
+for name in no_spidev no_chip bad_option; do
+  n=$(grep -c "^panel_app $name: " "$log" || true)
+  if [ "$n" != 2 ]; then
+    echo "ci_guest: FAIL lr_panel_app $name printed $((n - 1)) lines, not one" >&2
+    app_failed=$((app_failed + 1))
+  fi
+done
+[ "$app_failed" = 0 ] || fail "$app_failed lr_panel_app checks failed (its output is above, prefixed panel_app)"
+echo "ci_guest: lr_panel_app on the guest's spidev:"
+sed -n 's/^panel_app frames: /  /p' "$log"
+echo "ci_guest: PASS ($passed checks on the emulated ARM Linux guest, kernel $kver; lr_panel_app: 5 runs)"

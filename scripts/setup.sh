@@ -7,7 +7,7 @@ pkgs=(g++ make cmake libpng-dev)
 if [ "$what" = test ]; then
   pkgs+=(libgtest-dev libbenchmark-dev valgrind libosmesa6-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
          libstdc++-arm-none-eabi-newlib qemu-system-arm
-         g++-arm-linux-gnueabihf qemu-user python3-matplotlib
+         g++-arm-linux-gnueabihf g++-aarch64-linux-gnu qemu-user python3-matplotlib
          clang libclang-rt-14-dev
          pkg-config libgpiod-dev libusb-1.0-0-dev  # host display backends (hal/linux, hal/usb)
          device-tree-compiler cpio)  # the ARM Linux guest of scripts/ci_guest.sh
