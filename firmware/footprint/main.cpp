@@ -1,0 +1,231 @@
+// One footprint image: a complete 320x240 RGB565 application, strips of 8 rows, storage for
+// 1,000 triangles, drawing a 1,000-triangle torus (firmware/footprint/scene.hpp) in the shading
+// of one configuration (LR_FOOTPRINT_CONFIG, set by firmware/footprint/CMakeLists.txt):
+//
+//   1 unlit         vertex colours, no lighting                     Renderer<PF, 8, 0>
+//   2 gouraud       lit per vertex ("gold")                         Renderer<PF, 8, 0>
+//   3 tex_nearest   lit per vertex, 32x32 RGB565 texture, nearest   Renderer<PF, 8, kTexturedSpans>
+//   4 tex_bilinear  the same, bilinear                              Renderer<PF, 8, kTexturedSpans>
+//   5 phong         lit per pixel, exact ("gold")                   Renderer<PF, 8, kPhongSpans>
+//
+// Each renderer links only the span families its configuration draws with (kFeatures leaves
+// the others out), and only the mesh arrays its draw reads, so scripts/footprint.sh's flash,
+// RAM and stack figures are those of a real application of that kind (what the core links for
+// every draw, e.g. its texel fetchers, counts too). Static storage only: no heap, no exceptions.
+//
+// Output (semihosting): the frame's checksum (FNV-1a, as lr_smoke's), the frame statistics and
+// the stack high-water mark (stack_probe.hpp), for footprint.sh to check against the static
+// bound. Exit status 0 when the frame is complete and nothing was dropped for capacity.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "core/camera.hpp"
+#include "core/material.hpp"
+#include "core/renderer.hpp"
+#include "firmware/common/semihost.hpp"
+#include "firmware/footprint/checksum_sink.hpp"
+#include "firmware/footprint/scene.hpp"
+#include "firmware/footprint/stack_probe.hpp"
+
+#ifndef LR_FOOTPRINT_CONFIG
+#error "LR_FOOTPRINT_CONFIG (1 unlit .. 5 phong) is set by firmware/footprint/CMakeLists.txt"
+#endif
+
+namespace {
+
+namespace fp = lr::fw::footprint;
+namespace sh = lr::fw::semihost;
+using lr::Fixed;
+
+enum class Config : int { kUnlit = 1, kGouraud, kTexNearest, kTexBilinear, kPhong };
+constexpr Config kConfig = static_cast<Config>(LR_FOOTPRINT_CONFIG);
+static_assert(LR_FOOTPRINT_CONFIG >= 1 && LR_FOOTPRINT_CONFIG <= 5, "unknown configuration");
+
+constexpr bool kTextured = kConfig == Config::kTexNearest || kConfig == Config::kTexBilinear;
+constexpr bool kPhong = kConfig == Config::kPhong;
+constexpr bool kLit = kConfig != Config::kUnlit;
+constexpr uint32_t kFeatures =
+    (kTextured ? uint32_t{lr::kTexturedSpans} : 0u) | (kPhong ? uint32_t{lr::kPhongSpans} : 0u);
+
+using PF = lr::Rgb565Be;
+using Pixel = PF::Storage;
+constexpr int kWidth = 320;
+constexpr int kHeight = 240;
+constexpr int kStripRows = 8;
+constexpr size_t kStrips = (kHeight + kStripRows - 1) / kStripRows;
+constexpr size_t kStripPixels = size_t{kWidth} * kStripRows;
+
+// ---- Storage for 1,000 triangles -------------------------------------------------------------
+// Sized as an application that budgets for "1,000 triangles on screen" would size it:
+//  - triangles: the budget, plus 24 for the fans that clipping (near plane, guard band) makes
+//    of a triangle crossing a plane (a few triangles of a scene that reaches the screen's edge).
+//  - vertices: the vertex store holds every vertex of a draw (transformed before culling) and
+//    the polygons clipping makes. A closed, smoothly shaded mesh has about half as many
+//    vertices as triangles; seams (texture wrap, hard edges) add some: this torus has 546 for
+//    1,000 triangles. 640 = 0.64 per triangle covers that and a few clipped polygons (<= 9
+//    vertices each); a flat-shaded mesh with split vertices would need up to 3 per triangle.
+//  - active: the triangles crossing one 8-row strip at once, which only a measurement tells:
+//    this view peaks at 96 (FrameStats::max_active; the strips through the tube's near and far
+//    rims cross the most), 103 from other heights. 128 = the peak + 1/3 for other views. An
+//    overflow drops triangles (counted in FrameStats, and fatal here), it corrupts nothing.
+//  - Phong only: one SurfaceVertex per vertex-store entry, one PreparedLighting (one material).
+constexpr size_t kMaxTriangles = 1024;
+constexpr size_t kMaxVertices = 640;
+constexpr size_t kMaxActive = 128;
+constexpr size_t kMaxDraws = 2;
+constexpr size_t kSurfaces = kPhong ? kMaxVertices : 0;
+constexpr size_t kPixelLights = kPhong ? 1 : 0;
+
+// Value-initialised: constant initialisation, zero-filled in .bss, no constructor at startup.
+// The names (g_store_*) are what scripts/footprint.sh reads the RAM breakdown from (nm -S).
+std::array<lr::ScreenVertex, kMaxVertices> g_store_vertices{};
+std::array<lr::BinnedTriangle, kMaxTriangles> g_store_triangles{};
+std::array<uint16_t, kStrips> g_store_buckets{};
+std::array<lr::DrawRecord, kMaxDraws> g_store_draws{};
+std::array<lr::ActiveTriangle, kMaxActive> g_store_active{};
+std::array<uint16_t, 2 * kMaxActive> g_store_active_index{};
+std::array<uint16_t, kStripPixels> g_store_depth{};
+std::array<std::array<Pixel, kStripPixels>, 2> g_store_strip_buffers{};
+std::array<lr::SurfaceVertex, kSurfaces> g_store_surfaces{};
+std::array<lr::PreparedLighting, kPixelLights> g_store_pixel_lights{};
+
+lr::Renderer<PF, kStripRows, kFeatures> g_renderer;
+fp::FootprintSink<PF, kStripPixels> g_sink{g_store_strip_buffers};
+
+// ---- The draw --------------------------------------------------------------------------------
+constexpr lr::Mesh make_mesh() {
+  lr::Mesh m{};
+  m.positions = fp::kPositions;
+  m.triangles = fp::kTriangles;
+  if constexpr (kLit) m.normals = fp::kNormals;
+  if constexpr (!kLit) m.colors = fp::kColors;
+  if constexpr (kTextured) m.uvs = fp::kUvs;
+  return m;
+}
+constexpr lr::Mesh kMesh = make_mesh();
+
+lr::DrawState make_state() {
+  lr::DrawState s;
+  s.lighting = kLit;
+  s.shading = kPhong ? lr::Shading::kPhong : lr::Shading::kGouraud;
+  s.depth_test = true;
+  s.cull = lr::Cull::kBack;
+  if constexpr (kTextured) {
+    s.texture = &fp::kTexture;
+    s.sampler.filter =
+        kConfig == Config::kTexNearest ? lr::Filter::kNearest : lr::Filter::kBilinear;
+    s.sampler.mip = lr::MipMode::kNone;
+    s.sampler.env = lr::TexEnv::kModulate;
+  }
+  if constexpr (kPhong) s.pixel_lighting = lr::PixelLighting::kExact;
+  return s;
+}
+
+constexpr const char* kName = kConfig == Config::kUnlit         ? "unlit"
+                              : kConfig == Config::kGouraud     ? "gouraud"
+                              : kConfig == Config::kTexNearest  ? "tex_nearest"
+                              : kConfig == Config::kTexBilinear ? "tex_bilinear"
+                                                                : "phong";
+
+bool check(lr::Status st, const char* what) {
+  if (st == lr::Status::kOk) return true;
+  sh::write("footprint: ");
+  sh::write(what);
+  sh::write(" failed: ");
+  sh::write(lr::to_string(st));
+  sh::write("\n");
+  return false;
+}
+
+void report(const char* label, uint32_t value, bool hex = false) {
+  sh::write("footprint: ");
+  sh::write(label);
+  sh::write(" ");
+  if (hex)
+    sh::write_hex(value);
+  else
+    sh::write_dec(value);
+  sh::write("\n");
+}
+
+bool render_frame() {
+  lr::FrameStorage storage{g_store_vertices, g_store_triangles, g_store_draws,
+                           g_store_buckets,  g_store_active,    g_store_active_index,
+                           g_store_depth};
+  storage.surfaces = g_store_surfaces;
+  storage.pixel_lights = g_store_pixel_lights;
+  if (!check(g_renderer.configure(storage, kWidth, kHeight), "configure")) return false;
+
+  // The torus seen from 40 degrees above its plane, filling two thirds of the screen (52,000
+  // pixels): every strip but a few at the top and bottom has work.
+  lr::Camera camera;
+  camera.eye = {Fixed::from_double(0.0), Fixed::from_double(1.8), Fixed::from_double(2.2)};
+  const lr::Vec3 target{Fixed::from_double(0.0), Fixed::from_double(-0.1), Fixed::from_double(0.0)};
+  const lr::Vec3 up{Fixed::from_double(0.0), Fixed::from_double(1.0), Fixed::from_double(0.0)};
+  if (!lr::perspective(Fixed::from_double(45.0), Fixed::ratio(kWidth, kHeight),
+                       Fixed::from_double(0.5), Fixed::from_double(20.0), camera.projection) ||
+      !lr::look_at(camera.eye, target, up, camera.view)) {
+    sh::write("footprint: camera rejected\n");
+    return false;
+  }
+
+  lr::LightSet lights;
+  lights.lights[0].position = {Fixed::from_double(0.4), Fixed::from_double(0.8),
+                                Fixed::from_double(0.6)};
+  lights.count = 1;
+  constexpr uint16_t kAmbient = 6554;  // 0.2 in Q1.15, GL's default global ambient
+  lights.global_ambient = {kAmbient, kAmbient, kAmbient};
+
+  lr::Material material;  // GL's default material (unlit: unused)
+  if constexpr (kLit) {
+    const lr::NamedMaterial* gold = lr::find_material(kTextured ? "silver" : "gold");
+    if (gold == nullptr) return false;
+    material = lr::to_material(*gold);
+  }
+
+  if (!check(g_renderer.begin_frame(camera, lights, lr::Rgb8{16, 24, 48}), "begin_frame"))
+    return false;
+  const lr::Mat4 model = lr::rotate_y(Fixed::from_double(20.0));
+  if (!check(g_renderer.draw(kMesh, model, material, make_state()), "draw")) return false;
+  return check(g_renderer.render(g_sink), "render");
+}
+
+}  // namespace
+
+int main() {
+  // The stack below this point is painted before anything else runs, so the high-water mark
+  // covers the whole frame and the reports after it.
+  uint32_t* const sp_at_main = fp::current_sp();
+  fp::paint_stack(sp_at_main);
+
+  sh::write("footprint: ");
+  sh::write(kName);
+  sh::write(": 320x240 RGB565, strips of 8 rows, torus of 1,000 triangles\n");
+  bool ok = render_frame();
+  const lr::FrameStats& st = g_renderer.stats();
+  const uint32_t dropped =
+      st.dropped_vertex_capacity + st.dropped_triangle_capacity + st.dropped_active_capacity;
+  report("triangles binned", st.triangles_binned);
+  report("max active", st.max_active);
+  report("pixels written", st.pixels_written);
+  report("dropped (capacity)", dropped);
+  if (ok && (dropped != 0 || st.pixels_written == 0 || g_sink.strips() != kStrips)) {
+    sh::write("footprint: the frame is empty, incomplete or dropped triangles\n");
+    ok = false;
+  }
+  report("checksum", g_sink.checksum(), true);
+
+  const uint32_t* const lowest = fp::stack_high_water();
+  report("sp at main", static_cast<uint32_t>(reinterpret_cast<uintptr_t>(sp_at_main)), true);
+  report("stack region bytes", fp::stack_depth(_sstack));
+  if (lowest == _sstack) {
+    sh::write("footprint: the stack region was used to its bottom (overflow?)\n");
+    ok = false;
+  }
+  // Bytes below the reset SP (_estack) ever written: Reset_Handler's frame, main's and the
+  // deepest call chain of the frame and the reports above.
+  report("stack used", fp::stack_depth(lowest));
+  sh::write(ok ? "footprint: PASS\n" : "footprint: FAIL\n");
+  return ok ? 0 : 1;
+}

@@ -1,0 +1,212 @@
+#!/usr/bin/env bash
+# Footprint report of the firmware configurations: flash, RAM and worst-case stack of each
+# footprint image (firmware/footprint: unlit, gouraud, tex_nearest, tex_bilinear, phong at
+# 320x240, RGB565, strips of 8 rows, storage for 1,000 triangles), and the link guard.
+#
+#   bash scripts/footprint.sh [BUILD_DIR ...]     (default: build/cortex-m0plus build/cortex-m4f)
+#
+# For each bare-metal build tree that exists (others are skipped with a note):
+#   1. builds the footprint images (cmake --build -j2 --target lr_fp_*);
+#   2. link guard: no malloc/free/_sbrk (and newlib's reentrant forms), operator new/delete,
+#      __cxa_* (but __cxa_pure_virtual/__cxa_deleted_virtual, defined by startup.cpp),
+#      __gxx_personality_* or _Unwind_* in ANY .elf of the tree;
+#   3. per image: flash = every loaded byte (vector table, code, .rodata, unwind index, init
+#      arrays, and .data's load image: objdump -h sections with LOAD); RAM = .data + .bss (the
+#      ALLOC sections in the map file's RAM region), without the reserved .stack section, whose
+#      need is the stack column; worst-case stack = scripts/stack_usage.py's total: the reset
+#      path (Reset_Handler -> main -> ...) plus every exception handler of the vector table with
+#      its exception frame, nested (an upper bound);
+#   4. runs each image under QEMU (its board's machine, with a timeout): the frame must be
+#      complete, and the stack high-water mark the image measures (stack_probe.hpp) must not
+#      exceed the static bound of the reset path — a static analysis that underestimates fails
+#      here. Frames of the same configuration must be identical on every core (integer code);
+#   5. prints a markdown table per core and the RAM breakdown by store (nm -S of the image's
+#      g_store_* arrays), and, for Cortex-M0+ trees, which configurations fit the micro:bit
+#      (flash <= its FLASH, RAM + worst-case stack <= its RAM; firmware/common/microbit.ld).
+# Exit status: non-zero on any failure (guard, analysis, run, bound, missing tools).
+set -uo pipefail
+
+cd "$(dirname "$0")/.."
+root=$PWD
+prefix=arm-none-eabi-
+qemu_timeout=${LR_FOOTPRINT_QEMU_TIMEOUT:-120}
+configs=(unlit gouraud tex_nearest tex_bilinear phong)
+status=0
+
+fail() {
+  echo "footprint: FAIL: $*" >&2
+  status=1
+}
+
+# 12345 -> 12,345
+group() { sed -e ':a' -e 's/\B[0-9]\{3\}\>/,&/' -e 'ta' <<<"$1"; }
+
+for tool in "${prefix}objdump" "${prefix}nm" python3 qemu-system-arm; do
+  command -v "$tool" >/dev/null || { echo "footprint: $tool not found (bash scripts/setup.sh test)" >&2; exit 1; }
+done
+
+# Calls through pointers in these images, for stack_usage.py: the renderer calls the sink's
+# virtual methods and the span routines of its families; textured and Phong spans call texel
+# fetchers; Reset_Handler calls the static constructors (none: the images constant-initialise).
+indirect_rules=(
+  --indirect-from 'lr::Renderer<.*>::render\('
+  'FootprintSink<.*>::|lr::fill_span<|lr::fill_tex_span<|lr::fill_phong_span<'
+  --indirect-from 'lr::fill_(tex|phong)_span<' 'lr::fetch_batch<'
+  --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'
+)
+
+# The limits of the micro:bit (firmware/common/microbit.ld), in bytes.
+ld_length() {  # ld_length REGION FILE
+  local v
+  v=$(awk -v r="$1" '$1 == r { for (i = 1; i <= NF; i++) if ($i ~ /^LENGTH/) { s = $0; sub(/.*LENGTH *= */, "", s); print s } }' "$2" | head -1)
+  case "$v" in
+    *K) echo $(( ${v%K} * 1024 )) ;;
+    *M) echo $(( ${v%M} * 1024 * 1024 )) ;;
+    *) echo $(( v )) ;;
+  esac
+}
+microbit_ld=firmware/common/microbit.ld
+if [[ -f $microbit_ld ]]; then
+  mb_flash=$(ld_length FLASH $microbit_ld)
+  mb_ram=$(ld_length RAM $microbit_ld)
+else
+  mb_flash=$((256 * 1024)) mb_ram=$((16 * 1024))
+fi
+
+declare -A checksum_of  # config -> "core checksum" of the first core that ran it
+if [[ $# -gt 0 ]]; then trees=("$@"); else trees=(build/cortex-m0plus build/cortex-m4f); fi
+
+for tree in "${trees[@]}"; do
+  if [[ ! -f $tree/CMakeCache.txt ]]; then
+    echo "footprint: note: $tree is not configured: skipped (cmake --preset ${tree##*/})"
+    echo
+    continue
+  fi
+  core=$(sed -n 's|^CMAKE_TOOLCHAIN_FILE:[A-Z]*=.*/\(.*\)\.cmake$|\1|p' "$tree/CMakeCache.txt")
+  core=${core:-${tree##*/}}
+  manifest=$tree/firmware/footprint/footprint_images.txt
+  # A tree configured before firmware/footprint/ existed does not know the images yet.
+  [[ -f $manifest ]] || cmake "$tree" >/dev/null || { fail "$tree: cmake could not reconfigure"; continue; }
+  [[ -f $manifest ]] || { fail "$tree: no firmware/footprint images (not a bare-metal tree?)"; continue; }
+  targets=()
+  for cfg in "${configs[@]}"; do targets+=(--target "lr_fp_$cfg"); done
+  if ! cmake --build "$tree" -j2 "${targets[@]}" >"$tree/footprint_build.log" 2>&1; then
+    tail -30 "$tree/footprint_build.log" >&2
+    fail "$tree: building the footprint images failed ($tree/footprint_build.log)"
+    continue
+  fi
+
+  # ---- Link guard: every ELF of the tree.
+  forbidden='^(malloc|free|calloc|realloc|memalign|aligned_alloc|posix_memalign|valloc|pvalloc|_sbrk|sbrk|_sbrk_r|_malloc_r|_free_r|_calloc_r|_realloc_r|_memalign_r|_Zn[wa][jm].*|_Zd[la]Pv.*|__cxa_.*|__gxx_personality_.*|_Unwind_.*)$'
+  allowed='^(__cxa_pure_virtual|__cxa_deleted_virtual)$'
+  elfs=0 clean=0
+  while IFS= read -r elf; do
+    elfs=$((elfs + 1))
+    if ! syms=$("${prefix}nm" "$elf" 2>/dev/null); then
+      fail "$elf: nm could not read it"
+      continue
+    fi
+    bad=$(awk '{print $NF}' <<<"$syms" | grep -E "$forbidden" | grep -vE "$allowed" | sort -u | tr '\n' ' ')
+    if [[ -n $bad ]]; then
+      fail "link guard: $elf holds $bad"
+    else
+      clean=$((clean + 1))
+    fi
+  done < <(find "$tree" -name '*.elf' -type f | sort)
+
+  echo "### $core ($tree)"
+  echo
+  echo "Link guard (no malloc, free, _sbrk, operator new/delete, __cxa_* exceptions, unwinder): $clean of $elfs ELFs clean."
+  echo
+  echo "| configuration | flash | RAM | worst-case stack | measured stack (QEMU) | main alone (static) |"
+  echo "|---|---:|---:|---:|---:|---:|"
+  fits=() misfits=()
+  breakdown=""
+  while read -r cfg elf machine board; do
+    [[ -n $cfg ]] || continue
+    map=${elf%.elf}.map
+    # Flash: loaded bytes. RAM: ALLOC sections inside the RAM region, .stack excluded.
+    read -r ram_org ram_len < <(awk '$1 == "RAM" && $2 ~ /^0x/ {print $2, $3; exit}' "$map")
+    if [[ -z ${ram_len:-} ]]; then
+      fail "$core $cfg: no RAM region in $map"
+      continue
+    fi
+    flash=0 ram=0 stack_size=0
+    while read -r _ name size vma _ _ _ flags; do
+      size=$((16#$size)) vma=$((16#$vma))
+      [[ $flags == *LOAD* ]] && flash=$((flash + size))
+      [[ $name == .stack ]] && stack_size=$size && continue
+      if [[ $flags == *ALLOC* ]] && (( vma >= ram_org && vma < ram_org + ram_len )); then
+        ram=$((ram + size))
+      fi
+    done < <("${prefix}objdump" -h "$elf" | sed -n '/^ *[0-9][0-9]* /{N;s/\n */ /;p}')
+    # Worst-case stack.
+    su_out=$(python3 scripts/stack_usage.py "$elf" "$tree" --vector-table .isr_vector --entry main \
+             "${indirect_rules[@]}" --tool-prefix "$prefix" --machine 2>&1 </dev/null)
+    if [[ $? -ne 0 ]]; then
+      fail "$core $cfg: stack analysis: $su_out"
+      continue
+    fi
+    total=$(awk -F'\t' '$1 == "total" {print $2}' <<<"$su_out")
+    reset_bound=$(awk -F'\t' '$1 == "entry" && $2 == "Reset_Handler" {print $3}' <<<"$su_out")
+    main_bound=$(awk -F'\t' '$1 == "entry" && $2 == "main" {print $3}' <<<"$su_out")
+    if (( stack_size > 0 && total > stack_size )); then
+      fail "$core $cfg: worst-case stack $total B exceeds the reserved .stack of $stack_size B"
+    fi
+    # Run it: the measured high-water mark must stay within the static bound.
+    run=$(timeout "$qemu_timeout" qemu-system-arm -M "$machine" -nographic -monitor none \
+          -semihosting -kernel "$elf" </dev/null 2>&1)
+    rc=$?
+    measured=$(sed -n 's/^footprint: stack used \([0-9]*\).*/\1/p' <<<"$run")
+    sum=$(sed -n 's/^footprint: checksum \(0x[0-9a-f]*\).*/\1/p' <<<"$run")
+    if [[ $rc -ne 0 ]] || ! grep -q '^footprint: PASS' <<<"$run" || [[ -z $measured ]]; then
+      fail "$core $cfg: the image did not run to PASS under qemu-system-arm -M $machine (status $rc):"$'\n'"$run"
+      measured="—"
+    elif [[ $measured -gt $reset_bound ]]; then
+      fail "$core $cfg: measured stack $measured B > static bound $reset_bound B (Reset_Handler): the analysis underestimates"
+    fi
+    if [[ -n $sum ]]; then
+      if [[ -n ${checksum_of[$cfg]:-} && ${checksum_of[$cfg]#* } != "$sum" ]]; then
+        fail "$cfg: frame checksum $sum on $core differs from ${checksum_of[$cfg]}"
+      fi
+      checksum_of[$cfg]=${checksum_of[$cfg]:-"$core $sum"}
+    fi
+    [[ $measured != "—" ]] && measured="$(group "$measured") B"
+    echo "| $cfg | $(group "$flash") B | $(group "$ram") B | $(group "$total") B | $measured | $(group "$main_bound") B |"
+    if (( flash <= mb_flash && ram + total <= mb_ram )); then
+      fits+=("$cfg")
+    else
+      misfits+=("$cfg needs $(group $((ram + total))) B of RAM with its stack and $(group "$flash") B of flash")
+    fi
+    # The store breakdown, from the image with every store (Phong: also its surfaces).
+    if [[ $cfg == phong ]]; then
+      declare -A st=()
+      while read -r _ size _ name; do
+        st[${name##*g_store_}]=$((16#$size))
+      done < <("${prefix}nm" -S -C "$elf" | grep 'g_store_')
+      all=0
+      for k in "${!st[@]}"; do all=$((all + st[$k])); done
+      breakdown="vertex store $(group "${st[vertices]:-0}") B, triangles $(group $(( ${st[triangles]:-0} + ${st[buckets]:-0} ))) B (with $(group "${st[buckets]:-0}") B of strip bucket heads), active $(group $(( ${st[active]:-0} + ${st[active_index]:-0} ))) B (with $(group "${st[active_index]:-0}") B of index), depth strip $(group "${st[depth]:-0}") B, strip buffers $(group "${st[strip_buffers]:-0}") B, draw records $(group "${st[draws]:-0}") B, surfaces for Phong $(group $(( ${st[surfaces]:-0} + ${st[pixel_lights]:-0} ))) B (with $(group "${st[pixel_lights]:-0}") B of prepared lighting); $(group "$all") B in all"
+      unset st
+    fi
+  done <"$manifest"
+  echo
+  echo "Flash: every byte loaded into flash (vector table, code, .rodata, unwind index, and the .data load image); RAM: .data + .bss, without the reserved .stack section; worst-case stack: the reset path (Reset_Handler -> main -> ...) plus every exception handler with its exception frame, nested (scripts/stack_usage.py); measured: the stack high-water mark of the run (a lower bound, checked <= the reset path's bound); main alone: the static bound of main's calls, without startup and handlers."
+  echo
+  [[ -n $breakdown ]] && echo "RAM at 320x240 with 1,000 triangles ($core, phong image): $breakdown." && echo
+  if [[ $core == *m0plus* ]]; then
+    echo "Fit the micro:bit ($(group "$mb_flash") B flash, $(group "$mb_ram") B RAM for data, bss and stack): ${fits[*]:-none}."
+    if [[ ${#misfits[@]} -gt 0 ]]; then
+      joined=$(printf '%s; ' "${misfits[@]}")
+      echo "Not fitting: ${joined%; }."
+    fi
+    echo
+  fi
+done
+
+if [[ $status -ne 0 ]]; then
+  echo "footprint: FAILED" >&2
+else
+  echo "footprint: every check passed (link guard; stack analysis; QEMU runs complete, measured <= static bound; frames identical across cores)."
+fi
+exit $status
