@@ -56,9 +56,20 @@ for tree in "${trees[@]}"; do
     if ! cmp -s "$out/$name.ppm" "$out/sim_$scene.ppm"; then
       fail "$name on $board: frame differs from lineraster-sim's ($(cmp "$out/$name.ppm" "$out/sim_$scene.ppm" | head -1))"
     fi
+    # The stack the linker script reserves must cover the static worst case (scripts/stack_usage.py).
+    reserved="$(arm-none-eabi-nm "$elf" | awk '$NF == "__stack_size" { print $1 }')"
+    [[ -n "$reserved" ]] && reserved=$((16#$reserved))
+    worst="$(python3 scripts/stack_usage.py "$elf" "$tree" --vector-table .isr_vector --entry main \
+      --indirect-from 'lr::Renderer<.*>::render\(' 'PpmFileSink<.*>::|lr::fill_span<|lr::fill_tex_span<|lr::fill_phong_span<' \
+      --indirect-from 'lr::fill_(tex|phong)_span<' 'lr::fetch_batch<' \
+      --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_' --tool-prefix arm-none-eabi- --machine 2>&1)" \
+      || fail "$name ($board): stack analysis failed: $worst"
+    worst="$(awk -F'\t' '$1 == "total" { print $2 }' <<<"$worst")"
+    [[ -n "$reserved" && -n "$worst" ]] || fail "$name ($board): no __stack_size symbol or no stack total"
+    ((worst <= reserved)) || fail "$name ($board): worst-case stack $worst B > the $reserved B the linker script reserves"
     sum="$(grep -o 'checksum.*' <<<"$log" | awk '{print $NF}')"
     pixels="$(grep -o 'pixels written: [0-9]*' <<<"$log" | awk '{print $NF}')"
-    echo "ci_firmware: $name on $board ($machine): frame identical to lineraster-sim's ($pixels pixels written, FNV-1a $sum)"
+    echo "ci_firmware: $name on $board ($machine): frame identical to lineraster-sim's ($pixels pixels written, FNV-1a $sum); stack: worst case $worst B of $reserved B reserved"
     checked=$((checked + 1))
   done <"$list"
 done

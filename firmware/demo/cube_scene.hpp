@@ -16,11 +16,21 @@ namespace lr::fw::demo::cube {
 namespace asset = ::cube_asset;
 inline constexpr const char* kName = "cube";
 inline constexpr int kWidth = 320, kHeight = 240;
-#ifndef LR_DEMO_STRIP_ROWS
-#define LR_DEMO_STRIP_ROWS 8
-#endif
-inline constexpr int kStripRows = LR_DEMO_STRIP_ROWS;
+// LR_DEMO_SMALL_RAM: the 16 KB of a micro:bit. Strips of 2 rows (two RGB888 strip buffers of
+// 1,920 B, a depth strip of 1,280 B), stores exactly as large as the cube (24 vertices, 12
+// triangles; this view clips nothing, and a store that ran out would fail the run loudly), 10
+// active triangles (the most this view has on one strip). With the renderer and the sink that is
+// about 10 KB of .data + .bss, leaving 6 KB for the stack (the static worst case is about 5.4 KB,
+// scripts/footprint.sh).
+#if LR_DEMO_SMALL_RAM
+inline constexpr int kStripRows = 2;
+inline constexpr size_t kClipMargin = 0;
+inline constexpr size_t kActiveCapacity = 10;
+#else
+inline constexpr int kStripRows = 8;
+inline constexpr size_t kClipMargin = 16;   // vertices and triangles clipping may add
 inline constexpr size_t kActiveCapacity = 12;  // every triangle of the cube
+#endif
 inline constexpr SceneView kView{kSimDefaultView.fovy, kSimDefaultView.near, kSimDefaultView.far,
                                  vec(2, 1.6, 2.6), kSimDefaultView.target, kSimDefaultView.up};
 inline constexpr LightSet kLights = sim_default_lights();

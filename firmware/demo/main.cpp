@@ -37,10 +37,10 @@ consteval size_t total_triangles() {
   for (const lr::Mesh& m : scene::asset::meshes) n += m.triangles.size();
   return n;
 }
-// Clipping at the near plane adds at most a few vertices and triangles per clipped triangle; the
-// demo views clip nothing, and the stores report (FrameStats::dropped_*) rather than overflow.
-constexpr size_t kVertexCapacity = total_vertices() + 16;
-constexpr size_t kTriangleCapacity = total_triangles() + 16;
+// Clipping at the near plane adds a few vertices and triangles per clipped triangle (the scene's
+// kClipMargin); the stores report (FrameStats::dropped_*) rather than overflow.
+constexpr size_t kVertexCapacity = total_vertices() + scene::kClipMargin;
+constexpr size_t kTriangleCapacity = total_triangles() + scene::kClipMargin;
 constexpr size_t kActive = scene::kActiveCapacity;
 static_assert(kVertexCapacity <= 0xFFFF && kTriangleCapacity <= 0xFFFE, "uint16 indices");
 
