@@ -1,26 +1,47 @@
 #!/usr/bin/env bash
-# Cross-compile guard: builds the core and the smoke firmware for Cortex-M4F (the cortex-m4f
-# preset: toolchain/cortex-m4f.cmake, LR_HOST=OFF) and checks that the linked firmware holds no
-# heap and no exception machinery.
+# Cross-compile check of every Cortex-M target. For each preset (cortex-m0plus, cortex-m4f,
+# cortex-m7, cortex-m33: toolchain/cortex-*.cmake, LR_HOST=OFF), one configure and one build into
+# build/<preset>, then:
+#   - the link guard: no ELF of the build tree may hold a heap or exception machinery;
+#   - with LR_CROSS_RUN_QEMU=1, under qemu-system-arm with semihosting, each run bounded by
+#     `timeout` (a hung firmware never stops QEMU by itself):
+#       lr_smoke on the preset's board (LR_FW_BOARD; board names are QEMU machine names,
+#       firmware/boards.cmake): must pass, and its frame checksum must equal the host build's
+#       when LR_HOST_SMOKE is given. The Cortex-M0+ image also runs on mps2-an385 (the M3 that
+#       runs the M0+ images needing more than the micro:bit's 16 KB; same ELF, same frame);
+#       the fault checks (firmware/fault_check, listed in its fault_checks.txt): each must end
+#       QEMU with a failure status and report "HardFault: pc=" the address of lr_fault_trigger.
+# Ends with one summary line per board (and per preset).
 #
 # Usage: scripts/ci_cross.sh            (from any directory)
-#   LR_CROSS_RUN_QEMU=1 scripts/ci_cross.sh   also runs the ELF under qemu-system-arm
-#                                             (mps2-an386, semihosting) and fails if it fails
-# Extra compiler flags: CXXFLAGS in the environment (read at the first configure of
-# build/cortex-m4f; see toolchain/cortex-m4f.cmake). Never -DCMAKE_CXX_FLAGS.
+#   LR_CROSS_RUN_QEMU=1 scripts/ci_cross.sh   also runs the images under QEMU (see above)
+#   LR_HOST_SMOKE=path/to/lr_smoke_host        the smoke firmware built for the host
+#                                             (tests/firmware_host): the checksums must match
+#   LR_CROSS_PRESETS="cortex-m4f cortex-m7"    a subset of the presets (default: all four)
+#   LR_CROSS_QEMU_TIMEOUT=seconds              limit of one QEMU run (default 60)
+# Extra compiler flags: CXXFLAGS in the environment (read at the first configure of a build
+# tree; see toolchain/cortex-m4f.cmake). Never -DCMAKE_CXX_FLAGS.
 # Exit status: 0 on success, 1 on any failure (with a message saying which).
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
 
-preset=cortex-m4f
-build_dir="build/$preset"
-elf="$build_dir/firmware/lr_smoke.elf"
+read -r -a presets <<<"${LR_CROSS_PRESETS:-cortex-m0plus cortex-m4f cortex-m7 cortex-m33}"
+qemu_timeout="${LR_CROSS_QEMU_TIMEOUT:-60}"
+run_qemu="${LR_CROSS_RUN_QEMU:-0}"
+jobs="$(nproc)"
 
 fail() {
   echo "ci_cross: FAIL: $*" >&2
   exit 1
+}
+
+# Failures of one preset or board are counted and reported, and the others still run.
+failures=0
+problem() {
+  echo "ci_cross: FAIL: $*" >&2
+  failures=$((failures + 1))
 }
 
 for tool in arm-none-eabi-g++ arm-none-eabi-gcc arm-none-eabi-nm arm-none-eabi-size; do
@@ -30,14 +51,21 @@ for tool in arm-none-eabi-g++ arm-none-eabi-gcc arm-none-eabi-nm arm-none-eabi-s
   fi
 done
 command -v cmake >/dev/null 2>&1 || fail "cmake not found on PATH"
+if [[ "$run_qemu" == 1 ]]; then
+  command -v qemu-system-arm >/dev/null 2>&1 || fail "LR_CROSS_RUN_QEMU=1 but qemu-system-arm is not installed"
+  command -v timeout >/dev/null 2>&1 || fail "timeout (coreutils) not found on PATH"
+fi
 
 echo "ci_cross: $(arm-none-eabi-g++ --version | head -n 1)"
-echo "ci_cross: configuring preset $preset"
-cmake --preset "$preset" || fail "configure of preset $preset failed"
-echo "ci_cross: building preset $preset"
-cmake --build --preset "$preset" --parallel || fail "cross build failed (see the compiler output above)"
 
-[[ -f "$elf" ]] || fail "expected firmware ELF not found: $elf"
+# The host's frame, once: the same main.cpp built for the PC (tests/firmware_host).
+host_sum=""
+if [[ "$run_qemu" == 1 && -n "${LR_HOST_SMOKE:-}" ]]; then
+  host_out="$("$LR_HOST_SMOKE")" || fail "the host build of the smoke firmware ($LR_HOST_SMOKE) failed: $host_out"
+  host_sum="$(grep -o 'checksum.*' <<<"$host_out" || true)"
+  [[ -n "$host_sum" ]] || fail "no checksum line in the output of $LR_HOST_SMOKE"
+  echo "ci_cross: host frame: $host_sum"
+fi
 
 # Symbols that mean a heap or exception support got linked in, defined (T, W, ...) or not (U).
 #   malloc family and the newlib reentrant variants, the heap's sbrk,
@@ -45,36 +73,155 @@ cmake --build --preset "$preset" --parallel || fail "cross build failed (see the
 #   exception allocation and throwing.
 forbidden_re='^(malloc|free|calloc|realloc|memalign|aligned_alloc|posix_memalign|_sbrk|sbrk|_sbrk_r|_malloc_r|_free_r|_calloc_r|_realloc_r|_Znwj|_Znaj|_ZdlPv|_ZdaPv|_Znw.*|_Zna.*|_ZdlPv.*|_ZdaPv.*|__cxa_allocate_exception|__cxa_throw|__cxa_begin_catch)$'
 
-symbols="$(arm-none-eabi-nm "$elf")" || fail "arm-none-eabi-nm could not read $elf"
-# nm lines: "<address> <type> <name>" or "         U <name>": the name is the last field.
-found="$(awk '{print $NF}' <<<"$symbols" | grep -E "$forbidden_re" || true)"
-
-echo "ci_cross: size of $elf"
-arm-none-eabi-size "$elf"
-
-if [[ -n "$found" ]]; then
-  echo "ci_cross: forbidden symbols in $elf:" >&2
-  grep -E " ($(tr '\n' '|' <<<"$found" | sed 's/|$//'))\$" <<<"$symbols" | sed 's/^/    /' >&2
-  fail "the firmware links heap or exception support (see the map file $build_dir/firmware/lr_smoke.map, --cref section, for who references it)"
-fi
-echo "ci_cross: no malloc/free/_sbrk/_malloc_r/operator new/__cxa_allocate_exception in $elf"
-
-if [[ "${LR_CROSS_RUN_QEMU:-0}" == 1 ]]; then
-  command -v qemu-system-arm >/dev/null 2>&1 || fail "LR_CROSS_RUN_QEMU=1 but qemu-system-arm is not installed"
-  echo "ci_cross: running $elf under qemu-system-arm -M mps2-an386"
-  # Semihosting output arrives on QEMU's stderr.
-  qemu_out="$(timeout 60 qemu-system-arm -M mps2-an386 -nographic -monitor none -semihosting -kernel "$elf" 2>&1)" \
-    || { echo "$qemu_out"; fail "the smoke firmware failed under QEMU (status $?)"; }
-  echo "$qemu_out"
-  # The same main.cpp built for the host (tests/firmware_host): the frames must be bit-identical.
-  if [[ -n "${LR_HOST_SMOKE:-}" ]]; then
-    host_out="$("$LR_HOST_SMOKE")" || fail "the host build of the smoke firmware failed: $host_out"
-    target_sum="$(grep -o 'checksum.*' <<<"$qemu_out")"
-    host_sum="$(grep -o 'checksum.*' <<<"$host_out")"
-    [[ -n "$target_sum" && "$target_sum" == "$host_sum" ]] \
-      || fail "frame differs between Cortex-M4F ($target_sum) and the host ($host_sum)"
-    echo "ci_cross: Cortex-M4F frame == host frame ($target_sum)"
+# link_guard ELF: 0 if the ELF holds none of the forbidden symbols.
+link_guard() {
+  local elf="$1" symbols found
+  symbols="$(arm-none-eabi-nm "$elf")" || { echo "ci_cross: arm-none-eabi-nm could not read $elf" >&2; return 1; }
+  # nm lines: "<address> <type> <name>" or "         U <name>": the name is the last field.
+  found="$(awk '{print $NF}' <<<"$symbols" | grep -E "$forbidden_re" || true)"
+  if [[ -n "$found" ]]; then
+    echo "ci_cross: forbidden symbols in $elf (the map file's --cref section says who references them):" >&2
+    grep -E " ($(tr '\n' '|' <<<"$found" | sed 's/|$//'))\$" <<<"$symbols" | sed 's/^/    /' >&2
+    return 1
   fi
-fi
+}
 
+indent() { sed 's/^/    /'; }
+
+# qemu MACHINE ELF: runs the ELF; sets qemu_out (semihosting output arrives on QEMU's stderr) and
+# qemu_status (124: timed out).
+qemu() {
+  local machine="$1" elf="$2"
+  qemu_status=0
+  qemu_out="$(timeout -k 5 "$qemu_timeout" qemu-system-arm -M "$machine" -nographic -monitor none \
+    -semihosting -kernel "$elf" 2>&1)" || qemu_status=$?
+}
+
+# smoke PRESET MACHINE ELF: runs lr_smoke; on success sets smoke_note, else reports a problem.
+smoke() {
+  local preset="$1" machine="$2" elf="$3" sum stack
+  echo "ci_cross: [$preset] lr_smoke on $machine"
+  qemu "$machine" "$elf"
+  indent <<<"$qemu_out"
+  if [[ $qemu_status == 124 ]]; then
+    problem "[$preset] lr_smoke on $machine did not finish within ${qemu_timeout} s (hung, or a fault with semihosting off)"
+    return 1
+  fi
+  if [[ $qemu_status != 0 ]] || ! grep -q '^lr_smoke: PASS' <<<"$qemu_out"; then
+    problem "[$preset] lr_smoke failed on $machine (QEMU status $qemu_status)"
+    return 1
+  fi
+  sum="$(grep -o 'checksum.*' <<<"$qemu_out" || true)"
+  if [[ -n "$host_sum" && "$sum" != "$host_sum" ]]; then
+    problem "[$preset] frame on $machine differs from the host's ($sum; host: $host_sum)"
+    return 1
+  fi
+  stack="$(sed -n 's/^ *stack used (bytes): //p' <<<"$qemu_out")"
+  smoke_note="lr_smoke ${sum##* }${host_sum:+ == host}, stack ${stack:-?} B"
+}
+
+# faults PRESET MACHINE LIST: runs the fault checks of LIST for MACHINE; sets fault_note.
+faults() {
+  local preset="$1" machine="$2" list="$3" m elf trigger expected passed=0 total=0
+  while read -r m elf; do
+    [[ "$m" == "$machine" ]] || continue
+    total=$((total + 1))
+    trigger="$(arm-none-eabi-nm "$elf" | awk '$3 == "lr_fault_trigger" {print $1}')"
+    expected="HardFault: pc=0x$(printf '%08x' "$((16#${trigger:-0} & ~1))")"
+    qemu "$machine" "$elf"
+    if [[ $qemu_status == 124 ]]; then
+      problem "[$preset] $(basename "$elf") on $machine did not finish within ${qemu_timeout} s: the fault handler did not end the run"
+    elif [[ $qemu_status == 0 ]]; then
+      problem "[$preset] $(basename "$elf") on $machine exited with status 0: a fault must end the run with a failure"
+    elif [[ -z "$trigger" ]] || ! grep -q "^$expected " <<<"$qemu_out"; then
+      problem "[$preset] $(basename "$elf") on $machine: no \"$expected ...\" line (the handler missed the fault or its frame)"
+    else
+      passed=$((passed + 1))
+      echo "ci_cross: [$preset] $(basename "$elf") on $machine: $(grep '^HardFault' <<<"$qemu_out"), status $qemu_status"
+      continue
+    fi
+    indent <<<"$qemu_out"
+  done <"$list"
+  fault_note="fault checks $passed/$total"
+  [[ $passed == "$total" ]]
+}
+
+summary=()
+for preset in "${presets[@]}"; do
+  build_dir="build/$preset"
+  echo "ci_cross: configuring preset $preset"
+  if ! cmake --preset "$preset"; then
+    problem "configure of preset $preset failed"
+    summary+=("FAIL  $preset: configure failed")
+    continue
+  fi
+  board="$(sed -n 's/^LR_FW_BOARD:[A-Z]*=//p' "$build_dir/CMakeCache.txt")"
+  smoke_elf="$build_dir/firmware/lr_smoke.elf"
+  fault_list="$build_dir/firmware/fault_check/fault_checks.txt"
+
+  echo "ci_cross: building preset $preset"
+  # -k (the presets use Unix Makefiles): on an error, make still builds every target that does
+  # not depend on the broken one.
+  if ! cmake --build --preset "$preset" --parallel "$jobs" -- -k; then
+    problem "build of preset $preset failed (see the compiler output above)"
+    summary+=("FAIL  $preset: build failed (see above)")
+    # The images this script runs may still be fine: check them if they are up to date (a
+    # stale ELF from an earlier build must not pass for a new one).
+    checked=(lr_smoke)
+    [[ -f "$fault_list" ]] && mapfile -t -O 1 checked < <(awk '{n = $2; sub(/.*\//, "", n); sub(/\.elf$/, "", n); print n}' "$fault_list")
+    if ! cmake --build --preset "$preset" --target "${checked[@]}" >/dev/null 2>&1; then
+      summary+=("FAIL  $preset on $board: lr_smoke or a fault check does not build")
+      continue
+    fi
+    echo "ci_cross: [$preset] ${checked[*]} are built and up to date: checking them anyway"
+  fi
+  [[ -f "$smoke_elf" ]] || { problem "[$preset] expected firmware ELF not found: $smoke_elf"; continue; }
+
+  mapfile -t elfs < <(find "$build_dir" -name '*.elf' -type f | sort)
+  guard_ok=0
+  for elf in "${elfs[@]}"; do
+    if link_guard "$elf"; then guard_ok=$((guard_ok + 1)); else problem "[$preset] $elf links heap or exception support"; fi
+  done
+  echo "ci_cross: [$preset] link guard (no malloc/free/_sbrk/operator new/exceptions): $guard_ok of ${#elfs[@]} ELFs clean"
+  read -r text data bss _ < <(arm-none-eabi-size "$smoke_elf" | tail -n 1)
+  sizes="lr_smoke text $text data $data bss $bss"
+
+  if [[ "$run_qemu" != 1 ]]; then
+    verdict=PASS
+    [[ $guard_ok == "${#elfs[@]}" ]] || verdict=FAIL
+    summary+=("$verdict  $preset on $board: built, link guard $guard_ok/${#elfs[@]} ELFs; $sizes")
+    continue
+  fi
+
+  # Boards this preset's images run on: its own, and those the fault checks name.
+  machines=("$board")
+  if [[ -f "$fault_list" ]]; then
+    while read -r m _; do [[ " ${machines[*]} " == *" $m "* ]] || machines+=("$m"); done <"$fault_list"
+  fi
+  for machine in "${machines[@]}"; do
+    line="$preset on $machine:"
+    smoke_note="" fault_note="no fault check"
+    ok=1
+    # The M0+ smoke image (linked for the micro:bit) also runs on the M3 of mps2-an385: its
+    # memory map holds the micro:bit's (flash at 0, RAM at 0x20000000).
+    if [[ "$machine" == "$board" || ("$preset" == cortex-m0plus && "$machine" == mps2-an385) ]]; then
+      smoke "$preset" "$machine" "$smoke_elf" || ok=0
+    fi
+    if [[ -f "$fault_list" ]]; then
+      faults "$preset" "$machine" "$fault_list" || ok=0
+    else
+      problem "[$preset] $fault_list not found (firmware/fault_check not built?)"
+      ok=0
+    fi
+    [[ "$machine" == "$board" ]] && line+=" $sizes;"
+    line+="${smoke_note:+ $smoke_note;} $fault_note"
+    if [[ $ok == 1 ]]; then summary+=("PASS  $line"); else summary+=("FAIL  $line"); fi
+  done
+done
+
+echo "ci_cross: summary"
+printf '  %s\n' "${summary[@]}"
+if [[ $failures != 0 ]]; then
+  fail "$failures check(s) failed (messages above)"
+fi
 echo "ci_cross: PASS"

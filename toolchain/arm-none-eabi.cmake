@@ -1,9 +1,20 @@
 # The GNU Arm Embedded toolchain (arm-none-eabi-gcc/g++), bare metal: the part every Arm
 # Cortex-M toolchain file shares. Do not use this file directly: include it from a CPU file
-# (cortex-m4f.cmake, ...) that sets the CPU flags.
+# (cortex-m0plus.cmake, cortex-m4f.cmake, cortex-m7.cmake, cortex-m33.cmake), which sets first
+#   LR_CPU_FLAGS  the compiler's CPU and ABI flags (they also select the multilib of libgcc)
+#   LR_FW_CPU     the CPU's name, which firmware/boards.cmake checks a board against
+#   LR_FW_BOARD   (a cache entry) the board images are linked for unless they name another
 #
 # The compilers are looked up on PATH. To use another installation, put its bin/ first on PATH
 # or set ARM_NONE_EABI_ROOT (environment or -D) to the directory that holds bin/.
+#
+# How the flags reach the compiler, and why they must not be given with -DCMAKE_CXX_FLAGS:
+# see toolchain/cortex-m4f.cmake.
+
+if(NOT LR_CPU_FLAGS OR NOT LR_FW_CPU)
+  message(FATAL_ERROR "arm-none-eabi.cmake: include it from a CPU file that sets LR_CPU_FLAGS "
+                      "and LR_FW_CPU (e.g. toolchain/cortex-m4f.cmake)")
+endif()
 
 set(CMAKE_SYSTEM_NAME Generic)
 set(CMAKE_SYSTEM_PROCESSOR arm)
@@ -35,3 +46,15 @@ set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
 set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
 set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
 set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)
+
+# Every function and object in its own section, so that --gc-sections drops what is unused.
+set(CMAKE_C_FLAGS_INIT "${LR_CPU_FLAGS} -ffunction-sections -fdata-sections")
+set(CMAKE_CXX_FLAGS_INIT
+    "${LR_CPU_FLAGS} -fno-exceptions -fno-rtti -ffunction-sections -fdata-sections")
+set(CMAKE_ASM_FLAGS_INIT "${LR_CPU_FLAGS}")
+
+# CMake passes CMAKE_<LANG>_FLAGS to the link step too, so the CPU flags select the multilib
+# (libgcc's directory, e.g. thumb/v6-m/nofp or thumb/v7e-m+fp/hard: `arm-none-eabi-gcc
+# ${LR_CPU_FLAGS} -print-multi-directory`); the linker flags only add section garbage
+# collection.
+set(CMAKE_EXE_LINKER_FLAGS_INIT "-Wl,--gc-sections")

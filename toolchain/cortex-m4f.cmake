@@ -1,12 +1,17 @@
 # Cortex-M4F (ARMv7E-M with the single-precision FPU, hard-float ABI) with arm-none-eabi-gcc.
+# Images run on QEMU's mps2-an386 (Cortex-M4 with FPU) by default: LR_FW_BOARD below.
 #
 #   cmake --preset cortex-m4f && cmake --build --preset cortex-m4f
 #   (or: cmake -S . -B build/m4f -DCMAKE_TOOLCHAIN_FILE=toolchain/cortex-m4f.cmake -DLR_HOST=OFF)
 #
+# The other Cortex-M files (cortex-m0plus.cmake, cortex-m7.cmake, cortex-m33.cmake) work the same
+# way; what follows about flags holds for all of them.
+#
 # Adding compiler flags
 # ---------------------
-# The CPU flags below go into CMAKE_<LANG>_FLAGS_INIT. CMake builds the cache variable
-# CMAKE_<LANG>_FLAGS from them ONLY when that variable is not in the cache yet, as
+# The CPU flags below (LR_CPU_FLAGS) go into CMAKE_<LANG>_FLAGS_INIT (arm-none-eabi.cmake sets
+# it). CMake builds the cache variable CMAKE_<LANG>_FLAGS from them ONLY when that variable is
+# not in the cache yet, as
 #   CMAKE_CXX_FLAGS = "$ENV{CXXFLAGS} ${CMAKE_CXX_FLAGS_INIT}"     (C: CFLAGS, links: LDFLAGS)
 # so there are two ways to add flags to a cross build:
 #   1. the environment, at the first configure of a build tree (or with `cmake --fresh`):
@@ -21,15 +26,12 @@
 # ones in CMAKE_CXX_FLAGS_<CONFIG> (e.g. -DCMAKE_CXX_FLAGS_RELEASE="-Os -DNDEBUG"), which does
 # not touch the CPU flags.
 
-include(${CMAKE_CURRENT_LIST_DIR}/arm-none-eabi.cmake)
-
+# -mfpu=fpv4-sp-d16: the M4's FPU, FPv4 single precision only, S0-S31 (the "d16" of the name:
+# they overlay 16 double registers, which hold no double arithmetic here). Multilib
+# thumb/v7e-m+fp/hard.
 set(LR_CPU_FLAGS "-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard")
+set(LR_FW_CPU cortex-m4f)
+set(LR_FW_BOARD mps2-an386 CACHE STRING "Board (firmware/boards.cmake) firmware images are linked for")
 
-# Every function and object in its own section, so that --gc-sections drops what is unused.
-set(CMAKE_C_FLAGS_INIT "${LR_CPU_FLAGS} -ffunction-sections -fdata-sections")
-set(CMAKE_CXX_FLAGS_INIT "${LR_CPU_FLAGS} -fno-exceptions -fno-rtti -ffunction-sections -fdata-sections")
-set(CMAKE_ASM_FLAGS_INIT "${LR_CPU_FLAGS}")
-
-# CMake passes CMAKE_<LANG>_FLAGS to the link step too (the CPU flags select the multilib:
-# thumb/v7e-m+fp/hard); the linker flags only add section garbage collection.
-set(CMAKE_EXE_LINKER_FLAGS_INIT "-Wl,--gc-sections")
+# Compilers, CMAKE_<LANG>_FLAGS_INIT from LR_CPU_FLAGS, link flags.
+include(${CMAKE_CURRENT_LIST_DIR}/arm-none-eabi.cmake)

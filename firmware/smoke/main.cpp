@@ -1,7 +1,14 @@
 // Smoke test of the core on the target: one 320x240 frame of a lit, Gouraud-shaded, depth-tested
-// octahedron in the "gold" material, rendered in strips of 8 rows into a sink that folds every
+// octahedron in the "gold" material, rendered in strips of K rows into a sink that folds every
 // pixel into a checksum. All storage is static (no heap, no frame buffer: two strip buffers of
-// 320 x 8 RGB565 pixels and one strip of depth).
+// 320 x K RGB565 pixels and one strip of depth).
+//
+// K and the store capacities depend on the board's RAM (LR_BOARD_RAM_SIZE, which
+// firmware/boards.cmake defines for every firmware image): K = 8 with room to spare where there
+// is plenty, K = 2 and stores sized for this scene on the micro:bit's 16 KB. The frame, and so the
+// checksum, is the same for every K: the renderer's output does not depend on the strip height
+// (scripts/ci_cross.sh checks every board's checksum against the host build's). LR_SMOKE_STRIP_ROWS
+// overrides K (e.g. to check that claim on the host).
 //
 // The checksum is FNV-1a (32 bit) over the frame's bytes in wire order: each pixel as RGB565
 // big-endian (high byte first), rows top to bottom. It depends only on integer arithmetic, so
@@ -22,6 +29,9 @@
 extern "C" {
 volatile uint32_t g_smoke_checksum = 0;
 volatile uint32_t g_smoke_result = 0;  // 0 running, 1 pass, 2 fail
+#ifdef LR_BOARD_RAM_SIZE
+uint32_t lr_stack_used_bytes();  // firmware/common/startup.cpp (firmware builds only)
+#endif
 }
 
 namespace {
@@ -32,7 +42,21 @@ using Pixel = PF::Storage;
 
 constexpr int kWidth = 320;
 constexpr int kHeight = 240;
-constexpr int kStripRows = 8;
+
+// Board-dependent sizes. The small profile (16 KB of RAM, of which the stack takes 6 KB) holds
+// this scene with little to spare: 6 vertices and 8 triangles (nothing is clipped: the
+// octahedron lies well inside the near plane), at most 7 triangles active at once ("max active"
+// in the report). Stores, strips and renderer take 7.3 KB at K = 2 (.data + .bss).
+#if defined(LR_BOARD_RAM_SIZE) && LR_BOARD_RAM_SIZE < 64 * 1024
+constexpr bool kSmallRam = true;
+#else
+constexpr bool kSmallRam = false;
+#endif
+#ifdef LR_SMOKE_STRIP_ROWS
+constexpr int kStripRows = LR_SMOKE_STRIP_ROWS;
+#else
+constexpr int kStripRows = kSmallRam ? 2 : 8;
+#endif
 constexpr size_t kStrips = (kHeight + kStripRows - 1) / kStripRows;
 constexpr size_t kStripPixels = size_t{kWidth} * kStripRows;
 
@@ -84,16 +108,17 @@ static_assert(outward_winding(), "octahedron triangles must be counter-clockwise
 constexpr lr::Mesh kOctahedron{kPositions, kNormals, {}, {}, kTriangles};
 
 // ---- Frame storage (RAM, static) -------------------------------------------------------------
-constexpr size_t kMaxVertices = 64;   // 6 per draw, plus the vertices clipping makes
-constexpr size_t kMaxTriangles = 64;  // 8 per draw, plus the pieces clipping makes
-constexpr size_t kMaxActive = 32;
+// Capacities: 6 vertices and 8 triangles per draw, plus what clipping makes (nothing here).
+constexpr size_t kMaxVertices = kSmallRam ? 8 : 64;
+constexpr size_t kMaxTriangles = kSmallRam ? 8 : 64;
+constexpr size_t kMaxActive = kSmallRam ? 8 : 32;
 
 // Value-initialised ({}): constant initialisation, so the zero-filled stores go to .bss and
 // need no constructor at startup (default-initialised, records whose members are only partly
 // initialised, e.g. BinnedTriangle, would get a dynamic initialiser).
 std::array<lr::ScreenVertex, kMaxVertices> g_vertices{};
 std::array<lr::BinnedTriangle, kMaxTriangles> g_triangles{};
-std::array<lr::DrawRecord, 4> g_draws{};
+std::array<lr::DrawRecord, kSmallRam ? 1 : 4> g_draws{};  // one draw in this scene
 std::array<uint16_t, kStrips> g_buckets{};
 std::array<lr::ActiveTriangle, kMaxActive> g_active{};
 std::array<uint16_t, 2 * kMaxActive> g_active_index{};
@@ -250,8 +275,9 @@ bool render_frame() {
 }  // namespace
 
 int main() {
-  sh::write(
-      "lr_smoke: 320x240 RGB565BE, strips of 8 rows, gold octahedron (Gouraud, depth test)\n");
+  sh::write("lr_smoke: 320x240 RGB565BE, strips of ");
+  sh::write_dec(static_cast<uint32_t>(kStripRows));
+  sh::write(" rows, gold octahedron (Gouraud, depth test)\n");
   bool ok = render_frame();
   const lr::FrameStats& st = g_renderer.stats();
   const uint32_t sum = g_sink.checksum();
@@ -266,10 +292,18 @@ int main() {
   report("max active:", st.max_active);
   report("dropped (capacity):",
          st.dropped_vertex_capacity + st.dropped_triangle_capacity + st.dropped_active_capacity);
+#ifdef LR_BOARD_RAM_SIZE
+  report("stack used (bytes):", lr_stack_used_bytes());
+#endif
 
   if (ok && (st.triangles_binned == 0 || st.pixels_written == 0 ||
              g_sink.strips() != static_cast<uint32_t>(kStrips))) {
     sh::write("lr_smoke: the frame is empty or incomplete\n");
+    ok = false;
+  }
+  // A store too small for the scene drops triangles: the frame would be wrong, say why.
+  if (st.dropped_vertex_capacity + st.dropped_triangle_capacity + st.dropped_active_capacity != 0) {
+    sh::write("lr_smoke: a store is too small for the scene (dropped, capacity)\n");
     ok = false;
   }
   sh::write("lr_smoke: checksum (FNV-1a of the RGB565BE frame) ");
