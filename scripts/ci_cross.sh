@@ -19,6 +19,7 @@
 #                                             (tests/firmware_host): the checksums must match
 #   LR_CROSS_PRESETS="cortex-m4f cortex-m7"    a subset of the presets (default: all four)
 #   LR_CROSS_QEMU_TIMEOUT=seconds              limit of one QEMU run (default 60)
+#   LR_HOST_TOOLS_DIR=build/debug              a host tree that has built lineraster-asset
 # Extra compiler flags: CXXFLAGS in the environment (read at the first configure of a build
 # tree; see toolchain/cortex-m4f.cmake). Never -DCMAKE_CXX_FLAGS.
 # Exit status: 0 on success, 1 on any failure (with a message saying which).
@@ -150,7 +151,9 @@ summary=()
 for preset in "${presets[@]}"; do
   build_dir="build/$preset"
   echo "ci_cross: configuring preset $preset"
-  if ! cmake --preset "$preset"; then
+  # LR_HOST_TOOLS_DIR (environment): a host build tree with lineraster-asset, instead of building
+  # it once more in build/host-tools (firmware/host_tools.cmake).
+  if ! cmake --preset "$preset" ${LR_HOST_TOOLS_DIR:+"-DLR_HOST_TOOLS_DIR=$LR_HOST_TOOLS_DIR"}; then
     problem "configure of preset $preset failed"
     summary+=("FAIL  $preset: configure failed")
     continue

@@ -1,35 +1,68 @@
 #!/bin/bash
 # Installs what is missing, builds and runs every test: the debug build, the same suite under
-# AddressSanitizer + UndefinedBehaviorSanitizer, the Cortex-M4F cross build with its link guard,
-# the 32-bit ARM Linux build run under qemu-arm (frames hash as on x86-64), and the frame
-# benchmark's figures (printed, never asserted).
+# AddressSanitizer + UndefinedBehaviorSanitizer, the bare-metal builds for Cortex-M0+, M4F, M7 and
+# M33 run under QEMU (smoke, fault, demo frames against lineraster-sim, instruction-count check,
+# footprint with its link and stack guards), the 32-bit ARM Linux build run under qemu-arm, the
+# ARM Linux guest, the 64-bit ARM Linux core tests, the fuzzers' fixed runs, and the benchmarks'
+# figures (printed, never asserted). Each step prints its duration.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh test
 jobs=$(nproc)
 
-echo "== debug build + tests"
+step_name=""
+step_start=$SECONDS
+step() {
+  [[ -n "$step_name" ]] && echo "== done: $step_name ($((SECONDS - step_start)) s)"
+  step_name="$1"
+  step_start=$SECONDS
+  [[ -n "$step_name" ]] && echo "== $step_name"
+  return 0
+}
+
+step "debug build + tests"
 cmake --preset debug >/dev/null
 cmake --build --preset debug -j"$jobs"
 ctest --preset debug -j"$jobs"
+# Host programs the later steps use: the CLI, the converter, the instruction-counting plugin and
+# the host builds of the smoke and benchmark firmware.
+host=build/debug
+export LR_HOST_TOOLS_DIR="$PWD/$host" LR_SIM="$host/host_sim/lineraster-sim"
+export LR_ICOUNT_PLUGIN="$PWD/$host/tools/qemu_icount/libqemu_icount.so"
 
-echo "== ASan + UBSan build + tests"
+step "ASan + UBSan build + tests"
 cmake --preset asan >/dev/null
 cmake --build --preset asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --preset asan -j"$jobs"
 
-echo "== Cortex-M4F cross build + link guard + run under QEMU, frame compared with the host's"
-LR_CROSS_RUN_QEMU=1 LR_HOST_SMOKE=build/debug/tests/firmware_host/lr_smoke_host bash scripts/ci_cross.sh
+step "bare metal: Cortex-M0+, M4F, M7, M33 builds, link guard, smoke and fault checks under QEMU"
+LR_CROSS_RUN_QEMU=1 LR_HOST_SMOKE=$host/tests/firmware_host/lr_smoke_host bash scripts/ci_cross.sh
 
-echo "== 32-bit ARM Linux build + tests under qemu-arm, frames hashed against x86-64's"
+step "bare metal: demo frames identical to lineraster-sim's, worst-case stack within the reserved stack"
+bash scripts/ci_firmware.sh
+
+step "bare metal: the instruction-counting plugin against known instruction sequences"
+for core in cortex-m4f cortex-m0plus; do
+  bash scripts/icount_check.sh --runs 1 "build/$core/firmware/icount_check/lr_icount_check.elf"
+done
+
+step "bare metal: footprint (flash, RAM, worst-case and measured stack) for M0+ and M4F"
+bash scripts/footprint.sh
+
+step "32-bit ARM Linux build + tests under qemu-arm, frames hashed against x86-64's"
 bash scripts/ci_armhf.sh
-bash scripts/ci_guest.sh  # the Linux display backends in an emulated ARM Linux guest (qemu-system-arm)
 
-echo "== fuzzing: libFuzzer targets (clang, ASan + UBSan), a fixed number of runs from a fixed seed; crashes become regressions"
+step "32-bit ARM Linux guest: display backends and lr_panel_app against a real kernel"
+bash scripts/ci_guest.sh
+
+step "64-bit ARM Linux: core tests and frame hashes under qemu-aarch64"
+bash scripts/ci_aarch64.sh
+
+step "fuzzing: libFuzzer targets (clang, ASan + UBSan), a fixed number of runs from a fixed seed; crashes become regressions"
 bash scripts/fuzz.sh --ci
 
-echo "== figures (benchmarks print, they do not pass or fail)"
+step "figures (benchmarks print, they do not pass or fail)"
 cmake --preset release >/dev/null
 cmake --build --preset release -j"$jobs" --target lr_frame_bench
 ./build/release/tests/bench/lr_frame_bench --benchmark_min_time=0.2
@@ -37,4 +70,7 @@ bash scripts/count_instructions.sh build/release
 bash scripts/texture_bench.sh
 bash scripts/quality_bench.sh
 bash scripts/lighting_bench.sh
-echo "== all tests passed"
+LR_BENCH_HOST=$host/tests/firmware_host/lr_bench_host bash scripts/bench_cortex_m.sh
+
+step ""
+echo "== all tests passed ($SECONDS s)"
