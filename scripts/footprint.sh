@@ -50,7 +50,7 @@ done
 # fetchers; Reset_Handler calls the static constructors (none: the images constant-initialise).
 indirect_rules=(
   --indirect-from 'lr::Renderer<.*>::render\('
-  'FootprintSink<.*>::|lr::fill_span<|lr::fill_tex_span<|lr::fill_phong_span<'
+  'OrderedStripSink<.*>::|lr::fill_span<|lr::fill_tex_span<|lr::fill_phong_span<'
   --indirect-from 'lr::fill_(tex|phong)_span<' 'lr::fetch_batch<'
   --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'
 )

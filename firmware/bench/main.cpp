@@ -14,6 +14,8 @@
 
 #include "core/renderer.hpp"
 #include "firmware/bench/cases.hpp"
+#include "firmware/common/ordered_sink.hpp"
+#include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
 
 extern "C" {
@@ -62,54 +64,15 @@ std::array<std::array<Pixel, kStripPixels>, 2> g_strips{};
 
 lr::Renderer<PF, kStripRows> g_renderer;
 
-// Two buffers lent in turn; submit() either hashes the strip or only checks the lease.
-class BenchSink final : public lr::StripSink<PF> {
- public:
-  void set_hashing(bool on) { hashing_ = on; }
-  lr::Status begin_frame(uint16_t, uint16_t) override {
-    hash_ = 2166136261u;
-    slot_ = 0;
-    return lr::Status::kOk;
-  }
-  lr::Status acquire(lr::StripLease<PF>& out) override {
-    out = lend(g_strips[slot_].data(), g_strips[slot_].size(), slot_);
-    slot_ ^= 1u;
-    return lr::Status::kOk;
-  }
-  lr::Status submit(const lr::StripRect& rect, lr::StripLease<PF>&& strip) override {
-    std::span<Pixel> px;
-    take_back(strip, px);
-    if (!hashing_) return lr::Status::kOk;
-    const size_t count = size_t{rect.width} * rect.height;
-    if (count > px.size()) return lr::Status::kInvalidArgument;
-    uint32_t h = hash_;
-    for (size_t i = 0; i < count; ++i) {
-      const unsigned v = PF::to_value(px[i]);
-      h = (h ^ (v >> 8)) * 16777619u;
-      h = (h ^ (v & 0xFFu)) * 16777619u;
-    }
-    hash_ = h;
-    return lr::Status::kOk;
-  }
-  lr::Status end_frame() override { return lr::Status::kOk; }
-  uint32_t checksum() const { return hash_; }
+// Two buffers lent in turn; each strip is hashed (the checked frame) or only handed back (the
+// measured one).
+lr::fw::ChecksumConsumer<PF> g_checksum;
+lr::fw::OrderedStripSink<PF, lr::fw::ChecksumConsumer<PF>> g_sink(g_strips[0], g_strips[1],
+                                                                  g_checksum);
 
- private:
-  bool hashing_ = false;
-  uint8_t slot_ = 0;
-  uint32_t hash_ = 0;
-};
-
-BenchSink g_sink;
 
 bool check(lr::Status st, const char* what) {
-  if (st == lr::Status::kOk) return true;
-  sh::write("lr_bench: ");
-  sh::write(what);
-  sh::write(" failed: ");
-  sh::write(lr::to_string(st));
-  sh::write("\n");
-  return false;
+  return lr::fw::check("lr_bench", st, what);
 }
 
 // Everything the measured region needs, prepared before it.
@@ -150,14 +113,14 @@ bool prepare(const bench::BenchCase& c, Prepared& p) {
 bool run_case(const bench::BenchCase& c) {
   Prepared p;
   if (!prepare(c, p)) return false;
-  g_sink.set_hashing(true);
+  g_checksum.enabled = true;
   if (!check(render_frame(c, p), c.name)) return false;
-  const uint32_t sum = g_sink.checksum();
+  const uint32_t sum = g_checksum.hash.value;
   const lr::FrameStats st = g_renderer.stats();
   const uint32_t dropped =
       st.dropped_vertex_capacity + st.dropped_triangle_capacity + st.dropped_active_capacity;
 
-  g_sink.set_hashing(false);
+  g_checksum.enabled = false;
   lr_bench_marker();
   const lr::Status s = render_frame(c, p);
   lr_bench_marker();

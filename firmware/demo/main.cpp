@@ -13,7 +13,9 @@
 #include <cstdint>
 
 #include "core/renderer.hpp"
-#include "firmware/common/ppm_file_sink.hpp"
+#include "firmware/common/ordered_sink.hpp"
+#include "firmware/common/ppm_file.hpp"
+#include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
 #include LR_DEMO_SCENE
 
@@ -65,25 +67,13 @@ lr::Renderer<PF, kStripRows, span_features()> g_renderer;
 #ifndef LR_DEMO_OUTPUT
 #define LR_DEMO_OUTPUT "lr_demo.ppm"
 #endif
-lr::fw::PpmFileSink<PF> g_sink(LR_DEMO_OUTPUT, g_strips[0], g_strips[1]);
+lr::fw::PpmFile<PF> g_file(LR_DEMO_OUTPUT);
+lr::fw::OrderedStripSink<PF, lr::fw::PpmFile<PF>> g_sink(g_strips[0], g_strips[1], g_file);
 
 bool check(lr::Status st, const char* what) {
-  if (st == lr::Status::kOk) return true;
-  sh::write("lr_demo: ");
-  sh::write(what);
-  sh::write(" failed: ");
-  sh::write(lr::to_string(st));
-  sh::write("\n");
-  return false;
+  return lr::fw::check("lr_demo", st, what);
 }
-
-void report(const char* label, uint32_t value) {
-  sh::write("  ");
-  sh::write(label);
-  sh::write(" ");
-  sh::write_dec(value);
-  sh::write("\n");
-}
+using lr::fw::report;
 
 bool render_frame() {
   const lr::FrameStorage storage{g_vertices, g_triangles,    g_draws, g_buckets,
@@ -125,12 +115,12 @@ int main() {
   report("dropped (capacity):", dropped);
   if (ok && (dropped != 0 || st.pixels_written == 0 ||
              g_sink.strips() != static_cast<uint32_t>(kStrips) ||
-             g_sink.pixel_bytes() != 3u * kWidth * kHeight)) {
+             g_file.pixel_bytes() != 3u * kWidth * kHeight)) {
     sh::write("lr_demo: the frame is incomplete (capacity, or strips missing)\n");
     ok = false;
   }
   sh::write("lr_demo: checksum (FNV-1a of the RGB888 pixels) ");
-  sh::write_hex(g_sink.checksum());
+  sh::write_hex(g_file.checksum());
   sh::write("\n");
   sh::write(ok ? "lr_demo: PASS\n" : "lr_demo: FAIL\n");
   return ok ? 0 : 1;

@@ -24,7 +24,8 @@
 #include "core/material.hpp"
 #include "core/renderer.hpp"
 #include "firmware/common/semihost.hpp"
-#include "firmware/footprint/checksum_sink.hpp"
+#include "firmware/common/ordered_sink.hpp"
+#include "firmware/common/report.hpp"
 #include "firmware/footprint/scene.hpp"
 #include "firmware/footprint/stack_probe.hpp"
 
@@ -91,7 +92,12 @@ std::array<lr::SurfaceVertex, kSurfaces> g_store_surfaces{};
 std::array<lr::PreparedLighting, kPixelLights> g_store_pixel_lights{};
 
 lr::Renderer<PF, kStripRows, kFeatures> g_renderer;
-fp::FootprintSink<PF, kStripPixels> g_sink{g_store_strip_buffers};
+// The display: every strip folded into FNV-1a (the smoke test's checksum, so that frames compare
+// across cores and with the host), the lease protocol checked (firmware/common/ordered_sink.hpp).
+lr::fw::ChecksumConsumer<PF> g_checksum;
+lr::fw::OrderedStripSink<PF, lr::fw::ChecksumConsumer<PF>> g_sink(g_store_strip_buffers[0],
+                                                                  g_store_strip_buffers[1],
+                                                                  g_checksum);
 
 // ---- The draw --------------------------------------------------------------------------------
 constexpr lr::Mesh make_mesh() {
@@ -129,13 +135,7 @@ constexpr const char* kName = kConfig == Config::kUnlit         ? "unlit"
                                                                 : "phong";
 
 bool check(lr::Status st, const char* what) {
-  if (st == lr::Status::kOk) return true;
-  sh::write("footprint: ");
-  sh::write(what);
-  sh::write(" failed: ");
-  sh::write(lr::to_string(st));
-  sh::write("\n");
-  return false;
+  return lr::fw::check("footprint", st, what);
 }
 
 void report(const char* label, uint32_t value, bool hex = false) {
@@ -214,7 +214,7 @@ int main() {
     sh::write("footprint: the frame is empty, incomplete or dropped triangles\n");
     ok = false;
   }
-  report("checksum", g_sink.checksum(), true);
+  report("checksum", g_checksum.hash.value, true);
 
   const uint32_t* const lowest = fp::stack_high_water();
   report("sp at main", static_cast<uint32_t>(reinterpret_cast<uintptr_t>(sp_at_main)), true);

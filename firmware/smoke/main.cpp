@@ -24,6 +24,8 @@
 #include "core/camera.hpp"
 #include "core/material.hpp"
 #include "core/renderer.hpp"
+#include "firmware/common/ordered_sink.hpp"
+#include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
 
 extern "C" {
@@ -129,101 +131,19 @@ std::array<std::array<Pixel, kStripPixels>, 2> g_strip_buffers{};
 lr::Renderer<PF, kStripRows, 0> g_renderer;
 
 // ---- The display: two strip buffers, every pixel folded into FNV-1a --------------------------
-// Stands in for a panel backend: it checks the lease protocol (each buffer lent once, strips
-// back in order, top to bottom, full width) and "sends" a strip by hashing it inside submit(),
-// so a buffer is free again as soon as it is submitted.
-class ChecksumSink final : public lr::StripSink<PF> {
- public:
-  static constexpr uint32_t kFnvOffset = 2166136261u;
-  static constexpr uint32_t kFnvPrime = 16777619u;
+// Stands in for a panel backend: the lease protocol is checked on every strip and a strip is
+// "sent" by hashing it inside submit(), so a buffer is free again as soon as it is submitted.
+lr::fw::ChecksumConsumer<PF> g_checksum;
+lr::fw::OrderedStripSink<PF, lr::fw::ChecksumConsumer<PF>> g_sink(g_strip_buffers[0],
+                                                                  g_strip_buffers[1], g_checksum);
 
-  lr::Status begin_frame(uint16_t width, uint16_t height) override {
-    if (width == 0 || height == 0 || width > kWidth) return lr::Status::kInvalidArgument;
-    width_ = width;
-    height_ = height;
-    next_row_ = 0;
-    next_slot_ = 0;
-    lent_ = {false, false};
-    hash_ = kFnvOffset;
-    strips_ = 0;
-    in_frame_ = true;
-    return lr::Status::kOk;
-  }
-
-  lr::Status acquire(lr::StripLease<PF>& out) override {
-    if (!in_frame_) return lr::Status::kBusy;
-    const uint8_t slot = next_slot_;
-    // A panel backend would wait (bounded) here for the DMA of this buffer; transfers of this
-    // sink complete inside submit(), so a buffer still lent means a lease never came back.
-    if (lent_[slot]) return lr::Status::kTimeout;
-    lent_[slot] = true;
-    next_slot_ = static_cast<uint8_t>(slot ^ 1u);
-    out = lend(g_strip_buffers[slot].data(), g_strip_buffers[slot].size(), slot);
-    return lr::Status::kOk;
-  }
-
-  lr::Status submit(const lr::StripRect& rect, lr::StripLease<PF>&& strip) override {
-    std::span<Pixel> px;
-    const uint8_t slot = take_back(strip, px);
-    if (slot >= g_strip_buffers.size() || !lent_[slot] || px.data() != g_strip_buffers[slot].data())
-      return lr::Status::kInvalidArgument;
-    lent_[slot] = false;
-    if (!in_frame_ || rect.x != 0 || rect.width != width_ || rect.y != next_row_ ||
-        rect.height == 0 || rect.y + rect.height > height_)
-      return lr::Status::kInvalidArgument;
-    const size_t count = size_t{rect.width} * rect.height;
-    if (count > px.size()) return lr::Status::kInvalidArgument;
-    uint32_t h = hash_;
-    for (size_t i = 0; i < count; ++i) {
-      const unsigned v = PF::to_value(px[i]);  // the 565 value; its high byte goes out first
-      h = (h ^ (v >> 8)) * kFnvPrime;
-      h = (h ^ (v & 0xFFu)) * kFnvPrime;
-    }
-    hash_ = h;
-    next_row_ = static_cast<uint16_t>(next_row_ + rect.height);
-    ++strips_;
-    return lr::Status::kOk;
-  }
-
-  lr::Status end_frame() override {
-    const bool complete = in_frame_ && next_row_ == height_ && !lent_[0] && !lent_[1];
-    in_frame_ = false;
-    return complete ? lr::Status::kOk : lr::Status::kDisplayError;
-  }
-
-  uint32_t checksum() const { return hash_; }
-  uint32_t strips() const { return strips_; }
-
- private:
-  std::array<bool, 2> lent_{};
-  uint8_t next_slot_ = 0;
-  bool in_frame_ = false;
-  uint16_t width_ = 0, height_ = 0, next_row_ = 0;
-  uint32_t hash_ = kFnvOffset;
-  uint32_t strips_ = 0;
-};
-
-ChecksumSink g_sink;
 
 namespace sh = lr::fw::semihost;
 
 bool check(lr::Status st, const char* what) {
-  if (st == lr::Status::kOk) return true;
-  sh::write("lr_smoke: ");
-  sh::write(what);
-  sh::write(" failed: ");
-  sh::write(lr::to_string(st));
-  sh::write("\n");
-  return false;
+  return lr::fw::check("lr_smoke", st, what);
 }
-
-void report(const char* label, uint32_t value) {
-  sh::write("  ");
-  sh::write(label);
-  sh::write(" ");
-  sh::write_dec(value);
-  sh::write("\n");
-}
+using lr::fw::report;
 
 bool render_frame() {
   const lr::FrameStorage storage{g_vertices, g_triangles,    g_draws, g_buckets,
@@ -280,7 +200,7 @@ int main() {
   sh::write(" rows, gold octahedron (Gouraud, depth test)\n");
   bool ok = render_frame();
   const lr::FrameStats& st = g_renderer.stats();
-  const uint32_t sum = g_sink.checksum();
+  const uint32_t sum = g_checksum.hash.value;
   g_smoke_checksum = sum;
 
   report("triangles in:", st.triangles_in);
