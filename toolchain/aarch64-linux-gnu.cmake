@@ -33,46 +33,9 @@
 # floating point in its render path, and the frame-hash test passes with the fused host code as
 # it is, so -ffp-contract=off is not added; should a hash ever differ, look there first.
 
-set(CMAKE_SYSTEM_NAME Linux)
-set(CMAKE_SYSTEM_PROCESSOR aarch64)
-set(CMAKE_LIBRARY_ARCHITECTURE aarch64-linux-gnu)
-
-set(CMAKE_C_COMPILER aarch64-linux-gnu-gcc)
-set(CMAKE_CXX_COMPILER aarch64-linux-gnu-g++)
-
-# The private sysroot of arm64 packages.
-if(NOT LR_ARM64_SYSROOT)
-  if(DEFINED ENV{LR_ARM64_SYSROOT})
-    set(LR_ARM64_SYSROOT "$ENV{LR_ARM64_SYSROOT}")
-  else()
-    get_filename_component(LR_ARM64_SYSROOT "${CMAKE_CURRENT_LIST_DIR}/../build/arm64-sysroot"
-                           ABSOLUTE)
-  endif()
-endif()
-# try_compile() projects re-read this file in a fresh scope: pass the root on to them.
-list(APPEND CMAKE_TRY_COMPILE_PLATFORM_VARIABLES LR_ARM64_SYSROOT)
-
-# The cross toolchain's own C library (the compiler already links against it; listed so that
-# find_*() may see it too).
-set(LR_ARM64_TOOLCHAIN_ROOT /usr/aarch64-linux-gnu)
-
-# find_*(): programs come from the host; libraries, headers and packages only from the sysroot
-# and the toolchain's root, never from the host's /usr.
-set(CMAKE_FIND_ROOT_PATH "${LR_ARM64_SYSROOT}" "${LR_ARM64_TOOLCHAIN_ROOT}")
-set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
-set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
-set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
-set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)
-
-# libpng and zlib linked statically (see above). Cache entries, so FindPNG/FindZLIB take them as
-# found; a wrong or missing sysroot fails at link time with these paths in the message.
-set(_lr_arm64_libdir "${LR_ARM64_SYSROOT}/usr/lib/aarch64-linux-gnu")
-set(PNG_LIBRARY "${_lr_arm64_libdir}/libpng16.a" CACHE FILEPATH "libpng (arm64, static)")
-set(ZLIB_LIBRARY "${_lr_arm64_libdir}/libz.a" CACHE FILEPATH "zlib (arm64, static)")
-
-# Running target programs on the build machine.
-find_program(LR_QEMU_AARCH64 qemu-aarch64)
-if(NOT LR_QEMU_AARCH64)
-  message(FATAL_ERROR "qemu-aarch64 not found: install qemu-user (scripts/setup.sh test does)")
-endif()
-set(CMAKE_CROSSCOMPILING_EMULATOR "${LR_QEMU_AARCH64};-L;${LR_ARM64_TOOLCHAIN_ROOT}")
+set(LR_CROSS_TRIPLE aarch64-linux-gnu)
+set(LR_CROSS_PROCESSOR aarch64)
+set(LR_CROSS_SYSROOT_VAR LR_ARM64_SYSROOT)
+set(LR_CROSS_SYSROOT_DIR arm64-sysroot)
+set(LR_CROSS_QEMU qemu-aarch64)
+include(${CMAKE_CURRENT_LIST_DIR}/linux-cross.cmake)

@@ -29,46 +29,9 @@
 # -mfloat-abi=hard), the ABI the armhf packages were built for; nothing is added here. Extra flags
 # go through CXXFLAGS at the first configure, as for toolchain/cortex-m4f.cmake.
 
-set(CMAKE_SYSTEM_NAME Linux)
-set(CMAKE_SYSTEM_PROCESSOR arm)
-set(CMAKE_LIBRARY_ARCHITECTURE arm-linux-gnueabihf)
-
-set(CMAKE_C_COMPILER arm-linux-gnueabihf-gcc)
-set(CMAKE_CXX_COMPILER arm-linux-gnueabihf-g++)
-
-# The private sysroot of armhf packages.
-if(NOT LR_ARMHF_SYSROOT)
-  if(DEFINED ENV{LR_ARMHF_SYSROOT})
-    set(LR_ARMHF_SYSROOT "$ENV{LR_ARMHF_SYSROOT}")
-  else()
-    get_filename_component(LR_ARMHF_SYSROOT "${CMAKE_CURRENT_LIST_DIR}/../build/armhf-sysroot"
-                           ABSOLUTE)
-  endif()
-endif()
-# try_compile() projects re-read this file in a fresh scope: pass the root on to them.
-list(APPEND CMAKE_TRY_COMPILE_PLATFORM_VARIABLES LR_ARMHF_SYSROOT)
-
-# The cross toolchain's own C library (the compiler already links against it; listed so that
-# find_*() may see it too).
-set(LR_ARMHF_TOOLCHAIN_ROOT /usr/arm-linux-gnueabihf)
-
-# find_*(): programs come from the host; libraries, headers and packages only from the sysroot
-# and the toolchain's root, never from the host's /usr.
-set(CMAKE_FIND_ROOT_PATH "${LR_ARMHF_SYSROOT}" "${LR_ARMHF_TOOLCHAIN_ROOT}")
-set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
-set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
-set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
-set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)
-
-# libpng and zlib linked statically (see above). Cache entries, so FindPNG/FindZLIB take them as
-# found; a wrong or missing sysroot fails at link time with these paths in the message.
-set(_lr_armhf_libdir "${LR_ARMHF_SYSROOT}/usr/lib/arm-linux-gnueabihf")
-set(PNG_LIBRARY "${_lr_armhf_libdir}/libpng16.a" CACHE FILEPATH "libpng (armhf, static)")
-set(ZLIB_LIBRARY "${_lr_armhf_libdir}/libz.a" CACHE FILEPATH "zlib (armhf, static)")
-
-# Running target programs on the build machine.
-find_program(LR_QEMU_ARM qemu-arm)
-if(NOT LR_QEMU_ARM)
-  message(FATAL_ERROR "qemu-arm not found: install qemu-user (scripts/setup.sh test does)")
-endif()
-set(CMAKE_CROSSCOMPILING_EMULATOR "${LR_QEMU_ARM};-L;${LR_ARMHF_TOOLCHAIN_ROOT}")
+set(LR_CROSS_TRIPLE arm-linux-gnueabihf)
+set(LR_CROSS_PROCESSOR arm)
+set(LR_CROSS_SYSROOT_VAR LR_ARMHF_SYSROOT)
+set(LR_CROSS_SYSROOT_DIR armhf-sysroot)
+set(LR_CROSS_QEMU qemu-arm)
+include(${CMAKE_CURRENT_LIST_DIR}/linux-cross.cmake)
