@@ -408,6 +408,14 @@ def parse_disassembly(text, functions):
     constants, uses_fp = set(), False
     movw, popped, reg_branches, table = {}, {}, [], None
     prev = None  # (function, mnemonic, operands) of the previous instruction
+
+    def flush_table(t):
+        fn_, text_, words_ = t
+        if not words_:
+            facts[fn_].jumps.append(text_)
+        elif any(containing(w & ~1) != fn_ for w in words_):
+            facts[fn_].indirect.append(text_)
+
     for line in text.splitlines():
         m = INSN_RE.match(line)
         if not m:
@@ -416,9 +424,9 @@ def parse_disassembly(text, functions):
         fn = containing(addr)
         if table and (fn != table[0] or mnemonic != ".word"):
             # `ldr pc, [rA, rB, lsl #2]` and the words after it: a switch when every word is an
-            # address in the same function, else a branch through a pointer.
-            if not table[2] or any(containing(w & ~1) != table[0] for w in table[2]):
-                facts[table[0]].indirect.append(table[1])
+            # address in the same function, else a branch through a pointer. With no words after
+            # it the table is elsewhere (.rodata: GCC's ARMv8-M code): judged like mov pc, below.
+            flush_table(table)
             table = None
         if table and mnemonic == ".word":
             table[2].append(int(operands.split()[0], 16))
@@ -471,8 +479,8 @@ def parse_disassembly(text, functions):
         elif mnemonic.startswith("mov") and operands.startswith("pc,") and reg != "pc, lr":
             cf.jumps.append(f"{addr:x}: {mnemonic} {operands}")
         prev = (fn, mnemonic, operands)
-    if table and (not table[2] or any(containing(w & ~1) != table[0] for w in table[2])):
-        facts[table[0]].indirect.append(table[1])
+    if table:
+        flush_table(table)
     # bx rN returns when rN was restored from the stack in the function (pop {..., r3}; bx r3),
     # otherwise it is a branch through a pointer.
     for fn, reg, text_ in reg_branches:

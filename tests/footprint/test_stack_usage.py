@@ -220,6 +220,20 @@ class StackUsageTest(unittest.TestCase):
         self.assertEqual(rc, 1)
         self.assertIn("thunk: unresolved indirect branch", err)
 
+    def test_table_load_into_pc_without_a_table_in_the_function_is_indirect(self):
+        # ldr.w pc with the table elsewhere (GCC's ARMv8-M switches keep it in .rodata): a
+        # switch only when image words point into the function; here none do.
+        ci = {"a.ci": graph("/src/a.cpp", node("main", 8), edge("main", "dispatch"))}
+        dis = """\
+            00000200 <dispatch>:
+                 200:	ldr.w	pc, [r3, r0, lsl #2]
+                 204:	bx	lr
+            """
+        rc, _, err = self.run_tool(ci, "100 10 T main\n200 6 T dispatch\n", dis,
+                                   args=["--entry", "main"])
+        self.assertEqual(rc, 1)
+        self.assertIn("dispatch: unresolved indirect branch", err)
+
     def test_popped_register_branch_is_a_return(self):
         ci = {"a.ci": graph("/src/a.cpp", node("main", 8), edge("main", "__aeabi_idivmod"))}
         dis = """\
