@@ -11,7 +11,9 @@
 # instruction (included) to the second marker's first instruction (excluded). Measured regions
 # must contain no semihosting call, fault or interrupt (tools/qemu_icount/README.md says why).
 #
-# Usage: scripts/icount.sh [--plugin SO] --machine M ELF MARKER_SYMBOL [MARKER_SYMBOL...]
+# Usage: scripts/icount.sh [--plugin SO] [--profile] --machine M ELF MARKER_SYMBOL [MARKER_SYMBOL...]
+#   --profile     after each marker line, one "icount: tb 0xSTART INSNS EXECUTIONS" line per
+#                 translated block that ran since the previous marker (scripts/icount_profile.py)
 #   --plugin SO   the plugin (default: $LR_ICOUNT_PLUGIN, else
 #                 build/release/tools/qemu_icount/libqemu_icount.so, built by
 #                 `cmake --build --preset release --target lr_qemu_icount`)
@@ -31,16 +33,18 @@ fail() {
   exit 1
 }
 usage() {
-  echo "usage: scripts/icount.sh [--plugin SO] --machine M ELF MARKER_SYMBOL [MARKER_SYMBOL...]" >&2
+  echo "usage: scripts/icount.sh [--plugin SO] [--profile] --machine M ELF MARKER_SYMBOL [MARKER_SYMBOL...]" >&2
   exit 1
 }
 
 plugin="${LR_ICOUNT_PLUGIN:-$repo_root/build/release/tools/qemu_icount/libqemu_icount.so}"
 machine=""
+profile=0
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --plugin) [[ $# -ge 2 ]] || usage; plugin="$2"; shift 2 ;;
     --machine) [[ $# -ge 2 ]] || usage; machine="$2"; shift 2 ;;
+    --profile) profile=1; shift ;;
     -h|--help) sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     --) shift; break ;;
     -*) echo "icount: unknown option $1" >&2; usage ;;
@@ -63,6 +67,7 @@ symbols="$(arm-none-eabi-nm "$elf" 2>&1)" || fail "arm-none-eabi-nm cannot read 
 
 # QEMU's -plugin value: FILE,marker=0xADDR:NAME,... (the plugin prints NAME with the address).
 plugin_arg="$plugin"
+[[ "$profile" == 1 ]] && plugin_arg+=",profile=on"
 for sym in "$@"; do
   [[ "$sym" =~ ^[A-Za-z_.$][A-Za-z0-9_.$]*$ ]] || fail "'$sym' is not a plain symbol name (give the name arm-none-eabi-nm prints)"
   # nm lines: "ADDRESS TYPE NAME"; a function is T/t (W/w when weak).

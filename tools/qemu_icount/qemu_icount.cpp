@@ -24,6 +24,12 @@
 //     (BL/BLX) always starts a TB; an address reached by falling through from the instruction
 //     before it may be in the middle of a TB and is then not seen.
 //   - QEMU 7.2 prints qemu_plugin_outs() text only with `-d plugin` (to stderr, or to -D FILE).
+//
+// Profile (argument profile=on): every TB also counts its own executions, and each marker line is
+// followed by one line per TB that ran since the previous marker,
+//   icount: tb 0xSTART INSNS EXECUTIONS
+// so that the instructions between two markers can be attributed to functions by TB start
+// address (scripts/icount_profile.py). Counting stays exact; only output grows.
 #include <cctype>
 #include <cerrno>
 #include <cinttypes>
@@ -60,6 +66,20 @@ size_t g_marker_count = 0;
 // Guest instructions executed so far (every TB that has started executing, all of it).
 uint64_t g_count = 0;
 
+// Profile: one record per translated TB (a retranslated TB gets a second record with the same
+// start; the script adds them up). Allocated once at install: the plugin is a host program.
+struct TbRecord {
+  uint64_t start;
+  uint64_t insns;
+  uint64_t executions;  // incremented inline on every execution
+  uint64_t reported;    // executions already printed
+};
+bool g_profile = false;
+constexpr size_t kMaxTbRecords = size_t{1} << 20;
+TbRecord* g_tbs = nullptr;
+size_t g_tb_count = 0;
+bool g_tb_overflow = false;
+
 void out(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 void out(const char* fmt, ...) {
   char line[1024];  // room for long (mangled C++) marker names; a longer line keeps its newline
@@ -83,6 +103,16 @@ void on_marker_tb(unsigned int /*vcpu_index*/, void* userdata) {
   ++m.hits;
   out("icount: marker 0x%" PRIx64 "%s%s at %" PRIu64 "\n", m.address, name_sep(m), m.name, g_count);
   g_count += packed & kInsnMask;
+  if (g_profile) {
+    for (size_t i = 0; i < g_tb_count; ++i) {
+      TbRecord& r = g_tbs[i];
+      if (r.executions == r.reported) continue;
+      out("icount: tb 0x%" PRIx64 " %" PRIu64 " %" PRIu64 "\n", r.start, r.insns,
+          r.executions - r.reported);
+      r.reported = r.executions;
+    }
+    if (g_tb_overflow) out("icount: profile incomplete: more than %zu TBs\n", kMaxTbRecords);
+  }
 }
 
 void on_tb_translate(qemu_plugin_id_t /*id*/, struct qemu_plugin_tb* tb) {
@@ -97,6 +127,15 @@ void on_tb_translate(qemu_plugin_id_t /*id*/, struct qemu_plugin_tb* tb) {
     }
   }
   qemu_plugin_register_vcpu_tb_exec_inline(tb, QEMU_PLUGIN_INLINE_ADD_U64, &g_count, n);
+  if (g_profile) {
+    if (g_tb_count == kMaxTbRecords) {
+      g_tb_overflow = true;
+      return;
+    }
+    TbRecord& r = g_tbs[g_tb_count++];
+    r = TbRecord{start, n, 0, 0};
+    qemu_plugin_register_vcpu_tb_exec_inline(tb, QEMU_PLUGIN_INLINE_ADD_U64, &r.executions, 1);
+  }
 }
 
 void on_atexit(qemu_plugin_id_t /*id*/, void* /*userdata*/) {
@@ -149,8 +188,14 @@ extern "C" LR_QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id,
   g_marker_count = 0;
   for (int i = 0; i < argc; ++i) {
     const char* arg = argv[i];
+    if (std::strcmp(arg, "profile=on") == 0) {
+      g_profile = true;
+      continue;
+    }
     if (std::strncmp(arg, "marker=", 7) != 0) {
-      std::fprintf(stderr, "qemu_icount: unknown argument '%s' (expected marker=0xADDR[:NAME])\n",
+      std::fprintf(stderr,
+                   "qemu_icount: unknown argument '%s' (expected marker=0xADDR[:NAME] or "
+                   "profile=on)\n",
                    arg);
       return -1;
     }
@@ -170,6 +215,13 @@ extern "C" LR_QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id,
       }
     }
     g_markers[g_marker_count++] = m;
+  }
+  if (g_profile) {
+    g_tbs = static_cast<TbRecord*>(std::calloc(kMaxTbRecords, sizeof(TbRecord)));
+    if (g_tbs == nullptr) {
+      std::fprintf(stderr, "qemu_icount: profile=on: out of memory\n");
+      return -1;
+    }
   }
   qemu_plugin_register_vcpu_tb_trans_cb(id, on_tb_translate);
   qemu_plugin_register_atexit_cb(id, on_atexit, nullptr);
