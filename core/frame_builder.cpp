@@ -157,15 +157,14 @@ Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_plan
   DrawRecord r;
   r.depth = state.depth_test;
   r.flat = state.shading == Shading::kFlat;
+  r.filter = state.sampler.filter;
+  r.wrap_s = state.sampler.wrap_s;
+  r.wrap_t = state.sampler.wrap_t;
   if (state.texture != nullptr) {
     const Texture& tex = *state.texture;
     r.texture = &tex;
-    r.fetch =
-        fetch_routine(tex.format, state.sampler.filter, state.sampler.wrap_s, state.sampler.wrap_t);
     r.env = state.sampler.env;
     r.mip = state.sampler.mip;
-    r.wrap_s = state.sampler.wrap_s;
-    r.wrap_t = state.sampler.wrap_t;
     switch (state.perspective) {
       case Perspective::kExact:
         r.persp = TexPersp::kExact;
@@ -219,13 +218,9 @@ Status FrameBuilder::add_phong_state(const DrawState& state, const PreparedLight
   r.colors = ColorPlanes::kNone;
   if (state.envmap != nullptr) {
     r.envmap = state.envmap;
-    r.env_fetch = fetch_routine(state.envmap->format, Filter::kBilinear, Wrap::kClampToEdge,
-                                Wrap::kClampToEdge);
   }
   if (state.normal_map != nullptr) {
     r.normal_map = state.normal_map;
-    r.nmap_fetch = fetch_routine(state.normal_map->format, state.sampler.filter,
-                                 state.sampler.wrap_s, state.sampler.wrap_t);
   }
   if (state.pixel_lighting == PixelLighting::kTable) {
     const bool split = state.texture != nullptr || state.envmap != nullptr;

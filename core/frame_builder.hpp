@@ -49,12 +49,17 @@ struct DrawRecord {
   bool depth = true;
   bool flat = false;
   const Texture* texture = nullptr;  // textured draws
+  // The texel fetchers (fetch, env_fetch, nmap_fetch) are chosen by the Renderer when it renders
+  // (Renderer::resolve_fetchers), from the texture's format, the filter and the wraps: only a
+  // Renderer whose features draw textures or Phong maps references the fetch routines, so
+  // firmware without them links none.
   FetchFn fetch = nullptr;
+  Filter filter = Filter::kNearest;  // the sampler's, for the texture and the normal map
   TexPersp persp = TexPersp::kExact;
   uint8_t span_len = 0;  // kSpan: 8, 16 or 32 (zero default: static stores stay in .bss)
   TexEnv env = TexEnv::kModulate;
   MipMode mip = MipMode::kNone;
-  Wrap wrap_s = Wrap::kRepeat, wrap_t = Wrap::kRepeat;
+  Wrap wrap_s = Wrap::kRepeat, wrap_t = Wrap::kRepeat;  // the sampler's, as filter
   // Phong (per-pixel lighting) draws.
   bool phong = false;
   PixelLighting method = PixelLighting::kExact;

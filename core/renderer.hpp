@@ -48,6 +48,7 @@ class Renderer : public FrameBuilder {
 
  private:
   void activate(int strip);
+  void resolve_fetchers();
   void raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows);
   void retire(int next_row);
 
@@ -58,6 +59,7 @@ class Renderer : public FrameBuilder {
 template <class PF, int K, uint32_t kFeatures>
 Status Renderer<PF, K, kFeatures>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
   if (!configured_) return Status::kInvalidArgument;
+  if constexpr (kFeatures != 0) resolve_fetchers();
   const auto w = static_cast<size_t>(width_);
   stats_.bytes_per_strip = static_cast<uint32_t>(w * K * (sizeof(Pixel) + sizeof(uint16_t)));
   active_count_ = 0;
@@ -99,6 +101,22 @@ Status Renderer<PF, K, kFeatures>::render(StripSink<PF>& sink, DepthSink* depth_
     if (st != Status::kOk) return st;
   }
   return sink.end_frame();
+}
+
+// The texel fetchers of this frame's draws (DrawRecord): here, in the template, so that only
+// renderers with textured or Phong spans reference the fetch routines (kFeatures == 0: such
+// draws are refused by draw()).
+template <class PF, int K, uint32_t kFeatures>
+void Renderer<PF, K, kFeatures>::resolve_fetchers() {
+  for (DrawRecord& d : storage_.draws.first(draw_count_)) {
+    if (d.texture != nullptr)
+      d.fetch = fetch_routine(d.texture->format, d.filter, d.wrap_s, d.wrap_t);
+    if (d.envmap != nullptr)
+      d.env_fetch = fetch_routine(d.envmap->format, Filter::kBilinear, Wrap::kClampToEdge,
+                                  Wrap::kClampToEdge);
+    if (d.normal_map != nullptr)
+      d.nmap_fetch = fetch_routine(d.normal_map->format, d.filter, d.wrap_s, d.wrap_t);
+  }
 }
 
 template <class PF, int K, uint32_t kFeatures>
