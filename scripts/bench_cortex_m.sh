@@ -66,6 +66,33 @@ for tree in "${trees[@]}"; do
         }
       }' <<<"$run" || fail "could not pair the marker counts with the cases ($tree)"
   } >"$table"
+  # The Cortex-M4F budgets of the "Skip what a scene doesn't need" issue, next to the figures
+  # (printed, not asserted): instructions per 320x240 frame.
+  if [[ "$core" == cortex-m4f ]]; then
+    {
+      echo
+      echo "| budget scene | case | instructions | budget | ratio |"
+      echo "|---|---|---:|---:|---:|"
+      awk '
+        BEGIN {
+          n = 0; c = 0
+          budget["knot_gouraud"] = 1600000; what["knot_gouraud"] = "closed Gouraud mesh, ~3,700 triangles, ~22,000 pixels"
+          budget["cube_nearest"] = 850000; what["cube_nearest"] = "perspective-correct textured cube, ~40,000 pixels, nearest"
+          budget["cube_bilinear"] = 2000000; what["cube_bilinear"] = "the same cube, bilinear"
+          budget["ground_nearest"] = 800000; what["ground_nearest"] = "ground plane to the horizon, nearest"
+        }
+        /^icount: marker / { counts[n++] = $NF }
+        /^lr_bench: case / { name[c++] = $3 }
+        function commas(v,   s) { s = sprintf("%d", v); while (s ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9]($|,)/, ",&", s); return s }
+        END {
+          for (i = 0; i < c; i++) {
+            if (!(name[i] in budget)) continue
+            ins = counts[2 * i + 1] - counts[2 * i]
+            printf "| %s | %s | %s | %s | %.2f |\n", what[name[i]], name[i], commas(ins), commas(budget[name[i]]), ins / budget[name[i]]
+          }
+        }' <<<"$run"
+    } >>"$table"
+  fi
   cat "$table"
   echo
   echo "bench_cortex_m: $core: $(grep -c '^lr_bench: case ' <<<"$run") frames identical to the host's"
