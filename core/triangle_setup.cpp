@@ -9,11 +9,23 @@ void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3],
 
 namespace {
 
-// 256 * n / area rounded, for area > 0, without forming 256 * n (n may be near 2^57).
-// Returns false when the result is 2^38 or more in magnitude (a sub-subpixel needle).
+// 256 * n / area rounded half away from zero, for area > 0. Returns false when the truncated
+// quotient n / area is 2^30 or more in magnitude (a sub-subpixel needle).
+// |n| < 2^55 (nearly always): 256 |n| fits 64 bits and one unsigned division gives the rounded
+// value, round(256 |n| / area) = (256 |n| + area / 2) / area; this is exactly what the general
+// path computes as 256 q + round(256 r / area) with two divisions. On Cortex-M each 64-bit
+// division is a libgcc call of about 140 instructions, several per triangle.
 bool gradient(int64_t n, int64_t area, int64_t& g) {
+  const uint64_t a = n < 0 ? 0 - static_cast<uint64_t>(n) : static_cast<uint64_t>(n);
+  const auto d = static_cast<uint64_t>(area);
+  if ((a >> 30) >= d) return false;  // |n| >= 2^30 area, i.e. |q| >= 2^30
+  if (a < (uint64_t{1} << 55)) {
+    const auto m = static_cast<int64_t>((a * kSubpixel + d / 2) / d);
+    g = n < 0 ? -m : m;
+    return true;
+  }
+  // 256 n is not formed here (n may be near 2^57).
   int64_t q = n / area, r = n % area;
-  if (q >= (int64_t{1} << 30) || q <= -(int64_t{1} << 30)) return false;
   g = q * kSubpixel + round_div(r * kSubpixel, area);
   return true;
 }
