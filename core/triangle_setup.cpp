@@ -4,29 +4,47 @@
 
 namespace lr {
 
-void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3],
-                 const ScreenVertex* const v[3], const uint32_t q[3], ActiveTriangle& t);
+void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const PlaneBasis& pb,
+                 const uint32_t q[3], ActiveTriangle& t);
 
 namespace {
 
+// High 64 bits of a 64 x 64-bit product, from 32-bit halves (no 128-bit type on 32-bit targets).
+uint64_t mul_hi(uint64_t a, uint64_t b) {
+  const uint64_t al = static_cast<uint32_t>(a), ah = a >> 32;
+  const uint64_t bl = static_cast<uint32_t>(b), bh = b >> 32;
+  const uint64_t ll = al * bl, lh = al * bh, hl = ah * bl, hh = ah * bh;
+  const uint64_t mid = (ll >> 32) + static_cast<uint32_t>(lh) + static_cast<uint32_t>(hl);
+  return hh + (lh >> 32) + (hl >> 32) + (mid >> 32);
+}
+
 // 256 * n / area rounded half away from zero, for area > 0. Returns false when the truncated
 // quotient n / area is 2^30 or more in magnitude (a sub-subpixel needle).
-// |n| < 2^55 (nearly always): 256 |n| fits 64 bits and one unsigned division gives the rounded
-// value, round(256 |n| / area) = (256 |n| + area / 2) / area; this is exactly what the general
-// path computes as 256 q + round(256 r / area) with two divisions. On Cortex-M each 64-bit
-// division is a libgcc call of about 140 instructions, several per triangle.
-bool gradient(int64_t n, int64_t area, int64_t& g) {
+// |n| < 2^55 (always inside the guard band: |n| < 2 * 2^32 * 2^22): the rounded value is
+// floor(N / area) with N = 256 |n| + area / 2 < 2^63, computed from the basis' reciprocal
+// inv = floor((2^64 - 1) / area): q0 = floor(N inv / 2^64) is at most 2 below the quotient
+// (N inv / 2^64 > N / area - N / 2^64 - 1 / 2^64... > N / area - 1), and the remainder
+// N - q0 area corrects it exactly. Bit for bit the value of 256 q + round(256 r / area) with q, r
+// the truncated quotient and remainder (tests/core/plane_test.cpp), which is the general path.
+bool gradient(int64_t n, const PlaneBasis& pb, int64_t& g) {
   const uint64_t a = n < 0 ? 0 - static_cast<uint64_t>(n) : static_cast<uint64_t>(n);
-  const auto d = static_cast<uint64_t>(area);
+  const auto d = static_cast<uint64_t>(pb.area);
   if ((a >> 30) >= d) return false;  // |n| >= 2^30 area, i.e. |q| >= 2^30
   if (a < (uint64_t{1} << 55)) {
-    const auto m = static_cast<int64_t>((a * kSubpixel + d / 2) / d);
+    const uint64_t num = a * kSubpixel + d / 2;
+    uint64_t q = mul_hi(num, pb.inv);
+    uint64_t r = num - q * d;
+    while (r >= d) {  // at most twice
+      ++q;
+      r -= d;
+    }
+    const auto m = static_cast<int64_t>(q);
     g = n < 0 ? -m : m;
     return true;
   }
   // 256 n is not formed here (n may be near 2^57).
-  int64_t q = n / area, r = n % area;
-  g = q * kSubpixel + round_div(r * kSubpixel, area);
+  const int64_t q = n / pb.area, r = n % pb.area;
+  g = q * kSubpixel + round_div(r * kSubpixel, pb.area);
   return true;
 }
 
@@ -40,7 +58,7 @@ uint32_t scale_by_q(uint32_t c15, uint32_t q) {
 // from 0 the coordinates are. Extent limit: 2^22 texels (e.g. |du| < 2048 on a 2048-texel
 // texture); beyond it the relative coordinates saturate.
 void texture_axis(const int32_t uv[3], uint32_t size, Wrap wrap, bool perspective,
-                  const ScreenVertex* const v[3], const uint32_t q[3], Plane& plane, int32_t& off,
+                  const PlaneBasis& pb, const uint32_t q[3], Plane& plane, int32_t& off,
                   uint8_t& m) {
   int64_t c[3];
   for (int i = 0; i < 3; ++i) c[i] = (int64_t{uv[i]} * size) >> (TexCoord::kFracBits - 8);
@@ -71,37 +89,50 @@ void texture_axis(const int32_t uv[3], uint32_t size, Wrap wrap, bool perspectiv
     m = static_cast<uint8_t>(30 - bits);
     for (int i = 0; i < 3; ++i) rel[i] <<= m;
   }
-  plane = make_plane(v, rel);
+  plane = make_plane(pb, rel);
 }
 
 }  // namespace
 
-Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]) {
-  int64_t x0 = v[0]->x, y0 = v[0]->y;
-  int64_t ex1 = v[1]->x - x0, ey1 = v[1]->y - y0, ex2 = v[2]->x - x0, ey2 = v[2]->y - y0;
-  int64_t area = ex1 * ey2 - ex2 * ey1;
-  int64_t da1 = int64_t{a[1]} - a[0], da2 = int64_t{a[2]} - a[0];
-  int64_t nx = da1 * ey2 - da2 * ey1;
-  int64_t ny = da2 * ex1 - da1 * ex2;
-  if (area < 0) {
-    area = -area;
+PlaneBasis::PlaneBasis(const ScreenVertex* const v[3]) {
+  x0 = v[0]->x;
+  y0 = v[0]->y;
+  ex1 = v[1]->x - x0;
+  ey1 = v[1]->y - y0;
+  ex2 = v[2]->x - x0;
+  ey2 = v[2]->y - y0;
+  const int64_t signed_area = ex1 * ey2 - ex2 * ey1;
+  flip = signed_area < 0;
+  area = flip ? -signed_area : signed_area;
+  inv = area > 0 ? ~uint64_t{0} / static_cast<uint64_t>(area) : 0;
+}
+
+Plane make_plane(const PlaneBasis& pb, const uint32_t a[3]) {
+  const int64_t da1 = int64_t{a[1]} - a[0], da2 = int64_t{a[2]} - a[0];
+  int64_t nx = da1 * pb.ey2 - da2 * pb.ey1;
+  int64_t ny = da2 * pb.ex1 - da1 * pb.ex2;
+  if (pb.flip) {
     nx = -nx;
     ny = -ny;
   }
   Plane p;
   int64_t gx = 0, gy = 0;
-  if (area == 0 || !gradient(nx, area, gx) || !gradient(ny, area, gy)) {
+  if (pb.area == 0 || !gradient(nx, pb, gx) || !gradient(ny, pb, gy)) {
     p.base = static_cast<uint32_t>((int64_t{a[0]} + a[1] + a[2]) / 3);
     return p;
   }
   // Value at the centre of pixel (0, 0): |g| < 2^38 and |128 - x0| < 2^22, so each product is
   // below 2^60 and the sum below 2^61.
-  int64_t off = gx * (kHalfPixel - x0) + gy * (kHalfPixel - y0);
-  int64_t base = int64_t{a[0]} + round_div(off, kSubpixel);
+  const int64_t off = gx * (kHalfPixel - pb.x0) + gy * (kHalfPixel - pb.y0);
+  const int64_t base = int64_t{a[0]} + round_div(off, kSubpixel);
   p.base = static_cast<uint32_t>(static_cast<uint64_t>(base));
   p.gx = static_cast<uint32_t>(static_cast<uint64_t>(gx));
   p.gy = static_cast<uint32_t>(static_cast<uint64_t>(gy));
   return p;
+}
+
+Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]) {
+  return make_plane(PlaneBasis(v), a);
 }
 
 void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
@@ -136,9 +167,10 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
     t.short_edge = t.bottom_edge;
   }
 
+  const PlaneBasis pb(v);  // after the sort: the planes' vertex 0 is the top vertex, as before
   if (in.depth) {
     uint32_t z[3] = {v[0]->z, v[1]->z, v[2]->z};
-    t.z = make_plane(v, z);
+    t.z = make_plane(pb, z);
   }
   const bool tex = in.tex.texture != nullptr;
   uint32_t q[3] = {1u << 30, 1u << 30, 1u << 30};
@@ -151,27 +183,27 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
       uint64_t r = ((uint64_t{wmin} << 30) + v[i]->w / 2) / v[i]->w;
       q[i] = r == 0 ? 1u : static_cast<uint32_t>(r);
     }
-    t.q = make_plane(v, q);
+    t.q = make_plane(pb, q);
   }
   if (in.colors == ColorPlanes::kPerspective) {
     for (int c = 0; c < 3; ++c) {
       uint32_t cq[3];
       for (int i = 0; i < 3; ++i) cq[i] = scale_by_q(channel(v[i]->color, c), q[i]);
-      t.c[c] = make_plane(v, cq);
+      t.c[c] = make_plane(pb, cq);
     }
   } else if (in.colors == ColorPlanes::kAffine) {
     for (int c = 0; c < 3; ++c) {
       uint32_t cv[3];
       for (int i = 0; i < 3; ++i) cv[i] = uint32_t{channel(v[i]->color, c)} << 15;
-      t.c[c] = make_plane(v, cv);
+      t.c[c] = make_plane(pb, cv);
     }
   }
-  if (tex) setup_texture(in.tex, v, q, t);
-  if (phong) setup_phong(in.phong, sf, v, q, t);
+  if (tex) setup_texture(in.tex, v, pb, q, t);
+  if (phong) setup_phong(in.phong, sf, pb, q, t);
 }
 
-void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3],
-                 const ScreenVertex* const v[3], const uint32_t q[3], ActiveTriangle& t) {
+void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const PlaneBasis& pb,
+                 const uint32_t q[3], ActiveTriangle& t) {
   // Q1.30 values times q (Q1.30), biased: |x q| <= 2^30.
   auto scaled = [&q](int64_t x, int i) {
     return static_cast<uint32_t>(((x * q[i]) >> 30) + kPlaneBias);
@@ -183,14 +215,14 @@ void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3],
       const int64_t x = c == 0 ? n.x : c == 1 ? n.y : n.z;
       a[i] = scaled(ps.negate ? -x : x, i);
     }
-    t.c[c] = make_plane(v, a);
+    t.c[c] = make_plane(pb, a);
   }
   t.handedness = s[0]->handedness;
   if (ps.tangent) {
     for (int c = 0; c < 3; ++c) {
       uint32_t a[3];
       for (int i = 0; i < 3; ++i) a[i] = scaled(int64_t{s[i]->tangent[c]} << 16, i);
-      t.tan[c] = make_plane(v, a);
+      t.tan[c] = make_plane(pb, a);
     }
   }
   if (ps.position) {
@@ -218,17 +250,17 @@ void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3],
       // |rel| < 2^bits, q <= 2^30: |rel q| >> bits < 2^30.
       for (int i = 0; i < 3; ++i)
         a[i] = static_cast<uint32_t>(((rel[i][c] * q[i]) >> bits) + kPlaneBias);
-      t.spec[c] = make_plane(v, a);
+      t.spec[c] = make_plane(pb, a);
     }
   }
 }
 
-void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const uint32_t q[3],
-                   ActiveTriangle& t) {
+void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const PlaneBasis& pb,
+                   const uint32_t q[3], ActiveTriangle& t) {
   const TextureLevel& l0 = ts.texture->levels[0];
   const int32_t us[3] = {v[0]->u, v[1]->u, v[2]->u}, vs[3] = {v[0]->v, v[1]->v, v[2]->v};
-  texture_axis(us, l0.width, ts.wrap_s, ts.perspective, v, q, t.s, t.off_s, t.m_s);
-  texture_axis(vs, l0.height, ts.wrap_t, ts.perspective, v, q, t.t, t.off_t, t.m_t);
+  texture_axis(us, l0.width, ts.wrap_s, ts.perspective, pb, q, t.s, t.off_s, t.m_s);
+  texture_axis(vs, l0.height, ts.wrap_t, ts.perspective, pb, q, t.t, t.off_t, t.m_t);
   if (!ts.colors) return;
   for (int c = 0; c < 3; ++c) {
     uint32_t p[3], sp[3];
@@ -238,8 +270,8 @@ void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const
       p[i] = ts.perspective ? scale_by_q(pc, q[i]) : pc << 15;
       sp[i] = ts.perspective ? scale_by_q(sc, q[i]) : sc << 15;
     }
-    t.c[c] = make_plane(v, p);
-    t.spec[c] = make_plane(v, sp);
+    t.c[c] = make_plane(pb, p);
+    t.spec[c] = make_plane(pb, sp);
   }
 }
 

@@ -107,12 +107,25 @@ struct SetupInput {
 // Fills `out` (except index/draw/flat). The triangle must have non-zero area.
 void setup_triangle(const SetupInput& in, ActiveTriangle& out);
 
+// What every plane of one triangle shares: its edges from vertex 0 (subpixels), twice its area
+// (|area| < 2^47 inside the guard band) and a reciprocal of the area, so that each of the
+// triangle's gradients costs multiplications instead of 64-bit divisions (one division per
+// triangle: on Cortex-M a 64-bit division is a libgcc call of about 100 instructions).
+struct PlaneBasis {
+  int64_t x0 = 0, y0 = 0, ex1 = 0, ey1 = 0, ex2 = 0, ey2 = 0;
+  int64_t area = 0;   // |twice the signed area|, subpixels^2
+  bool flip = false;  // the signed area was negative
+  uint64_t inv = 0;   // floor((2^64 - 1) / area); 0 when area == 0
+  explicit PlaneBasis(const ScreenVertex* const v[3]);
+};
+
 // The texture planes of a textured triangle (part of setup_triangle). q: the vertices' Q1.30
 // perspective factors (used when ts.perspective).
-void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const uint32_t q[3],
-                   ActiveTriangle& t);
+void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const PlaneBasis& pb,
+                   const uint32_t q[3], ActiveTriangle& t);
 
-// Exposed for tests: the plane through three vertex values.
+// The plane through three vertex values (exposed for tests; the second form builds the basis).
+Plane make_plane(const PlaneBasis& pb, const uint32_t a[3]);
 Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]);
 
 }  // namespace lr
