@@ -15,8 +15,9 @@
 #   --profile     after each marker line, one "icount: tb 0xSTART INSNS EXECUTIONS" line per
 #                 translated block that ran since the previous marker (scripts/icount_profile.py)
 #   --plugin SO   the plugin (default: $LR_ICOUNT_PLUGIN, else
-#                 build/release/tools/qemu_icount/libqemu_icount.so, built by
-#                 `cmake --build --preset release --target lr_qemu_icount`)
+#                 build/release/tools/qemu_icount/libqemu_icount.so if built
+#                 (`cmake --build --preset release --target lr_qemu_icount`), else the debug
+#                 build's)
 #   --machine M   QEMU's machine (mps2-an386 for Cortex-M4F images, microbit for Cortex-M0+, ...)
 #   MARKER_SYMBOL function symbols of ELF (arm-none-eabi-nm names, e.g. lr_icount_begin); their
 #                 addresses are resolved here and passed to the plugin
@@ -37,7 +38,11 @@ usage() {
   exit 1
 }
 
+# Default: the release build's plugin, else the debug build's (scripts/test.sh builds that one).
 plugin="${LR_ICOUNT_PLUGIN:-$repo_root/build/release/tools/qemu_icount/libqemu_icount.so}"
+if [[ -z "${LR_ICOUNT_PLUGIN:-}" && ! -f "$plugin" ]]; then
+  plugin="$repo_root/build/debug/tools/qemu_icount/libqemu_icount.so"
+fi
 machine=""
 profile=0
 while [[ $# -gt 0 ]]; do

@@ -29,7 +29,11 @@ usage() {
 }
 
 plugin_opt=()
+# Default: the release build's plugin, else the debug build's (scripts/test.sh builds that one).
 plugin="${LR_ICOUNT_PLUGIN:-$repo_root/build/release/tools/qemu_icount/libqemu_icount.so}"
+if [[ -z "${LR_ICOUNT_PLUGIN:-}" && ! -f "$plugin" ]]; then
+  plugin="$repo_root/build/debug/tools/qemu_icount/libqemu_icount.so"
+fi
 machine=""
 runs=2
 skip_missing=0
