@@ -47,6 +47,27 @@ Plane reference_plane(const ScreenVertex* const v[3], const uint32_t a[3]) {
   return p;
 }
 
+// True when a numerator of the plane's gradients is 2^55 or more in magnitude: the general path.
+bool takes_general_path(const ScreenVertex s[3], const uint32_t a[3]) {
+  const int64_t ex1 = int64_t{s[1].x} - s[0].x, ey1 = int64_t{s[1].y} - s[0].y;
+  const int64_t ex2 = int64_t{s[2].x} - s[0].x, ey2 = int64_t{s[2].y} - s[0].y;
+  const int64_t da1 = int64_t{a[1]} - a[0], da2 = int64_t{a[2]} - a[0];
+  const int64_t nx = da1 * ey2 - da2 * ey1, ny = da2 * ex1 - da1 * ex2;
+  auto big = [](int64_t n) { return n >= (int64_t{1} << 55) || n <= -(int64_t{1} << 55); };
+  return big(nx) || big(ny);
+}
+
+// make_plane against the reference for one triangle; the reference plane.
+Plane expect_same_plane(const ScreenVertex s[3], const uint32_t a[3], int i) {
+  const ScreenVertex* v[3] = {&s[0], &s[1], &s[2]};
+  const Plane want = reference_plane(v, a);
+  const Plane got = make_plane(v, a);
+  EXPECT_EQ(got.base, want.base) << i;
+  EXPECT_EQ(got.gx, want.gx) << i;
+  EXPECT_EQ(got.gy, want.gy) << i;
+  return want;
+}
+
 TEST(PlaneGradient, OneDivisionEqualsTheTwoDivisionFormula) {
   std::mt19937_64 rng(20261122);
   int fast = 0, general = 0, needles = 0;
@@ -60,22 +81,11 @@ TEST(PlaneGradient, OneDivisionEqualsTheTwoDivisionFormula) {
       sv.x = coord();
       sv.y = coord();
     }
-    const ScreenVertex* v[3] = {&s[0], &s[1], &s[2]};
     uint32_t a[3];
     const int abits = 1 + static_cast<int>(rng() % 32);
     for (auto& x : a) x = static_cast<uint32_t>(rng() >> (64 - abits));
-    const Plane want = reference_plane(v, a);
-    const Plane got = make_plane(v, a);
-    ASSERT_EQ(got.base, want.base) << i;
-    ASSERT_EQ(got.gx, want.gx) << i;
-    ASSERT_EQ(got.gy, want.gy) << i;
-    // Which path the numerators took (for the coverage figures below).
-    const int64_t ex1 = int64_t{s[1].x} - s[0].x, ey1 = int64_t{s[1].y} - s[0].y;
-    const int64_t ex2 = int64_t{s[2].x} - s[0].x, ey2 = int64_t{s[2].y} - s[0].y;
-    const int64_t da1 = int64_t{a[1]} - a[0], da2 = int64_t{a[2]} - a[0];
-    const int64_t nx = da1 * ey2 - da2 * ey1, ny = da2 * ex1 - da1 * ex2;
-    auto big = [](int64_t n) { return n >= (int64_t{1} << 55) || n <= -(int64_t{1} << 55); };
-    (big(nx) || big(ny)) ? ++general : ++fast;
+    const Plane want = expect_same_plane(s, a, i);
+    takes_general_path(s, a) ? ++general : ++fast;
     if (want.gx == 0 && want.gy == 0 && a[0] != a[1]) ++needles;
   }
   // Inside the guard band (|x|, |y| < 2^22) with 32-bit attributes |n| stays below 2^55, so
@@ -91,21 +101,11 @@ TEST(PlaneGradient, OneDivisionEqualsTheTwoDivisionFormula) {
     s[1].y = kEdge - 1 - jitter();
     s[2].x = jitter();
     s[2].y = -kEdge + jitter();
-    const ScreenVertex* v[3] = {&s[0], &s[1], &s[2]};
     const uint32_t a[3] = {static_cast<uint32_t>(rng() % 65536),
                            0xFFFFFFFFu - static_cast<uint32_t>(rng() % 65536),
                            static_cast<uint32_t>(rng())};
-    const Plane want = reference_plane(v, a);
-    const Plane got = make_plane(v, a);
-    ASSERT_EQ(got.base, want.base) << i;
-    ASSERT_EQ(got.gx, want.gx) << i;
-    ASSERT_EQ(got.gy, want.gy) << i;
-    const int64_t ex1 = int64_t{s[1].x} - s[0].x, ey1 = int64_t{s[1].y} - s[0].y;
-    const int64_t ex2 = int64_t{s[2].x} - s[0].x, ey2 = int64_t{s[2].y} - s[0].y;
-    const int64_t da1 = int64_t{a[1]} - a[0], da2 = int64_t{a[2]} - a[0];
-    const int64_t nx = da1 * ey2 - da2 * ey1, ny = da2 * ex1 - da1 * ex2;
-    auto big = [](int64_t n) { return n >= (int64_t{1} << 55) || n <= -(int64_t{1} << 55); };
-    if (big(nx) || big(ny)) ++general;
+    expect_same_plane(s, a, i);
+    if (takes_general_path(s, a)) ++general;
   }
   // Both paths and the needle fallback were exercised.
   EXPECT_GT(fast, 100000);
