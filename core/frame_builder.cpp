@@ -90,6 +90,9 @@ Status FrameBuilder::configure(const FrameStorage& s, int width, int height, int
   if (s.active_index.size() < 2 * s.active.size() || s.active.size() > kMaxStoreEntries)
     return Status::kInvalidArgument;
   if (s.draws.empty() || s.draws.size() > 256) return Status::kInvalidArgument;
+  if (!s.strip_inputs.empty() && s.strip_inputs.size() < 2 * static_cast<size_t>(strips))
+    return Status::kInvalidArgument;
+  inputs_known_ = false;
   storage_ = s;
   if (storage_.vertices.size() > kMaxStoreEntries)
     storage_.vertices = storage_.vertices.first(kMaxStoreEntries);
@@ -114,6 +117,17 @@ Status FrameBuilder::begin_frame(const Camera& camera, const LightSet& lights, R
   vertex_count_ = triangle_count_ = draw_count_ = 0;
   pixel_light_count_ = table_words_used_ = 0;
   for (int i = 0; i < strips_; ++i) storage_.buckets[static_cast<size_t>(i)] = kNoTriangle;
+  if (skipping()) {
+    // What every strip depends on: the viewport, the background, the camera (per-pixel lighting
+    // and environment maps read it) and the lights (per-pixel lighting).
+    InputHash h;
+    h.add(static_cast<uint32_t>(width_) | static_cast<uint32_t>(height_) << 16);
+    h.add(static_cast<uint32_t>(strip_height_));
+    h.add(background);
+    h.add(camera);
+    h.add(lights);
+    for (int i = 0; i < strips_; ++i) storage_.strip_inputs[static_cast<size_t>(i)] = h.value();
+  }
   stats_ = FrameStats{};
   stats_.bytes_per_vertex = sizeof(ScreenVertex);
   stats_.bytes_per_binned_triangle = sizeof(BinnedTriangle);
@@ -141,6 +155,14 @@ bool FrameBuilder::project(const ClipCoord& c, ScreenVertex& v) const {
   v.w = static_cast<uint32_t>(wq < 1 ? 1 : wq > 0xFFFFFFFF ? 0xFFFFFFFF : wq);
   v.outcode = 0;
   return true;
+}
+
+void FrameBuilder::sign_draw(uint8_t index, const Material* per_pixel_material) {
+  DrawRecord& d = storage_.draws[index];
+  InputHash h;
+  h.add(d);
+  if (per_pixel_material != nullptr) h.add(*per_pixel_material);
+  d.inputs = h.value();
 }
 
 Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_planes, size_t vertices,
@@ -284,6 +306,26 @@ FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, ui
   t.flat = flat;
   t.flat_spec = flat_spec;
   t.reserved = 0;
+  if (skipping()) {
+    const DrawRecord& d = storage_.draws[draw];
+    InputHash h(d.inputs);
+    h.add(v0);
+    h.add(v1);
+    h.add(v2);
+    if (d.phong) {
+      h.add(storage_.surfaces[a]);
+      h.add(storage_.surfaces[b]);
+      h.add(storage_.surfaces[c]);
+    }
+    h.add(flat);
+    h.add(flat_spec);
+    for (int32_t s = r0 / strip_height_; s <= r1 / strip_height_; ++s) {
+      uint32_t& sig = storage_.strip_inputs[static_cast<size_t>(s)];
+      InputHash hs(sig);
+      hs.add(h.value());
+      sig = hs.value();
+    }
+  }
   uint16_t& head = storage_.buckets[static_cast<size_t>(r0 / strip_height_)];
   t.next = head;
   head = index;
@@ -382,6 +424,7 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     stats_.dropped_triangle_capacity += tri_count;
     return Status::kCapacity;
   }
+  if (skipping()) sign_draw(draw_index, phong ? &material : nullptr);
   const uint32_t dropped_before = stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity;
   const Color15 material_color = material.diffuse;
   const bool need_position = pl.needs_position();
@@ -594,6 +637,7 @@ Status FrameBuilder::draw_screen(std::span<const ScreenVertex> vertices,
   uint8_t draw_index = 0;
   if (add_draw_record(state, gouraud, n, tri_count, draw_index) != Status::kOk)
     return Status::kCapacity;
+  if (skipping()) sign_draw(draw_index, nullptr);
   const uint32_t dropped_before = stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity;
   const size_t base = vertex_count_;
   const int32_t limit = (kMaxViewport * 3) << kSubpixelBits;  // inside the coordinate budget

@@ -20,6 +20,7 @@
 #include "core/sampler.hpp"
 #include "core/screen_vertex.hpp"
 #include "core/status.hpp"
+#include "core/strip_inputs.hpp"
 #include "core/surface_vertex.hpp"
 #include "core/triangle_setup.hpp"
 
@@ -73,6 +74,9 @@ struct DrawRecord {
   const Texture* normal_map = nullptr;
   FetchFn nmap_fetch = nullptr;
   Mat4 view{};  // the camera's view matrix (environment maps: world to eye directions)
+  // Signature of everything above that decides pixels (core/strip_inputs.hpp), with the
+  // material of per-pixel lighting; set once per draw when strip skipping is on.
+  uint32_t inputs = 0;
 };
 
 // Span families a renderer links: Renderer<PF, K, kFeatures>. Firmware that draws no textures
@@ -103,6 +107,11 @@ struct FrameStorage {
   std::span<uint32_t> lighting_tables{};
   // Phong draws: lighting prepared per material (draws of equal materials share an entry).
   std::span<PreparedLighting> pixel_lights{};
+  // Skipping unchanged strips (core/strip_inputs.hpp; may stay empty: every strip is rendered):
+  // 2 x ceil(height / K) words, this frame's input signature of each strip and the last
+  // rendered frame's. The renderer leaves out a strip whose signatures agree when its sink
+  // retains the previous frame (StripSink::retains_frame).
+  std::span<uint32_t> strip_inputs{};
 };
 
 class FrameBuilder {
@@ -136,6 +145,10 @@ class FrameBuilder {
   int height() const { return height_; }
   int strip_height() const { return strip_height_; }
   GuardBand guard_band() const { return guard_; }
+  // Forgets the strip signatures of the last frame, so that the next render draws every strip:
+  // call it after changing texel or table memory in place, or when the display was drawn on by
+  // someone else. (configure() and a render that fails or overflows the active list do it too.)
+  void invalidate_strips() { inputs_known_ = false; }
 
  protected:
   enum class BinResult : uint8_t { kBinned, kBackface, kZeroArea, kOffscreen, kCapacity };
@@ -145,6 +158,9 @@ class FrameBuilder {
   Status add_draw_record(const DrawState& state, bool has_color_planes, size_t vertices,
                          uint32_t triangles, uint8_t& index);
   Status add_phong_state(const DrawState& state, const PreparedLighting& pl, DrawRecord& r);
+  bool skipping() const { return !storage_.strip_inputs.empty(); }
+  // The signature of draw record `index`, once its state is final.
+  void sign_draw(uint8_t index, const Material* per_pixel_material);
   bool surfaces_fit(size_t vertices) const {
     return storage_.surfaces.size() >= vertex_count_ &&
            vertices <= storage_.surfaces.size() - vertex_count_;
@@ -160,6 +176,7 @@ class FrameBuilder {
   size_t vertex_count_ = 0, triangle_count_ = 0, draw_count_ = 0;
   size_t pixel_light_count_ = 0, table_words_used_ = 0;
   bool configured_ = false;
+  bool inputs_known_ = false;      // strip_inputs' second half describes the last frame rendered
   uint32_t features_ = kAllSpans;  // set by the Renderer
 };
 

@@ -24,7 +24,9 @@ struct FrameStats {
   // Raster work.
   uint32_t vertices_transformed = 0;
   uint32_t strips = 0;
-  uint32_t empty_strips = 0;  // strips with no active triangle (background fill only)
+  uint32_t empty_strips = 0;      // strips with no active triangle (background fill only)
+  uint32_t strips_skipped = 0;    // inputs unchanged since the last frame: not rendered at all
+  uint32_t triangles_set_up = 0;  // binned triangles that reached triangle setup
   uint32_t spans = 0;
   uint32_t pixels_tested = 0;   // pixels inside spans
   uint32_t pixels_written = 0;  // pixels that passed the depth test and were written

@@ -44,10 +44,15 @@ class Renderer : public FrameBuilder {
 
   // Rasterizes the frame built since begin_frame(). On a sink error the frame is abandoned and
   // the sink's status returned; the renderer is ready for the next frame either way.
+  // With FrameStorage::strip_inputs, a sink that retains_frame() and no depth sink, strips whose
+  // inputs equal the last rendered frame's are not rendered: the sink is told to keep() them.
+  // The renderer assumes the sink shows its last frame: after rendering into another sink (or
+  // drawing on the display otherwise) call invalidate_strips().
   Status render(StripSink<PF>& sink, DepthSink* depth_sink = nullptr);
 
  private:
   void activate(int strip);
+  void skip_strip(int strip, int y0, int rows);
   void resolve_fetchers();
   void raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows);
   void retire(int next_row);
@@ -68,13 +73,33 @@ Status Renderer<PF, K, kFeatures>::render(StripSink<PF>& sink, DepthSink* depth_
   for (size_t i = 0; i < free_count_; ++i)
     free_slots[i] = static_cast<uint16_t>(free_count_ - 1 - i);
 
+  // Until this frame has reached the display whole, the signatures describe nothing shown.
+  const bool had_inputs = inputs_known_;
+  inputs_known_ = false;
   Status st = sink.begin_frame(static_cast<uint16_t>(width_), static_cast<uint16_t>(height_));
   if (st != Status::kOk) return st;
+  const bool may_skip = had_inputs && depth_sink == nullptr && sink.retains_frame();
+  uint32_t* inputs = skipping() ? storage_.strip_inputs.data() : nullptr;
+  const size_t last = static_cast<size_t>(strips_);  // the last frame's half
   const Pixel bg = PF::encode(background_);
   for (int s = 0; s < strips_; ++s) {
     const int y0 = s * K;
     const int rows = std::min(K, height_ - y0);
     const size_t count = w * static_cast<size_t>(rows);
+    const StripRect rect{0, static_cast<uint16_t>(y0), static_cast<uint16_t>(width_),
+                         static_cast<uint16_t>(rows)};
+    if (inputs != nullptr) {
+      const auto i = static_cast<size_t>(s);
+      if (may_skip && inputs[i] == inputs[last + i]) {
+        skip_strip(s, y0, rows);
+        ++stats_.strips_skipped;
+        ++stats_.strips;
+        st = sink.keep(rect);
+        if (st != Status::kOk) return st;
+        continue;
+      }
+      inputs[last + i] = inputs[i];
+    }
     StripLease<PF> lease;
     st = sink.acquire(lease);
     if (st != Status::kOk) return st;
@@ -93,14 +118,65 @@ Status Renderer<PF, K, kFeatures>::render(StripSink<PF>& sink, DepthSink* depth_
         raster_triangle(storage_.active[order[i]], px.data(), y0, rows);
       retire(y0 + rows);
     }
-    StripRect rect{0, static_cast<uint16_t>(y0), static_cast<uint16_t>(width_),
-                   static_cast<uint16_t>(rows)};
     if (depth_sink) depth_sink->on_depth(rect, depth);
     ++stats_.strips;
     st = sink.submit(rect, std::move(lease));
     if (st != Status::kOk) return st;
   }
-  return sink.end_frame();
+  st = sink.end_frame();
+  // A frame that dropped triangles for lack of active slots dropped them by what else was
+  // active, which a strip's signature does not describe: the next frame renders everything.
+  inputs_known_ = st == Status::kOk && inputs != nullptr && stats_.dropped_active_capacity == 0;
+  return st;
+}
+
+// A strip whose inputs did not change: the triangles active in it are stepped over its rows
+// without drawing; those that start in it and end in it are never set up, those that go on are
+// handed to the next strip's bucket (in submission order), to be set up at that strip's first row.
+template <class PF, int K, uint32_t kFeatures>
+void Renderer<PF, K, kFeatures>::skip_strip(int strip, int y0, int rows) {
+  const int next_row = y0 + rows;
+  const uint16_t* order = storage_.active_index.data();
+  for (size_t i = 0; i < active_count_; ++i) {
+    ActiveTriangle& t = storage_.active[order[i]];
+    const int end = std::min<int>(t.last_row, next_row - 1);
+    int r = t.row;
+    for (; r <= end; ++r) {
+      if (r == t.mid_row + 1) t.short_edge = t.bottom_edge;
+      t.long_edge.step();
+      t.short_edge.step();
+    }
+    t.row = static_cast<int16_t>(r);
+  }
+  retire(next_row);
+
+  uint16_t& head = storage_.buckets[static_cast<size_t>(strip)];
+  uint16_t carried = kNoTriangle, *tail = &carried;
+  if (strip + 1 < strips_) {
+    for (uint16_t i = head; i != kNoTriangle; i = storage_.triangles[i].next) {
+      const BinnedTriangle& bt = storage_.triangles[i];
+      const int32_t ymax = std::max({storage_.vertices[bt.v[0]].y, storage_.vertices[bt.v[1]].y,
+                                     storage_.vertices[bt.v[2]].y});
+      if (last_row_at_or_above(ymax) >= next_row) {
+        *tail = i;
+        tail = &storage_.triangles[i].next;
+      }
+    }
+  }
+  *tail = kNoTriangle;
+  head = kNoTriangle;
+  // Both lists run from the latest submission to the earliest: merge them.
+  uint16_t& next = storage_.buckets[static_cast<size_t>(strip + 1 < strips_ ? strip + 1 : strip)];
+  uint16_t a = carried, b = strip + 1 < strips_ ? next : kNoTriangle, merged = kNoTriangle;
+  uint16_t* out = &merged;
+  while (a != kNoTriangle || b != kNoTriangle) {
+    uint16_t& pick = (b == kNoTriangle || (a != kNoTriangle && a > b)) ? a : b;
+    *out = pick;
+    out = &storage_.triangles[pick].next;
+    pick = storage_.triangles[pick].next;
+  }
+  *out = kNoTriangle;
+  if (strip + 1 < strips_) next = merged;
 }
 
 // The texel fetchers of this frame's draws (DrawRecord): here, in the template, so that only
@@ -148,7 +224,8 @@ void Renderer<PF, K, kFeatures>::activate(int strip) {
     for (int k = 0; k < 3; ++k) in.v[k] = &storage_.vertices[bt.v[k]];
     int32_t ymin = std::min({in.v[0]->y, in.v[1]->y, in.v[2]->y});
     int32_t ymax = std::max({in.v[0]->y, in.v[1]->y, in.v[2]->y});
-    in.first_row = std::max<int32_t>(first_row_below(ymin), 0);
+    // Triangles carried over a skipped strip start at this strip's first row.
+    in.first_row = std::max<int32_t>({first_row_below(ymin), 0, strip * K});
     in.last_row = std::min<int32_t>(last_row_at_or_above(ymax), height_ - 1);
     in.colors = dr.texture ? ColorPlanes::kNone : dr.colors;
     in.depth = dr.depth;
@@ -185,6 +262,7 @@ void Renderer<PF, K, kFeatures>::activate(int strip) {
     }
     ActiveTriangle& t = storage_.active[slot];
     setup_triangle(in, t);
+    ++stats_.triangles_set_up;
     t.index = node;
     t.draw = bt.draw;
     t.flat = bt.flat;
@@ -195,7 +273,8 @@ void Renderer<PF, K, kFeatures>::activate(int strip) {
 }
 
 template <class PF, int K, uint32_t kFeatures>
-void Renderer<PF, K, kFeatures>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows) {
+void Renderer<PF, K, kFeatures>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0,
+                                                 int rows) {
   const DrawRecord& dr = storage_.draws[t.draw];
   const SpanFn<PF> fn = span_routine<PF>(dr.depth, dr.colors);
   TexSpanFn<PF> tex_fn = nullptr;

@@ -70,6 +70,17 @@ class StripSink {
   // All strips submitted: waits (bounded) until every transfer has completed.
   virtual Status end_frame() = 0;
 
+  // Asked after begin_frame(): true when the display holds the previous frame's pixels and
+  // this frame has its size, so that a strip left out with keep() still shows them. Only then
+  // does the renderer skip strips whose inputs did not change (FrameStorage::strip_inputs).
+  virtual bool retains_frame() const { return false; }
+  // In place of acquire + submit: the strip `rect` is the previous frame's, unchanged.
+  // Only called when retains_frame() said true.
+  virtual Status keep(const StripRect& rect) {
+    (void)rect;
+    return Status::kInvalidArgument;
+  }
+
  protected:
   StripSink() = default;
   ~StripSink() = default;

@@ -20,11 +20,13 @@ void gather_columns(std::span<Rgb565Be::Storage> px, const StripRect& rect, Colu
 
 void PanelSink::invalidate() {
   for (StripSignature& s : signatures_) s = StripSignature{};
+  retained_ = false;
 }
 
 Status PanelSink::begin(uint16_t width, uint16_t height) {
   // What a frame given up without end_frame() left on the wire: its strips are good pixels, so
   // let them finish; if that fails the panel's RAM is unknown (drain() forgets it).
+  if (in_frame_) retained_ = false;  // given up part way: the panel shows a mix
   (void)drain();
   for (Buffer& b : buffers_)
     if (b.state == State::kLent) b.state = State::kFree;  // leases of the old frame are void
@@ -136,7 +138,23 @@ Status PanelSink::end() {
     abort_ = st;
     stats_.status = st;
   }
+  retained_ = st == Status::kOk;
   return st;
+}
+
+Status PanelSink::keep_strip(const StripRect& rect) {
+  if (!in_frame_) return Status::kBusy;
+  if (abort_ != Status::kOk) return abort_;
+  if (!retained_ || rect.width == 0 || rect.height == 0 || rect.x + rect.width > frame_width_ ||
+      rect.y + rect.height > frame_height_)
+    return Status::kInvalidArgument;
+  if (!signatures_.empty() && next_signature_ < signatures_.size()) {
+    // The n-th signature must describe this strip as the panel holds it.
+    if (signatures_[next_signature_].rect != rect) return Status::kInvalidArgument;
+    ++next_signature_;
+  }
+  ++stats_.strips_kept;
+  return Status::kOk;
 }
 
 // CASET/RASET/RAMWR for the buffer's window, then its pixels.
@@ -192,6 +210,7 @@ Status PanelSink::drain() {
 
 Status PanelSink::abort(Status st) {
   release_all();
+  retained_ = false;
   abort_ = st;
   stats_.status = st;
   return st;

@@ -56,6 +56,7 @@ struct PanelSinkStats {
   uint32_t strips_narrowed = 0;   // of those, sent with their changed columns only
   uint32_t strips_skipped = 0;    // unchanged: nothing sent
   uint32_t strips_unchecked = 0;  // sent whole: no signature left for them
+  uint32_t strips_kept = 0;       // not rendered (inputs unchanged): nothing sent
   uint32_t waits = 0;             // bounded waits for a transfer
   Status status = Status::kOk;    // what aborted the frame, kOk if nothing did
 
@@ -87,6 +88,11 @@ class PanelSink final : public StripSink<Rgb565Be> {
     return take(rect, strip);
   }
   Status end_frame() override { return end(); }
+  // The panel's RAM holds the previous frame when that frame ended without error, at this size,
+  // since the last Panel::init()/set_rotation() and invalidate().
+  bool retains_frame() const override { return in_frame_ && retained_; }
+  // Sends nothing; the strip's signature (if any) stays what the panel holds.
+  Status keep(const StripRect& rect) override { return keep_strip(rect); }
 
   // Forget what the panel holds (e.g. after drawing on it directly): the next frame sends all.
   void invalidate();
@@ -112,6 +118,7 @@ class PanelSink final : public StripSink<Rgb565Be> {
   Status lend_buffer(StripLease<Rgb565Be>& out);
   Status take(const StripRect& rect, StripLease<Rgb565Be>& strip);
   Status end();
+  Status keep_strip(const StripRect& rect);
   Status start(uint8_t slot);
   Status finish_transfer();
   Status drain();
@@ -126,6 +133,7 @@ class PanelSink final : public StripSink<Rgb565Be> {
   uint8_t queued_ = kNone;
   uint8_t next_lend_ = 0;
   bool in_frame_ = false;
+  bool retained_ = false;  // the panel shows the last frame, whole (see retains_frame)
   Status abort_ = Status::kOk;
   uint16_t frame_width_ = 0, frame_height_ = 0;
   uint16_t known_width_ = 0, known_height_ = 0;  // the frame size the signatures describe

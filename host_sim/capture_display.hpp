@@ -25,11 +25,16 @@ class CaptureDisplay final : public StripSink<PF> {
   }
 
   Status begin_frame(uint16_t width, uint16_t height) override {
+    // The previous frame stays in place (a panel's RAM does the same): strips the renderer
+    // keeps show it.
+    retained_ = complete_ && width == width_ && height == height_;
+    complete_ = false;
     width_ = width;
     height_ = height;
-    frame_.assign(size_t{width} * height, Pixel{});
+    if (!retained_) frame_.assign(size_t{width} * height, Pixel{});
     rows_seen_.assign(height, 0);
     strips_ = 0;
+    kept_ = 0;
     bytes_ = 0;
     lent_[0] = lent_[1] = false;
     error_.clear();
@@ -77,8 +82,23 @@ class CaptureDisplay final : public StripSink<PF> {
         return Status::kDisplayError;
       }
     }
+    complete_ = true;
     return Status::kOk;
   }
+
+  bool retains_frame() const override { return retained_ && retain_enabled_; }
+  Status keep(const StripRect& rect) override {
+    if (!retained_ || rect.x + rect.width > width_ || rect.y + rect.height > height_) {
+      error_ = "keep: no previous frame of this size, or a strip outside the frame";
+      return Status::kInvalidArgument;
+    }
+    for (int r = 0; r < rect.height; ++r) ++rows_seen_[static_cast<size_t>(rect.y + r)];
+    ++kept_;
+    return Status::kOk;
+  }
+  // Whether to offer the renderer to keep strips (on by default; off: every strip is sent).
+  void set_retain(bool on) { retain_enabled_ = on; }
+  uint32_t kept() const { return kept_; }
 
   ImageRgb8 image() const {
     ImageRgb8 img;
@@ -105,7 +125,8 @@ class CaptureDisplay final : public StripSink<PF> {
   std::vector<Pixel> frame_;
   std::vector<uint8_t> rows_seen_;
   uint16_t width_ = 0, height_ = 0;
-  uint32_t strips_ = 0;
+  uint32_t strips_ = 0, kept_ = 0;
+  bool retained_ = false, complete_ = false, retain_enabled_ = true;
   uint64_t bytes_ = 0;
   std::string error_;
 };

@@ -35,7 +35,8 @@ const std::array<std::array<uint16_t, 3>, 8> kTriangles = {
 
 class Scene {
  public:
-  Scene()
+  // skip: strip input signatures, so that strips with unchanged inputs are not rendered.
+  explicit Scene(bool skip = false)
       : vertices_(256),
         triangles_(256),
         draws_(4),
@@ -43,11 +44,14 @@ class Scene {
         active_(64),
         active_index_(128),
         depth_(size_t{kWidth} * kRows),
+        inputs_(skip ? 2 * kStrips : 0),
         renderer_(std::make_unique<Renderer<PF, kRows, 0>>()) {
-    configured_ = renderer_->configure(
-        {vertices_, triangles_, draws_, buckets_, active_, active_index_, depth_}, kWidth, kHeight);
+    FrameStorage s{vertices_, triangles_, draws_, buckets_, active_, active_index_, depth_};
+    s.strip_inputs = inputs_;
+    configured_ = renderer_->configure(s, kWidth, kHeight);
   }
   Status configured() const { return configured_; }
+  const FrameStats& stats() const { return renderer_->stats(); }
 
   // The octahedron turned by `angle` degrees about y and moved by dx along x (both Q16.16).
   Status render(StripSink<PF>& sink, Fixed angle, Fixed dx) {
@@ -82,6 +86,7 @@ class Scene {
   std::vector<ActiveTriangle> active_;
   std::vector<uint16_t> active_index_;
   std::vector<uint16_t> depth_;
+  std::vector<uint32_t> inputs_;
   std::unique_ptr<Renderer<PF, kRows, 0>> renderer_;
   Status configured_ = Status::kInvalidArgument;
 };
@@ -129,6 +134,56 @@ TEST(RendererToPanel, TheModuleShowsTheRenderedFrameAndSkipsWhatDidNotChange) {
 
   ASSERT_EQ(scene.render(sink, a40, moved), Status::kOk);  // turned
   ASSERT_EQ(scene.render(capture, a40, moved), Status::kOk);
+  expect_same();
+}
+
+// With strip input signatures the renderer does not even render the strips whose inputs did not
+// change; the sink keeps them (sends nothing), and the module still shows the right frame.
+TEST(RendererToPanel, StripsWithUnchangedInputsAreNeitherRenderedNorSent) {
+  test::RecordingBus bus;
+  Panel panel(bus, ili9341_320x240());
+  ASSERT_EQ(panel.init(), Status::kOk);
+  std::vector<PF::Storage> b0(size_t{kWidth} * kRows), b1(size_t{kWidth} * kRows);
+  std::vector<StripSignature> signatures(kStrips);
+  PanelSink sink(panel, b0, b1, signatures, 100);
+  host::CaptureDisplay<PF> capture(size_t{kWidth} * kRows);
+  Scene scene(true), reference;
+  ASSERT_EQ(scene.configured(), Status::kOk);
+  auto expect_same = [&]() {
+    const std::vector<uint16_t> shown = test::view(bus.ram, panel.config());
+    const std::vector<PF::Storage>& want = capture.raw_frame();
+    ASSERT_EQ(shown.size(), want.size());
+    size_t wrong = 0;
+    for (size_t i = 0; i < shown.size(); ++i) wrong += shown[i] != PF::to_value(want[i]);
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_EQ(bus.ram.errors(), 0);
+  };
+  const Fixed a25 = Fixed::from_int(25), still = Fixed::from_int(0);
+  const Fixed moved = Fixed::from_double(0.05);
+
+  ASSERT_EQ(scene.render(sink, a25, still), Status::kOk);
+  EXPECT_EQ(scene.stats().strips_skipped, 0u);
+  ASSERT_EQ(scene.render(sink, a25, still), Status::kOk);  // the same inputs
+  EXPECT_EQ(scene.stats().strips_skipped, kStrips);
+  EXPECT_EQ(scene.stats().triangles_set_up, 0u);
+  EXPECT_EQ(sink.stats().strips_kept, kStrips);
+  EXPECT_EQ(sink.stats().bytes(), 0u);
+
+  ASSERT_EQ(scene.render(sink, a25, moved), Status::kOk);
+  ASSERT_EQ(reference.render(capture, a25, moved), Status::kOk);
+  const uint32_t skipped = scene.stats().strips_skipped;
+  EXPECT_GT(skipped, 0u);
+  EXPECT_LT(skipped, kStrips);
+  EXPECT_EQ(sink.stats().strips_kept, skipped);
+  EXPECT_EQ(sink.stats().strips_kept + sink.stats().strips_sent + sink.stats().strips_skipped,
+            kStrips);
+  expect_same();
+
+  // After init() the module's RAM is unknown: the sink retains nothing, every strip is rendered.
+  ASSERT_EQ(panel.init(), Status::kOk);
+  ASSERT_EQ(scene.render(sink, a25, moved), Status::kOk);
+  EXPECT_EQ(scene.stats().strips_skipped, 0u);
+  EXPECT_EQ(sink.stats().strips_kept, 0u);
   expect_same();
 }
 
