@@ -29,11 +29,15 @@ class NullSink final : public StripSink<PF> {
     return Status::kOk;
   }
   Status end_frame() override { return Status::kOk; }
+  // As a panel would: with `retain`, strips the renderer leaves unchanged are kept (not sent).
+  bool retains_frame() const override { return retain_; }
+  Status keep(const StripRect&) override { return Status::kOk; }
+  void set_retain(bool on) { retain_ = on; }
   uint64_t sum() const { return sum_; }
 
  private:
   std::vector<typename PF::Storage> a_, b_;
-  bool flip_ = false;
+  bool flip_ = false, retain_ = false;
   uint64_t sum_ = 0;
 };
 
