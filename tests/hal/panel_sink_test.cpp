@@ -431,6 +431,60 @@ TEST(PanelSinkSkip, SizeChangeRotationInvalidateAndFullStoreSendEverything) {
   EXPECT_EQ(rig.sink.stats().strips_sent, 0u);
 }
 
+// keep(): the renderer leaves a strip out; the sink sends nothing and the panel keeps showing it.
+TEST(PanelSinkKeep, KeptStripsSendNothingAndOnlyARetainedFrameMayBeKept) {
+  Rig rig;
+  Frame f(240, 240, 0);
+  f.noise(11);
+  // Nothing shown yet: nothing can be kept.
+  ASSERT_EQ(rig.sink.begin_frame(240, 240), Status::kOk);
+  EXPECT_FALSE(rig.sink.retains_frame());
+  EXPECT_EQ(rig.sink.keep({0, 0, 240, 8}), Status::kInvalidArgument);
+  ASSERT_EQ(send_frame(rig.sink, rig.bus, f, 8), Status::kOk);
+  EXPECT_FALSE(rig.sink.retains_frame());  // between frames
+
+  // Keep the even strips, send the odd ones changed.
+  Frame g = f;
+  for (int y0 = 8; y0 < 240; y0 += 16) g.rect(100, y0, 10, 8, 0x1234);
+  rig.bus.clear_events();
+  ASSERT_EQ(rig.sink.begin_frame(240, 240), Status::kOk);
+  ASSERT_TRUE(rig.sink.retains_frame());
+  for (int y0 = 0; y0 < 240; y0 += 8) {
+    const StripRect rect{0, uint16_t(y0), 240, 8};
+    if ((y0 / 8) % 2 == 0) {
+      ASSERT_EQ(rig.sink.keep(rect), Status::kOk);
+      continue;
+    }
+    StripLease<Rgb565Be> lease;
+    ASSERT_EQ(rig.sink.acquire(lease), Status::kOk);
+    for (size_t i = 0; i < size_t{240} * 8; ++i)
+      lease.pixels()[i] = Rgb565Be::from_value(g.values[size_t(y0) * 240 + i]);
+    ASSERT_EQ(rig.sink.submit(rect, std::move(lease)), Status::kOk);
+  }
+  ASSERT_EQ(rig.sink.end_frame(), Status::kOk);
+  EXPECT_EQ(rig.sink.stats().strips_kept, 15u);
+  EXPECT_EQ(rig.sink.stats().strips_narrowed, 15u);
+  EXPECT_EQ(rig.sink.stats().pixel_bytes, 15u * 30 * 8 * 2);  // band 3 of 8: 30 columns
+  rig.expect_shows(g);
+
+  // A rectangle that is not the one the strip's signature describes, or outside the frame.
+  ASSERT_EQ(rig.sink.begin_frame(240, 240), Status::kOk);
+  EXPECT_EQ(rig.sink.keep({0, 4, 240, 8}), Status::kInvalidArgument);
+  EXPECT_EQ(rig.sink.keep({0, 236, 240, 8}), Status::kInvalidArgument);
+  ASSERT_EQ(send_frame(rig.sink, rig.bus, g, 8), Status::kOk);
+
+  // After init() (the module's RAM is unknown) or invalidate(), nothing is retained.
+  ASSERT_EQ(rig.panel.init(), Status::kOk);
+  ASSERT_EQ(rig.sink.begin_frame(240, 240), Status::kOk);
+  EXPECT_FALSE(rig.sink.retains_frame());
+  ASSERT_EQ(send_frame(rig.sink, rig.bus, g, 8), Status::kOk);
+  ASSERT_EQ(rig.sink.begin_frame(240, 240), Status::kOk);
+  EXPECT_TRUE(rig.sink.retains_frame());
+  rig.sink.invalidate();
+  EXPECT_FALSE(rig.sink.retains_frame());
+  EXPECT_EQ(rig.sink.keep({0, 0, 240, 8}), Status::kInvalidArgument);
+}
+
 TEST(StripSignature, BandsAndChangedColumns) {
   static_assert(band_begin(240, 1) == 30 && band_begin(240, 8) == 240);
   static_assert(band_begin(135, 1) == 16 && band_begin(135, 7) == 118);
