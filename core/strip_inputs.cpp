@@ -88,7 +88,7 @@ void InputHash::add(const DrawRecord& d) {
     if (t != nullptr)
       add(*t);
     else
-      add(0u);
+      add(uint32_t{0});
   }
   add(uint32_t{d.table.size} | uint32_t{d.table.split} << 16);
   add(d.view);
