@@ -276,7 +276,7 @@ template <class PF, int K, uint32_t kFeatures>
 void Renderer<PF, K, kFeatures>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0,
                                                  int rows) {
   const DrawRecord& dr = storage_.draws[t.draw];
-  const SpanFn<PF> fn = span_routine<PF>(dr.depth, dr.colors);
+  const SpanFn<PF> fn = span_routine<PF>(dr.depth, t.colors);
   TexSpanFn<PF> tex_fn = nullptr;
   PhongSpanFn<PF> phong_fn = nullptr;
   if constexpr ((kFeatures & kPhongSpans) != 0)

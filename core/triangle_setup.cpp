@@ -140,6 +140,33 @@ Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]) {
   return make_plane(PlaneBasis(v), a);
 }
 
+// Whether screen-linear colours are within half an 8-bit level of perspective-correct ones
+// everywhere in the triangle, so that the per-pixel division can be skipped. With barycentrics
+// l_i and their perspective-correct counterparts l'_i = (l_i / w_i) / sum_j (l_j / w_j),
+// |l'_i - l_i| <= l_i (R - 1) for R = w_max / w_min, so the two colours differ by at most
+// (R - 1) x D, D the largest difference of a channel between two vertices. Half a level is
+// 32768 / 510 > 64 in Q1.15: (w_max - w_min) D <= 64 w_min suffices (products < 2^47).
+namespace {
+bool affine_is_exact_enough(const ScreenVertex* const v[3]) {
+  uint32_t wmin = v[0]->w, wmax = v[0]->w;
+  for (int i = 1; i < 3; ++i) {
+    wmin = v[i]->w < wmin ? v[i]->w : wmin;
+    wmax = v[i]->w > wmax ? v[i]->w : wmax;
+  }
+  uint32_t d = 0;
+  for (int c = 0; c < 3; ++c) {
+    uint32_t lo = channel(v[0]->color, c), hi = lo;
+    for (int i = 1; i < 3; ++i) {
+      const uint32_t x = channel(v[i]->color, c);
+      lo = x < lo ? x : lo;
+      hi = x > hi ? x : hi;
+    }
+    d = hi - lo > d ? hi - lo : d;
+  }
+  return uint64_t{wmax - wmin} * d <= uint64_t{wmin} * 64;
+}
+}  // namespace
+
 void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
   const ScreenVertex* v[3] = {in.v[0], in.v[1], in.v[2]};
   const SurfaceVertex* sf[3] = {in.phong.s[0], in.phong.s[1], in.phong.s[2]};
@@ -180,7 +207,10 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
   const bool tex = in.tex.texture != nullptr;
   uint32_t q[3] = {1u << 30, 1u << 30, 1u << 30};
   const bool phong = sf[0] != nullptr;
-  if (in.colors == ColorPlanes::kPerspective || (tex && in.tex.perspective) || phong) {
+  t.colors = in.colors;
+  if (in.colors == ColorPlanes::kPerspective && !tex && !phong && affine_is_exact_enough(v))
+    t.colors = ColorPlanes::kAffine;
+  if (t.colors == ColorPlanes::kPerspective || (tex && in.tex.perspective) || phong) {
     uint32_t wmin = v[0]->w;
     for (int i = 1; i < 3; ++i) wmin = v[i]->w < wmin ? v[i]->w : wmin;
     for (int i = 0; i < 3; ++i) {
@@ -190,13 +220,13 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
     }
     t.q = make_plane(pb, q);
   }
-  if (in.colors == ColorPlanes::kPerspective) {
+  if (t.colors == ColorPlanes::kPerspective) {
     for (int c = 0; c < 3; ++c) {
       uint32_t cq[3];
       for (int i = 0; i < 3; ++i) cq[i] = scale_by_q(channel(v[i]->color, c), q[i]);
       t.c[c] = make_plane(pb, cq);
     }
-  } else if (in.colors == ColorPlanes::kAffine) {
+  } else if (t.colors == ColorPlanes::kAffine) {
     for (int c = 0; c < 3; ++c) {
       uint32_t cv[3];
       for (int i = 0; i < 3; ++i) cv[i] = uint32_t{channel(v[i]->color, c)} << 15;

@@ -51,7 +51,10 @@ struct ActiveTriangle {
   uint16_t index = 0;      // binned triangle index: submission order
   bool long_is_left = false;
   uint8_t draw = 0;  // draw record of the triangle's state
-  Rgb8 flat{};       // colour of flat-shaded triangles
+  // The colour planes this triangle has: the draw's, except that a perspective-correct draw's
+  // triangle gets affine planes when they are within half an 8-bit level of it (setup_triangle).
+  ColorPlanes colors = ColorPlanes::kNone;
+  Rgb8 flat{};  // colour of flat-shaded triangles
   Plane z;
   Plane q;
   Plane c[3];
