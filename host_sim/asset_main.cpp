@@ -11,11 +11,13 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: lineraster-asset --obj FILE [--texture FILE.png] [--format rgb565|rgb888|l8|palette8]\n"
-    "  [--mipmaps] [--fit] --name IDENT --out FILE.hpp\n"
+    "  [--mipmaps] [--fit] [--subdivide N] --name IDENT --out FILE.hpp\n"
     "Writes a C++ header with the mesh (Q16.16 positions, Q1.14 normals, Q12.20 uvs, indices,\n"
     "materials) and the texture (level 0 and, with --mipmaps, its mip chain) as constexpr data in\n"
     "namespace IDENT. Without --texture, the first material's map_Kd is used (if any).\n"
-    "Defaults: --format rgb565, no mipmaps, no fit.\n";
+    "--subdivide N: each triangle split in 4 at its edge midpoints, N times (0..4), before the "
+    "fit.\n"
+    "Defaults: --format rgb565, no mipmaps, no fit, no subdivision.\n";
 
 int fail(const std::string& msg) {
   std::fprintf(stderr, "lineraster-asset: %s\n", msg.c_str());
@@ -73,6 +75,10 @@ int main(int argc, char** argv) {
       o.mipmaps = true;
     } else if (a == "--fit") {
       o.fit = true;
+    } else if (a == "--subdivide") {
+      if (!value(v) || v.size() != 1 || v[0] < '0' || v[0] > '4')
+        return fail("--subdivide needs 0..4");
+      o.subdivide = v[0] - '0';
     } else if (a == "--name") {
       if (!value(o.name)) return fail("--name needs a C++ identifier");
       have_name = true;

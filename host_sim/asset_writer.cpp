@@ -11,6 +11,7 @@
 #include <cstring>
 #include <limits>
 
+#include "host_sim/mesh_prep.hpp"
 #include "host_sim/obj_loader.hpp"
 
 namespace lr::host {
@@ -104,6 +105,8 @@ bool load_asset(const AssetOptions& o, AssetData& out, std::string& error) {
     return fail(error, "--name '" + o.name + "' is not a usable C++ identifier");
   HostMesh mesh;
   if (!load_obj(o.obj_path, mesh, error)) return false;
+  if (o.subdivide < 0 || o.subdivide > 4) return fail(error, "--subdivide needs 0..4");
+  if (o.subdivide > 0) mesh = subdivide(mesh, o.subdivide);
   SceneOptions so;
   so.fit = o.fit;
   so.use_mesh_materials = true;
@@ -155,7 +158,9 @@ std::string asset_header_text(const AssetOptions& o, const AssetData& d) {
   s += "//   mesh:    " + comment_safe(o.obj_path) +
        " (with its MTL files): " + std::to_string(d.draws.size()) + " draw(s), " +
        std::to_string(vertices) + " vertices, " + std::to_string(triangles) + " triangles" +
-       (o.fit ? ", fitted (--fit)" : "") + "\n";
+       (o.fit ? ", fitted (--fit)" : "") +
+       (o.subdivide > 0 ? ", subdivided " + std::to_string(o.subdivide) + "x (--subdivide)" : "") +
+       "\n";
   if (d.has_texture) {
     const Texture& t = d.texture.texture;
     s += "//   texture: " + comment_safe(d.texture_path) + ": " +

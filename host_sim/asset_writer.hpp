@@ -36,6 +36,7 @@ struct AssetOptions {
   TexelFormat format = TexelFormat::kRgb565;
   bool mipmaps = false;
   bool fit = false;
+  int subdivide = 0;         // midpoint subdivision levels (mesh_prep.hpp: subdivide), 0..4
   std::string name;          // a C++ identifier: the header's namespace
   std::string command_line;  // recorded in the header's comment ("" = none)
 };

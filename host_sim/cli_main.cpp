@@ -19,6 +19,7 @@
 #include "host_sim/display_spec.hpp"
 #include "host_sim/emulator_bus.hpp"
 #include "host_sim/image_io.hpp"
+#include "host_sim/mesh_prep.hpp"
 #include "host_sim/obj_loader.hpp"
 #include "host_sim/panel_emulator.hpp"
 #include "host_sim/scene.hpp"
@@ -44,7 +45,7 @@ constexpr const char* kUsage =
     "  [--no-depth] [--cull back|none] [--depth-out FILE.png] [--strip-height 1|2|4|8|16|32]\n"
     "  [--stats] [--texture FILE.png] [--filter nearest|bilinear] [--wrap repeat|clamp]\n"
     "  [--perspective exact|span8|span16|span32|affine] [--mipmap none|nearest|linear]\n"
-    "  [--texture-format rgb565|rgb888|l8|palette8]\n"
+    "  [--texture-format rgb565|rgb888|l8|palette8] [--subdivide N]\n"
     "Phong only (--shading phong): [--lighting exact|table] [--lighting-table N]\n"
     "  [--lighting-table-filter nearest|bilinear] [--envmap FILE.png] [--normalmap FILE.png]\n"
     "--light: repeatable, at most 4, not with --light-dir; colour r,g,b default 1,1,1; c,l,q:\n"
@@ -54,7 +55,8 @@ constexpr const char* kUsage =
     "  [--display spidev:DEVICE,dc=CHIP:LINE,rst=CHIP:LINE[,bl=CHIP:LINE][,hz=N]]\n"
     "PANEL: st7789:240x240|240x320|135x240|320x240[:ROT] or ili9341:240x320|320x240[:ROT], ROT\n"
     "  0|90|180|270 (default 0); the frame is the panel's size. spidev and ft232h need --panel.\n"
-    "--frames N: N frames turning the model 360/N degrees about y each, statistics per frame.\n";
+    "--frames N: N frames turning the model 360/N degrees about y each, statistics per frame.\n"
+    "--subdivide N: split each triangle in 4 at its edge midpoints, N times (0..4).\n";
 
 int fail(const std::string& msg) {
   std::fprintf(stderr, "lineraster-sim: %s\n", msg.c_str());
@@ -313,7 +315,8 @@ int main(int argc, char** argv) {
   lr::host::DisplaySpec display;
   lr::PanelConfig panel_config{};
   bool has_panel = false, width_given = false, height_given = false;
-  int frames = 0;  // 0: no --frames
+  int frames = 0;        // 0: no --frames
+  int subdivisions = 0;  // --subdivide
   for (int i = 1; i < argc; ++i) {
     std::string_view a = argv[i];
     // A value never starts with "--": "--obj --out x.png" is a missing value, not a file "--out".
@@ -348,7 +351,7 @@ int main(int argc, char** argv) {
                a == "--mipmap" || a == "--texture-format" || a == "--light" ||
                a == "--global-ambient" || a == "--lighting" || a == "--lighting-table" ||
                a == "--lighting-table-filter" || a == "--envmap" || a == "--normalmap" ||
-               a == "--display" || a == "--panel" || a == "--frames") {
+               a == "--display" || a == "--panel" || a == "--frames" || a == "--subdivide") {
       if (!value(v)) return fail(std::string(a) + ": missing value");
       const std::string bad = std::string(a) + ": bad value '" + std::string(v) + "'";
       if (a == "--obj") {
@@ -373,6 +376,10 @@ int main(int argc, char** argv) {
         std::string why;
         if (!lr::host::parse_panel_spec(v, panel_config, why)) return fail(bad + " (" + why + ")");
         has_panel = true;
+      } else if (a == "--subdivide") {
+        int n;
+        if (!parse_int(v, n) || n < 0 || n > 4) return fail(bad + " (0..4)");
+        subdivisions = n;
       } else if (a == "--frames") {
         int n;
         if (!parse_int(v, n) || n < 1 || n > 3600) return fail(bad + " (1..3600)");
@@ -574,6 +581,7 @@ int main(int argc, char** argv) {
   lr::host::HostMesh mesh;
   std::string error;
   if (!lr::host::load_obj(obj, mesh, error)) return fail(error);
+  if (subdivisions > 0) mesh = lr::host::subdivide(mesh, subdivisions);
   PanelOutput panel;  // opened after the first frame rendered: a bad scene leaves it alone
 
   // One frame, or --frames N turning the model about y; each frame rendered, then sent.

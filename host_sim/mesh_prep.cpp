@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <unordered_map>
+#include <utility>
 
 #include "host_sim/tangents.hpp"
 
@@ -248,6 +250,62 @@ HostMesh make_torus_knot(int p, int q, double tube, int segments, int sides) {
       add_quad(m, at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
   }
   finish(m);
+  return m;
+}
+
+HostMesh subdivide(const HostMesh& mesh, int levels) {
+  HostMesh m = mesh;
+  for (int level = 0; level < levels; ++level) {
+    HostMesh out;
+    out.positions = m.positions;
+    out.normals = m.normals;
+    out.colors = m.colors;
+    out.uvs = m.uvs;
+    out.materials = m.materials;
+    out.triangles.reserve(4 * m.triangles.size());
+    out.triangle_material.reserve(4 * m.triangles.size());
+    std::unordered_map<uint64_t, uint32_t> midpoints;
+    midpoints.reserve(2 * m.triangles.size());
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+      if (a > b) std::swap(a, b);  // one order: the same arithmetic for both triangles
+      const uint64_t key = (uint64_t{a} << 32) | b;
+      const auto [it, added] = midpoints.emplace(key, static_cast<uint32_t>(out.positions.size()));
+      if (!added) return it->second;
+      const Vec3d& pa = m.positions[a];
+      const Vec3d& pb = m.positions[b];
+      out.positions.push_back(
+          {(pa[0] + pb[0]) * 0.5, (pa[1] + pb[1]) * 0.5, (pa[2] + pb[2]) * 0.5});
+      if (!m.normals.empty()) {
+        const Vec3d& na = m.normals[a];
+        const Vec3d& nb = m.normals[b];
+        const Vec3d sum{na[0] + nb[0], na[1] + nb[1], na[2] + nb[2]};
+        out.normals.push_back(dot(sum, sum) > 0.0 ? normalized(sum) : na);
+      }
+      if (!m.colors.empty()) {
+        const Vec3d& ca = m.colors[a];
+        const Vec3d& cb = m.colors[b];
+        out.colors.push_back({(ca[0] + cb[0]) * 0.5, (ca[1] + cb[1]) * 0.5, (ca[2] + cb[2]) * 0.5});
+      }
+      if (!m.uvs.empty()) {
+        const Vec2d& ua = m.uvs[a];
+        const Vec2d& ub = m.uvs[b];
+        out.uvs.push_back({(ua[0] + ub[0]) * 0.5, (ua[1] + ub[1]) * 0.5});
+      }
+      return it->second;
+    };
+    for (size_t t = 0; t < m.triangles.size(); ++t) {
+      const auto [a, b, c] = m.triangles[t];
+      const uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+      const int32_t material = t < m.triangle_material.size() ? m.triangle_material[t] : -1;
+      for (const std::array<uint32_t, 3>& child : {std::array{a, ab, ca}, std::array{ab, b, bc},
+                                                   std::array{ca, bc, c}, std::array{ab, bc, ca}}) {
+        out.triangles.push_back(child);
+        out.triangle_material.push_back(material);
+      }
+    }
+    if (!m.tangents.empty()) compute_tangents(out);
+    m = std::move(out);
+  }
   return m;
 }
 

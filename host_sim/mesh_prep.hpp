@@ -50,6 +50,18 @@ HostMesh make_grid(int nx, int ny);
 // and p, q are in 1..16.
 HostMesh make_torus_knot(int p, int q, double tube, int segments, int sides);
 
+// Midpoint subdivision, `levels` times (0: unchanged): each triangle (a, b, c) becomes four,
+// (a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca), with the orientation of the original and
+// its material. A midpoint is made once per edge (an unordered pair of vertex indices) and shared
+// by the two triangles of that edge, so T triangles with E distinct edges over V vertices become
+// 4T triangles over V + E vertices, and a closed mesh stays closed (midpoints of seam
+// duplicates are computed from bit-identical positions in the same order: bit-identical too).
+// At a midpoint: position, uv and colour are the averages of the edge's ends, the normal is
+// their sum normalised (the first end's normal if the sum vanishes). Tangents, when the mesh has
+// them, are recomputed (compute_tangents). The fit transform (bounds) does not change: midpoints
+// lie within the bounding box.
+HostMesh subdivide(const HostMesh& mesh, int levels);
+
 // Sets colors[i] = 0.5 + 0.5 * normal[i] (a visible, smooth vertex colour for demos and tests).
 void set_colors_from_normals(HostMesh& mesh);
 

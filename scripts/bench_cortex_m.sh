@@ -4,7 +4,9 @@
 # prints, per case, the exact Thumb instructions of one 320x240 frame, per pixel written and per
 # input triangle, and the frame rate a core would reach at 1.0 and 1.5 cycles per instruction,
 # next to the SPI limit. Also checks that every case's frame checksum equals the host build's
-# (lr_bench_host), i.e. the measured frames are the host's frames.
+# (lr_bench_host), i.e. the measured frames are the host's frames. Then, per tree, the early-out
+# table and the cost-per-feature table (scripts/bench_tables.py: differences of the cases'
+# counts, solved as it explains).
 # Benchmark figures: printed, never compared with a threshold.
 #
 # Usage: scripts/bench_cortex_m.sh [build tree ...]  (default: build/cortex-m4f build/cortex-m0plus)
@@ -62,7 +64,10 @@ for tree in "${trees[@]}"; do
         if (n != 2 * c) { print "marker count " n " != 2 x " c " cases" > "/dev/stderr"; exit 1 }
         for (i = 0; i < c; i++) {
           ins = counts[2 * i + 1] - counts[2 * i]
-          printf "| %s | %s | %s | %s | %s | %s | %.1f | %.1f |\n", name[i], commas(px[i]), commas(tri[i]), commas(ins), commas(ins / px[i] + 0.5), commas(ins / tri[i] + 0.5), mhz * 1e6 / ins, mhz * 1e6 / (1.5 * ins)
+          # The early-out cases may write no pixel or draw no triangle.
+          ppx = px[i] > 0 ? commas(ins / px[i] + 0.5) : "-"
+          ptri = tri[i] > 0 ? commas(ins / tri[i] + 0.5) : "-"
+          printf "| %s | %s | %s | %s | %s | %s | %.1f | %.1f |\n", name[i], commas(px[i]), commas(tri[i]), commas(ins), ppx, ptri, mhz * 1e6 / ins, mhz * 1e6 / (1.5 * ins)
         }
       }' <<<"$run" || fail "could not pair the marker counts with the cases ($tree)"
   } >"$table"
@@ -80,6 +85,7 @@ for tree in "${trees[@]}"; do
           budget["cube_nearest"] = 850000; what["cube_nearest"] = "perspective-correct textured cube, ~40,000 pixels, nearest"
           budget["cube_bilinear"] = 2000000; what["cube_bilinear"] = "the same cube, bilinear"
           budget["ground_nearest"] = 800000; what["ground_nearest"] = "ground plane to the horizon, nearest"
+          budget["knot64k_gouraud"] = 16000000; what["knot64k_gouraud"] = "the knot subdivided twice, 64,000 triangles, Gouraud"
         }
         /^icount: marker / { counts[n++] = $NF }
         /^lr_bench: case / { name[c++] = $3 }
@@ -93,6 +99,11 @@ for tree in "${trees[@]}"; do
         }' <<<"$run"
     } >>"$table"
   fi
+  # The early-out and cost-per-feature tables, from the same markers (scripts/bench_tables.py).
+  {
+    echo
+    python3 scripts/bench_tables.py <<<"$run"
+  } >>"$table" || fail "could not compute the early-out and feature tables ($tree)"
   cat "$table"
   echo
   echo "bench_cortex_m: $core: $(grep -c '^lr_bench: case ' <<<"$run") frames identical to the host's"

@@ -1,7 +1,8 @@
 #!/bin/bash
 # Exact host instruction count of one frame of the demo scene (valgrind --tool=callgrind,
-# counting only inside render_frame: begin_frame + draw + render, no file loading), and a frame
-# of a small moving object over a still scene with and without skipping unchanged strips.
+# counting only inside render_frame: begin_frame + draw + render, no file loading), of a frame
+# of a small moving object over a still scene with and without skipping unchanged strips, and of
+# the Cortex-M budget cases of the benchmark firmware's host build, when that is built in the tree.
 # Usage: scripts/count_instructions.sh [build dir, default build/release]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,4 +25,29 @@ for mode in full skip; do
   ir=$(grep -E '^summary:|^totals:' "$out/cg_$mode.out" | head -1 | awk '{print $2}')
   echo "moving cube over the still knot, $mode: $(cat "$out/stdout"); host instructions per frame: $ir"
 done
+
+# The Cortex-M budget cases on the host: the benchmark firmware built for the host
+# (tests/firmware_host/lr_bench_host), one callgrind dump each time lr_bench_marker is entered, so
+# that a case's measured frame (between its two markers, the region scripts/bench_cortex_m.sh
+# counts under QEMU) is the dump made at its second marker: dump 2i + 2 for case i.
+bench_host="$build/tests/firmware_host/lr_bench_host"
+if [ -x "$bench_host" ]; then
+  valgrind --tool=callgrind --callgrind-out-file="$out/bench.out" --dump-before=lr_bench_marker \
+    "$bench_host" >"$out/bench_stdout" 2>"$out/bench_stderr" || { cat "$out/bench_stderr"; exit 1; }
+  echo "host instructions per frame of the Cortex-M budget cases (callgrind Ir, x86-64, $bench_host):"
+  i=0
+  while read -r name; do
+    dump="$out/bench.out.$((2 * i + 2))"
+    i=$((i + 1))
+    case "$name" in
+      knot_gouraud | cube_nearest | cube_bilinear | ground_nearest | knot64k_gouraud) ;;
+      *) continue ;;
+    esac
+    [ -f "$dump" ] || { echo "count_instructions: no callgrind dump $dump for $name"; exit 1; }
+    printf '  %-16s %s\n' "$name" "$(grep -E '^summary:|^totals:' "$dump" | head -1 | awk '{print $2}')"
+  done < <(awk '/^lr_bench: case / { print $3 }' "$out/bench_stdout")
+else
+  echo "count_instructions: $bench_host not built: no host counts of the Cortex-M budget cases" \
+    "(cmake --build $build --target lr_bench_host)"
+fi
 rm -rf "$out"

@@ -89,6 +89,20 @@ TEST(Cli, PpmByExtensionAndStatsJson) {
   EXPECT_NE(r.out.find("\"bytes_per_binned_triangle\":16"), std::string::npos);
 }
 
+// --subdivide N: four triangles for one, N times, over V + E vertices (host_sim/mesh_prep.hpp).
+TEST(Cli, SubdivideMultipliesTheTrianglesByFour) {
+  std::string out = tmpdir() + "/s.ppm";
+  Outcome r = run("--obj " + kMesh + " --fit --subdivide 1 --stats --out " + out);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"triangles_in\":16000"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"vertices_transformed\":8421"), std::string::npos) << r.out;
+  for (const char* bad : {"5", "-1", "x", "1.5"}) {
+    Outcome b = run("--obj " + kMesh + " --subdivide " + bad + " --out " + out + "2");
+    EXPECT_EQ(b.status, 2) << bad;
+    EXPECT_NE(b.err.find("--subdivide"), std::string::npos) << b.err;
+  }
+}
+
 TEST(Cli, DepthOutIsA16BitImage) {
   std::string out = tmpdir() + "/c.png", depth = tmpdir() + "/c_depth.png";
   Outcome r = run("--obj " + kMesh + " --fit --out " + out + " --depth-out " + depth);

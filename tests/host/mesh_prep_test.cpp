@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -221,6 +223,67 @@ TEST(MeshPrep, FitOfDegenerateAndExtremeMeshes) {
   EXPECT_TRUE(std::isfinite(h.center[0]) && std::isfinite(h.scale));
   EXPECT_GT(h.scale, 0.0);
   EXPECT_NEAR(h.scale * 1e308 * std::sqrt(1.0 + 0.25 + 0.25), 1.0, 1e-12);
+}
+
+// Distinct edges (unordered index pairs) of a mesh.
+size_t edge_count(const HostMesh& m) {
+  std::set<std::pair<uint32_t, uint32_t>> edges;
+  for (const auto& t : m.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = t[static_cast<size_t>(k)], b = t[static_cast<size_t>((k + 1) % 3)];
+      edges.insert({std::min(a, b), std::max(a, b)});
+    }
+  }
+  return edges.size();
+}
+
+TEST(MeshPrep, SubdivideSplitsEachTriangleInFourAndSharesMidpoints) {
+  // The demo knot's shape (with uv seams): T -> 4T, V -> V + E at each level, closed throughout.
+  HostMesh m = make_torus_knot(2, 3, 0.18, 40, 6);
+  for (int level = 1; level <= 2; ++level) {
+    const HostMesh s = subdivide(m, 1);
+    EXPECT_EQ(s.triangles.size(), 4 * m.triangles.size()) << "level " << level;
+    EXPECT_EQ(s.positions.size(), m.positions.size() + edge_count(m)) << "level " << level;
+    EXPECT_EQ(s.tangents.size(), s.positions.size());
+    expect_well_formed(s);
+    expect_closed_and_consistent(s);
+    expect_faces_agree_with_normals(s);
+    m = s;
+  }
+  EXPECT_EQ(subdivide(make_torus_knot(2, 3, 0.18, 40, 6), 2).triangles.size(), m.triangles.size());
+  EXPECT_EQ(subdivide(m, 0).triangles, m.triangles);
+}
+
+TEST(MeshPrep, SubdivideInterpolatesAtMidpoints) {
+  HostMesh m;
+  m.positions = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
+  m.normals = {{0, 0, 1}, {1, 0, 0}, {0, 0, 1}};
+  m.uvs = {{0, 0}, {1, 0.5}, {0, 1}};
+  m.colors = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.triangles = {{0, 1, 2}};
+  m.triangle_material = {3};
+  const HostMesh s = subdivide(m, 1);
+  ASSERT_EQ(s.positions.size(), 6u);
+  ASSERT_EQ(s.triangles.size(), 4u);
+  // The corner triangles keep the original corners, in the original order, and the material.
+  EXPECT_EQ(s.triangles[0][0], 0u);
+  EXPECT_EQ(s.triangles[1][1], 1u);
+  EXPECT_EQ(s.triangles[2][2], 2u);
+  for (int32_t mat : s.triangle_material) EXPECT_EQ(mat, 3);
+  // Midpoint of edge 0-1: vertex 3 (made first).
+  const uint32_t ab = s.triangles[0][1];
+  EXPECT_EQ(s.positions[ab], (Vec3d{1, 0, 0}));
+  EXPECT_NEAR(s.normals[ab][0], std::sqrt(0.5), 1e-15);
+  EXPECT_EQ(s.normals[ab][1], 0.0);
+  EXPECT_NEAR(s.normals[ab][2], std::sqrt(0.5), 1e-15);
+  EXPECT_EQ(s.uvs[ab], (Vec2d{0.5, 0.25}));
+  EXPECT_EQ(s.colors[ab], (Vec3d{0.5, 0.5, 0}));
+  // Same orientation: every child faces +z like the parent.
+  for (const auto& t : s.triangles) EXPECT_GT(face_normal(s, t)[2], 0.0);
+  // The fit does not change (midpoints lie inside the bounds).
+  const FitTransform f0 = fit_transform(m), f1 = fit_transform(s);
+  EXPECT_EQ(f0.center, f1.center);
+  EXPECT_EQ(f0.scale, f1.scale);
 }
 
 TEST(MeshPrep, ObjTextRoundTripsExactly) {
