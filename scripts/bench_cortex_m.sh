@@ -81,11 +81,11 @@ for tree in "${trees[@]}"; do
       awk '
         BEGIN {
           n = 0; c = 0
-          budget["knot_gouraud"] = 1600000; what["knot_gouraud"] = "closed Gouraud mesh, ~3,700 triangles, ~22,000 pixels"
+          budget["knot_gouraud_cullback"] = 1600000; what["knot_gouraud_cullback"] = "closed Gouraud mesh (back faces culled), ~3,700 triangles, ~22,000 pixels"
           budget["cube_nearest"] = 850000; what["cube_nearest"] = "perspective-correct textured cube, ~40,000 pixels, nearest"
           budget["cube_bilinear"] = 2000000; what["cube_bilinear"] = "the same cube, bilinear"
           budget["ground_nearest"] = 800000; what["ground_nearest"] = "ground plane to the horizon, nearest"
-          budget["knot64k_gouraud"] = 16000000; what["knot64k_gouraud"] = "the knot subdivided twice, 64,000 triangles, Gouraud"
+          budget["knot64k_gouraud"] = 16000000; what["knot64k_gouraud"] = "the knot subdivided twice, 64,000 triangles, Gouraud, back faces culled"
         }
         /^icount: marker / { counts[n++] = $NF }
         /^lr_bench: case / { name[c++] = $3 }

@@ -40,7 +40,7 @@ if [ -x "$bench_host" ]; then
     dump="$out/bench.out.$((2 * i + 2))"
     i=$((i + 1))
     case "$name" in
-      knot_gouraud | cube_nearest | cube_bilinear | ground_nearest | knot64k_gouraud) ;;
+      knot_gouraud_cullback | cube_nearest | cube_bilinear | ground_nearest | knot64k_gouraud) ;;
       *) continue ;;
     esac
     [ -f "$dump" ] || { echo "count_instructions: no callgrind dump $dump for $name"; exit 1; }
