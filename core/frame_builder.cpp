@@ -1,5 +1,7 @@
 #include "core/frame_builder.hpp"
 
+#include "core/divide.hpp"
+
 namespace lr {
 namespace {
 
@@ -145,11 +147,19 @@ bool FrameBuilder::project(const ClipCoord& c, ScreenVertex& v) const {
     z >>= 1;
     w >>= 1;
   }
+  // Three quotients by the same w: one reciprocal (core/divide.hpp), exact, the values of
+  // round_div(n, w) (half away from zero; n is negative left of and below the viewport).
+  const Divider by_w(static_cast<uint64_t>(w));
+  auto rounded = [&](int64_t n) {
+    const auto half = static_cast<uint64_t>(w / 2);
+    return n >= 0 ? static_cast<int64_t>(by_w.quotient(static_cast<uint64_t>(n) + half))
+                  : -static_cast<int64_t>(by_w.quotient(static_cast<uint64_t>(-n) + half));
+  };
   // (x + w) <= (gx + 1) w and (gx + 1) * width <= 8192 + width: product < 1.5 * 2^51.
-  v.x = static_cast<int32_t>(round_div((x + w) * (int64_t{width_} * kHalfPixel), w));
-  v.y = static_cast<int32_t>(round_div((w - y) * (int64_t{height_} * kHalfPixel), w));
+  v.x = static_cast<int32_t>(rounded((x + w) * (int64_t{width_} * kHalfPixel)));
+  v.y = static_cast<int32_t>(rounded((w - y) * (int64_t{height_} * kHalfPixel)));
   // (z + w) <= 2w < 2^32 and 65535 * 2^15 < 2^31: product < 2^63.
-  int64_t zz = round_div((z + w) * (int64_t{65535} << 15), w);
+  int64_t zz = rounded((z + w) * (int64_t{65535} << 15));
   v.z = static_cast<uint32_t>(zz < 0 ? 0 : zz > kDepthMax ? kDepthMax : zz);
   int64_t wq = c.w >> (ClipCoord::kFracBits - 16);
   v.w = static_cast<uint32_t>(wq < 1 ? 1 : wq > 0xFFFFFFFF ? 0xFFFFFFFF : wq);
@@ -477,6 +487,9 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     }
   }
 
+  // Back faces' colours (two-sided Gouraud): written before use on each back face; declared once
+  // here because a value-initialised local per triangle cost a 120-byte memset each.
+  ScreenVertex back_colors[3];
   for (uint32_t t = 0; t < tri_count; ++t) {
     const auto& tri = mesh.triangles[t];
     if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
@@ -512,7 +525,6 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
         back = !front_facing_clip(clip);
       }
     }
-    ScreenVertex back_colors[3];
     if (back && gouraud)
       for (int k = 0; k < 3; ++k) light_vertex(tri[static_cast<size_t>(k)], true, back_colors[k]);
 

@@ -1,5 +1,7 @@
 #include "core/triangle_setup.hpp"
 
+#include "core/divide.hpp"
+
 #include <utility>
 
 namespace lr {
@@ -8,20 +10,6 @@ void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const Pl
                  const uint32_t q[3], ActiveTriangle& t);
 
 namespace {
-
-// High 64 bits of a 64 x 64-bit product: one instruction where the compiler has a 128-bit type
-// (x86-64, AArch64), else from 32-bit halves (32-bit Arm). The same exact value either way.
-uint64_t mul_hi(uint64_t a, uint64_t b) {
-#if defined(__SIZEOF_INT128__)
-  return static_cast<uint64_t>((static_cast<unsigned __int128>(a) * b) >> 64);
-#else
-  const uint64_t al = static_cast<uint32_t>(a), ah = a >> 32;
-  const uint64_t bl = static_cast<uint32_t>(b), bh = b >> 32;
-  const uint64_t ll = al * bl, lh = al * bh, hl = ah * bl, hh = ah * bh;
-  const uint64_t mid = (ll >> 32) + static_cast<uint32_t>(lh) + static_cast<uint32_t>(hl);
-  return hh + (lh >> 32) + (hl >> 32) + (mid >> 32);
-#endif
-}
 
 // 256 * n / area rounded half away from zero, for area > 0. Returns false when the truncated
 // quotient n / area is 2^30 or more in magnitude (a sub-subpixel needle).

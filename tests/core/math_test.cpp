@@ -6,6 +6,8 @@
 
 #include "core/camera.hpp"
 #include "core/color.hpp"
+#include "core/divide.hpp"
+#include "core/edge.hpp"
 #include "core/material.hpp"
 #include "core/pixel_format.hpp"
 #include "core/pow_table.hpp"
@@ -175,6 +177,80 @@ TEST(Color, ByteRoundingAndRgb565) {
   EXPECT_EQ(to_byte(32768), 255);
   Rgb8 red = Rgb565Be::decode(Rgb565Be::encode({255, 0, 0}));
   EXPECT_EQ(red, (Rgb8{255, 0, 0}));
+}
+
+}  // namespace
+}  // namespace lr
+
+namespace lr {
+namespace {
+
+// The reciprocal divider gives the quotient of a division, bit for bit: divisors of every bit
+// length, numerators near 0, near multiples of d and up to 2^63 - 1.
+TEST(Divide, QuotientEqualsDivisionForEveryRange) {
+  uint64_t s = 0x9E3779B97F4A7C15u;
+  auto next = [&s]() {
+    s ^= s << 13;
+    s ^= s >> 7;
+    s ^= s << 17;
+    return s;
+  };
+  uint64_t checked = 0;
+  for (int bits = 1; bits <= 63; ++bits) {
+    for (int k = 0; k < 2000; ++k) {
+      uint64_t d = next() >> (64 - bits);
+      if (d == 0) d = 1;
+      const Divider div(d);
+      const uint64_t n[] = {next() >> 1,
+                            next() >> (1 + next() % 62),
+                            (next() >> 1) / d * d,
+                            (next() >> 1) / d * d - 1,
+                            d - 1,
+                            d,
+                            0,
+                            (uint64_t{1} << 63) - 1};
+      for (uint64_t v : n) {
+        if (v >= (uint64_t{1} << 63)) continue;
+        ASSERT_EQ(div.quotient(v), v / d) << v << " / " << d;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 900000u);
+}
+
+// The edge walker's 32-bit path and the 64-bit one (long edges far outside the viewport) both
+// hold X = ceil((N) / dy) with the error term of the header: checked against a direct 64-bit
+// evaluation for short and guard-band-long edges.
+TEST(EdgeWalker, InitMatchesTheExactFormulaOnBothPaths) {
+  uint64_t s = 12345;
+  auto next = [&s]() {
+    s = s * 6364136223846793005u + 1442695040888963407u;
+    return static_cast<int64_t>(s >> 33);
+  };
+  for (int i = 0; i < 200000; ++i) {
+    const int32_t range = i % 2 ? (1 << 14) : (1 << 22) - 1;  // short edges, then long ones
+    const auto xa = static_cast<int32_t>(next() % (2 * range) - range);
+    const auto ya = static_cast<int32_t>(next() % (2 * range) - range);
+    const auto xb = static_cast<int32_t>(next() % (2 * range) - range);
+    auto yb = static_cast<int32_t>(next() % (2 * range) - range);
+    if (yb <= ya) yb = ya + 1 + static_cast<int32_t>(next() % 1000);
+    // A row whose centre is on the edge (the rows a triangle asks for).
+    const int32_t r0 = first_row_below(ya), r1 = last_row_at_or_above(yb);
+    if (r1 < r0) continue;
+    const int32_t row = r0 + static_cast<int32_t>(next() % (r1 - r0 + 1));
+    EdgeWalker e;
+    e.init(xa, ya, xb, yb, row);
+    const int64_t dy = int64_t{yb} - ya, dx = int64_t{xb} - xa;
+    const int64_t n =
+        (int64_t{xa} - kHalfPixel) * dy + dx * (int64_t{row} * kSubpixel + kHalfPixel - ya);
+    const int64_t x = ceil_div(n, dy);
+    ASSERT_EQ(e.x, x);
+    ASSERT_EQ(e.err, x * dy - n);
+    ASSERT_EQ(e.step_q, floor_div(dx * kSubpixel, dy));
+    ASSERT_EQ(e.step_r, dx * kSubpixel - floor_div(dx * kSubpixel, dy) * dy);
+    ASSERT_EQ(e.dy, dy);
+  }
 }
 
 }  // namespace
