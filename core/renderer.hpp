@@ -15,6 +15,7 @@
 #include "core/phong_span.hpp"
 #include "core/pixel_format.hpp"
 #include "core/span.hpp"
+#include "core/strip_fill.hpp"
 #include "core/tex_span.hpp"
 #include "hal/display.hpp"
 
@@ -105,14 +106,14 @@ Status Renderer<PF, K, kFeatures>::render(StripSink<PF>& sink, DepthSink* depth_
     if (st != Status::kOk) return st;
     std::span<Pixel> px = lease.pixels();
     if (px.size() < count) return Status::kInvalidArgument;
-    std::fill_n(px.data(), count, bg);
+    fill_pixels(px.data(), count, bg);
     activate(s);
     std::span<uint16_t> depth = storage_.depth.first(count);
     if (active_count_ == 0) {
       ++stats_.empty_strips;
-      if (depth_sink) std::fill(depth.begin(), depth.end(), uint16_t{0xFFFF});
+      if (depth_sink) fill_pixels(depth.data(), count, uint16_t{0xFFFF});
     } else {
-      std::fill(depth.begin(), depth.end(), uint16_t{0xFFFF});
+      fill_pixels(depth.data(), count, uint16_t{0xFFFF});
       const uint16_t* order = storage_.active_index.data();
       for (size_t i = 0; i < active_count_; ++i)
         raster_triangle(storage_.active[order[i]], px.data(), y0, rows);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "core/camera.hpp"
 #include "core/color.hpp"
@@ -11,6 +12,7 @@
 #include "core/material.hpp"
 #include "core/pixel_format.hpp"
 #include "core/pow_table.hpp"
+#include "core/strip_fill.hpp"
 #include "core/trig.hpp"
 #include "core/vec.hpp"
 
@@ -250,6 +252,25 @@ TEST(EdgeWalker, InitMatchesTheExactFormulaOnBothPaths) {
     ASSERT_EQ(e.step_q, floor_div(dx * kSubpixel, dy));
     ASSERT_EQ(e.step_r, dx * kSubpixel - floor_div(dx * kSubpixel, dy) * dy);
     ASSERT_EQ(e.dy, dy);
+  }
+}
+
+// Strip fills: every length from 0 to 300 and values with equal and unequal bytes, the pixels
+// after the end untouched.
+TEST(StripFill, FillsExactlyNPixelsWithTheValue) {
+  for (uint16_t v : {uint16_t{0}, uint16_t{0xFFFF}, uint16_t{0x1234}, uint16_t{0x00FF}}) {
+    for (size_t n = 0; n <= 300; ++n) {
+      std::vector<uint16_t> buf(n + 3, 0xABCD);
+      fill_pixels(buf.data(), n, v);
+      for (size_t i = 0; i < n; ++i) ASSERT_EQ(buf[i], v) << n << " " << i;
+      for (size_t i = n; i < n + 3; ++i) ASSERT_EQ(buf[i], 0xABCD) << n;
+    }
+  }
+  for (Rgb8 v : {Rgb8{7, 7, 7}, Rgb8{1, 2, 3}}) {
+    std::vector<Rgb8> buf(260, Rgb8{9, 9, 9});
+    fill_pixels(buf.data(), 257, v);
+    for (size_t i = 0; i < 257; ++i) ASSERT_EQ(buf[i], v);
+    for (size_t i = 257; i < 260; ++i) ASSERT_EQ(buf[i], (Rgb8{9, 9, 9}));
   }
 }
 
