@@ -19,6 +19,7 @@
 #include "core/mesh.hpp"
 #include "core/sampler.hpp"
 #include "core/screen_vertex.hpp"
+#include "core/span_state.hpp"
 #include "core/status.hpp"
 #include "core/surface_vertex.hpp"
 #include "core/triangle_setup.hpp"
@@ -40,9 +41,6 @@ struct BinnedTriangle {
 };
 static_assert(sizeof(BinnedTriangle) == 16);
 
-// How a textured span interpolates: exactly per pixel, exactly every span_len pixels, or affine.
-enum class TexPersp : uint8_t { kExact, kSpan, kAffine };
-
 // The per-draw state the strip loop needs: which span routine, and its texture.
 struct DrawRecord {
   ColorPlanes colors = ColorPlanes::kNone;  // untextured draws
@@ -50,9 +48,8 @@ struct DrawRecord {
   bool flat = false;
   const Texture* texture = nullptr;  // textured draws
   // The texel fetchers (fetch, env_fetch, nmap_fetch) are chosen by the Renderer when it renders
-  // (Renderer::resolve_fetchers), from the texture's format, the filter and the wraps: only a
-  // Renderer whose features draw textures or Phong maps references the fetch routines, so
-  // firmware without them links none.
+  // (Renderer::resolve_fetchers), from the texture's format, the filter and the wraps, in the
+  // tables of its SpanSet: firmware links only the fetchers of the states its set admits.
   FetchFn fetch = nullptr;
   Filter filter = Filter::kNearest;  // the sampler's, for the texture and the normal map
   TexPersp persp = TexPersp::kExact;
@@ -73,16 +70,6 @@ struct DrawRecord {
   const Texture* normal_map = nullptr;
   FetchFn nmap_fetch = nullptr;
   Mat4 view{};  // the camera's view matrix (environment maps: world to eye directions)
-};
-
-// Span families a renderer links: Renderer<PF, K, kFeatures>. Firmware that draws no textures
-// or no Phong shading leaves them out and saves their routines' flash (the Phong routines are
-// about 290 KB of Thumb-2 code for one pixel format); draws that need a missing family are
-// refused with kInvalidArgument.
-enum SpanFeature : uint32_t {
-  kTexturedSpans = 1u << 0,
-  kPhongSpans = 1u << 1,
-  kAllSpans = kTexturedSpans | kPhongSpans,
 };
 
 // Storage for one frame, owned by the caller. Capacities are the spans' sizes (at most 65535
@@ -116,12 +103,14 @@ class FrameBuilder {
 
   // Adds a mesh. On a full store the triangles that do not fit are dropped and counted, and
   // kCapacity is returned; what fit is kept. kInvalidArgument (nothing added) when the mesh's
-  // arrays disagree in size or Gouraud lighting is asked of a mesh without normals.
+  // arrays disagree in size, Gouraud lighting is asked of a mesh without normals, or the
+  // renderer's SpanSet does not admit the draw's span state or its textures (span_state.hpp).
   Status draw(const Mesh& mesh, const Mat4& model, const Material& material,
               const DrawState& state);
 
   // Adds triangles already in screen space (snapped subpixel positions, depth, colour):
-  // for 2D overlays and for tests of the raster rules. Lighting does not apply.
+  // for 2D overlays and for tests of the raster rules. Lighting does not apply. kInvalidArgument
+  // (nothing added) when the renderer's SpanSet does not admit the draw's span state.
   Status draw_screen(std::span<const ScreenVertex> vertices,
                      std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
 
@@ -144,6 +133,10 @@ class FrameBuilder {
   bool project(const ClipCoord& c, ScreenVertex& out) const;
   Status add_draw_record(const DrawState& state, bool has_color_planes, size_t vertices,
                          uint32_t triangles, uint8_t& index);
+  // The span state of a draw (draw(): phong and color_planes as it decides them; draw_screen():
+  // phong false), and whether the renderer's set admits it and its textures.
+  SpanState span_state(const DrawState& state, bool phong, bool color_planes) const;
+  bool admitted(const DrawState& state, bool phong, bool color_planes) const;
   Status add_phong_state(const DrawState& state, const PreparedLighting& pl, DrawRecord& r);
   bool surfaces_fit(size_t vertices) const {
     return storage_.surfaces.size() >= vertex_count_ &&
@@ -160,7 +153,9 @@ class FrameBuilder {
   size_t vertex_count_ = 0, triangle_count_ = 0, draw_count_ = 0;
   size_t pixel_light_count_ = 0, table_words_used_ = 0;
   bool configured_ = false;
-  uint32_t features_ = kAllSpans;  // set by the Renderer
+  // The span states the Renderer links routines for (its SpanSet template argument): draws
+  // outside it are refused.
+  SpanSet span_set_ = kAllSpans;
 };
 
 }  // namespace lr

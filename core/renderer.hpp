@@ -1,10 +1,12 @@
 // The renderer: FrameBuilder's edge table, rasterized strip by strip into a display sink.
 //
-// Renderer<PF, K>: PF the strip's pixel format (Rgb565Be, Rgb888), K the strip height in rows
-// (1..32, compile time). Per strip: triangles whose first row falls in it join the active list
-// (kept in submission order, so depth ties and no-depth drawing resolve as in GL); each active
-// triangle fills its rows of the strip; finished triangles leave; the strip goes to the sink.
-// RAM: the caller's FrameStorage; nothing is allocated, nothing holds a frame.
+// Renderer<PF, K, kSpans>: PF the strip's pixel format (Rgb565Be, Rgb888), K the strip height in
+// rows (1..32, compile time), kSpans the span states it links routines for (span_state.hpp:
+// kAllSpans by default; draws outside the set are refused). Per strip: triangles whose first row
+// falls in it join the active list (kept in submission order, so depth ties and no-depth drawing
+// resolve as in GL); each active triangle fills its rows of the strip; finished triangles leave;
+// the strip goes to the sink. RAM: the caller's FrameStorage; nothing is allocated, nothing holds a
+// frame.
 #pragma once
 
 #include <algorithm>
@@ -29,7 +31,7 @@ class DepthSink {
   ~DepthSink() = default;
 };
 
-template <class PF, int K, uint32_t kFeatures = kAllSpans>
+template <class PF, int K, SpanSet kSpans = kAllSpans>
 class Renderer : public FrameBuilder {
   static_assert(K >= 1 && K <= 32, "strip height K must be 1..32");
 
@@ -38,7 +40,7 @@ class Renderer : public FrameBuilder {
   static constexpr int kStripHeight = K;
 
   Status configure(const FrameStorage& storage, int width, int height) {
-    features_ = kFeatures;
+    span_set_ = kSpans;
     return FrameBuilder::configure(storage, width, height, K);
   }
 
@@ -56,10 +58,10 @@ class Renderer : public FrameBuilder {
   size_t free_count_ = 0;
 };
 
-template <class PF, int K, uint32_t kFeatures>
-Status Renderer<PF, K, kFeatures>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
+template <class PF, int K, SpanSet kSpans>
+Status Renderer<PF, K, kSpans>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
   if (!configured_) return Status::kInvalidArgument;
-  if constexpr (kFeatures != 0) resolve_fetchers();
+  resolve_fetchers();
   const auto w = static_cast<size_t>(width_);
   stats_.bytes_per_strip = static_cast<uint32_t>(w * K * (sizeof(Pixel) + sizeof(uint16_t)));
   active_count_ = 0;
@@ -103,24 +105,24 @@ Status Renderer<PF, K, kFeatures>::render(StripSink<PF>& sink, DepthSink* depth_
   return sink.end_frame();
 }
 
-// The texel fetchers of this frame's draws (DrawRecord): here, in the template, so that only
-// renderers with textured or Phong spans reference the fetch routines (kFeatures == 0: such
-// draws are refused by draw()).
-template <class PF, int K, uint32_t kFeatures>
-void Renderer<PF, K, kFeatures>::resolve_fetchers() {
-  for (DrawRecord& d : storage_.draws.first(draw_count_)) {
-    if (d.texture != nullptr)
-      d.fetch = fetch_routine(d.texture->format, d.filter, d.wrap_s, d.wrap_t);
-    if (d.envmap != nullptr)
-      d.env_fetch = fetch_routine(d.envmap->format, Filter::kBilinear, Wrap::kClampToEdge,
-                                  Wrap::kClampToEdge);
-    if (d.normal_map != nullptr)
-      d.nmap_fetch = fetch_routine(d.normal_map->format, d.filter, d.wrap_s, d.wrap_t);
+// The texel fetchers of this frame's draws (DrawRecord): here, in the template, from the tables
+// of kSpans, so that a renderer references only the fetch routines its set admits (none without
+// textured or Phong states). draw() refused every draw whose textures the set does not admit.
+template <class PF, int K, SpanSet kSpans>
+void Renderer<PF, K, kSpans>::resolve_fetchers() {
+  if constexpr (kUsedRoutines<kSpans>.any_fetch()) {
+    for (DrawRecord& d : storage_.draws.first(draw_count_)) {
+      if (d.texture != nullptr)
+        d.fetch = fetch_routine<kSpans>(d.texture->format, d.filter, d.wrap_s, d.wrap_t);
+      if (d.envmap != nullptr) d.env_fetch = env_fetch_routine<kSpans>(d.envmap->format);
+      if (d.normal_map != nullptr)
+        d.nmap_fetch = fetch_routine<kSpans>(d.normal_map->format, d.filter, d.wrap_s, d.wrap_t);
+    }
   }
 }
 
-template <class PF, int K, uint32_t kFeatures>
-void Renderer<PF, K, kFeatures>::activate(int strip) {
+template <class PF, int K, SpanSet kSpans>
+void Renderer<PF, K, kSpans>::activate(int strip) {
   uint16_t& head = storage_.buckets[static_cast<size_t>(strip)];
   size_t m = 0;
   for (uint16_t i = head; i != kNoTriangle; i = storage_.triangles[i].next) ++m;
@@ -194,16 +196,17 @@ void Renderer<PF, K, kFeatures>::activate(int strip) {
   if (active_count_ > stats_.max_active) stats_.max_active = static_cast<uint32_t>(active_count_);
 }
 
-template <class PF, int K, uint32_t kFeatures>
-void Renderer<PF, K, kFeatures>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows) {
+template <class PF, int K, SpanSet kSpans>
+void Renderer<PF, K, kSpans>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows) {
   const DrawRecord& dr = storage_.draws[t.draw];
-  const SpanFn<PF> fn = span_routine<PF>(dr.depth, dr.colors);
+  // The routines of kSpans' tables (nullptr outside the set, whose draws draw() refused).
+  const SpanFn<PF> fn = span_routine<PF, kSpans>(dr.depth, dr.colors);
   TexSpanFn<PF> tex_fn = nullptr;
   PhongSpanFn<PF> phong_fn = nullptr;
-  if constexpr ((kFeatures & kPhongSpans) != 0)
-    if (dr.phong) phong_fn = phong_span_routine<PF>(dr);
-  if constexpr ((kFeatures & kTexturedSpans) != 0)
-    if (dr.texture && !dr.phong) tex_fn = tex_span_routine<PF>(dr);
+  if constexpr (detail::has(kSpans.families, SpanFamily::kPhong))
+    if (dr.phong) phong_fn = phong_span_routine<PF, kSpans>(dr);
+  if constexpr (detail::has(kSpans.families, SpanFamily::kTextured))
+    if (dr.texture && !dr.phong) tex_fn = tex_span_routine<PF, kSpans>(dr);
   const int end = std::min<int>(t.last_row, y0 + rows - 1);
   int r = t.row;
   for (; r <= end; ++r) {
@@ -229,8 +232,8 @@ void Renderer<PF, K, kFeatures>::raster_triangle(ActiveTriangle& t, Pixel* pixel
   t.row = static_cast<int16_t>(r);
 }
 
-template <class PF, int K, uint32_t kFeatures>
-void Renderer<PF, K, kFeatures>::retire(int next_row) {
+template <class PF, int K, SpanSet kSpans>
+void Renderer<PF, K, kSpans>::retire(int next_row) {
   uint16_t* order = storage_.active_index.data();
   uint16_t* free_slots = order + storage_.active.size();
   size_t kept = 0;

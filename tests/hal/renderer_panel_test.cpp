@@ -43,7 +43,7 @@ class Scene {
         active_(64),
         active_index_(128),
         depth_(size_t{kWidth} * kRows),
-        renderer_(std::make_unique<Renderer<PF, kRows, 0>>()) {
+        renderer_(std::make_unique<Renderer<PF, kRows, kUntexturedSpans>>()) {
     configured_ = renderer_->configure(
         {vertices_, triangles_, draws_, buckets_, active_, active_index_, depth_}, kWidth, kHeight);
   }
@@ -82,7 +82,7 @@ class Scene {
   std::vector<ActiveTriangle> active_;
   std::vector<uint16_t> active_index_;
   std::vector<uint16_t> depth_;
-  std::unique_ptr<Renderer<PF, kRows, 0>> renderer_;
+  std::unique_ptr<Renderer<PF, kRows, kUntexturedSpans>> renderer_;
   Status configured_ = Status::kInvalidArgument;
 };
 
