@@ -285,14 +285,14 @@ SpanState FrameBuilder::span_state(const DrawState& state, bool phong, bool colo
 
 bool FrameBuilder::admitted(const DrawState& state, bool phong, bool color_planes) const {
   const SpanState s = span_state(state, phong, color_planes);
-  if (!span_set_.admits(s)) return false;
+  if (!span_set_->admits(s)) return false;
   const Sampler& sm = state.sampler;
   if ((s.family == SpanFamily::kTextured || s.texture) &&
-      !span_set_.admits_sampler(state.texture->format, sm.wrap_s, sm.wrap_t))
+      !span_set_->admits_sampler(state.texture->format, sm.wrap_s, sm.wrap_t))
     return false;
-  if (s.normal_map && !span_set_.admits_sampler(state.normal_map->format, sm.wrap_s, sm.wrap_t))
+  if (s.normal_map && !span_set_->admits_sampler(state.normal_map->format, sm.wrap_s, sm.wrap_t))
     return false;
-  return !s.envmap || span_set_.admits_envmap(state.envmap->format);
+  return !s.envmap || span_set_->admits_envmap(state.envmap->format);
 }
 
 FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw,

@@ -153,9 +153,10 @@ class FrameBuilder {
   size_t vertex_count_ = 0, triangle_count_ = 0, draw_count_ = 0;
   size_t pixel_light_count_ = 0, table_words_used_ = 0;
   bool configured_ = false;
-  // The span states the Renderer links routines for (its SpanSet template argument): draws
-  // outside it are refused.
-  SpanSet span_set_ = kAllSpans;
+  // The span states the Renderer links routines for (its SpanSet template argument, a constant
+  // in flash: the builder keeps a pointer, as small as the mask it replaces): draws outside it
+  // are refused.
+  const SpanSet* span_set_ = &kAllSpans;
 };
 
 }  // namespace lr

@@ -40,7 +40,7 @@ class Renderer : public FrameBuilder {
   static constexpr int kStripHeight = K;
 
   Status configure(const FrameStorage& storage, int width, int height) {
-    span_set_ = kSpans;
+    span_set_ = &kSpans;
     return FrameBuilder::configure(storage, width, height, K);
   }
 

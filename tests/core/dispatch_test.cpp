@@ -700,5 +700,86 @@ TEST(SpanDispatch, PhongMapsModulateAndTheTableFollowsTheExactMethod) {
   EXPECT_LE(d.max, 3);
 }
 
+// ---- Every texel fetcher: format x filter x wraps ----------------------------------------------
+
+const Texture& format_texture(TexelFormat f) {
+  static const std::array<std::unique_ptr<OwnedTexture>, 4> t = {
+      checker(TexelFormat::kRgb565), checker(TexelFormat::kRgb888), checker(TexelFormat::kL8),
+      checker(TexelFormat::kPalette8)};
+  return t[static_cast<size_t>(f)]->tex;
+}
+
+// The textured state the fetcher sweep draws with: the texel alone, level 0.
+constexpr SpanState fetch_sweep_state(Filter filter) {
+  SpanState s;
+  s.family = SpanFamily::kTextured;
+  s.env = TexEnv::kReplace;
+  s.filter = filter;
+  return s;
+}
+
+template <size_t I>
+void check_fetcher() {
+  constexpr auto kFormat = static_cast<TexelFormat>(I / 8);
+  constexpr auto kFilter = static_cast<Filter>((I / 4) % 2);
+  constexpr Wrap kWs = (I & 2) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat;
+  constexpr Wrap kWt = (I & 1) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat;
+  static_assert(fetch_index(kFormat, kFilter, kWs, kWt) == I);
+  constexpr SpanState kState = fetch_sweep_state(kFilter);
+  constexpr SpanSet kSet = span_set_of(kState).only(kFormat).only_wraps(kWs, kWt);
+  for (size_t i = 0; i < kFetchRoutines; ++i)
+    EXPECT_EQ(kFetchTable<kSet>[i] != nullptr, i == I) << "fetcher " << I << " entry " << i;
+  EXPECT_EQ(kFetchTable<kSet>[I], kFetchTable<>[I]);
+
+  DrawSetup u = setup_for(kState, assets());
+  u.state.texture = &format_texture(kFormat);
+  u.state.sampler.wrap_s = kWs;
+  u.state.sampler.wrap_t = kWt;
+  Rig<kAllSpans> full;
+  auto small = std::make_unique<Rig<kSet>>();
+  ASSERT_EQ(draw_scene(full, u), Status::kOk) << "fetcher " << I;
+  ASSERT_EQ(draw_scene(*small, u), Status::kOk) << "fetcher " << I;
+  const host::ImageRgb8 want = full.render();
+  EXPECT_GT(count_fg(want), 100);
+  EXPECT_TRUE(small->render().rgb == want.rgb) << "fetcher " << I << ": frames differ";
+
+  // Another format, wrap or filter: refused.
+  ASSERT_EQ(draw_scene(*small, u), Status::kOk);
+  DrawState s = u.state;
+  s.texture = &format_texture(static_cast<TexelFormat>((I / 8 + 1) % 4));
+  EXPECT_EQ(small->r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
+            Status::kInvalidArgument);
+  s = u.state;
+  s.sampler.wrap_s = kWs == Wrap::kRepeat ? Wrap::kClampToEdge : Wrap::kRepeat;
+  EXPECT_EQ(small->r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
+            Status::kInvalidArgument);
+  s = u.state;
+  s.sampler.filter = kFilter == Filter::kNearest ? Filter::kBilinear : Filter::kNearest;
+  EXPECT_EQ(small->r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
+            Status::kInvalidArgument);
+}
+
+template <size_t... I>
+void check_fetchers(std::index_sequence<I...>) {
+  (check_fetcher<I>(), ...);
+}
+
+TEST(SpanDispatch, EveryFetcherRestrictedDrawsTheFullRenderersFrame) {
+  check_fetchers(std::make_index_sequence<kFetchRoutines>{});
+}
+
+TEST(SpanDispatch, RepeatAndClampDifferBeyondTheTexture) {
+  const Quad q({}, 3.0);  // u, v in [0, 3]
+  const Mat4 model = place(0, 0, -3, 0, 0);
+  DrawSetup u = setup_for(fetch_sweep_state(Filter::kNearest), assets());
+  u.state.texture = &format_texture(TexelFormat::kRgb888);
+  const host::ImageRgb8 repeat = render_quad(u, q, model);
+  u.state.sampler.wrap_s = u.state.sampler.wrap_t = Wrap::kClampToEdge;
+  const host::ImageRgb8 clamp = render_quad(u, q, model);
+  const Diff d = diff(repeat, clamp);
+  EXPECT_GT(d.covered, 150);
+  EXPECT_GE(d.max, 100);
+}
+
 }  // namespace
 }  // namespace lr
