@@ -73,6 +73,19 @@ bool front_facing_clip(const ClipCoord (&c)[3]) {
   return det > 0;  // counter-clockwise in NDC
 }
 
+// The colour planes of an untextured draw (add_draw_record and span_state agree through this).
+ColorPlanes color_planes_of(const DrawState& state, bool has_color_planes) {
+  if (state.shading == Shading::kFlat || !has_color_planes) return ColorPlanes::kNone;
+  return state.perspective == Perspective::kAffine ? ColorPlanes::kAffine
+                                                   : ColorPlanes::kPerspective;
+}
+
+TexPersp tex_persp_of(Perspective p) {
+  return p == Perspective::kExact    ? TexPersp::kExact
+         : p == Perspective::kAffine ? TexPersp::kAffine
+                                     : TexPersp::kSpan;
+}
+
 Rgb8 to_rgb8_sat(Color15 c) {
   auto b = [](uint16_t v) { return to_byte(clamp_c15(v)); };
   return {b(c.r), b(c.g), b(c.b)};
@@ -218,12 +231,7 @@ Status FrameBuilder::add_draw_record(const DrawState& state, bool has_color_plan
         break;
     }
   }
-  if (state.shading == Shading::kFlat || !has_color_planes) {
-    r.colors = ColorPlanes::kNone;
-  } else {
-    r.colors = state.perspective == Perspective::kAffine ? ColorPlanes::kAffine
-                                                         : ColorPlanes::kPerspective;
-  }
+  r.colors = color_planes_of(state, has_color_planes);
   index = static_cast<uint8_t>(draw_count_);
   storage_.draws[draw_count_++] = r;
   return Status::kOk;
@@ -277,6 +285,46 @@ Status FrameBuilder::add_phong_state(const DrawState& state, const PreparedLight
     r.table = {out.data(), size, split};
   }
   return Status::kOk;
+}
+
+SpanState FrameBuilder::span_state(const DrawState& state, bool phong, bool color_planes) const {
+  SpanState s;
+  s.depth = state.depth_test;
+  if (phong) {
+    s.family = SpanFamily::kPhong;
+    s.method = state.pixel_lighting;
+    // As add_phong_state: position planes when the lighting needs the surface position.
+    if (s.method == PixelLighting::kExact)
+      s.position = !lights_.normal_only();
+    else
+      s.table_bilinear = state.table.bilinear;
+    s.texture = state.texture != nullptr;
+    s.normal_map = state.normal_map != nullptr;
+    s.envmap = state.envmap != nullptr;
+    if (s.texture || s.normal_map) s.filter = state.sampler.filter;
+    if (s.texture) s.mip = state.sampler.mip;
+  } else if (state.texture != nullptr) {
+    s.family = SpanFamily::kTextured;
+    s.persp = tex_persp_of(state.perspective);
+    s.env = state.sampler.env;
+    s.mip = state.sampler.mip;
+    s.filter = state.sampler.filter;
+  } else {
+    s.colors = color_planes_of(state, color_planes);
+  }
+  return s;
+}
+
+bool FrameBuilder::admitted(const DrawState& state, bool phong, bool color_planes) const {
+  const SpanState s = span_state(state, phong, color_planes);
+  if (!span_set_->admits(s)) return false;
+  const Sampler& sm = state.sampler;
+  if ((s.family == SpanFamily::kTextured || s.texture) &&
+      !span_set_->admits_sampler(state.texture->format, sm.wrap_s, sm.wrap_t))
+    return false;
+  if (s.normal_map && !span_set_->admits_sampler(state.normal_map->format, sm.wrap_s, sm.wrap_t))
+    return false;
+  return !s.envmap || span_set_->admits_envmap(state.envmap->format);
 }
 
 FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
@@ -388,8 +436,10 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
   if (lit && state.shading != Shading::kFlat && mesh.normals.empty())
     return Status::kInvalidArgument;
   const bool textured = state.texture != nullptr;
-  if (textured && !(features_ & kTexturedSpans)) return Status::kInvalidArgument;
-  if (phong && !(features_ & kPhongSpans)) return Status::kInvalidArgument;
+  // Unlit meshes without vertex colours have one colour: no colour planes needed.
+  const bool color_planes = gouraud && (lit || !mesh.colors.empty() || textured);
+  // A state the renderer links no routine for is refused (nothing added, nothing counted).
+  if (!admitted(state, phong, color_planes)) return Status::kInvalidArgument;
   if (textured) {
     if (validate(*state.texture) != Status::kOk) return Status::kInvalidArgument;
     if (state.sampler.mip != MipMode::kNone && state.texture->level_count < 2)
@@ -418,8 +468,6 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     stats_.dropped_vertex_capacity += tri_count;
     return Status::kCapacity;
   }
-  // Unlit meshes without vertex colours have one colour: no colour planes needed.
-  bool color_planes = gouraud && (lit || !mesh.colors.empty() || textured);
   uint8_t draw_index = 0;
   if (add_draw_record(state, color_planes, n, tri_count, draw_index) != Status::kOk)
     return Status::kCapacity;
@@ -641,11 +689,11 @@ Status FrameBuilder::draw_screen(std::span<const ScreenVertex> vertices,
                                  std::span<const std::array<uint16_t, 3>> triangles,
                                  const DrawState& state) {
   if (!configured_) return Status::kInvalidArgument;
-  if (state.texture && !(features_ & kTexturedSpans)) return Status::kInvalidArgument;
+  const bool gouraud = state.shading == Shading::kGouraud;
+  if (!admitted(state, false, gouraud)) return Status::kInvalidArgument;
   const size_t n = vertices.size();
   const auto tri_count = static_cast<uint32_t>(triangles.size());
   stats_.triangles_in += tri_count;
-  bool gouraud = state.shading == Shading::kGouraud;
   uint8_t draw_index = 0;
   if (add_draw_record(state, gouraud, n, tri_count, draw_index) != Status::kOk)
     return Status::kCapacity;

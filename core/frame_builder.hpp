@@ -19,6 +19,7 @@
 #include "core/mesh.hpp"
 #include "core/sampler.hpp"
 #include "core/screen_vertex.hpp"
+#include "core/span_state.hpp"
 #include "core/status.hpp"
 #include "core/strip_inputs.hpp"
 #include "core/surface_vertex.hpp"
@@ -41,9 +42,6 @@ struct BinnedTriangle {
 };
 static_assert(sizeof(BinnedTriangle) == 16);
 
-// How a textured span interpolates: exactly per pixel, exactly every span_len pixels, or affine.
-enum class TexPersp : uint8_t { kExact, kSpan, kAffine };
-
 // The per-draw state the strip loop needs: which span routine, and its texture.
 struct DrawRecord {
   ColorPlanes colors = ColorPlanes::kNone;  // untextured draws
@@ -51,9 +49,8 @@ struct DrawRecord {
   bool flat = false;
   const Texture* texture = nullptr;  // textured draws
   // The texel fetchers (fetch, env_fetch, nmap_fetch) are chosen by the Renderer when it renders
-  // (Renderer::resolve_fetchers), from the texture's format, the filter and the wraps: only a
-  // Renderer whose features draw textures or Phong maps references the fetch routines, so
-  // firmware without them links none.
+  // (Renderer::resolve_fetchers), from the texture's format, the filter and the wraps, in the
+  // tables of its SpanSet: firmware links only the fetchers of the states its set admits.
   FetchFn fetch = nullptr;
   Filter filter = Filter::kNearest;  // the sampler's, for the texture and the normal map
   TexPersp persp = TexPersp::kExact;
@@ -77,16 +74,6 @@ struct DrawRecord {
   // Signature of everything above that decides pixels (core/strip_inputs.hpp), with the
   // material of per-pixel lighting; set once per draw when strip skipping is on.
   uint32_t inputs = 0;
-};
-
-// Span families a renderer links: Renderer<PF, K, kFeatures>. Firmware that draws no textures
-// or no Phong shading leaves them out and saves their routines' flash (the Phong routines are
-// about 290 KB of Thumb-2 code for one pixel format); draws that need a missing family are
-// refused with kInvalidArgument.
-enum SpanFeature : uint32_t {
-  kTexturedSpans = 1u << 0,
-  kPhongSpans = 1u << 1,
-  kAllSpans = kTexturedSpans | kPhongSpans,
 };
 
 // Storage for one frame, owned by the caller. Capacities are the spans' sizes (at most 65535
@@ -125,12 +112,14 @@ class FrameBuilder {
 
   // Adds a mesh. On a full store the triangles that do not fit are dropped and counted, and
   // kCapacity is returned; what fit is kept. kInvalidArgument (nothing added) when the mesh's
-  // arrays disagree in size or Gouraud lighting is asked of a mesh without normals.
+  // arrays disagree in size, Gouraud lighting is asked of a mesh without normals, or the
+  // renderer's SpanSet does not admit the draw's span state or its textures (span_state.hpp).
   Status draw(const Mesh& mesh, const Mat4& model, const Material& material,
               const DrawState& state);
 
   // Adds triangles already in screen space (snapped subpixel positions, depth, colour):
-  // for 2D overlays and for tests of the raster rules. Lighting does not apply.
+  // for 2D overlays and for tests of the raster rules. Lighting does not apply. kInvalidArgument
+  // (nothing added) when the renderer's SpanSet does not admit the draw's span state.
   Status draw_screen(std::span<const ScreenVertex> vertices,
                      std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
 
@@ -157,6 +146,10 @@ class FrameBuilder {
   bool project(const ClipCoord& c, ScreenVertex& out) const;
   Status add_draw_record(const DrawState& state, bool has_color_planes, size_t vertices,
                          uint32_t triangles, uint8_t& index);
+  // The span state of a draw (draw(): phong and color_planes as it decides them; draw_screen():
+  // phong false), and whether the renderer's set admits it and its textures.
+  SpanState span_state(const DrawState& state, bool phong, bool color_planes) const;
+  bool admitted(const DrawState& state, bool phong, bool color_planes) const;
   Status add_phong_state(const DrawState& state, const PreparedLighting& pl, DrawRecord& r);
   bool skipping() const { return !storage_.strip_inputs.empty(); }
   // The signature of draw record `index`, once its state is final.
@@ -176,8 +169,11 @@ class FrameBuilder {
   size_t vertex_count_ = 0, triangle_count_ = 0, draw_count_ = 0;
   size_t pixel_light_count_ = 0, table_words_used_ = 0;
   bool configured_ = false;
-  bool inputs_known_ = false;      // strip_inputs' second half describes the last frame rendered
-  uint32_t features_ = kAllSpans;  // set by the Renderer
+  bool inputs_known_ = false;  // strip_inputs' second half describes the last frame rendered
+  // The span states the Renderer links routines for (its SpanSet template argument, a constant
+  // in flash: the builder keeps a pointer, as small as the mask it replaces): draws outside it
+  // are refused.
+  const SpanSet* span_set_ = &kAllSpans;
 };
 
 }  // namespace lr

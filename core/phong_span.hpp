@@ -315,32 +315,35 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
 
 namespace detail {
 
-// Index bits: 1 depth, 2 table method, 4 second (exact: position planes; table: bilinear),
-// 8 texture, 16 normal map, 32 environment map.
-template <class PF, size_t I>
-constexpr PhongSpanFn<PF> phong_instance() {
-  return &fill_phong_span < PF, (I & 1) != 0,
-         (I & 2) != 0 ? PixelLighting::kTable : PixelLighting::kExact, (I & 4) != 0, (I & 8) != 0,
-         (I & 16) != 0, (I & 32) != 0 > ;
+// Entry I of the table (I = phong_index), or nullptr when no state of the set selects it.
+template <class PF, SpanSet kSet, size_t I>
+constexpr PhongSpanFn<PF> phong_entry() {
+  if constexpr (kUsedRoutines<kSet>.phong[I])
+    return &fill_phong_span < PF, (I & 1) != 0,
+           (I & 2) != 0 ? PixelLighting::kTable : PixelLighting::kExact, (I & 4) != 0, (I & 8) != 0,
+           (I & 16) != 0, (I & 32) != 0 > ;
+  else
+    return nullptr;
 }
-template <class PF, size_t... I>
+template <class PF, SpanSet kSet, size_t... I>
 constexpr std::array<PhongSpanFn<PF>, sizeof...(I)> make_phong_table(std::index_sequence<I...>) {
-  return {phong_instance<PF, I>()...};
+  return {phong_entry<PF, kSet, I>()...};
 }
-template <class PF>
-inline constexpr std::array<PhongSpanFn<PF>, 64> kPhongSpanTable =
-    make_phong_table<PF>(std::make_index_sequence<64>{});
 
 }  // namespace detail
 
-// The Phong span routine for a draw: generated from the template, indexed by its state.
-template <class PF>
+template <class PF, SpanSet kSet = kAllSpans>
+inline constexpr std::array<PhongSpanFn<PF>, kPhongRoutines> kPhongSpanTable =
+    detail::make_phong_table<PF, kSet>(std::make_index_sequence<kPhongRoutines>{});
+
+// The Phong span routine for a draw: generated from the template and the state space, indexed
+// by its state (nullptr for a state outside kSet, which draw() refuses).
+template <class PF, SpanSet kSet = kAllSpans>
 constexpr PhongSpanFn<PF> phong_span_routine(const DrawRecord& d) {
   const bool table = d.method == PixelLighting::kTable;
-  const size_t i = (d.depth ? 1u : 0u) | (table ? 2u : 0u) |
-                   ((table ? d.table_bilinear : d.position) ? 4u : 0u) | (d.texture ? 8u : 0u) |
-                   (d.normal_map ? 16u : 0u) | (d.envmap ? 32u : 0u);
-  return detail::kPhongSpanTable<PF>[i];
+  return kPhongSpanTable<PF, kSet>[phong_index(
+      d.depth, d.method, table ? d.table_bilinear : d.position, d.texture != nullptr,
+      d.normal_map != nullptr, d.envmap != nullptr)];
 }
 
 }  // namespace lr

@@ -1,10 +1,12 @@
 // The renderer: FrameBuilder's edge table, rasterized strip by strip into a display sink.
 //
-// Renderer<PF, K>: PF the strip's pixel format (Rgb565Be, Rgb888), K the strip height in rows
-// (1..32, compile time). Per strip: triangles whose first row falls in it join the active list
-// (kept in submission order, so depth ties and no-depth drawing resolve as in GL); each active
-// triangle fills its rows of the strip; finished triangles leave; the strip goes to the sink.
-// RAM: the caller's FrameStorage; nothing is allocated, nothing holds a frame.
+// Renderer<PF, K, kSpans>: PF the strip's pixel format (Rgb565Be, Rgb888), K the strip height in
+// rows (1..32, compile time), kSpans the span states it links routines for (span_state.hpp:
+// kAllSpans by default; draws outside the set are refused). Per strip: triangles whose first row
+// falls in it join the active list (kept in submission order, so depth ties and no-depth drawing
+// resolve as in GL); each active triangle fills its rows of the strip; finished triangles leave;
+// the strip goes to the sink. RAM: the caller's FrameStorage; nothing is allocated, nothing holds a
+// frame.
 #pragma once
 
 #include <algorithm>
@@ -30,7 +32,7 @@ class DepthSink {
   ~DepthSink() = default;
 };
 
-template <class PF, int K, uint32_t kFeatures = kAllSpans>
+template <class PF, int K, SpanSet kSpans = kAllSpans>
 class Renderer : public FrameBuilder {
   static_assert(K >= 1 && K <= 32, "strip height K must be 1..32");
 
@@ -39,7 +41,7 @@ class Renderer : public FrameBuilder {
   static constexpr int kStripHeight = K;
 
   Status configure(const FrameStorage& storage, int width, int height) {
-    features_ = kFeatures;
+    span_set_ = &kSpans;
     return FrameBuilder::configure(storage, width, height, K);
   }
 
@@ -58,14 +60,19 @@ class Renderer : public FrameBuilder {
   void raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows);
   void retire(int next_row);
 
+  // Whether the set links the affine colour routine, without and with depth: only then may a
+  // perspective-colour triangle be given affine planes (setup_triangle).
+  static constexpr bool kAffineColors[2] = {
+      kUsedRoutines<kSpans>.untextured[untextured_index(false, ColorPlanes::kAffine)],
+      kUsedRoutines<kSpans>.untextured[untextured_index(true, ColorPlanes::kAffine)]};
   size_t active_count_ = 0;
   size_t free_count_ = 0;
 };
 
-template <class PF, int K, uint32_t kFeatures>
-Status Renderer<PF, K, kFeatures>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
+template <class PF, int K, SpanSet kSpans>
+Status Renderer<PF, K, kSpans>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
   if (!configured_) return Status::kInvalidArgument;
-  if constexpr (kFeatures != 0) resolve_fetchers();
+  resolve_fetchers();
   const auto w = static_cast<size_t>(width_);
   stats_.bytes_per_strip = static_cast<uint32_t>(w * K * (sizeof(Pixel) + sizeof(uint16_t)));
   active_count_ = 0;
@@ -134,8 +141,8 @@ Status Renderer<PF, K, kFeatures>::render(StripSink<PF>& sink, DepthSink* depth_
 // A strip whose inputs did not change: the triangles active in it are stepped over its rows
 // without drawing; those that start in it and end in it are never set up, those that go on are
 // handed to the next strip's bucket (in submission order), to be set up at that strip's first row.
-template <class PF, int K, uint32_t kFeatures>
-void Renderer<PF, K, kFeatures>::skip_strip(int strip, int y0, int rows) {
+template <class PF, int K, SpanSet kSpans>
+void Renderer<PF, K, kSpans>::skip_strip(int strip, int y0, int rows) {
   const int next_row = y0 + rows;
   const uint16_t* order = storage_.active_index.data();
   for (size_t i = 0; i < active_count_; ++i) {
@@ -180,24 +187,24 @@ void Renderer<PF, K, kFeatures>::skip_strip(int strip, int y0, int rows) {
   if (strip + 1 < strips_) next = merged;
 }
 
-// The texel fetchers of this frame's draws (DrawRecord): here, in the template, so that only
-// renderers with textured or Phong spans reference the fetch routines (kFeatures == 0: such
-// draws are refused by draw()).
-template <class PF, int K, uint32_t kFeatures>
-void Renderer<PF, K, kFeatures>::resolve_fetchers() {
-  for (DrawRecord& d : storage_.draws.first(draw_count_)) {
-    if (d.texture != nullptr)
-      d.fetch = fetch_routine(d.texture->format, d.filter, d.wrap_s, d.wrap_t);
-    if (d.envmap != nullptr)
-      d.env_fetch = fetch_routine(d.envmap->format, Filter::kBilinear, Wrap::kClampToEdge,
-                                  Wrap::kClampToEdge);
-    if (d.normal_map != nullptr)
-      d.nmap_fetch = fetch_routine(d.normal_map->format, d.filter, d.wrap_s, d.wrap_t);
+// The texel fetchers of this frame's draws (DrawRecord): here, in the template, from the tables
+// of kSpans, so that a renderer references only the fetch routines its set admits (none without
+// textured or Phong states). draw() refused every draw whose textures the set does not admit.
+template <class PF, int K, SpanSet kSpans>
+void Renderer<PF, K, kSpans>::resolve_fetchers() {
+  if constexpr (kUsedRoutines<kSpans>.any_fetch()) {
+    for (DrawRecord& d : storage_.draws.first(draw_count_)) {
+      if (d.texture != nullptr)
+        d.fetch = fetch_routine<kSpans>(d.texture->format, d.filter, d.wrap_s, d.wrap_t);
+      if (d.envmap != nullptr) d.env_fetch = env_fetch_routine<kSpans>(d.envmap->format);
+      if (d.normal_map != nullptr)
+        d.nmap_fetch = fetch_routine<kSpans>(d.normal_map->format, d.filter, d.wrap_s, d.wrap_t);
+    }
   }
 }
 
-template <class PF, int K, uint32_t kFeatures>
-void Renderer<PF, K, kFeatures>::activate(int strip) {
+template <class PF, int K, SpanSet kSpans>
+void Renderer<PF, K, kSpans>::activate(int strip) {
   uint16_t& head = storage_.buckets[static_cast<size_t>(strip)];
   size_t m = 0;
   for (uint16_t i = head; i != kNoTriangle; i = storage_.triangles[i].next) ++m;
@@ -230,6 +237,7 @@ void Renderer<PF, K, kFeatures>::activate(int strip) {
     in.last_row = std::min<int32_t>(last_row_at_or_above(ymax), height_ - 1);
     in.colors = dr.texture ? ColorPlanes::kNone : dr.colors;
     in.depth = dr.depth;
+    in.affine_colors_ok = dr.depth ? kAffineColors[1] : kAffineColors[0];
     if (dr.phong) {
       for (int k = 0; k < 3; ++k) in.phong.s[k] = &storage_.surfaces[bt.v[k]];
       in.phong.position = dr.position;
@@ -273,17 +281,17 @@ void Renderer<PF, K, kFeatures>::activate(int strip) {
   if (active_count_ > stats_.max_active) stats_.max_active = static_cast<uint32_t>(active_count_);
 }
 
-template <class PF, int K, uint32_t kFeatures>
-void Renderer<PF, K, kFeatures>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0,
-                                                 int rows) {
+template <class PF, int K, SpanSet kSpans>
+void Renderer<PF, K, kSpans>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows) {
   const DrawRecord& dr = storage_.draws[t.draw];
-  const SpanFn<PF> fn = span_routine<PF>(dr.depth, t.colors);
+  // The routines of kSpans' tables (nullptr outside the set, whose draws draw() refused).
+  const SpanFn<PF> fn = span_routine<PF, kSpans>(dr.depth, t.colors);
   TexSpanFn<PF> tex_fn = nullptr;
   PhongSpanFn<PF> phong_fn = nullptr;
-  if constexpr ((kFeatures & kPhongSpans) != 0)
-    if (dr.phong) phong_fn = phong_span_routine<PF>(dr);
-  if constexpr ((kFeatures & kTexturedSpans) != 0)
-    if (dr.texture && !dr.phong) tex_fn = tex_span_routine<PF>(dr);
+  if constexpr (detail::has(kSpans.families, SpanFamily::kPhong))
+    if (dr.phong) phong_fn = phong_span_routine<PF, kSpans>(dr);
+  if constexpr (detail::has(kSpans.families, SpanFamily::kTextured))
+    if (dr.texture && !dr.phong) tex_fn = tex_span_routine<PF, kSpans>(dr);
   const int end = std::min<int>(t.last_row, y0 + rows - 1);
   int r = t.row;
   for (; r <= end; ++r) {
@@ -309,8 +317,8 @@ void Renderer<PF, K, kFeatures>::raster_triangle(ActiveTriangle& t, Pixel* pixel
   t.row = static_cast<int16_t>(r);
 }
 
-template <class PF, int K, uint32_t kFeatures>
-void Renderer<PF, K, kFeatures>::retire(int next_row) {
+template <class PF, int K, SpanSet kSpans>
+void Renderer<PF, K, kSpans>::retire(int next_row) {
   uint16_t* order = storage_.active_index.data();
   uint16_t* free_slots = order + storage_.active.size();
   size_t kept = 0;

@@ -14,13 +14,16 @@
 //   5- or 6-bit channel against an exact blend of the same texels (8.2 / 4.0 levels of 255).
 //   RGB888 and L8 blend per channel with 8-bit weights: error <= 1 level of 255.
 // Batches are chosen per draw (format x filter x wrap s x wrap t: one function per
-// combination), so no pixel branches on texture state.
+// combination, from the renderer's SpanSet: span_state.hpp), so no pixel branches on texture
+// state.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 
+#include "core/span_state.hpp"
 #include "core/texture.hpp"
 
 namespace lr {
@@ -166,26 +169,53 @@ void fetch_batch(const Texture& tex, int level, const int32_t* s, const int32_t*
 }
 
 namespace detail {
-template <TexelFormat F, Filter kFilter>
-inline constexpr std::array<FetchFn, 4> kFetchWraps = {
-    &fetch_batch<F, kFilter, Wrap::kRepeat, Wrap::kRepeat>,
-    &fetch_batch<F, kFilter, Wrap::kRepeat, Wrap::kClampToEdge>,
-    &fetch_batch<F, kFilter, Wrap::kClampToEdge, Wrap::kRepeat>,
-    &fetch_batch<F, kFilter, Wrap::kClampToEdge, Wrap::kClampToEdge>,
-};
-template <TexelFormat F>
-inline constexpr std::array<std::array<FetchFn, 4>, 2> kFetchFilters = {
-    kFetchWraps<F, Filter::kNearest>, kFetchWraps<F, Filter::kBilinear>};
-inline constexpr std::array<std::array<std::array<FetchFn, 4>, 2>, 4> kFetchTable = {
-    kFetchFilters<TexelFormat::kRgb565>, kFetchFilters<TexelFormat::kRgb888>,
-    kFetchFilters<TexelFormat::kL8>, kFetchFilters<TexelFormat::kPalette8>};
+// Entry I of the fetch table (I = fetch_index: wraps + 4 (filter + 2 format)), or nullptr when
+// no state of the set samples a texture or normal map that way.
+template <SpanSet kSet, size_t I>
+constexpr FetchFn fetch_entry() {
+  if constexpr (kUsedRoutines<kSet>.fetch[I])
+    return &fetch_batch < static_cast<TexelFormat>(I / 8), static_cast<Filter>((I / 4) % 2),
+           (I & 2) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat,
+           (I & 1) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat > ;
+  else
+    return nullptr;
+}
+// Environment maps: bilinear, clamped to the edge; entry I = format.
+template <SpanSet kSet, size_t I>
+constexpr FetchFn env_fetch_entry() {
+  if constexpr (kUsedRoutines<kSet>.env_fetch[I])
+    return &fetch_batch<static_cast<TexelFormat>(I), Filter::kBilinear, Wrap::kClampToEdge,
+                        Wrap::kClampToEdge>;
+  else
+    return nullptr;
+}
+template <SpanSet kSet, size_t... I>
+constexpr std::array<FetchFn, sizeof...(I)> make_fetch_table(std::index_sequence<I...>) {
+  return {fetch_entry<kSet, I>()...};
+}
+template <SpanSet kSet, size_t... I>
+constexpr std::array<FetchFn, sizeof...(I)> make_env_fetch_table(std::index_sequence<I...>) {
+  return {env_fetch_entry<kSet, I>()...};
+}
 }  // namespace detail
 
-// The fetch routine for a texture format and sampler: generated from the template, indexed by
-// the state (no tree of ifs).
+template <SpanSet kSet = kAllSpans>
+inline constexpr std::array<FetchFn, kFetchRoutines> kFetchTable =
+    detail::make_fetch_table<kSet>(std::make_index_sequence<kFetchRoutines>{});
+template <SpanSet kSet = kAllSpans>
+inline constexpr std::array<FetchFn, kEnvFetchRoutines> kEnvFetchTable =
+    detail::make_env_fetch_table<kSet>(std::make_index_sequence<kEnvFetchRoutines>{});
+
+// The fetch routine for a texture format and sampler: generated from the template and the
+// state space, indexed by the state (no tree of ifs); nullptr outside kSet.
+template <SpanSet kSet = kAllSpans>
 constexpr FetchFn fetch_routine(TexelFormat f, Filter filter, Wrap ws, Wrap wt) {
-  const size_t wrap = (ws == Wrap::kClampToEdge ? 2u : 0u) + (wt == Wrap::kClampToEdge ? 1u : 0u);
-  return detail::kFetchTable[static_cast<size_t>(f)][static_cast<size_t>(filter)][wrap];
+  return kFetchTable<kSet>[fetch_index(f, filter, ws, wt)];
+}
+// The fetch routine of an environment map (bilinear, clamp to edge) of format f.
+template <SpanSet kSet = kAllSpans>
+constexpr FetchFn env_fetch_routine(TexelFormat f) {
+  return kEnvFetchTable<kSet>[static_cast<size_t>(f)];
 }
 
 }  // namespace lr

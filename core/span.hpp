@@ -1,15 +1,18 @@
 // Span routines: fill one row of one triangle between its edges.
 //
 // One routine per state (depth test on/off x colour planes none/perspective/affine), each a
-// template instance with no per-pixel branch on state (DESIGN.md §5). Per pixel: depth test
+// template instance with no per-pixel branch on state (DESIGN.md §5); the table of a renderer's
+// SpanSet holds the instances its states select (span_state.hpp). Per pixel: depth test
 // first, then colour, then the write. Returns the number of pixels written.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 
 #include "core/color.hpp"
+#include "core/span_state.hpp"
 #include "core/triangle_setup.hpp"
 
 namespace lr {
@@ -110,18 +113,30 @@ uint32_t fill_span(const ActiveTriangle& t, typename PF::Storage* px, uint16_t* 
   return written;
 }
 
-// The routine for a draw's state: generated from the two template parameters, no tree of ifs.
-template <class PF>
-inline constexpr std::array<std::array<SpanFn<PF>, 3>, 2> kSpanTable = {{
-    {{&fill_span<PF, false, ColorPlanes::kNone>, &fill_span<PF, false, ColorPlanes::kPerspective>,
-      &fill_span<PF, false, ColorPlanes::kAffine>}},
-    {{&fill_span<PF, true, ColorPlanes::kNone>, &fill_span<PF, true, ColorPlanes::kPerspective>,
-      &fill_span<PF, true, ColorPlanes::kAffine>}},
-}};
+namespace detail {
+// Entry I of the table (I = untextured_index): the instance, or nullptr when no state of the
+// set selects it (the instance is then never referenced).
+template <class PF, SpanSet kSet, size_t I>
+constexpr SpanFn<PF> span_entry() {
+  if constexpr (kUsedRoutines<kSet>.untextured[I])
+    return &fill_span<PF, (I & 1) != 0, static_cast<ColorPlanes>(I / 2)>;
+  else
+    return nullptr;
+}
+template <class PF, SpanSet kSet, size_t... I>
+constexpr std::array<SpanFn<PF>, sizeof...(I)> make_span_table(std::index_sequence<I...>) {
+  return {span_entry<PF, kSet, I>()...};
+}
+}  // namespace detail
 
-template <class PF>
+// The routines of a set, generated from the template and the state space (span_state.hpp).
+template <class PF, SpanSet kSet = kAllSpans>
+inline constexpr std::array<SpanFn<PF>, kUntexturedRoutines> kSpanTable =
+    detail::make_span_table<PF, kSet>(std::make_index_sequence<kUntexturedRoutines>{});
+
+template <class PF, SpanSet kSet = kAllSpans>
 constexpr SpanFn<PF> span_routine(bool depth, ColorPlanes colors) {
-  return kSpanTable<PF>[depth ? 1 : 0][static_cast<size_t>(colors)];
+  return kSpanTable<PF, kSet>[untextured_index(depth, colors)];
 }
 
 }  // namespace lr

@@ -23,6 +23,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 
 #include "core/color.hpp"
 #include "core/frame_builder.hpp"
@@ -362,29 +363,31 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
 }
 
 namespace detail {
-template <class PF, bool kDepth, TexPersp kP, TexEnv kEnv>
-inline constexpr std::array<TexSpanFn<PF>, 3> kTexSpanMips = {
-    &fill_tex_span<PF, kDepth, kP, kEnv, MipMode::kNone>,
-    &fill_tex_span<PF, kDepth, kP, kEnv, MipMode::kNearest>,
-    &fill_tex_span<PF, kDepth, kP, kEnv, MipMode::kLinear>};
-template <class PF, bool kDepth, TexPersp kP>
-inline constexpr std::array<std::array<TexSpanFn<PF>, 3>, 2> kTexSpanEnvs = {
-    kTexSpanMips<PF, kDepth, kP, TexEnv::kModulate>,
-    kTexSpanMips<PF, kDepth, kP, TexEnv::kReplace>};
-template <class PF, bool kDepth>
-inline constexpr std::array<std::array<std::array<TexSpanFn<PF>, 3>, 2>, 3> kTexSpanPersps = {
-    kTexSpanEnvs<PF, kDepth, TexPersp::kExact>, kTexSpanEnvs<PF, kDepth, TexPersp::kSpan>,
-    kTexSpanEnvs<PF, kDepth, TexPersp::kAffine>};
-template <class PF>
-inline constexpr std::array<std::array<std::array<std::array<TexSpanFn<PF>, 3>, 2>, 3>, 2>
-    kTexSpanTable = {kTexSpanPersps<PF, false>, kTexSpanPersps<PF, true>};
+// Entry I of the table (I = textured_index: depth + 2 (persp + 3 (env + 2 mip))), or nullptr
+// when no state of the set selects it.
+template <class PF, SpanSet kSet, size_t I>
+constexpr TexSpanFn<PF> tex_span_entry() {
+  if constexpr (kUsedRoutines<kSet>.textured[I])
+    return &fill_tex_span<PF, (I & 1) != 0, static_cast<TexPersp>((I / 2) % 3),
+                          static_cast<TexEnv>((I / 6) % 2), static_cast<MipMode>(I / 12)>;
+  else
+    return nullptr;
+}
+template <class PF, SpanSet kSet, size_t... I>
+constexpr std::array<TexSpanFn<PF>, sizeof...(I)> make_tex_span_table(std::index_sequence<I...>) {
+  return {tex_span_entry<PF, kSet, I>()...};
+}
 }  // namespace detail
 
-// The textured span routine for a draw: generated from the template, indexed by its state.
-template <class PF>
+template <class PF, SpanSet kSet = kAllSpans>
+inline constexpr std::array<TexSpanFn<PF>, kTexturedRoutines> kTexSpanTable =
+    detail::make_tex_span_table<PF, kSet>(std::make_index_sequence<kTexturedRoutines>{});
+
+// The textured span routine for a draw: generated from the template and the state space,
+// indexed by its state (nullptr for a state outside kSet, which draw() refuses).
+template <class PF, SpanSet kSet = kAllSpans>
 constexpr TexSpanFn<PF> tex_span_routine(const DrawRecord& d) {
-  return detail::kTexSpanTable<PF>[d.depth ? 1 : 0][static_cast<size_t>(d.persp)]
-                                  [static_cast<size_t>(d.env)][static_cast<size_t>(d.mip)];
+  return kTexSpanTable<PF, kSet>[textured_index(d.depth, d.persp, d.env, d.mip)];
 }
 
 }  // namespace lr

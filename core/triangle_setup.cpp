@@ -196,7 +196,8 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
   uint32_t q[3] = {1u << 30, 1u << 30, 1u << 30};
   const bool phong = sf[0] != nullptr;
   t.colors = in.colors;
-  if (in.colors == ColorPlanes::kPerspective && !tex && !phong && affine_is_exact_enough(v))
+  if (in.colors == ColorPlanes::kPerspective && in.affine_colors_ok && !tex && !phong &&
+      affine_is_exact_enough(v))
     t.colors = ColorPlanes::kAffine;
   if (t.colors == ColorPlanes::kPerspective || (tex && in.tex.perspective) || phong) {
     uint32_t wmin = v[0]->w;

@@ -103,6 +103,8 @@ struct SetupInput {
   bool depth;
   TextureSetup tex;
   PhongSetup phong;
+  bool affine_colors_ok = false;  // the renderer links the affine colour routine (kPerspective
+                                  // triangles may get affine planes: ActiveTriangle::colors)
   int32_t first_row;  // first row to draw (>= the triangle's own first row), viewport clamped
   int32_t last_row;   // inclusive
 };

@@ -2,14 +2,16 @@
 // 1,000 triangles, drawing a 1,000-triangle torus (firmware/footprint/scene.hpp) in the shading
 // of one configuration (LR_FOOTPRINT_CONFIG, set by firmware/footprint/CMakeLists.txt):
 //
-//   1 unlit         vertex colours, no lighting                     Renderer<PF, 8, 0>
-//   2 gouraud       lit per vertex ("gold")                         Renderer<PF, 8, 0>
-//   3 tex_nearest   lit per vertex, 32x32 RGB565 texture, nearest   Renderer<PF, 8, kTexturedSpans>
-//   4 tex_bilinear  the same, bilinear                              Renderer<PF, 8, kTexturedSpans>
-//   5 phong         lit per pixel, exact ("gold")                   Renderer<PF, 8, kPhongSpans>
+//   1 unlit         vertex colours, no lighting
+//   2 gouraud       lit per vertex ("gold")
+//   3 tex_nearest   lit per vertex, 32x32 RGB565 texture, nearest, repeat, no mipmaps
+//   4 tex_bilinear  the same, bilinear
+//   5 phong         lit per pixel, exact ("gold"), one directional light, no maps
 //
-// Each renderer links only the span families its configuration draws with (kFeatures leaves
-// the others out), and only the mesh arrays its draw reads, so scripts/footprint.sh's flash,
+// Each renderer, Renderer<PF, 8, kSpans>, links only the span routine and the texel fetcher of
+// the one state its configuration draws with (kSpans: the smallest lr::SpanSet holding that
+// state, core/span_state.hpp; e.g. tex_nearest links no bilinear fetcher and no mipmap code),
+// and only the mesh arrays its draw reads, so scripts/footprint.sh's flash,
 // RAM and stack figures are those of a real application of that kind (what the core links for
 // every draw, e.g. its texel fetchers, counts too). Static storage only: no heap, no exceptions.
 //
@@ -46,8 +48,33 @@ static_assert(LR_FOOTPRINT_CONFIG >= 1 && LR_FOOTPRINT_CONFIG <= 5, "unknown con
 constexpr bool kTextured = kConfig == Config::kTexNearest || kConfig == Config::kTexBilinear;
 constexpr bool kPhong = kConfig == Config::kPhong;
 constexpr bool kLit = kConfig != Config::kUnlit;
-constexpr uint32_t kFeatures =
-    (kTextured ? uint32_t{lr::kTexturedSpans} : 0u) | (kPhong ? uint32_t{lr::kPhongSpans} : 0u);
+constexpr lr::Filter kFilter =
+    kConfig == Config::kTexNearest ? lr::Filter::kNearest : lr::Filter::kBilinear;
+
+// The span state of the draw (make_state() below), and the set of the renderer: that state with
+// the texture's format and wraps. A draw outside the set would be refused (draw() fails).
+constexpr lr::SpanState make_span_state() {
+  lr::SpanState s;
+  s.depth = true;
+  if constexpr (kTextured) {
+    s.family = lr::SpanFamily::kTextured;
+    s.persp = lr::TexPersp::kExact;
+    s.env = lr::TexEnv::kModulate;
+    s.mip = lr::MipMode::kNone;
+    s.filter = kFilter;
+  } else if constexpr (kPhong) {
+    s.family = lr::SpanFamily::kPhong;
+    s.method = lr::PixelLighting::kExact;
+    s.position = false;  // one directional light, infinite viewer
+  } else {
+    s.family = lr::SpanFamily::kUntextured;
+    s.colors = lr::ColorPlanes::kPerspective;  // Gouraud: lit, or the mesh's vertex colours
+  }
+  return s;
+}
+constexpr lr::SpanSet kSpans = lr::span_set_of(make_span_state())
+                                   .only(lr::TexelFormat::kRgb565)
+                                   .only_wraps(lr::Wrap::kRepeat, lr::Wrap::kRepeat);
 
 using PF = lr::Rgb565Be;
 using Pixel = PF::Storage;
@@ -91,7 +118,7 @@ std::array<std::array<Pixel, kStripPixels>, 2> g_store_strip_buffers{};
 std::array<lr::SurfaceVertex, kSurfaces> g_store_surfaces{};
 std::array<lr::PreparedLighting, kPixelLights> g_store_pixel_lights{};
 
-lr::Renderer<PF, kStripRows, kFeatures> g_renderer;
+lr::Renderer<PF, kStripRows, kSpans> g_renderer;
 // The display: every strip folded into FNV-1a (the smoke test's checksum, so that frames compare
 // across cores and with the host), the lease protocol checked (firmware/common/ordered_sink.hpp).
 lr::fw::ChecksumConsumer<PF> g_checksum;
@@ -119,8 +146,7 @@ lr::DrawState make_state() {
   s.cull = lr::Cull::kBack;
   if constexpr (kTextured) {
     s.texture = &fp::kTexture;
-    s.sampler.filter =
-        kConfig == Config::kTexNearest ? lr::Filter::kNearest : lr::Filter::kBilinear;
+    s.sampler.filter = kFilter;
     s.sampler.mip = lr::MipMode::kNone;
     s.sampler.env = lr::TexEnv::kModulate;
   }

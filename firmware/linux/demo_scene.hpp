@@ -27,7 +27,7 @@ class DemoScene {
   static constexpr int kStripRows = 8;
   static constexpr int kDegreesPerFrame = 3;  // 120 frames per turn
   // Gouraud spans only (the scene has no texture and no Phong draw): less code on the board.
-  using SceneRenderer = Renderer<Rgb565Be, kStripRows, 0>;
+  using SceneRenderer = Renderer<Rgb565Be, kStripRows, kUntexturedSpans>;
 
   DemoScene();
   ~DemoScene();

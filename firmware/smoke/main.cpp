@@ -127,8 +127,8 @@ std::array<uint16_t, 2 * kMaxActive> g_active_index{};
 std::array<uint16_t, kStripPixels> g_depth{};
 std::array<std::array<Pixel, kStripPixels>, 2> g_strip_buffers{};
 
-// Gouraud only: no textured or Phong span routines linked (lr::SpanFeature).
-lr::Renderer<PF, kStripRows, 0> g_renderer;
+// Gouraud only: no textured or Phong span routines linked (lr::SpanSet, core/span_state.hpp).
+lr::Renderer<PF, kStripRows, lr::kUntexturedSpans> g_renderer;
 
 // ---- The display: two strip buffers, every pixel folded into FNV-1a --------------------------
 // Stands in for a panel backend: the lease protocol is checked on every strip and a strip is

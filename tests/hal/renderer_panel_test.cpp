@@ -45,7 +45,7 @@ class Scene {
         active_index_(128),
         depth_(size_t{kWidth} * kRows),
         inputs_(skip ? 2 * kStrips : 0),
-        renderer_(std::make_unique<Renderer<PF, kRows, 0>>()) {
+        renderer_(std::make_unique<Renderer<PF, kRows, kUntexturedSpans>>()) {
     FrameStorage s{vertices_, triangles_, draws_, buckets_, active_, active_index_, depth_};
     s.strip_inputs = inputs_;
     configured_ = renderer_->configure(s, kWidth, kHeight);
@@ -87,7 +87,7 @@ class Scene {
   std::vector<uint16_t> active_index_;
   std::vector<uint16_t> depth_;
   std::vector<uint32_t> inputs_;
-  std::unique_ptr<Renderer<PF, kRows, 0>> renderer_;
+  std::unique_ptr<Renderer<PF, kRows, kUntexturedSpans>> renderer_;
   Status configured_ = Status::kInvalidArgument;
 };
 

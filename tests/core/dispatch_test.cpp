@@ -1,0 +1,785 @@
+// Span dispatch: the state space (core/span_state.hpp), the routine tables generated from it, and
+// renderers restricted to part of it.
+//   - every state of the full set selects a non-null routine (and fetcher), distinct per state;
+//     outside a restricted set every entry is nullptr;
+//   - for every state of the enumeration: a renderer restricted to the smallest set holding it
+//     draws the same frame as the full renderer, and refuses every other state;
+//   - per family, the routine does what its state says (depth, colour planes, filter, mip, the
+//     Phong maps and lighting).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "core/camera.hpp"
+#include "core/mipmap.hpp"
+#include "core/renderer.hpp"
+#include "core/span_state.hpp"
+#include "host_sim/capture_display.hpp"
+
+namespace lr {
+namespace {
+
+using PF = Rgb888;
+constexpr int kW = 32, kH = 32, kK = 8;
+
+Fixed fx(double v) {
+  return Fixed::from_raw(static_cast<int32_t>(std::lround(v * 65536.0)));
+}
+
+// ---- Assets ----------------------------------------------------------------------------------
+
+// An RGB888 texture with its levels given texel by texel: rows of colours.
+struct OwnedTexture {
+  std::vector<std::vector<uint8_t>> bytes;
+  std::vector<std::vector<uint16_t>> words;
+  std::vector<uint16_t> palette;
+  Texture tex;
+};
+
+// size x size, level l's texel (x, y) = f(l, x, y); a full chain when mips.
+template <class F>
+std::unique_ptr<OwnedTexture> make_texture(TexelFormat format, uint16_t size, bool mips, F f) {
+  auto t = std::make_unique<OwnedTexture>();
+  t->tex.format = format;
+  if (format == TexelFormat::kPalette8)
+    for (uint32_t i = 0; i < 256; ++i)  // index i: r = i's top 5 bits, g and b from i
+      t->palette.push_back(static_cast<uint16_t>(((i >> 3) << 11) | ((i & 63u) << 5) | (i & 31u)));
+  t->tex.palette = t->palette;
+  int levels = mips ? mip_level_count(size, size) : 1;
+  t->bytes.resize(static_cast<size_t>(levels));
+  t->words.resize(static_cast<size_t>(levels));
+  uint16_t s = size;
+  for (int l = 0; l < levels; ++l) {
+    auto& b = t->bytes[static_cast<size_t>(l)];
+    auto& w = t->words[static_cast<size_t>(l)];
+    for (int y = 0; y < s; ++y)
+      for (int x = 0; x < s; ++x) {
+        const Rgb8 c = f(l, x, y);
+        switch (format) {
+          case TexelFormat::kRgb888:
+            b.insert(b.end(), {c.r, c.g, c.b});
+            break;
+          case TexelFormat::kRgb565:
+            w.push_back(static_cast<uint16_t>(((c.r >> 3) << 11) | ((c.g >> 2) << 5) | (c.b >> 3)));
+            break;
+          case TexelFormat::kL8:
+            b.push_back(c.g);
+            break;
+          case TexelFormat::kPalette8:
+            b.push_back(c.r);
+            break;
+        }
+      }
+    TextureLevel& lv = t->tex.levels[static_cast<size_t>(l)];
+    lv.width = lv.height = s;
+    if (format == TexelFormat::kRgb565)
+      lv.rgb565 = w;
+    else
+      lv.bytes = b;
+    s = static_cast<uint16_t>(s > 1 ? s / 2 : 1);
+  }
+  t->tex.level_count = static_cast<uint8_t>(levels);
+  return t;
+}
+
+// The sweep's texture: a 16 x 16 two-colour checker of 2-texel cells, each level of the chain
+// its own pair of colours.
+std::unique_ptr<OwnedTexture> checker(TexelFormat format) {
+  return make_texture(format, 16, true, [](int l, int x, int y) {
+    const bool on = ((x >> 1) + (y >> 1)) % 2 == 0;
+    const auto k = static_cast<uint8_t>(40 * l);
+    return on ? Rgb8{static_cast<uint8_t>(230 - k), 200, k}
+              : Rgb8{k, 60, static_cast<uint8_t>(200 - k)};
+  });
+}
+
+struct Assets {
+  std::unique_ptr<OwnedTexture> texture = checker(TexelFormat::kRgb888);
+  // Normals tilting across the map (RGB = (n + 1) / 2).
+  std::unique_ptr<OwnedTexture> normal_map =
+      make_texture(TexelFormat::kRgb888, 8, false, [](int, int x, int y) {
+        return Rgb8{static_cast<uint8_t>(96 + 8 * x), static_cast<uint8_t>(96 + 8 * y), 230};
+      });
+  std::unique_ptr<OwnedTexture> envmap =
+      make_texture(TexelFormat::kRgb888, 8, false, [](int, int x, int y) {
+        return Rgb8{static_cast<uint8_t>(255 - 20 * x), static_cast<uint8_t>(100 + 15 * y), 180};
+      });
+};
+const Texture& other_format_texture() {
+  static const auto t = checker(TexelFormat::kRgb565);
+  return t->tex;
+}
+const Assets& assets() {
+  static const Assets a;
+  return a;
+}
+
+// A unit square in the xy plane facing +z, with every attribute.
+struct Quad {
+  std::array<Vec3, 4> positions;
+  std::array<Normal16, 4> normals;
+  std::array<Rgb8, 4> colors;
+  std::array<TexCoord, 4> uvs;
+  std::array<Tangent16, 4> tangents;
+  std::array<std::array<uint16_t, 3>, 2> triangles{{{0, 1, 2}, {0, 2, 3}}};
+  Quad(std::array<Rgb8, 4> c, double uv_scale) : colors(c) {
+    const double xs[4] = {-1, 1, 1, -1}, ys[4] = {-1, -1, 1, 1};
+    for (size_t i = 0; i < 4; ++i) {
+      positions[i] = {fx(xs[i]), fx(ys[i]), fx(0)};
+      normals[i] = {0, 0, 16384};
+      uvs[i] = {static_cast<int32_t>((xs[i] + 1) / 2 * uv_scale * (1 << 20)),
+                static_cast<int32_t>((ys[i] + 1) / 2 * uv_scale * (1 << 20))};
+      tangents[i] = {16384, 0, 0, 16384};
+    }
+  }
+  Mesh mesh() const { return {positions, normals, colors, uvs, triangles, tangents}; }
+};
+
+Camera camera() {
+  Camera c;  // at the origin looking down -z
+  EXPECT_TRUE(perspective(Fixed::from_double(60), Fixed::from_int(1), Fixed::from_double(0.5),
+                          Fixed::from_double(20), c.projection));
+  return c;
+}
+
+Mat4 place(double x, double y, double z, double rx, double ry) {
+  return translate({fx(x), fx(y), fx(z)}) * rotate_x(fx(rx)) * rotate_y(fx(ry));
+}
+
+// ---- A renderer with its storage -------------------------------------------------------------
+
+template <SpanSet kSet>
+class Rig {
+ public:
+  Rig()
+      : vertices_(256),
+        triangles_(256),
+        draws_(8),
+        buckets_((kH + kK - 1) / kK),
+        active_(64),
+        active_index_(128),
+        depth_(kW * kK),
+        surfaces_(256),
+        tables_(4 * lighting_table_words(32, true)),
+        pixel_lights_(8),
+        display_(kW * kK),
+        renderer_(std::make_unique<Renderer<PF, kK, kSet>>()) {
+    FrameStorage s{vertices_,     triangles_, draws_,    buckets_, active_,
+                   active_index_, depth_,     surfaces_, tables_,  pixel_lights_};
+    EXPECT_EQ(renderer_->configure(s, kW, kH), Status::kOk);
+  }
+  Renderer<PF, kK, kSet>& r() { return *renderer_; }
+  host::ImageRgb8 render() {
+    EXPECT_EQ(renderer_->render(display_), Status::kOk);
+    return display_.image();
+  }
+
+ private:
+  std::vector<ScreenVertex> vertices_;
+  std::vector<BinnedTriangle> triangles_;
+  std::vector<DrawRecord> draws_;
+  std::vector<uint16_t> buckets_;
+  std::vector<ActiveTriangle> active_;
+  std::vector<uint16_t> active_index_;
+  std::vector<uint16_t> depth_;
+  std::vector<SurfaceVertex> surfaces_;
+  std::vector<uint32_t> tables_;
+  std::vector<PreparedLighting> pixel_lights_;
+  host::CaptureDisplay<PF> display_;
+  std::unique_ptr<Renderer<PF, kK, kSet>> renderer_;
+};
+
+// ---- The scene of a state --------------------------------------------------------------------
+
+// The draw state, lights and material that select `s` (the inverse of FrameBuilder::span_state).
+struct DrawSetup {
+  DrawState state;
+  LightSet lights;
+  Material material;
+};
+
+DrawSetup setup_for(const SpanState& s, const Assets& a) {
+  DrawSetup u;
+  DrawState& d = u.state;
+  d.depth_test = s.depth;
+  d.cull = Cull::kNone;
+  u.lights.count = 1;
+  u.lights.lights[0].position = {Fixed::from_double(0.3), Fixed::from_double(0.5),
+                                 Fixed::from_double(1)};
+  u.lights.global_ambient = {3000, 3000, 3000};
+  u.material.specular = {20000, 20000, 20000};
+  u.material.shininess_q8 = 20 << 8;
+  switch (s.family) {
+    case SpanFamily::kUntextured:
+      d.lighting = false;  // the quads' vertex colours
+      d.shading = s.colors == ColorPlanes::kNone ? Shading::kFlat : Shading::kGouraud;
+      d.perspective = s.colors == ColorPlanes::kAffine ? Perspective::kAffine : Perspective::kExact;
+      break;
+    case SpanFamily::kTextured:
+      d.lighting = false;  // modulated by the vertex colours
+      d.perspective = s.persp == TexPersp::kExact    ? Perspective::kExact
+                      : s.persp == TexPersp::kAffine ? Perspective::kAffine
+                                                     : Perspective::kSpan8;
+      d.texture = &a.texture->tex;
+      d.sampler = {s.filter, Wrap::kRepeat, Wrap::kRepeat, s.mip, s.env};
+      break;
+    case SpanFamily::kPhong:
+      d.lighting = true;
+      d.shading = Shading::kPhong;
+      d.pixel_lighting = s.method;
+      d.table = {16, s.table_bilinear};
+      if (s.position) {  // a point light near the quads
+        u.lights.lights[0].kind = LightKind::kPoint;
+        u.lights.lights[0].position = {Fixed::from_double(0.2), Fixed::from_double(0.3),
+                                       Fixed::from_double(-1.5)};
+      }
+      d.texture = s.texture ? &a.texture->tex : nullptr;
+      d.normal_map = s.normal_map ? &a.normal_map->tex : nullptr;
+      d.envmap = s.envmap ? &a.envmap->tex : nullptr;
+      d.sampler = {s.filter, Wrap::kRepeat, Wrap::kRepeat, s.mip, TexEnv::kModulate};
+      break;
+  }
+  return u;
+}
+
+const Quad& near_quad() {
+  static const Quad q({Rgb8{255, 40, 40}, Rgb8{40, 255, 40}, Rgb8{40, 40, 255}, Rgb8{255, 255, 40}},
+                      3.0);
+  return q;
+}
+const Quad& far_quad() {
+  static const Quad q(
+      {Rgb8{40, 200, 200}, Rgb8{200, 40, 200}, Rgb8{200, 200, 40}, Rgb8{90, 90, 90}}, 5.0);
+  return q;
+}
+
+// Two quads, the nearer drawn first and overlapping the farther: the depth test decides the
+// overlap. Both tilted (perspective matters), the far one minified.
+template <SpanSet kSet>
+Status draw_scene(Rig<kSet>& rig, const DrawSetup& u, bool near = true, bool far = true) {
+  Status st = rig.r().begin_frame(camera(), u.lights, Rgb8{8, 8, 8});
+  if (st != Status::kOk) return st;
+  if (near)
+    st = rig.r().draw(near_quad().mesh(), place(-0.25, -0.2, -3.0, -50, 20), u.material, u.state);
+  if (st != Status::kOk || !far) return st;
+  return rig.r().draw(far_quad().mesh(), place(0.4, 0.3, -4.5, -20, -30), u.material, u.state);
+}
+
+constexpr SpanSet restricted(const SpanState& s) {
+  return span_set_of(s).only(TexelFormat::kRgb888).only_wraps(Wrap::kRepeat, Wrap::kRepeat);
+}
+
+bool is_fg(const host::ImageRgb8& img, size_t p) {
+  return img.rgb[3 * p] != 8 || img.rgb[3 * p + 1] != 8 || img.rgb[3 * p + 2] != 8;
+}
+int count_fg(const host::ImageRgb8& img) {
+  int n = 0;
+  for (size_t p = 0; p < img.rgb.size() / 3; ++p) n += is_fg(img, p) ? 1 : 0;
+  return n;
+}
+Rgb8 pixel(const host::ImageRgb8& img, size_t p) {
+  return {img.rgb[3 * p], img.rgb[3 * p + 1], img.rgb[3 * p + 2]};
+}
+
+// ---- (a) The tables ----------------------------------------------------------------------------
+
+template <class T, size_t N>
+bool all_null(const std::array<T, N>& a) {
+  for (T p : a)
+    if (p != nullptr) return false;
+  return true;
+}
+
+TEST(SpanDispatch, TheEnumerationCoversEveryFamilyOnceAndTheFullSetAdmitsIt) {
+  EXPECT_EQ(kSpanStateCount, 6u + 72u + 240u);
+  for (size_t i = 0; i < kSpanStateCount; ++i) {
+    EXPECT_TRUE(kAllSpans.admits(kSpanStates[i])) << i;
+    EXPECT_TRUE(span_set_of(kSpanStates[i]).admits(kSpanStates[i])) << i;
+    for (size_t j = 0; j < i; ++j) EXPECT_FALSE(kSpanStates[i] == kSpanStates[j]) << i << " " << j;
+  }
+}
+
+// What a state runs with under a set: the span routine (as an address) and its fetcher(s).
+template <SpanSet kSet>
+std::array<const void*, 3> routines_of(const SpanState& s, TexelFormat f) {
+  std::array<const void*, 3> r{};
+  switch (s.family) {
+    case SpanFamily::kUntextured:
+      r[0] =
+          reinterpret_cast<const void*>(kSpanTable<PF, kSet>[untextured_index(s.depth, s.colors)]);
+      break;
+    case SpanFamily::kTextured:
+      r[0] = reinterpret_cast<const void*>(
+          kTexSpanTable<PF, kSet>[textured_index(s.depth, s.persp, s.env, s.mip)]);
+      r[1] = reinterpret_cast<const void*>(
+          fetch_routine<kSet>(f, s.filter, Wrap::kRepeat, Wrap::kRepeat));
+      break;
+    case SpanFamily::kPhong:
+      r[0] = reinterpret_cast<const void*>(kPhongSpanTable<PF, kSet>[phong_index(
+          s.depth, s.method, s.position || s.table_bilinear, s.texture, s.normal_map, s.envmap)]);
+      if (s.texture || s.normal_map)
+        r[1] = reinterpret_cast<const void*>(
+            fetch_routine<kSet>(f, s.filter, Wrap::kRepeat, Wrap::kRepeat));
+      if (s.envmap) r[2] = reinterpret_cast<const void*>(env_fetch_routine<kSet>(f));
+      break;
+  }
+  return r;
+}
+
+TEST(SpanDispatch, EveryStateOfTheFullSetHasItsOwnNonNullRoutines) {
+  std::set<std::array<const void*, 3>> seen;
+  for (const SpanState& s : kSpanStates) {
+    // The mip mode of a Phong draw is a per-chunk choice inside its routine, not an instance.
+    if (s.family == SpanFamily::kPhong && s.mip != MipMode::kNone) continue;
+    const auto r = routines_of<kAllSpans>(s, TexelFormat::kRgb888);
+    EXPECT_NE(r[0], nullptr);
+    if (s.family == SpanFamily::kTextured || s.texture || s.normal_map) {
+      EXPECT_NE(r[1], nullptr);
+    }
+    if (s.envmap) {
+      EXPECT_NE(r[2], nullptr);
+    }
+    EXPECT_TRUE(seen.insert(r).second) << "two states share their routines";
+  }
+  // Every instance of each table, every fetcher: non-null and distinct.
+  std::set<const void*> all;
+  for (auto p : kSpanTable<PF>) all.insert(reinterpret_cast<const void*>(p));
+  for (auto p : kTexSpanTable<PF>) all.insert(reinterpret_cast<const void*>(p));
+  for (auto p : kPhongSpanTable<PF>) all.insert(reinterpret_cast<const void*>(p));
+  for (auto p : kFetchTable<>) all.insert(reinterpret_cast<const void*>(p));
+  for (auto p : kEnvFetchTable<>) all.insert(reinterpret_cast<const void*>(p));
+  EXPECT_EQ(all.size(), kUntexturedRoutines + kTexturedRoutines + kPhongRoutines +
+                            kFetchRoutines);  // environment maps use 4 of the fetchers
+  EXPECT_EQ(all.count(nullptr), 0u);
+}
+
+constexpr SpanSet kNearestNoMipExact =
+    kTexturedSpans.only(Filter::kNearest).only(MipMode::kNone).only(PixelLighting::kExact);
+
+TEST(SpanDispatch, StatesOutsideARestrictedSetHaveNoRoutine) {
+  constexpr SpanSet kSet = kNearestNoMipExact;
+  for (const SpanState& s : kSpanStates) {
+    const auto r = routines_of<kSet>(s, TexelFormat::kRgb888);
+    if (kSet.admits(s)) {
+      EXPECT_NE(r[0], nullptr);
+    } else if (s.family == SpanFamily::kTextured) {
+      // The span routine serves both filters: a bilinear state lacks its fetcher.
+      EXPECT_TRUE(r[0] == nullptr || r[1] == nullptr);
+    } else {
+      EXPECT_EQ(r[0], nullptr);
+    }
+  }
+  EXPECT_TRUE(all_null(kPhongSpanTable<PF, kSet>));
+  EXPECT_TRUE(all_null(kEnvFetchTable<kSet>));
+  EXPECT_TRUE(all_null(kPhongSpanTable<PF, kUntexturedSpans>));
+  EXPECT_TRUE(all_null(kTexSpanTable<PF, kUntexturedSpans>));
+  EXPECT_TRUE(all_null(kFetchTable<kUntexturedSpans>));
+  EXPECT_FALSE(kUsedRoutines<kUntexturedSpans>.any_fetch());
+  // Nearest only: exactly the 16 nearest fetchers (4 formats x 4 wraps), the 12 no-mip routines.
+  int fetchers = 0, tex = 0;
+  for (size_t i = 0; i < kFetchRoutines; ++i)
+    if (kFetchTable<kSet>[i] != nullptr) {
+      ++fetchers;
+      EXPECT_EQ((i / 4) % 2, 0u) << "a bilinear fetcher in a nearest-only set";
+    }
+  for (auto p : kTexSpanTable<PF, kSet>) tex += p != nullptr ? 1 : 0;
+  EXPECT_EQ(fetchers, 16);
+  EXPECT_EQ(tex, 12);
+}
+
+// ---- (b) Every state: the restricted renderer draws the full renderer's frame ----------------
+
+template <size_t I>
+void check_state() {
+  constexpr SpanState kState = kSpanStates[I];
+  constexpr SpanSet kSet = restricted(kState);
+  const Assets& a = assets();
+  const DrawSetup u = setup_for(kState, a);
+  Rig<kAllSpans> full;
+  auto small = std::make_unique<Rig<kSet>>();
+  ASSERT_EQ(draw_scene(full, u), Status::kOk) << "state " << I;
+  ASSERT_EQ(draw_scene(*small, u), Status::kOk) << "state " << I << ": refused by its own set";
+  const host::ImageRgb8 want = full.render();
+  const host::ImageRgb8 got = small->render();
+  EXPECT_GT(count_fg(want), 100) << "state " << I;
+  EXPECT_TRUE(want.rgb == got.rgb) << "state " << I << ": frames differ";
+
+  // Other states are refused, with nothing added or counted.
+  ASSERT_EQ(draw_scene(*small, u), Status::kOk);
+  const FrameStats before = small->r().stats();
+  for (size_t j : {(I + 1) % kSpanStateCount, (I + kSpanStateCount / 2) % kSpanStateCount,
+                   (I + 7) % kSpanStateCount}) {
+    const DrawSetup v = setup_for(kSpanStates[j], a);
+    EXPECT_EQ(small->r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), v.material, v.state),
+              Status::kInvalidArgument)
+        << "state " << I << " admitted state " << j;
+  }
+  // The same state with a texture of another format is refused too.
+  if (kState.family == SpanFamily::kTextured || kState.texture) {
+    DrawState s = u.state;
+    s.texture = &other_format_texture();
+    EXPECT_EQ(small->r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), u.material, s),
+              Status::kInvalidArgument);
+    s = u.state;
+    s.sampler.wrap_t = Wrap::kClampToEdge;
+    EXPECT_EQ(small->r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), u.material, s),
+              Status::kInvalidArgument);
+  }
+  const FrameStats& after = small->r().stats();
+  EXPECT_EQ(after.triangles_in, before.triangles_in);
+  EXPECT_EQ(after.triangles_binned, before.triangles_binned);
+  EXPECT_EQ(after.vertices_transformed, before.vertices_transformed);
+  EXPECT_TRUE(small->render().rgb == got.rgb) << "state " << I;
+}
+
+template <size_t kFirst, size_t... I>
+void check_states(std::index_sequence<I...>) {
+  (check_state<kFirst + I>(), ...);
+}
+
+TEST(SpanDispatch, EveryUntexturedStateRestrictedDrawsTheFullRenderersFrame) {
+  check_states<0>(std::make_index_sequence<6>{});
+}
+TEST(SpanDispatch, EveryTexturedStateRestrictedDrawsTheFullRenderersFrame) {
+  check_states<6>(std::make_index_sequence<72>{});
+}
+TEST(SpanDispatch, EveryPhongStateRestrictedDrawsTheFullRenderersFrame) {
+  check_states<78>(std::make_index_sequence<kSpanStateCount - 78>{});
+}
+
+// ---- (c) Each family's routine does what its state says ---------------------------------------
+
+SpanState first_state(SpanFamily f) {
+  for (const SpanState& s : kSpanStates)
+    if (s.family == f) return s;
+  return {};
+}
+
+// Depth on: where the quads overlap, the nearer (drawn first) stays; off: the farther (drawn
+// last) covers it. Compared pixel for pixel with frames of each quad alone.
+TEST(SpanDispatch, DepthOffDrawsTheHiddenQuadOverInEveryFamily) {
+  for (SpanFamily f : {SpanFamily::kUntextured, SpanFamily::kTextured, SpanFamily::kPhong}) {
+    SpanState s = first_state(f);
+    if (f == SpanFamily::kUntextured) s.colors = ColorPlanes::kPerspective;
+    for (bool depth : {true, false}) {
+      s.depth = depth;
+      const DrawSetup u = setup_for(s, assets());
+      Rig<kAllSpans> rig;
+      ASSERT_EQ(draw_scene(rig, u, true, false), Status::kOk);
+      const host::ImageRgb8 near_only = rig.render();
+      ASSERT_EQ(draw_scene(rig, u, false, true), Status::kOk);
+      const host::ImageRgb8 far_only = rig.render();
+      ASSERT_EQ(draw_scene(rig, u), Status::kOk);
+      const host::ImageRgb8 both = rig.render();
+      int overlap = 0, differ = 0;
+      for (size_t p = 0; p < size_t{kW} * kH; ++p) {
+        if (!is_fg(near_only, p) || !is_fg(far_only, p)) continue;
+        ++overlap;
+        differ += pixel(near_only, p) == pixel(far_only, p) ? 0 : 1;
+        const Rgb8 want = depth ? pixel(near_only, p) : pixel(far_only, p);
+        EXPECT_EQ(pixel(both, p), want)
+            << "family " << static_cast<int>(f) << " depth " << depth << " pixel " << p;
+      }
+      EXPECT_GT(overlap, 30);
+      EXPECT_GT(differ, overlap / 2);  // the two quads tell apart
+    }
+  }
+}
+
+// A single quad with kAllSpans.
+host::ImageRgb8 render_quad(const DrawSetup& u, const Quad& q, const Mat4& model) {
+  Rig<kAllSpans> rig;
+  EXPECT_EQ(rig.r().begin_frame(camera(), u.lights, Rgb8{8, 8, 8}), Status::kOk);
+  EXPECT_EQ(rig.r().draw(q.mesh(), model, u.material, u.state), Status::kOk);
+  return rig.render();
+}
+
+struct Diff {
+  int covered = 0, max = 0;
+  double mean = 0;
+};
+// Over the pixels both frames cover (and the coverage must be the same).
+Diff diff(const host::ImageRgb8& a, const host::ImageRgb8& b) {
+  Diff d;
+  long sum = 0;
+  for (size_t p = 0; p < size_t{kW} * kH; ++p) {
+    EXPECT_EQ(is_fg(a, p), is_fg(b, p)) << p;
+    if (!is_fg(a, p) || !is_fg(b, p)) continue;
+    ++d.covered;
+    for (size_t c = 0; c < 3; ++c) {
+      const int e = std::abs(int{a.rgb[3 * p + c]} - int{b.rgb[3 * p + c]});
+      d.max = std::max(d.max, e);
+      sum += e;
+    }
+  }
+  d.mean = d.covered ? static_cast<double>(sum) / (3.0 * d.covered) : 0;
+  return d;
+}
+
+// A quad tilted away from the viewer, black along its near edge, white along its far edge.
+TEST(SpanDispatch, AffineColoursDifferFromPerspectiveOnATiltedQuad) {
+  const Quad q({Rgb8{0, 0, 0}, Rgb8{0, 0, 0}, Rgb8{255, 255, 255}, Rgb8{255, 255, 255}}, 1.0);
+  const Mat4 model = place(0, -0.3, -2.2, -70, 0);
+  SpanState s = first_state(SpanFamily::kUntextured);
+  s.colors = ColorPlanes::kPerspective;
+  const host::ImageRgb8 persp = render_quad(setup_for(s, assets()), q, model);
+  s.colors = ColorPlanes::kAffine;
+  const host::ImageRgb8 affine = render_quad(setup_for(s, assets()), q, model);
+  s.colors = ColorPlanes::kNone;  // flat: the last vertex's colour, white
+  const host::ImageRgb8 flat = render_quad(setup_for(s, assets()), q, model);
+  const Diff d = diff(persp, affine);
+  EXPECT_GT(d.covered, 150);
+  EXPECT_GE(d.max, 16);
+  EXPECT_GE(d.mean, 3.0);
+  for (size_t p = 0; p < size_t{kW} * kH; ++p)
+    if (is_fg(flat, p)) {
+      EXPECT_EQ(pixel(flat, p), (Rgb8{255, 255, 255})) << p;
+    }
+}
+
+// Unlit, the texel alone (replace), a quad facing the viewer.
+DrawSetup replace_setup(const Texture& tex, Filter filter, MipMode mip, TexPersp persp) {
+  SpanState s = first_state(SpanFamily::kTextured);
+  s.env = TexEnv::kReplace;
+  s.filter = filter;
+  s.mip = mip;
+  s.persp = persp;
+  DrawSetup u = setup_for(s, assets());
+  u.state.texture = &tex;
+  return u;
+}
+
+TEST(SpanDispatch, NearestAndBilinearDifferOnAMagnifiedTexture) {
+  // 4 x 4 black and white checker over about 20 x 20 pixels.
+  const auto tex = make_texture(TexelFormat::kRgb888, 4, false, [](int, int x, int y) {
+    const uint8_t v = (x + y) % 2 == 0 ? 255 : 0;
+    return Rgb8{v, v, v};
+  });
+  const Quad q({}, 1.0);
+  const Mat4 model = place(0, 0, -3, 0, 0);
+  const host::ImageRgb8 nearest = render_quad(
+      replace_setup(tex->tex, Filter::kNearest, MipMode::kNone, TexPersp::kExact), q, model);
+  const host::ImageRgb8 bilinear = render_quad(
+      replace_setup(tex->tex, Filter::kBilinear, MipMode::kNone, TexPersp::kExact), q, model);
+  int covered = 0, between = 0;
+  for (size_t p = 0; p < size_t{kW} * kH; ++p) {
+    if (!is_fg(nearest, p)) continue;
+    ++covered;
+    const Rgb8 n = pixel(nearest, p);
+    EXPECT_TRUE(n == (Rgb8{0, 0, 0}) || n == (Rgb8{255, 255, 255})) << p;
+    const Rgb8 b = pixel(bilinear, p);
+    between += b.g > 20 && b.g < 235 ? 1 : 0;
+  }
+  EXPECT_GT(covered, 150);
+  EXPECT_GT(between, covered / 4);
+}
+
+TEST(SpanDispatch, MipLevelsAreUsedWhenMinifiedAndOnlyWithAMipMode) {
+  // Each level one solid colour: 16, 8, 4, 2, 1 texels.
+  const Rgb8 kLevel[5] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {255, 255, 0}, {255, 255, 255}};
+  const auto tex = make_texture(TexelFormat::kRgb888, 16, true,
+                                [&](int l, int, int) { return kLevel[static_cast<size_t>(l)]; });
+  const Quad q({}, 6.0);  // 96 texels across about 20 pixels: level of detail ~2.3
+  const Mat4 model = place(0, 0, -3, 0, 0);
+  auto render = [&](MipMode m) {
+    return render_quad(replace_setup(tex->tex, Filter::kNearest, m, TexPersp::kExact), q, model);
+  };
+  const host::ImageRgb8 none = render(MipMode::kNone), nearest = render(MipMode::kNearest),
+                        linear = render(MipMode::kLinear);
+  int covered = 0, level2 = 0, blended = 0;
+  for (size_t p = 0; p < size_t{kW} * kH; ++p) {
+    if (!is_fg(none, p)) continue;
+    ++covered;
+    EXPECT_EQ(pixel(none, p), kLevel[0]) << p;
+    const Rgb8 n = pixel(nearest, p);
+    EXPECT_NE(n, kLevel[0]) << p;
+    level2 += n == kLevel[2] ? 1 : 0;
+    const Rgb8 l = pixel(linear, p);
+    EXPECT_NE(l, kLevel[0]) << p;
+    bool pure = false;
+    for (const Rgb8& c : kLevel) pure = pure || l == c;
+    blended += pure ? 0 : 1;
+  }
+  EXPECT_GT(covered, 150);
+  EXPECT_GT(level2, covered / 2);
+  EXPECT_GT(blended, covered / 2);
+}
+
+TEST(SpanDispatch, TexturedPerspectiveModesDifferOnATiltedQuad) {
+  const auto tex = make_texture(TexelFormat::kRgb888, 8, false, [](int, int x, int y) {
+    return Rgb8{static_cast<uint8_t>(30 * x), static_cast<uint8_t>(30 * y), 128};
+  });
+  const Quad q({}, 1.0);
+  const Mat4 model = place(0, -0.3, -2.2, -70, 0);
+  auto render = [&](TexPersp p) {
+    return render_quad(replace_setup(tex->tex, Filter::kBilinear, MipMode::kNone, p), q, model);
+  };
+  const host::ImageRgb8 exact = render(TexPersp::kExact), span = render(TexPersp::kSpan),
+                        affine = render(TexPersp::kAffine);
+  const Diff ea = diff(exact, affine), es = diff(exact, span);
+  EXPECT_GT(ea.covered, 150);
+  EXPECT_GE(ea.max, 30);
+  // Span mode is exact at every 8th pixel and interpolates in between: close to exact.
+  EXPECT_LT(es.mean, ea.mean / 2);
+}
+
+// Phong: one quad facing the viewer, no specular, lit from the front.
+DrawSetup phong_setup(PixelLighting method, bool position) {
+  SpanState s = first_state(SpanFamily::kPhong);
+  s.method = method;
+  s.position = method == PixelLighting::kExact && position;
+  s.table_bilinear = method == PixelLighting::kTable;
+  DrawSetup u = setup_for(s, assets());
+  u.material.specular = {0, 0, 0};
+  if (!position) u.lights.lights[0].position = {fx(0), fx(0), fx(1)};
+  return u;
+}
+
+TEST(SpanDispatch, PhongPositionPlanesLightAQuadUnevenlyFromAPointLight) {
+  const Quad q({}, 1.0);
+  const Mat4 model = place(0, 0, -3, 0, 0);
+  DrawSetup u = phong_setup(PixelLighting::kExact, true);
+  u.lights.lights[0].position = {fx(-0.8), fx(0), fx(-2.6)};  // close to the quad's left edge
+  const host::ImageRgb8 point = render_quad(u, q, model);
+  const host::ImageRgb8 directional =
+      render_quad(phong_setup(PixelLighting::kExact, false), q, model);
+  int lo = 255, hi = 0, dlo = 255, dhi = 0;
+  for (size_t p = 0; p < size_t{kW} * kH; ++p) {
+    if (!is_fg(point, p)) continue;
+    lo = std::min<int>(lo, pixel(point, p).r);
+    hi = std::max<int>(hi, pixel(point, p).r);
+    dlo = std::min<int>(dlo, pixel(directional, p).r);
+    dhi = std::max<int>(dhi, pixel(directional, p).r);
+  }
+  EXPECT_GE(hi - lo, 40);   // a bright spot near the light
+  EXPECT_LE(dhi - dlo, 1);  // a flat quad under a directional light: one colour
+  EXPECT_GT(dlo, 100);
+}
+
+TEST(SpanDispatch, PhongMapsModulateAndTheTableFollowsTheExactMethod) {
+  const Quad q({}, 1.0);
+  const Mat4 model = place(0, 0, -3, 0, 0);
+  const auto green = make_texture(TexelFormat::kRgb888, 4, false, [](int, int, int) {
+    return Rgb8{0, 255, 0};
+  });
+  const auto blue = make_texture(TexelFormat::kRgb888, 4, false, [](int, int, int) {
+    return Rgb8{0, 0, 255};
+  });
+  // A normal map tilting every normal towards +x (away from the light at +z).
+  const auto tilted = make_texture(TexelFormat::kRgb888, 4, false, [](int, int, int) {
+    return Rgb8{240, 128, 180};
+  });
+  const DrawSetup plain = phong_setup(PixelLighting::kExact, false);
+  DrawSetup textured = plain, env = plain, mapped = plain;
+  textured.state.texture = &green->tex;
+  env.state.envmap = &blue->tex;
+  mapped.state.normal_map = &tilted->tex;
+  const host::ImageRgb8 a = render_quad(plain, q, model), t = render_quad(textured, q, model),
+                        e = render_quad(env, q, model), m = render_quad(mapped, q, model),
+                        table = render_quad(phong_setup(PixelLighting::kTable, false), q, model);
+  int covered = 0;
+  for (size_t p = 0; p < size_t{kW} * kH; ++p) {
+    if (!is_fg(a, p)) continue;
+    ++covered;
+    const Rgb8 c = pixel(a, p);
+    EXPECT_GT(c.r, 100);
+    EXPECT_EQ(pixel(t, p), (Rgb8{0, c.g, 0})) << p;  // texel x lit colour: green only
+    EXPECT_EQ(pixel(e, p), (Rgb8{0, 0, c.b})) << p;  // environment x lit colour: blue only
+    EXPECT_LE(pixel(m, p).r + 20, c.r) << p;         // tilted normals: darker
+  }
+  EXPECT_GT(covered, 150);
+  const Diff d = diff(a, table);
+  EXPECT_LE(d.max, 3);
+}
+
+// ---- Every texel fetcher: format x filter x wraps ----------------------------------------------
+
+const Texture& format_texture(TexelFormat f) {
+  static const std::array<std::unique_ptr<OwnedTexture>, 4> t = {
+      checker(TexelFormat::kRgb565), checker(TexelFormat::kRgb888), checker(TexelFormat::kL8),
+      checker(TexelFormat::kPalette8)};
+  return t[static_cast<size_t>(f)]->tex;
+}
+
+// The textured state the fetcher sweep draws with: the texel alone, level 0.
+constexpr SpanState fetch_sweep_state(Filter filter) {
+  SpanState s;
+  s.family = SpanFamily::kTextured;
+  s.env = TexEnv::kReplace;
+  s.filter = filter;
+  return s;
+}
+
+template <size_t I>
+void check_fetcher() {
+  constexpr auto kFormat = static_cast<TexelFormat>(I / 8);
+  constexpr auto kFilter = static_cast<Filter>((I / 4) % 2);
+  constexpr Wrap kWs = (I & 2) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat;
+  constexpr Wrap kWt = (I & 1) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat;
+  static_assert(fetch_index(kFormat, kFilter, kWs, kWt) == I);
+  constexpr SpanState kState = fetch_sweep_state(kFilter);
+  constexpr SpanSet kSet = span_set_of(kState).only(kFormat).only_wraps(kWs, kWt);
+  for (size_t i = 0; i < kFetchRoutines; ++i)
+    EXPECT_EQ(kFetchTable<kSet>[i] != nullptr, i == I) << "fetcher " << I << " entry " << i;
+  EXPECT_EQ(kFetchTable<kSet>[I], kFetchTable<>[I]);
+
+  DrawSetup u = setup_for(kState, assets());
+  u.state.texture = &format_texture(kFormat);
+  u.state.sampler.wrap_s = kWs;
+  u.state.sampler.wrap_t = kWt;
+  Rig<kAllSpans> full;
+  auto small = std::make_unique<Rig<kSet>>();
+  ASSERT_EQ(draw_scene(full, u), Status::kOk) << "fetcher " << I;
+  ASSERT_EQ(draw_scene(*small, u), Status::kOk) << "fetcher " << I;
+  const host::ImageRgb8 want = full.render();
+  EXPECT_GT(count_fg(want), 100);
+  EXPECT_TRUE(small->render().rgb == want.rgb) << "fetcher " << I << ": frames differ";
+
+  // Another format, wrap or filter: refused.
+  ASSERT_EQ(draw_scene(*small, u), Status::kOk);
+  DrawState s = u.state;
+  s.texture = &format_texture(static_cast<TexelFormat>((I / 8 + 1) % 4));
+  EXPECT_EQ(small->r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
+            Status::kInvalidArgument);
+  s = u.state;
+  s.sampler.wrap_s = kWs == Wrap::kRepeat ? Wrap::kClampToEdge : Wrap::kRepeat;
+  EXPECT_EQ(small->r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
+            Status::kInvalidArgument);
+  s = u.state;
+  s.sampler.filter = kFilter == Filter::kNearest ? Filter::kBilinear : Filter::kNearest;
+  EXPECT_EQ(small->r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
+            Status::kInvalidArgument);
+}
+
+template <size_t... I>
+void check_fetchers(std::index_sequence<I...>) {
+  (check_fetcher<I>(), ...);
+}
+
+TEST(SpanDispatch, EveryFetcherRestrictedDrawsTheFullRenderersFrame) {
+  check_fetchers(std::make_index_sequence<kFetchRoutines>{});
+}
+
+TEST(SpanDispatch, RepeatAndClampDifferBeyondTheTexture) {
+  const Quad q({}, 3.0);  // u, v in [0, 3]
+  const Mat4 model = place(0, 0, -3, 0, 0);
+  DrawSetup u = setup_for(fetch_sweep_state(Filter::kNearest), assets());
+  u.state.texture = &format_texture(TexelFormat::kRgb888);
+  const host::ImageRgb8 repeat = render_quad(u, q, model);
+  u.state.sampler.wrap_s = u.state.sampler.wrap_t = Wrap::kClampToEdge;
+  const host::ImageRgb8 clamp = render_quad(u, q, model);
+  const Diff d = diff(repeat, clamp);
+  EXPECT_GT(d.covered, 150);
+  EXPECT_GE(d.max, 100);
+}
+
+}  // namespace
+}  // namespace lr
