@@ -191,11 +191,23 @@ using TexSpanFn = uint32_t (*)(const ActiveTriangle& t, const DrawRecord& d,
                                typename PF::Storage* px, uint16_t* depth, int32_t col, int32_t row,
                                int32_t count);
 
-template <class PF, bool kDepth, TexPersp kPersp, TexEnv kEnv, MipMode kMip>
-uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename PF::Storage* px,
-                       uint16_t* depth, int32_t col, int32_t row, int32_t count) {
+namespace detail {
+// The span body. kConstColors: a modulated triangle whose colours are the same at its three
+// vertices (ActiveTriangle::const_colors: flat shading, or faces lit alike such as a cube's under
+// directional light) modulates every texel by those values: no colour planes to step, no colour
+// divisions.
+template <class PF, bool kDepth, TexPersp kPersp, TexEnv kEnv, MipMode kMip, bool kConstColors>
+uint32_t fill_tex_span_body(const ActiveTriangle& tri, const DrawRecord& d,
+                            typename PF::Storage* px, uint16_t* depth, int32_t col, int32_t row,
+                            int32_t count) {
   using detail::TexAttrs;
-  constexpr bool kColors = kEnv == TexEnv::kModulate;
+  constexpr bool kColors = kEnv == TexEnv::kModulate && !kConstColors;
+  uint32_t prim[3] = {0, 0, 0}, sec[3] = {0, 0, 0};
+  if constexpr (kConstColors)
+    for (int k = 0; k < 3; ++k) {
+      prim[k] = clamp_c15(static_cast<int32_t>(tri.c[k].base));
+      sec[k] = clamp_c15(static_cast<int32_t>(tri.spec[k].base));
+    }
   constexpr int kMaxChunk = 32;
   const Texture& tex = *d.texture;
   const int last_level = tex.level_count - 1;
@@ -352,6 +364,10 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
           out.r = static_cast<uint8_t>(detail::modulate(out.r, cc[j][0], cc[j][3]));
           out.g = static_cast<uint8_t>(detail::modulate(out.g, cc[j][1], cc[j][4]));
           out.b = static_cast<uint8_t>(detail::modulate(out.b, cc[j][2], cc[j][5]));
+        } else if constexpr (kConstColors) {
+          out.r = static_cast<uint8_t>(detail::modulate(out.r, prim[0], sec[0]));
+          out.g = static_cast<uint8_t>(detail::modulate(out.g, prim[1], sec[1]));
+          out.b = static_cast<uint8_t>(detail::modulate(out.b, prim[2], sec[2]));
         }
         px[idx[j]] = PF::encode(out);
       }
@@ -360,6 +376,20 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
     done += len;
   }
   return written;
+}
+}  // namespace detail
+
+// One routine per (depth, perspective mode, environment, mip mode); a modulated one picks its
+// body per span by whether the triangle's colours are constant (a per-span choice, not per pixel).
+template <class PF, bool kDepth, TexPersp kPersp, TexEnv kEnv, MipMode kMip>
+uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename PF::Storage* px,
+                       uint16_t* depth, int32_t col, int32_t row, int32_t count) {
+  if constexpr (kEnv == TexEnv::kModulate)
+    if (tri.const_colors)
+      return detail::fill_tex_span_body<PF, kDepth, kPersp, kEnv, kMip, true>(tri, d, px, depth,
+                                                                              col, row, count);
+  return detail::fill_tex_span_body<PF, kDepth, kPersp, kEnv, kMip, false>(tri, d, px, depth, col,
+                                                                           row, count);
 }
 
 namespace detail {

@@ -285,7 +285,24 @@ void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const
   const int32_t us[3] = {v[0]->u, v[1]->u, v[2]->u}, vs[3] = {v[0]->v, v[1]->v, v[2]->v};
   texture_axis(us, l0.width, ts.wrap_s, ts.perspective, pb, q, t.s, t.off_s, t.m_s);
   texture_axis(vs, l0.height, ts.wrap_t, ts.perspective, pb, q, t.t, t.off_t, t.m_t);
+  t.const_colors = false;
   if (!ts.colors) return;
+  bool same = ts.flat;
+  if (!same) {
+    same = true;
+    for (int i = 1; i < 3; ++i)
+      same = same && v[i]->color == v[0]->color && v[i]->spec == v[0]->spec;
+  }
+  if (same) {
+    const Color15 pc = ts.flat ? ts.flat_primary : v[0]->color;
+    const Color15 sc = ts.flat ? ts.flat_secondary : v[0]->spec;
+    for (int c = 0; c < 3; ++c) {
+      t.c[c] = Plane{channel(pc, c), 0, 0};
+      t.spec[c] = Plane{channel(sc, c), 0, 0};
+    }
+    t.const_colors = true;
+    return;
+  }
   for (int c = 0; c < 3; ++c) {
     uint32_t p[3], sp[3];
     for (int i = 0; i < 3; ++i) {

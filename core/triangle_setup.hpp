@@ -65,6 +65,9 @@ struct ActiveTriangle {
   Plane spec[3];  // secondary colour, in the format of c
   int32_t off_s = 0, off_t = 0;
   uint8_t m_s = 0, m_t = 0;
+  // Textured, modulated: the colours are the same at the three vertices; c[i].base and
+  // spec[i].base hold them (Q1.15) and there are no colour planes.
+  bool const_colors = false;
   // Phong triangles: tangent planes, the position planes' origin (world Q16.16) and shift, and
   // the bitangent's handedness (+-16384).
   uint8_t m_p = 0;
