@@ -327,11 +327,9 @@ bool FrameBuilder::admitted(const DrawState& state, bool phong, bool color_plane
   return !s.envmap || span_set_->admits_envmap(state.envmap->format);
 }
 
-FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
-                                          Rgb8 flat, Rgb8 flat_spec, Cull cull) {
-  const ScreenVertex& v0 = storage_.vertices[a];
-  const ScreenVertex& v1 = storage_.vertices[b];
-  const ScreenVertex& v2 = storage_.vertices[c];
+FrameBuilder::BinResult FrameBuilder::classify(const ScreenVertex& v0, const ScreenVertex& v1,
+                                               const ScreenVertex& v2, Cull cull, int32_t& r0,
+                                               int32_t& r1) const {
   int64_t area = (int64_t{v1.x} - v0.x) * (int64_t{v2.y} - v0.y) -
                  (int64_t{v2.x} - v0.x) * (int64_t{v1.y} - v0.y);
   if (area == 0) return BinResult::kZeroArea;
@@ -345,7 +343,8 @@ FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, ui
   int32_t xmin = v0.x < v1.x ? v0.x : v1.x, xmax = v0.x > v1.x ? v0.x : v1.x;
   xmin = v2.x < xmin ? v2.x : xmin;
   xmax = v2.x > xmax ? v2.x : xmax;
-  int32_t r0 = first_row_below(ymin), r1 = last_row_at_or_above(ymax);
+  r0 = first_row_below(ymin);
+  r1 = last_row_at_or_above(ymax);
   if (r0 < 0) r0 = 0;
   if (r1 > height_ - 1) r1 = height_ - 1;
   // Columns whose centres can pass both edge tests: [ceil((xmin-128)/256), ceil((xmax-128)/256)).
@@ -354,6 +353,17 @@ FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, ui
   if (c0 < 0) c0 = 0;
   if (c1 > width_) c1 = width_;
   if (r0 > r1 || c0 >= c1) return BinResult::kOffscreen;
+  return BinResult::kBinned;
+}
+
+FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
+                                          Rgb8 flat, Rgb8 flat_spec, Cull cull) {
+  const ScreenVertex& v0 = storage_.vertices[a];
+  const ScreenVertex& v1 = storage_.vertices[b];
+  const ScreenVertex& v2 = storage_.vertices[c];
+  int32_t r0 = 0, r1 = 0;
+  const BinResult result = classify(v0, v1, v2, cull, r0, r1);
+  if (result != BinResult::kBinned) return result;
   if (triangle_count_ >= storage_.triangles.size()) return BinResult::kCapacity;
   auto index = static_cast<uint16_t>(triangle_count_++);
   BinnedTriangle& t = storage_.triangles[index];
@@ -507,6 +517,7 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
   stats_.vertices_transformed += static_cast<uint32_t>(n);
   for (size_t i = 0; i < n; ++i) {
     ScreenVertex& sv = storage_.vertices[base + i];
+    sv.unlit = lit && gouraud ? 1 : 0;
     ClipCoord c = transform_point(mvp, mesh.positions[i]);
     sv.outcode = outcode(c, guard_);
     if (sv.outcode == 0) project(c, sv);
@@ -527,7 +538,7 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
         su.handedness = 16384;
       }
     } else if (lit && gouraud) {
-      light_vertex(i, false, sv);
+      sv.color = Color15{};  // lit when a triangle that is drawn first uses it (below)
     } else if (!lit) {
       sv.color = mesh.colors.empty() ? material_color : from_rgb8(mesh.colors[i]);
     } else {
@@ -557,6 +568,26 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
     if (oc_and != 0) {
       ++stats_.clipped_away;
       continue;
+    }
+    if (lit && gouraud) {
+      // Vertices are lit on first use by a triangle that is drawn: those only culled, off-screen
+      // or covering no pixel centre are never lit (bin() repeats the test: it is cheap next to
+      // lighting, about 1,000 instructions per vertex on Cortex-M4).
+      if (oc_or == 0 && !two_sided) {
+        int32_t r0 = 0, r1 = 0;
+        const BinResult r = classify(*sv[0], *sv[1], *sv[2], state.cull, r0, r1);
+        if (r != BinResult::kBinned) {
+          count_outcome(stats_, 0, static_cast<int>(r));
+          continue;
+        }
+      }
+      for (int k = 0; k < 3; ++k) {
+        ScreenVertex& v = storage_.vertices[vi[k]];
+        if (v.unlit) {
+          light_vertex(tri[static_cast<size_t>(k)], false, v);
+          v.unlit = 0;
+        }
+      }
     }
     // Two-sided lighting: back faces are lit with the negated normal (GL decides per polygon).
     bool back = false;

@@ -143,6 +143,9 @@ class FrameBuilder {
   enum class BinResult : uint8_t { kBinned, kBackface, kZeroArea, kOffscreen, kCapacity };
   BinResult bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
                 Cull cull);
+  // bin()'s tests without binning: kBinned when the triangle would be binned (capacity aside).
+  BinResult classify(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
+                     Cull cull, int32_t& r0, int32_t& r1) const;
   bool project(const ClipCoord& c, ScreenVertex& out) const;
   Status add_draw_record(const DrawState& state, bool has_color_planes, size_t vertices,
                          uint32_t triangles, uint8_t& index);

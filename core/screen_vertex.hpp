@@ -31,7 +31,7 @@ struct ScreenVertex {
   Color15 color{};       // lit or given colour (the primary colour when textured and lit)
   Color15 spec{};        // secondary (specular) colour of textured, lit draws; else 0
   uint8_t outcode = 0;   // clip planes this vertex is outside of (0: projected fields valid)
-  uint8_t reserved = 0;
+  uint8_t unlit = 0;     // vertex stage: 1 while its colour waits for its first drawn triangle
 };
 static_assert(sizeof(ScreenVertex) == 40);
 
