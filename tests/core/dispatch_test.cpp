@@ -303,6 +303,12 @@ Rgb8 pixel(const host::ImageRgb8& img, size_t p) {
   return {img.rgb[3 * p], img.rgb[3 * p + 1], img.rgb[3 * p + 2]};
 }
 
+constexpr SpanState first_state(SpanFamily f) {
+  for (const SpanState& s : kSpanStates)
+    if (s.family == f) return s;
+  return {};
+}
+
 // ---- (a) The tables ----------------------------------------------------------------------------
 
 template <class T, size_t N>
@@ -374,6 +380,33 @@ TEST(SpanDispatch, EveryStateOfTheFullSetHasItsOwnNonNullRoutines) {
                             kFetchRoutines);  // environment maps use 4 of the fetchers
   EXPECT_EQ(all.count(nullptr), 0u);
 }
+
+// The helpers restrict one dimension each; a product set over two families is exact per family,
+// while the union of two sets is the smallest product set holding both (it may hold more).
+constexpr SpanSet kPhongPlain = kPhongOnly.only_depth(true)
+                                    .only(PixelLighting::kExact)
+                                    .only_position(false)
+                                    .only_maps(false, false, false);
+static_assert(kPhongPlain.admits([] {
+  SpanState s = first_state(SpanFamily::kPhong);  // exact, no maps, no position planes
+  s.depth = true;
+  return s;
+}()));
+static_assert(!kPhongOnly.only_table_filter(Filter::kNearest).admits([] {
+  SpanState s = first_state(SpanFamily::kPhong);
+  s.method = PixelLighting::kTable;
+  s.table_bilinear = true;
+  return s;
+}()));
+static_assert(!kPhongPlain.admits([] {
+  SpanState s = first_state(SpanFamily::kPhong);
+  s.envmap = true;
+  return s;
+}()));
+static_assert((kUntexturedSpans.only(ColorPlanes::kAffine) | kTexturedOnly)
+                  .admits(SpanState{SpanFamily::kUntextured, true, ColorPlanes::kNone}));
+static_assert(!kTexturedSpans.only(ColorPlanes::kAffine)
+                   .admits(SpanState{SpanFamily::kUntextured, true, ColorPlanes::kNone}));
 
 constexpr SpanSet kNearestNoMipExact =
     kTexturedSpans.only(Filter::kNearest).only(MipMode::kNone).only(PixelLighting::kExact);
@@ -474,12 +507,6 @@ TEST(SpanDispatch, EveryPhongStateRestrictedDrawsTheFullRenderersFrame) {
 }
 
 // ---- (c) Each family's routine does what its state says ---------------------------------------
-
-SpanState first_state(SpanFamily f) {
-  for (const SpanState& s : kSpanStates)
-    if (s.family == f) return s;
-  return {};
-}
 
 // Depth on: where the quads overlap, the nearer (drawn first) stays; off: the farther (drawn
 // last) covers it. Compared pixel for pixel with frames of each quad alone.
