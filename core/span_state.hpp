@@ -297,7 +297,8 @@ inline constexpr std::array<SpanState, kSpanStateCount> kSpanStates = [] {
   return a;
 }();
 
-// Which table entries a set uses: an entry is used when an admitted state selects it.
+// Which table entries a set uses: an entry is used when a draw the set admits (its state and
+// its textures) selects it.
 struct UsedRoutines {
   std::array<bool, kUntexturedRoutines> untextured{};
   std::array<bool, kTexturedRoutines> textured{};
@@ -318,27 +319,32 @@ constexpr UsedRoutines used_routines(const SpanSet& set) {
   constexpr TexelFormat kFormats[] = {TexelFormat::kRgb565, TexelFormat::kRgb888, TexelFormat::kL8,
                                       TexelFormat::kPalette8};
   constexpr Wrap kWraps[] = {Wrap::kRepeat, Wrap::kClampToEdge};
+  // Whether any texture (or normal map), any environment map can be drawn with at all.
+  bool any_sampler = false, any_envmap = false;
+  for (TexelFormat f : kFormats) {
+    any_envmap = any_envmap || set.admits_envmap(f);
+    for (Wrap ws : kWraps)
+      for (Wrap wt : kWraps) any_sampler = any_sampler || set.admits_sampler(f, ws, wt);
+  }
   for (const SpanState& s : kSpanStates) {
-    if (!set.admits(s)) continue;
-    bool sampler = false;
+    const bool sampled = s.family == SpanFamily::kTextured || s.texture || s.normal_map;
+    if (!set.admits(s) || (sampled && !any_sampler) || (s.envmap && !any_envmap)) continue;
     switch (s.family) {
       case SpanFamily::kUntextured:
         u.untextured[untextured_index(s.depth, s.colors)] = true;
         break;
       case SpanFamily::kTextured:
         u.textured[textured_index(s.depth, s.persp, s.env, s.mip)] = true;
-        sampler = true;
         break;
       case SpanFamily::kPhong:
         u.phong[phong_index(s.depth, s.method, s.position || s.table_bilinear, s.texture,
                             s.normal_map, s.envmap)] = true;
-        sampler = s.texture || s.normal_map;
         if (s.envmap)
           for (TexelFormat f : kFormats)
             if (set.admits_envmap(f)) u.env_fetch[static_cast<size_t>(f)] = true;
         break;
     }
-    if (sampler)
+    if (sampled)
       for (TexelFormat f : kFormats)
         for (Wrap ws : kWraps)
           for (Wrap wt : kWraps)

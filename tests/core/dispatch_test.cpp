@@ -430,6 +430,14 @@ TEST(SpanDispatch, StatesOutsideARestrictedSetHaveNoRoutine) {
   EXPECT_TRUE(all_null(kTexSpanTable<PF, kUntexturedSpans>));
   EXPECT_TRUE(all_null(kFetchTable<kUntexturedSpans>));
   EXPECT_FALSE(kUsedRoutines<kUntexturedSpans>.any_fetch());
+  // A set that admits no texture format can draw no textured state: no routine either.
+  constexpr SpanSet kNoFormat = [] {
+    SpanSet set = kTexturedOnly;
+    set.formats = 0;
+    return set;
+  }();
+  EXPECT_TRUE(all_null(kTexSpanTable<PF, kNoFormat>));
+  EXPECT_TRUE(all_null(kFetchTable<kNoFormat>));
   // Nearest only: exactly the 16 nearest fetchers (4 formats x 4 wraps), the 12 no-mip routines.
   int fetchers = 0, tex = 0;
   for (size_t i = 0; i < kFetchRoutines; ++i)
