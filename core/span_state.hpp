@@ -9,8 +9,11 @@
 //   Phong:      depth test x lighting method x (exact: world-position planes; fill_phong_span
 //               table: bilinear lookup) x texture x normal map x environment map,
 //               x filter (texture or normal map) x mip mode (texture)
-// The texel fetchers are also chosen by the texture's format and wraps (FetchIndex): those are
-// checked per texture against the set's masks but do not multiply the span states.
+// The texel fetchers are also chosen by the texture's format and wraps (fetch_index): those are
+// checked per texture against the set's masks but do not multiply the span states. The pixel
+// format is the renderer's PF (every table is per PF). Not instances, so not state dimensions:
+// the span length of TexPersp::kSpan (8, 16, 32) and Phong's mip mode (per chunk of 16 pixels,
+// inside the routine; it is still a dimension of the set, so that "no mipmaps" holds for Phong).
 //
 // SpanSet is the restriction: one mask per dimension (a product set), usable as a non-type
 // template parameter: Renderer<PF, K, kSet>. The routine tables of a renderer are generated
@@ -126,6 +129,14 @@ struct SpanSet {
   constexpr SpanSet only_wraps(Wrap s, Wrap t) const {
     return with(&SpanSet::wrap_s, s).with(&SpanSet::wrap_t, t);
   }
+  constexpr SpanSet only_position(bool on) const { return with(&SpanSet::position, on); }
+  constexpr SpanSet only_table_filter(Filter v) const { return with(&SpanSet::table_filter, v); }
+  // Phong draws with (true) or without (false) each map.
+  constexpr SpanSet only_maps(bool texture_map, bool normal, bool environment) const {
+    return with(&SpanSet::texture, texture_map)
+        .with(&SpanSet::normal_map, normal)
+        .with(&SpanSet::envmap, environment);
+  }
 
   // Per-dimension union and intersection (the union is the smallest product set holding both).
   friend constexpr SpanSet operator|(SpanSet a, const SpanSet& b) {
@@ -151,7 +162,8 @@ struct SpanSet {
       &SpanSet::envmap,   &SpanSet::formats,      &SpanSet::wrap_s,  &SpanSet::wrap_t};
 };
 
-// Presets. Every preset keeps the untextured routines (overlays, backgrounds).
+// Presets: kUntexturedSpans, kTexturedSpans and kPhongSpans keep the untextured routines
+// (overlays, backgrounds); kTexturedOnly and kPhongOnly are one family alone.
 inline constexpr SpanSet kAllSpans{};
 inline constexpr SpanSet kUntexturedSpans = kAllSpans.only(SpanFamily::kUntextured);
 inline constexpr SpanSet kTexturedOnly = kAllSpans.only(SpanFamily::kTextured);
@@ -285,7 +297,8 @@ inline constexpr std::array<SpanState, kSpanStateCount> kSpanStates = [] {
   return a;
 }();
 
-// Which table entries a set uses: an entry is used when an admitted state selects it.
+// Which table entries a set uses: an entry is used when a draw the set admits (its state and
+// its textures) selects it.
 struct UsedRoutines {
   std::array<bool, kUntexturedRoutines> untextured{};
   std::array<bool, kTexturedRoutines> textured{};
@@ -306,9 +319,16 @@ constexpr UsedRoutines used_routines(const SpanSet& set) {
   constexpr TexelFormat kFormats[] = {TexelFormat::kRgb565, TexelFormat::kRgb888, TexelFormat::kL8,
                                       TexelFormat::kPalette8};
   constexpr Wrap kWraps[] = {Wrap::kRepeat, Wrap::kClampToEdge};
+  // Whether any texture (or normal map), any environment map can be drawn with at all.
+  bool any_sampler = false, any_envmap = false;
+  for (TexelFormat f : kFormats) {
+    any_envmap = any_envmap || set.admits_envmap(f);
+    for (Wrap ws : kWraps)
+      for (Wrap wt : kWraps) any_sampler = any_sampler || set.admits_sampler(f, ws, wt);
+  }
   for (const SpanState& s : kSpanStates) {
-    if (!set.admits(s)) continue;
-    bool sampler = false;
+    const bool sampled = s.family == SpanFamily::kTextured || s.texture || s.normal_map;
+    if (!set.admits(s) || (sampled && !any_sampler) || (s.envmap && !any_envmap)) continue;
     switch (s.family) {
       case SpanFamily::kUntextured:
         u.untextured[untextured_index(s.depth, s.colors)] = true;
@@ -319,18 +339,16 @@ constexpr UsedRoutines used_routines(const SpanSet& set) {
         break;
       case SpanFamily::kTextured:
         u.textured[textured_index(s.depth, s.persp, s.env, s.mip)] = true;
-        sampler = true;
         break;
       case SpanFamily::kPhong:
         u.phong[phong_index(s.depth, s.method, s.position || s.table_bilinear, s.texture,
                             s.normal_map, s.envmap)] = true;
-        sampler = s.texture || s.normal_map;
         if (s.envmap)
           for (TexelFormat f : kFormats)
             if (set.admits_envmap(f)) u.env_fetch[static_cast<size_t>(f)] = true;
         break;
     }
-    if (sampler)
+    if (sampled)
       for (TexelFormat f : kFormats)
         for (Wrap ws : kWraps)
           for (Wrap wt : kWraps)

@@ -49,7 +49,7 @@ done
 # virtual methods and the span routines of its families; textured and Phong spans call texel
 # fetchers; Reset_Handler calls the static constructors (none: the images constant-initialise).
 indirect_rules=(
-  --indirect-from 'lr::Renderer<.*>::render\('
+  --indirect-from 'lr::Renderer<.*>::(render|raster_triangle)\('
   'OrderedStripSink<.*>::|lr::fill_span<|lr::fill_tex_span<|lr::fill_phong_span<'
   --indirect-from 'lr::fill_(tex|phong)_span<' 'lr::fetch_batch<'
   --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'

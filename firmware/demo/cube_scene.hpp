@@ -8,6 +8,7 @@
 #include <cstddef>
 
 #include "core/mesh.hpp"
+#include "core/span_state.hpp"
 #include "firmware/demo/scene.hpp"
 #include "cube_asset.hpp"  // generated at build time: lineraster-asset --obj cube.obj --fit
 
@@ -50,5 +51,17 @@ inline DrawState state(size_t draw) {
   }
   return s;
 }
+
+// The span states of state(): Gouraud, lit, depth test, perspective-exact colours; the textured
+// draw bilinear, repeat, level 0 only, modulated, in the asset texture's format. The renderer
+// links these routines and this fetcher only (a product set: each family's masks apply to it).
+inline constexpr SpanSet kSpans = kTexturedSpans.only_depth(true)
+                                      .only(ColorPlanes::kPerspective)
+                                      .only(TexPersp::kExact)
+                                      .only(TexEnv::kModulate)
+                                      .only(MipMode::kNone)
+                                      .only(Filter::kBilinear)
+                                      .only(asset::texture.format)
+                                      .only_wraps(Wrap::kRepeat, Wrap::kRepeat);
 
 }  // namespace lr::fw::demo::cube

@@ -8,6 +8,7 @@
 
 #include "core/material.hpp"
 #include "core/mesh.hpp"
+#include "core/span_state.hpp"
 #include "firmware/demo/scene.hpp"
 #include "knot_asset.hpp"  // generated at build time: lineraster-asset --obj torus_knot.obj --fit
 
@@ -35,5 +36,9 @@ inline DrawState state(size_t) {
   DrawState s;  // Gouraud, lit, depth test, no culling: the CLI's defaults
   return s;
 }
+
+// The span state of state(): Gouraud, lit, depth test, perspective-exact colours.
+inline constexpr SpanSet kSpans =
+    kUntexturedSpans.only_depth(true).only(ColorPlanes::kPerspective);
 
 }  // namespace lr::fw::demo::knot

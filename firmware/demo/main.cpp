@@ -56,13 +56,9 @@ std::array<uint16_t, 2 * kActive> g_active_index{};
 std::array<uint16_t, kStripPixels> g_depth{};
 std::array<std::array<PF::Storage, kStripPixels>, 2> g_strips{};
 
-// Only the span families the scene draws are linked (lr::SpanSet, core/span_state.hpp).
-consteval lr::SpanSet span_set() {
-  for (bool t : scene::asset::textured)
-    if (t) return lr::kTexturedSpans;
-  return lr::kUntexturedSpans;
-}
-lr::Renderer<PF, kStripRows, span_set()> g_renderer;
+// Only the span routines of the scene's draw states are linked (scene::kSpans, an lr::SpanSet:
+// core/span_state.hpp); a draw outside them would be refused.
+lr::Renderer<PF, kStripRows, scene::kSpans> g_renderer;
 
 #ifndef LR_DEMO_OUTPUT
 #define LR_DEMO_OUTPUT "lr_demo.ppm"

@@ -156,10 +156,18 @@ Mat4 place(double x, double y, double z, double rx, double ry) {
 
 // ---- A renderer with its storage -------------------------------------------------------------
 
-template <SpanSet kSet>
-class Rig {
+// Storage and display (no template: compiled once); Rig<kSet> adds the renderer.
+class RigBase {
  public:
-  Rig()
+  virtual ~RigBase() = default;
+  FrameBuilder& r() { return *builder_; }
+  host::ImageRgb8 render() {
+    EXPECT_EQ(render_frame(), Status::kOk);
+    return display_.image();
+  }
+
+ protected:
+  RigBase()
       : vertices_(256),
         triangles_(256),
         draws_(8),
@@ -170,19 +178,13 @@ class Rig {
         surfaces_(256),
         tables_(4 * lighting_table_words(32, true)),
         pixel_lights_(8),
-        display_(kW * kK),
-        renderer_(std::make_unique<Renderer<PF, kK, kSet>>()) {
-    FrameStorage s{vertices_,     triangles_, draws_,    buckets_, active_,
-                   active_index_, depth_,     surfaces_, tables_,  pixel_lights_};
-    EXPECT_EQ(renderer_->configure(s, kW, kH), Status::kOk);
+        display_(kW * kK) {}
+  FrameStorage storage() {
+    return {vertices_,     triangles_, draws_,    buckets_, active_,
+            active_index_, depth_,     surfaces_, tables_,  pixel_lights_};
   }
-  Renderer<PF, kK, kSet>& r() { return *renderer_; }
-  host::ImageRgb8 render() {
-    EXPECT_EQ(renderer_->render(display_), Status::kOk);
-    return display_.image();
-  }
+  virtual Status render_frame() = 0;
 
- private:
   std::vector<ScreenVertex> vertices_;
   std::vector<BinnedTriangle> triangles_;
   std::vector<DrawRecord> draws_;
@@ -194,6 +196,19 @@ class Rig {
   std::vector<uint32_t> tables_;
   std::vector<PreparedLighting> pixel_lights_;
   host::CaptureDisplay<PF> display_;
+  FrameBuilder* builder_ = nullptr;
+};
+
+template <SpanSet kSet>
+class Rig final : public RigBase {
+ public:
+  Rig() : renderer_(std::make_unique<Renderer<PF, kK, kSet>>()) {
+    builder_ = renderer_.get();
+    EXPECT_EQ(renderer_->configure(storage(), kW, kH), Status::kOk);
+  }
+
+ private:
+  Status render_frame() override { return renderer_->render(display_); }
   std::unique_ptr<Renderer<PF, kK, kSet>> renderer_;
 };
 
@@ -263,8 +278,7 @@ const Quad& far_quad() {
 
 // Two quads, the nearer drawn first and overlapping the farther: the depth test decides the
 // overlap. Both tilted (perspective matters), the far one minified.
-template <SpanSet kSet>
-Status draw_scene(Rig<kSet>& rig, const DrawSetup& u, bool near = true, bool far = true) {
+Status draw_scene(RigBase& rig, const DrawSetup& u, bool near = true, bool far = true) {
   Status st = rig.r().begin_frame(camera(), u.lights, Rgb8{8, 8, 8});
   if (st != Status::kOk) return st;
   if (near)
@@ -287,6 +301,12 @@ int count_fg(const host::ImageRgb8& img) {
 }
 Rgb8 pixel(const host::ImageRgb8& img, size_t p) {
   return {img.rgb[3 * p], img.rgb[3 * p + 1], img.rgb[3 * p + 2]};
+}
+
+constexpr SpanState first_state(SpanFamily f) {
+  for (const SpanState& s : kSpanStates)
+    if (s.family == f) return s;
+  return {};
 }
 
 // ---- (a) The tables ----------------------------------------------------------------------------
@@ -361,6 +381,33 @@ TEST(SpanDispatch, EveryStateOfTheFullSetHasItsOwnNonNullRoutines) {
   EXPECT_EQ(all.count(nullptr), 0u);
 }
 
+// The helpers restrict one dimension each; a product set over two families is exact per family,
+// while the union of two sets is the smallest product set holding both (it may hold more).
+constexpr SpanSet kPhongPlain = kPhongOnly.only_depth(true)
+                                    .only(PixelLighting::kExact)
+                                    .only_position(false)
+                                    .only_maps(false, false, false);
+static_assert(kPhongPlain.admits([] {
+  SpanState s = first_state(SpanFamily::kPhong);  // exact, no maps, no position planes
+  s.depth = true;
+  return s;
+}()));
+static_assert(!kPhongOnly.only_table_filter(Filter::kNearest).admits([] {
+  SpanState s = first_state(SpanFamily::kPhong);
+  s.method = PixelLighting::kTable;
+  s.table_bilinear = true;
+  return s;
+}()));
+static_assert(!kPhongPlain.admits([] {
+  SpanState s = first_state(SpanFamily::kPhong);
+  s.envmap = true;
+  return s;
+}()));
+static_assert((kUntexturedSpans.only(ColorPlanes::kAffine) | kTexturedOnly)
+                  .admits(SpanState{SpanFamily::kUntextured, true, ColorPlanes::kNone}));
+static_assert(!kTexturedSpans.only(ColorPlanes::kAffine)
+                   .admits(SpanState{SpanFamily::kUntextured, true, ColorPlanes::kNone}));
+
 constexpr SpanSet kNearestNoMipExact =
     kTexturedSpans.only(Filter::kNearest).only(MipMode::kNone).only(PixelLighting::kExact);
 
@@ -383,6 +430,14 @@ TEST(SpanDispatch, StatesOutsideARestrictedSetHaveNoRoutine) {
   EXPECT_TRUE(all_null(kTexSpanTable<PF, kUntexturedSpans>));
   EXPECT_TRUE(all_null(kFetchTable<kUntexturedSpans>));
   EXPECT_FALSE(kUsedRoutines<kUntexturedSpans>.any_fetch());
+  // A set that admits no texture format can draw no textured state: no routine either.
+  constexpr SpanSet kNoFormat = [] {
+    SpanSet set = kTexturedOnly;
+    set.formats = 0;
+    return set;
+  }();
+  EXPECT_TRUE(all_null(kTexSpanTable<PF, kNoFormat>));
+  EXPECT_TRUE(all_null(kFetchTable<kNoFormat>));
   // Nearest only: exactly the 16 nearest fetchers (4 formats x 4 wraps), the 12 no-mip routines.
   int fetchers = 0, tex = 0;
   for (size_t i = 0; i < kFetchRoutines; ++i)
@@ -397,47 +452,51 @@ TEST(SpanDispatch, StatesOutsideARestrictedSetHaveNoRoutine) {
 
 // ---- (b) Every state: the restricted renderer draws the full renderer's frame ----------------
 
-template <size_t I>
-void check_state() {
-  constexpr SpanState kState = kSpanStates[I];
-  constexpr SpanSet kSet = restricted(kState);
+// State I of the enumeration with `small`, a renderer restricted to restricted(state).
+void check_state_with(size_t I, RigBase& small) {
+  const SpanState& state = kSpanStates[I];
   const Assets& a = assets();
-  const DrawSetup u = setup_for(kState, a);
+  const DrawSetup u = setup_for(state, a);
   Rig<kAllSpans> full;
-  auto small = std::make_unique<Rig<kSet>>();
   ASSERT_EQ(draw_scene(full, u), Status::kOk) << "state " << I;
-  ASSERT_EQ(draw_scene(*small, u), Status::kOk) << "state " << I << ": refused by its own set";
+  ASSERT_EQ(draw_scene(small, u), Status::kOk) << "state " << I << ": refused by its own set";
   const host::ImageRgb8 want = full.render();
-  const host::ImageRgb8 got = small->render();
+  const host::ImageRgb8 got = small.render();
   EXPECT_GT(count_fg(want), 100) << "state " << I;
   EXPECT_TRUE(want.rgb == got.rgb) << "state " << I << ": frames differ";
 
   // Other states are refused, with nothing added or counted.
-  ASSERT_EQ(draw_scene(*small, u), Status::kOk);
-  const FrameStats before = small->r().stats();
+  ASSERT_EQ(draw_scene(small, u), Status::kOk);
+  const FrameStats before = small.r().stats();
   for (size_t j : {(I + 1) % kSpanStateCount, (I + kSpanStateCount / 2) % kSpanStateCount,
                    (I + 7) % kSpanStateCount}) {
     const DrawSetup v = setup_for(kSpanStates[j], a);
-    EXPECT_EQ(small->r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), v.material, v.state),
+    EXPECT_EQ(small.r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), v.material, v.state),
               Status::kInvalidArgument)
         << "state " << I << " admitted state " << j;
   }
-  // The same state with a texture of another format is refused too.
-  if (kState.family == SpanFamily::kTextured || kState.texture) {
+  // The same state with a texture of another format, or another wrap, is refused too.
+  if (state.family == SpanFamily::kTextured || state.texture) {
     DrawState s = u.state;
     s.texture = &other_format_texture();
-    EXPECT_EQ(small->r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), u.material, s),
+    EXPECT_EQ(small.r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), u.material, s),
               Status::kInvalidArgument);
     s = u.state;
     s.sampler.wrap_t = Wrap::kClampToEdge;
-    EXPECT_EQ(small->r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), u.material, s),
+    EXPECT_EQ(small.r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), u.material, s),
               Status::kInvalidArgument);
   }
-  const FrameStats& after = small->r().stats();
+  const FrameStats& after = small.r().stats();
   EXPECT_EQ(after.triangles_in, before.triangles_in);
   EXPECT_EQ(after.triangles_binned, before.triangles_binned);
   EXPECT_EQ(after.vertices_transformed, before.vertices_transformed);
-  EXPECT_TRUE(small->render().rgb == got.rgb) << "state " << I;
+  EXPECT_TRUE(small.render().rgb == got.rgb) << "state " << I;
+}
+
+template <size_t I>
+void check_state() {
+  Rig<restricted(kSpanStates[I])> small;
+  check_state_with(I, small);
 }
 
 template <size_t kFirst, size_t... I>
@@ -456,12 +515,6 @@ TEST(SpanDispatch, EveryPhongStateRestrictedDrawsTheFullRenderersFrame) {
 }
 
 // ---- (c) Each family's routine does what its state says ---------------------------------------
-
-SpanState first_state(SpanFamily f) {
-  for (const SpanState& s : kSpanStates)
-    if (s.family == f) return s;
-  return {};
-}
 
 // Depth on: where the quads overlap, the nearer (drawn first) stays; off: the farther (drawn
 // last) covers it. Compared pixel for pixel with frames of each quad alone.
@@ -718,6 +771,39 @@ constexpr SpanState fetch_sweep_state(Filter filter) {
   return s;
 }
 
+// Fetcher I (fetch_index) with `small`, a renderer restricted to it.
+void check_fetcher_with(size_t I, RigBase& small) {
+  const auto format = static_cast<TexelFormat>(I / 8);
+  const auto filter = static_cast<Filter>((I / 4) % 2);
+  const Wrap ws = (I & 2) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat;
+  const Wrap wt = (I & 1) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat;
+  DrawSetup u = setup_for(fetch_sweep_state(filter), assets());
+  u.state.texture = &format_texture(format);
+  u.state.sampler.wrap_s = ws;
+  u.state.sampler.wrap_t = wt;
+  Rig<kAllSpans> full;
+  ASSERT_EQ(draw_scene(full, u), Status::kOk) << "fetcher " << I;
+  ASSERT_EQ(draw_scene(small, u), Status::kOk) << "fetcher " << I;
+  const host::ImageRgb8 want = full.render();
+  EXPECT_GT(count_fg(want), 100);
+  EXPECT_TRUE(small.render().rgb == want.rgb) << "fetcher " << I << ": frames differ";
+
+  // Another format, wrap or filter: refused.
+  ASSERT_EQ(draw_scene(small, u), Status::kOk);
+  DrawState s = u.state;
+  s.texture = &format_texture(static_cast<TexelFormat>((I / 8 + 1) % 4));
+  EXPECT_EQ(small.r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
+            Status::kInvalidArgument);
+  s = u.state;
+  s.sampler.wrap_s = ws == Wrap::kRepeat ? Wrap::kClampToEdge : Wrap::kRepeat;
+  EXPECT_EQ(small.r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
+            Status::kInvalidArgument);
+  s = u.state;
+  s.sampler.filter = filter == Filter::kNearest ? Filter::kBilinear : Filter::kNearest;
+  EXPECT_EQ(small.r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
+            Status::kInvalidArgument);
+}
+
 template <size_t I>
 void check_fetcher() {
   constexpr auto kFormat = static_cast<TexelFormat>(I / 8);
@@ -725,38 +811,14 @@ void check_fetcher() {
   constexpr Wrap kWs = (I & 2) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat;
   constexpr Wrap kWt = (I & 1) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat;
   static_assert(fetch_index(kFormat, kFilter, kWs, kWt) == I);
-  constexpr SpanState kState = fetch_sweep_state(kFilter);
-  constexpr SpanSet kSet = span_set_of(kState).only(kFormat).only_wraps(kWs, kWt);
+  constexpr SpanSet kSet =
+      span_set_of(fetch_sweep_state(kFilter)).only(kFormat).only_wraps(kWs, kWt);
+  // Only this fetcher in the set's table.
   for (size_t i = 0; i < kFetchRoutines; ++i)
     EXPECT_EQ(kFetchTable<kSet>[i] != nullptr, i == I) << "fetcher " << I << " entry " << i;
   EXPECT_EQ(kFetchTable<kSet>[I], kFetchTable<>[I]);
-
-  DrawSetup u = setup_for(kState, assets());
-  u.state.texture = &format_texture(kFormat);
-  u.state.sampler.wrap_s = kWs;
-  u.state.sampler.wrap_t = kWt;
-  Rig<kAllSpans> full;
-  auto small = std::make_unique<Rig<kSet>>();
-  ASSERT_EQ(draw_scene(full, u), Status::kOk) << "fetcher " << I;
-  ASSERT_EQ(draw_scene(*small, u), Status::kOk) << "fetcher " << I;
-  const host::ImageRgb8 want = full.render();
-  EXPECT_GT(count_fg(want), 100);
-  EXPECT_TRUE(small->render().rgb == want.rgb) << "fetcher " << I << ": frames differ";
-
-  // Another format, wrap or filter: refused.
-  ASSERT_EQ(draw_scene(*small, u), Status::kOk);
-  DrawState s = u.state;
-  s.texture = &format_texture(static_cast<TexelFormat>((I / 8 + 1) % 4));
-  EXPECT_EQ(small->r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
-            Status::kInvalidArgument);
-  s = u.state;
-  s.sampler.wrap_s = kWs == Wrap::kRepeat ? Wrap::kClampToEdge : Wrap::kRepeat;
-  EXPECT_EQ(small->r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
-            Status::kInvalidArgument);
-  s = u.state;
-  s.sampler.filter = kFilter == Filter::kNearest ? Filter::kBilinear : Filter::kNearest;
-  EXPECT_EQ(small->r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
-            Status::kInvalidArgument);
+  Rig<kSet> small;
+  check_fetcher_with(I, small);
 }
 
 template <size_t... I>
