@@ -130,10 +130,13 @@ Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]) {
 
 // Whether screen-linear colours are within half an 8-bit level of perspective-correct ones
 // everywhere in the triangle, so that the per-pixel division can be skipped. With barycentrics
-// l_i and their perspective-correct counterparts l'_i = (l_i / w_i) / sum_j (l_j / w_j),
-// |l'_i - l_i| <= l_i (R - 1) for R = w_max / w_min, so the two colours differ by at most
-// (R - 1) x D, D the largest difference of a channel between two vertices. Half a level is
-// 32768 / 510 > 64 in Q1.15: (w_max - w_min) D <= 64 w_min suffices (products < 2^47).
+// l_i, u_i = 1 / w_i and S = sum_j l_j u_j (a mean of the u_i), the perspective-correct ones are
+// l'_i = l_i u_i / S, and the two colours differ by sum_i (l'_i - l_i)(a_i - m) for any m (the
+// l' and l both sum to 1): with m the middle of the vertex values, at most
+// (sum_i l_i |u_i - S| / S) x D / 2, D the largest difference of a channel between two vertices.
+// A mean absolute deviation of values in [u_min, u_max] is at most (u_max - u_min) / 2, and
+// S >= u_min, so the difference is at most (R - 1) D / 4 for R = w_max / w_min. Half a level is
+// 32768 / 510 > 64 in Q1.15: (w_max - w_min) D <= 256 w_min suffices (products < 2^49).
 namespace {
 bool affine_is_exact_enough(const ScreenVertex* const v[3]) {
   uint32_t wmin = v[0]->w, wmax = v[0]->w;
@@ -151,7 +154,7 @@ bool affine_is_exact_enough(const ScreenVertex* const v[3]) {
     }
     d = hi - lo > d ? hi - lo : d;
   }
-  return uint64_t{wmax - wmin} * d <= uint64_t{wmin} * 64;
+  return uint64_t{wmax - wmin} * d <= uint64_t{wmin} * 256;
 }
 }  // namespace
 
