@@ -38,19 +38,20 @@ struct EdgeWalker {
     int64_t c;
     if (m >= INT32_MIN && m <= INT32_MAX) {
       const auto m32 = static_cast<int32_t>(m);
-      int32_t c32 = m32 / ddy;
-      if (m32 % ddy > 0) ++c32;
-      c = c32;
+      c = m32 / ddy + (m32 % ddy > 0 ? 1 : 0);
     } else {
       c = ceil_div(m, ddy);
     }
     x = static_cast<int32_t>(int64_t{xa} - kHalfPixel + c);
     err = static_cast<int32_t>(c * ddy - m);
     const int32_t s = ddx * kSubpixel;
-    int32_t q = s / ddy;
-    if (s % ddy < 0) --q;
+    int32_t q = s / ddy, r = s % ddy;  // q * ddy itself may not fit: keep to the remainder
+    if (r < 0) {
+      --q;
+      r += ddy;
+    }
     step_q = q;
-    step_r = s - q * ddy;
+    step_r = r;
     dy = ddy;
   }
 
