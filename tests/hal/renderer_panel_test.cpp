@@ -91,18 +91,18 @@ class Scene {
   Status configured_ = Status::kInvalidArgument;
 };
 
-TEST(RendererToPanel, TheModuleShowsTheRenderedFrameAndSkipsWhatDidNotChange) {
-  test::RecordingBus bus;
-  Panel panel(bus, ili9341_320x240());
-  ASSERT_EQ(panel.init(), Status::kOk);
-  std::vector<PF::Storage> b0(size_t{kWidth} * kRows), b1(size_t{kWidth} * kRows);
-  std::vector<StripSignature> signatures(kStrips);
-  PanelSink sink(panel, b0, b1, signatures, 100);
-  host::CaptureDisplay<PF> capture(size_t{kWidth} * kRows);
-  Scene scene;
-  ASSERT_EQ(scene.configured(), Status::kOk);
-
-  auto expect_same = [&]() {
+// The module on a recording bus behind a PanelSink, and a capture display for the frame it
+// must show.
+struct PanelRig {
+  PanelRig()
+      : panel(bus, ili9341_320x240()),
+        b0(size_t{kWidth} * kRows),
+        b1(size_t{kWidth} * kRows),
+        signatures(kStrips),
+        sink(panel, b0, b1, signatures, 100),
+        capture(size_t{kWidth} * kRows) {}
+  // The module shows the capture display's frame, and the bus saw nothing a panel forbids.
+  void expect_same() const {
     const std::vector<uint16_t> shown = test::view(bus.ram, panel.config());
     const std::vector<PF::Storage>& want = capture.raw_frame();
     ASSERT_EQ(shown.size(), want.size());
@@ -111,7 +111,24 @@ TEST(RendererToPanel, TheModuleShowsTheRenderedFrameAndSkipsWhatDidNotChange) {
     EXPECT_EQ(wrong, 0u);
     EXPECT_EQ(bus.ram.errors(), 0);
     EXPECT_TRUE(bus.violations.empty());
-  };
+  }
+  test::RecordingBus bus;
+  Panel panel;
+  std::vector<PF::Storage> b0, b1;
+  std::vector<StripSignature> signatures;
+  PanelSink sink;
+  host::CaptureDisplay<PF> capture;
+};
+
+TEST(RendererToPanel, TheModuleShowsTheRenderedFrameAndSkipsWhatDidNotChange) {
+  PanelRig rig;
+  Panel& panel = rig.panel;
+  PanelSink& sink = rig.sink;
+  host::CaptureDisplay<PF>& capture = rig.capture;
+  ASSERT_EQ(panel.init(), Status::kOk);
+  Scene scene;
+  ASSERT_EQ(scene.configured(), Status::kOk);
+  auto expect_same = [&rig]() { rig.expect_same(); };
   const uint32_t full = uint32_t{kWidth} * kHeight * 2;
 
   const Fixed a25 = Fixed::from_int(25), a40 = Fixed::from_int(40);
@@ -140,24 +157,14 @@ TEST(RendererToPanel, TheModuleShowsTheRenderedFrameAndSkipsWhatDidNotChange) {
 // With strip input signatures the renderer does not even render the strips whose inputs did not
 // change; the sink keeps them (sends nothing), and the module still shows the right frame.
 TEST(RendererToPanel, StripsWithUnchangedInputsAreNeitherRenderedNorSent) {
-  test::RecordingBus bus;
-  Panel panel(bus, ili9341_320x240());
+  PanelRig rig;
+  Panel& panel = rig.panel;
+  PanelSink& sink = rig.sink;
+  host::CaptureDisplay<PF>& capture = rig.capture;
   ASSERT_EQ(panel.init(), Status::kOk);
-  std::vector<PF::Storage> b0(size_t{kWidth} * kRows), b1(size_t{kWidth} * kRows);
-  std::vector<StripSignature> signatures(kStrips);
-  PanelSink sink(panel, b0, b1, signatures, 100);
-  host::CaptureDisplay<PF> capture(size_t{kWidth} * kRows);
   Scene scene(true), reference;
   ASSERT_EQ(scene.configured(), Status::kOk);
-  auto expect_same = [&]() {
-    const std::vector<uint16_t> shown = test::view(bus.ram, panel.config());
-    const std::vector<PF::Storage>& want = capture.raw_frame();
-    ASSERT_EQ(shown.size(), want.size());
-    size_t wrong = 0;
-    for (size_t i = 0; i < shown.size(); ++i) wrong += shown[i] != PF::to_value(want[i]);
-    EXPECT_EQ(wrong, 0u);
-    EXPECT_EQ(bus.ram.errors(), 0);
-  };
+  auto expect_same = [&rig]() { rig.expect_same(); };
   const Fixed a25 = Fixed::from_int(25), still = Fixed::from_int(0);
   const Fixed moved = Fixed::from_double(0.05);
 
