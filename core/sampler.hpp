@@ -140,13 +140,36 @@ void fetch_batch(const Texture& tex, int level, const int32_t* s, const int32_t*
   const detail::LevelScale scale_s(tex.levels[0].width, l.width),
       scale_t(tex.levels[0].height, l.height);
   const auto w = static_cast<int32_t>(l.width), h = static_cast<int32_t>(l.height);
+  if constexpr (kFilter == Filter::kNearest) {
+    // A reduced coordinate, scaled to the level, is inside the level (repeat: [0, 256 size);
+    // clamp: [0, 256 size - 1]; a shift or ratio keeps that), so nearest needs no index wrap.
+    // Power-of-two sizes at a shift from level 0 (every mip level of them): reduce and scale
+    // are a mask (repeat) or a clamp and one shift, decided here once per batch, not per texel.
+    const bool pow2_s = kWs != Wrap::kRepeat || reduce_s.mask != 0;
+    const bool pow2_t = kWt != Wrap::kRepeat || reduce_t.mask != 0;
+    if (pow2_s && pow2_t && scale_s.ratio == 0 && scale_t.ratio == 0) {
+      const int sh_s = 8 + scale_s.shift, sh_t = 8 + scale_t.shift;
+      for (int k = 0; k < n; ++k) {
+        int32_t a = s[k], b = t[k];
+        if constexpr (kWs == Wrap::kRepeat)
+          a &= reduce_s.mask;
+        else
+          a = a < 0 ? 0 : a >= reduce_s.period ? reduce_s.period - 1 : a;
+        if constexpr (kWt == Wrap::kRepeat)
+          b &= reduce_t.mask;
+        else
+          b = b < 0 ? 0 : b >= reduce_t.period ? reduce_t.period - 1 : b;
+        const uint32_t v = detail::raw<F>(tex, l, a >> sh_s, b >> sh_t);
+        out[k] = detail::kPacked565<F> ? detail::expand565(v) : v;
+      }
+      return;
+    }
+  }
   for (int k = 0; k < n; ++k) {
     const int32_t sl = scale_s(reduce_s(s[k]));
     const int32_t tl = scale_t(reduce_t(t[k]));
     if constexpr (kFilter == Filter::kNearest) {
-      const int32_t x = detail::wrap_index<kWs>(sl >> 8, w);
-      const int32_t y = detail::wrap_index<kWt>(tl >> 8, h);
-      const uint32_t v = detail::raw<F>(tex, l, x, y);
+      const uint32_t v = detail::raw<F>(tex, l, sl >> 8, tl >> 8);
       out[k] = detail::kPacked565<F> ? detail::expand565(v) : v;
     } else {
       const int32_t xs = sl - 128, ys = tl - 128;
