@@ -36,7 +36,8 @@ using FetchFn = void (*)(const Texture& tex, int level, const int32_t* s, const 
 
 namespace detail {
 
-constexpr Texel expand565(uint32_t v) {
+// Always inlined: called per texel, where a call costs more than its body.
+[[gnu::always_inline]] constexpr Texel expand565(uint32_t v) {
   uint32_t r5 = (v >> 11) & 31u, g6 = (v >> 5) & 63u, b5 = v & 31u;
   uint32_t r = (r5 << 3) | (r5 >> 2), g = (g6 << 2) | (g6 >> 4), b = (b5 << 3) | (b5 >> 2);
   return (r << 16) | (g << 8) | b;
