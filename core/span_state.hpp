@@ -117,25 +117,29 @@ struct SpanSet {
   constexpr bool admits_envmap(TexelFormat f) const { return detail::has(formats, f); }
 
   // Restrictions to one value of a dimension (chainable: kTexturedSpans.only(Filter::kNearest)).
-  constexpr SpanSet only(SpanFamily v) const { return with(&SpanSet::families, v); }
-  constexpr SpanSet only(ColorPlanes v) const { return with(&SpanSet::colors, v); }
-  constexpr SpanSet only(TexPersp v) const { return with(&SpanSet::persp, v); }
-  constexpr SpanSet only(TexEnv v) const { return with(&SpanSet::env, v); }
-  constexpr SpanSet only(MipMode v) const { return with(&SpanSet::mip, v); }
-  constexpr SpanSet only(Filter v) const { return with(&SpanSet::filter, v); }
-  constexpr SpanSet only(PixelLighting v) const { return with(&SpanSet::method, v); }
-  constexpr SpanSet only(TexelFormat v) const { return with(&SpanSet::formats, v); }
-  constexpr SpanSet only_depth(bool on) const { return with(&SpanSet::depth, on); }
+  constexpr SpanSet only(SpanFamily v) const { return with(&SpanSet::families, detail::bit(v)); }
+  constexpr SpanSet only(ColorPlanes v) const { return with(&SpanSet::colors, detail::bit(v)); }
+  constexpr SpanSet only(TexPersp v) const { return with(&SpanSet::persp, detail::bit(v)); }
+  constexpr SpanSet only(TexEnv v) const { return with(&SpanSet::env, detail::bit(v)); }
+  constexpr SpanSet only(MipMode v) const { return with(&SpanSet::mip, detail::bit(v)); }
+  constexpr SpanSet only(Filter v) const { return with(&SpanSet::filter, detail::bit(v)); }
+  constexpr SpanSet only(PixelLighting v) const { return with(&SpanSet::method, detail::bit(v)); }
+  constexpr SpanSet only(TexelFormat v) const { return with(&SpanSet::formats, detail::bit(v)); }
+  constexpr SpanSet only_depth(bool on) const { return with(&SpanSet::depth, detail::bit(on)); }
   constexpr SpanSet only_wraps(Wrap s, Wrap t) const {
-    return with(&SpanSet::wrap_s, s).with(&SpanSet::wrap_t, t);
+    return with(&SpanSet::wrap_s, detail::bit(s)).with(&SpanSet::wrap_t, detail::bit(t));
   }
-  constexpr SpanSet only_position(bool on) const { return with(&SpanSet::position, on); }
-  constexpr SpanSet only_table_filter(Filter v) const { return with(&SpanSet::table_filter, v); }
+  constexpr SpanSet only_position(bool on) const {
+    return with(&SpanSet::position, detail::bit(on));
+  }
+  constexpr SpanSet only_table_filter(Filter v) const {
+    return with(&SpanSet::table_filter, detail::bit(v));
+  }
   // Phong draws with (true) or without (false) each map.
   constexpr SpanSet only_maps(bool texture_map, bool normal, bool environment) const {
-    return with(&SpanSet::texture, texture_map)
-        .with(&SpanSet::normal_map, normal)
-        .with(&SpanSet::envmap, environment);
+    return with(&SpanSet::texture, detail::bit(texture_map))
+        .with(&SpanSet::normal_map, detail::bit(normal))
+        .with(&SpanSet::envmap, detail::bit(environment));
   }
 
   // Per-dimension union and intersection (the union is the smallest product set holding both).
@@ -149,10 +153,11 @@ struct SpanSet {
   }
 
  private:
-  template <class E>
-  constexpr SpanSet with(uint8_t SpanSet::*m, E v) const {
+  // Not a template: clang 14 will not evaluate an in-class member template in the constant
+  // initialisers of the presets below ("undefined function").
+  constexpr SpanSet with(uint8_t SpanSet::*m, uint8_t bits) const {
     SpanSet r = *this;
-    r.*m = static_cast<uint8_t>(r.*m & detail::bit(v));
+    r.*m = static_cast<uint8_t>(r.*m & bits);
     return r;
   }
   static constexpr uint8_t SpanSet::*kMasks[] = {
