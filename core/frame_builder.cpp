@@ -357,13 +357,19 @@ FrameBuilder::BinResult FrameBuilder::classify(const ScreenVertex& v0, const Scr
 }
 
 FrameBuilder::BinResult FrameBuilder::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
-                                          Rgb8 flat, Rgb8 flat_spec, Cull cull) {
+                                          Rgb8 flat, Rgb8 flat_spec, Cull cull,
+                                          const int32_t* rows) {
   const ScreenVertex& v0 = storage_.vertices[a];
   const ScreenVertex& v1 = storage_.vertices[b];
   const ScreenVertex& v2 = storage_.vertices[c];
   int32_t r0 = 0, r1 = 0;
-  const BinResult result = classify(v0, v1, v2, cull, r0, r1);
-  if (result != BinResult::kBinned) return result;
+  if (rows != nullptr) {
+    r0 = rows[0];
+    r1 = rows[1];
+  } else {
+    const BinResult result = classify(v0, v1, v2, cull, r0, r1);
+    if (result != BinResult::kBinned) return result;
+  }
   if (triangle_count_ >= storage_.triangles.size()) return BinResult::kCapacity;
   auto index = static_cast<uint16_t>(triangle_count_++);
   BinnedTriangle& t = storage_.triangles[index];
@@ -569,13 +575,15 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
       ++stats_.clipped_away;
       continue;
     }
+    int32_t classified_rows[2] = {0, 0};
+    bool classified = false;
     if (lit && gouraud) {
       // Vertices are lit on first use by a triangle that is drawn: those only culled, off-screen
-      // or covering no pixel centre are never lit (bin() repeats the test: it is cheap next to
-      // lighting, about 1,000 instructions per vertex on Cortex-M4).
+      // or covering no pixel centre are never lit. bin() takes the rows found here.
       if (oc_or == 0 && !two_sided) {
-        int32_t r0 = 0, r1 = 0;
-        const BinResult r = classify(*sv[0], *sv[1], *sv[2], state.cull, r0, r1);
+        const BinResult r =
+            classify(*sv[0], *sv[1], *sv[2], state.cull, classified_rows[0], classified_rows[1]);
+        classified = true;
         if (r != BinResult::kBinned) {
           count_outcome(stats_, 0, static_cast<int>(r));
           continue;
@@ -655,7 +663,8 @@ Status FrameBuilder::draw(const Mesh& mesh, const Mat4& model, const Material& m
         }
         vertex_count_ += 3;
       }
-      BinResult r = bin(vi[0], vi[1], vi[2], draw_index, flat, flat_spec, state.cull);
+      BinResult r = bin(vi[0], vi[1], vi[2], draw_index, flat, flat_spec, state.cull,
+                        classified ? classified_rows : nullptr);
       count_outcome(stats_, r == BinResult::kBinned ? 1 : 0, static_cast<int>(r));
       continue;
     }

@@ -141,8 +141,10 @@ class FrameBuilder {
 
  protected:
   enum class BinResult : uint8_t { kBinned, kBackface, kZeroArea, kOffscreen, kCapacity };
+  // rows: the triangle's first and last row when classify() already passed it (its tests are
+  // not repeated), else nullptr.
   BinResult bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
-                Cull cull);
+                Cull cull, const int32_t* rows = nullptr);
   // bin()'s tests without binning: kBinned when the triangle would be binned (capacity aside).
   BinResult classify(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
                      Cull cull, int32_t& r0, int32_t& r1) const;
