@@ -21,7 +21,7 @@
 #include <initializer_list>
 #include <span>
 
-#include "core/status.hpp"
+#include "core/output/status.hpp"
 #include "hal/panel_bus.hpp"
 
 namespace lr {

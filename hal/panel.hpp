@@ -20,8 +20,8 @@
 
 #include <cstdint>
 
-#include "core/status.hpp"
-#include "hal/display.hpp"
+#include "core/output/status.hpp"
+#include "core/output/strip_sink.hpp"
 #include "hal/ili9341.hpp"
 #include "hal/mipi_dbi.hpp"
 #include "hal/panel_bus.hpp"

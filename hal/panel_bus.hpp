@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <span>
 
-#include "core/status.hpp"
+#include "core/output/status.hpp"
 
 namespace lr {
 

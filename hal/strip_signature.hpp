@@ -17,8 +17,8 @@
 #include <cstdint>
 #include <span>
 
-#include "core/pixel_format.hpp"
-#include "hal/display.hpp"
+#include "core/output/pixel_format.hpp"
+#include "core/output/strip_sink.hpp"
 
 namespace lr {
 

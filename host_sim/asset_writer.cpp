@@ -176,8 +176,8 @@ std::string asset_header_text(const AssetOptions& o, const AssetData& d) {
        "first.\n"
        "#pragma once\n\n"
        "#include <array>\n#include <cstddef>\n#include <cstdint>\n\n"
-       "#include \"core/material.hpp\"\n#include \"core/mesh.hpp\"\n#include "
-       "\"core/texture.hpp\"\n\n";
+       "#include \"core/scene/material.hpp\"\n#include \"core/scene/mesh.hpp\"\n#include "
+       "\"core/texture/texture.hpp\"\n\n";
   s += "namespace " + n + " {\n\n";
   s += "inline constexpr std::size_t draw_count = " + std::to_string(d.draws.size()) + ";\n\n";
 

@@ -24,7 +24,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/texture.hpp"
+#include "core/texture/texture.hpp"
 #include "host_sim/scene.hpp"
 #include "host_sim/texture_load.hpp"
 

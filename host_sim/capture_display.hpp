@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "core/pixel_format.hpp"
-#include "core/renderer.hpp"
-#include "hal/display.hpp"
+#include "core/output/pixel_format.hpp"
+#include "core/raster/renderer.hpp"
+#include "core/output/strip_sink.hpp"
 #include "host_sim/image_io.hpp"
 
 namespace lr::host {

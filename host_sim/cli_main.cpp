@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/lighting.hpp"
-#include "core/material.hpp"
-#include "core/pixel_format.hpp"
+#include "core/lighting/lighting.hpp"
+#include "core/scene/material.hpp"
+#include "core/output/pixel_format.hpp"
 #include "hal/panel.hpp"
 #include "hal/panel_sink.hpp"
 #include "host_sim/display_spec.hpp"

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <utility>
 
-#include "core/pixel_format.hpp"
+#include "core/output/pixel_format.hpp"
 
 namespace lr::host {
 namespace {

@@ -5,9 +5,9 @@
 #include <memory>
 #include <unordered_map>
 
-#include "core/camera.hpp"
-#include "core/lighting_table.hpp"
-#include "core/renderer.hpp"
+#include "core/scene/camera.hpp"
+#include "core/lighting/lighting_table.hpp"
+#include "core/raster/renderer.hpp"
 #include "host_sim/capture_display.hpp"
 #include "host_sim/mesh_prep.hpp"
 #include "host_sim/tangents.hpp"

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "core/frame_stats.hpp"
-#include "core/material.hpp"
-#include "core/mesh.hpp"
-#include "core/texture.hpp"
+#include "core/output/frame_stats.hpp"
+#include "core/scene/material.hpp"
+#include "core/scene/mesh.hpp"
+#include "core/texture/texture.hpp"
 #include "host_sim/host_mesh.hpp"
 #include "host_sim/image_io.hpp"
 
@@ -24,7 +24,7 @@ struct MaterialOptions {
   double shininess = 32.0;  // GL range [0, 128]
 };
 
-// A light as the options describe it (GL's fixed-function light; see core/lighting.hpp).
+// A light as the options describe it (GL's fixed-function light; see core/lighting/lighting.hpp).
 // Directional: xyz is the world-space direction from the surface towards the light (any
 // non-zero length). Point: xyz is the light's world position, and its terms are scaled by GL's
 // attenuation 1 / (constant + linear d + quadratic d^2) (coefficients >= 0, not all 0).

@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "core/mipmap.hpp"
+#include "core/texture/mipmap.hpp"
 
 namespace lr::host {
 namespace {

@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "core/color.hpp"
-#include "core/texture.hpp"
+#include "core/output/color.hpp"
+#include "core/texture/texture.hpp"
 #include "host_sim/image_io.hpp"
 
 namespace lr::host {
@@ -47,7 +47,7 @@ struct HostTexture {
 //   kPalette8 the image's distinct colours after RGB565 conversion, in the order they first
 //             appear in the file (top row first, left to right), at most 256 (else the error
 //             "FILE: more than 256 colours; use rgb565 or rgb888").
-// `mipmaps`: levels 1.. down to 1 x 1 by lr::build_mip_chain (see core/mipmap.hpp).
+// `mipmaps`: levels 1.. down to 1 x 1 by lr::build_mip_chain (see core/texture/mipmap.hpp).
 // Sides above lr::kMaxTextureSize are an error. On failure: false, `error` one line naming the
 // file ("FILE: what is wrong"), `out` untouched. The result always passes lr::validate().
 bool load_texture(const std::string& png_path, lr::TexelFormat format, bool mipmaps,

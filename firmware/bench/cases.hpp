@@ -23,9 +23,9 @@
 #include "bench_ground_asset.hpp"   // lineraster-asset --obj ground.obj --mipmaps
 #include "bench_knot64k_asset.hpp"  // lineraster-asset --obj torus_knot.obj --fit --subdivide 2
 #include "bench_knot_asset.hpp"     // lineraster-asset --obj torus_knot.obj --fit
-#include "core/mat4.hpp"
-#include "core/material.hpp"
-#include "core/mesh.hpp"
+#include "core/math/mat4.hpp"
+#include "core/scene/material.hpp"
+#include "core/scene/mesh.hpp"
 #include "firmware/demo/scene.hpp"
 
 namespace lr::fw::bench {

@@ -12,7 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/renderer.hpp"
+#include "core/raster/renderer.hpp"
 #include "firmware/bench/cases.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/report.hpp"

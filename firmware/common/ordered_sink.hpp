@@ -17,9 +17,9 @@
 #include <cstdint>
 #include <span>
 
-#include "core/pixel_format.hpp"
-#include "core/status.hpp"
-#include "hal/display.hpp"
+#include "core/output/pixel_format.hpp"
+#include "core/output/status.hpp"
+#include "core/output/strip_sink.hpp"
 
 namespace lr::fw {
 

@@ -10,11 +10,11 @@
 #include <cstdint>
 #include <span>
 
-#include "core/pixel_format.hpp"
-#include "core/status.hpp"
+#include "core/output/pixel_format.hpp"
+#include "core/output/status.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/semihost.hpp"
-#include "hal/display.hpp"
+#include "core/output/strip_sink.hpp"
 
 namespace lr::fw {
 

@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "core/status.hpp"
+#include "core/output/status.hpp"
 #include "firmware/common/semihost.hpp"
 
 namespace lr::fw {

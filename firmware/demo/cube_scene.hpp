@@ -7,8 +7,8 @@
 
 #include <cstddef>
 
-#include "core/mesh.hpp"
-#include "core/span_state.hpp"
+#include "core/scene/mesh.hpp"
+#include "core/span/span_state.hpp"
 #include "firmware/demo/scene.hpp"
 #include "cube_asset.hpp"  // generated at build time: lineraster-asset --obj cube.obj --fit
 

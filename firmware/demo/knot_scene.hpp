@@ -6,9 +6,9 @@
 
 #include <cstddef>
 
-#include "core/material.hpp"
-#include "core/mesh.hpp"
-#include "core/span_state.hpp"
+#include "core/scene/material.hpp"
+#include "core/scene/mesh.hpp"
+#include "core/span/span_state.hpp"
 #include "firmware/demo/scene.hpp"
 #include "knot_asset.hpp"  // generated at build time: lineraster-asset --obj torus_knot.obj --fit
 

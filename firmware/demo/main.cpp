@@ -12,7 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/renderer.hpp"
+#include "core/raster/renderer.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/ppm_file.hpp"
 #include "firmware/common/report.hpp"
@@ -57,7 +57,7 @@ std::array<uint16_t, kStripPixels> g_depth{};
 std::array<std::array<PF::Storage, kStripPixels>, 2> g_strips{};
 
 // Only the span routines of the scene's draw states are linked (scene::kSpans, an lr::SpanSet:
-// core/span_state.hpp); a draw outside them would be refused.
+// core/span/span_state.hpp); a draw outside them would be refused.
 lr::Renderer<PF, kStripRows, scene::kSpans> g_renderer;
 
 #ifndef LR_DEMO_OUTPUT

@@ -10,10 +10,10 @@
 
 #include <cstdint>
 
-#include "core/camera.hpp"
-#include "core/fixed.hpp"
-#include "core/lighting.hpp"
-#include "core/vec.hpp"
+#include "core/scene/camera.hpp"
+#include "core/math/fixed.hpp"
+#include "core/lighting/lighting.hpp"
+#include "core/math/vec.hpp"
 
 namespace lr::fw::demo {
 

@@ -10,7 +10,7 @@
 //
 // Each renderer, Renderer<PF, 8, kSpans>, links only the span routine and the texel fetcher of
 // the one state its configuration draws with (kSpans: the smallest lr::SpanSet holding that
-// state, core/span_state.hpp; e.g. tex_nearest links no bilinear fetcher and no mipmap code),
+// state, core/span/span_state.hpp; e.g. tex_nearest links no bilinear fetcher and no mipmap code),
 // and only the mesh arrays its draw reads, so scripts/footprint.sh's flash,
 // RAM and stack figures are those of a real application of that kind (what the core links for
 // every draw, e.g. its texel fetchers, counts too). Static storage only: no heap, no exceptions.
@@ -22,9 +22,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/camera.hpp"
-#include "core/material.hpp"
-#include "core/renderer.hpp"
+#include "core/scene/camera.hpp"
+#include "core/scene/material.hpp"
+#include "core/raster/renderer.hpp"
 #include "firmware/common/semihost.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/report.hpp"

@@ -9,10 +9,10 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/color.hpp"
-#include "core/mesh.hpp"
-#include "core/texture.hpp"
-#include "core/vec.hpp"
+#include "core/output/color.hpp"
+#include "core/scene/mesh.hpp"
+#include "core/texture/texture.hpp"
+#include "core/math/vec.hpp"
 
 namespace lr::fw::footprint {
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "core/camera.hpp"
-#include "core/material.hpp"
+#include "core/scene/camera.hpp"
+#include "core/scene/material.hpp"
 #include "demo_knot.hpp"  // generated at build time: lineraster-asset --obj torus_knot.obj --fit
 
 namespace lr::app {

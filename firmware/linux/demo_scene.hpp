@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "core/frame_stats.hpp"
-#include "core/renderer.hpp"
+#include "core/output/frame_stats.hpp"
+#include "core/raster/renderer.hpp"
 
 namespace lr::app {
 

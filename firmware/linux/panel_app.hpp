@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/frame_stats.hpp"
+#include "core/output/frame_stats.hpp"
 #include "firmware/linux/demo_scene.hpp"
 #include "hal/panel.hpp"
 #include "hal/panel_sink.hpp"

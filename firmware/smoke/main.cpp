@@ -21,9 +21,9 @@
 #include <cstdint>
 #include <span>
 
-#include "core/camera.hpp"
-#include "core/material.hpp"
-#include "core/renderer.hpp"
+#include "core/scene/camera.hpp"
+#include "core/scene/material.hpp"
+#include "core/raster/renderer.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
@@ -127,7 +127,7 @@ std::array<uint16_t, 2 * kMaxActive> g_active_index{};
 std::array<uint16_t, kStripPixels> g_depth{};
 std::array<std::array<Pixel, kStripPixels>, 2> g_strip_buffers{};
 
-// Gouraud only: no textured or Phong span routines linked (lr::SpanSet, core/span_state.hpp).
+// Gouraud only: no textured or Phong span routines linked (lr::SpanSet, core/span/span_state.hpp).
 lr::Renderer<PF, kStripRows, lr::kUntexturedSpans> g_renderer;
 
 // ---- The display: two strip buffers, every pixel folded into FNV-1a --------------------------

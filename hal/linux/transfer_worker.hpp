@@ -24,7 +24,7 @@
 #include <string>
 #include <thread>
 
-#include "core/status.hpp"
+#include "core/output/status.hpp"
 
 namespace lr::backend {
 

@@ -13,7 +13,7 @@
 #include <span>
 #include <string>
 
-#include "core/status.hpp"
+#include "core/output/status.hpp"
 
 struct libusb_context;
 struct libusb_device_handle;

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "core/camera.hpp"
+#include "core/scene/camera.hpp"
 #include "cube_rgb565.hpp"
 #include "cube_rgb888.hpp"
 #include "host_sim/asset_writer.hpp"

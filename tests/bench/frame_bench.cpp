@@ -9,8 +9,8 @@
 #include <memory>
 #include <vector>
 
-#include "core/camera.hpp"
-#include "core/renderer.hpp"
+#include "core/scene/camera.hpp"
+#include "core/raster/renderer.hpp"
 #include "host_sim/obj_loader.hpp"
 #include "tests/bench/null_sink.hpp"
 

@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "core/renderer.hpp"
+#include "core/raster/renderer.hpp"
 #include "host_sim/mesh_prep.hpp"
 #include "tests/bench/bench_common.hpp"
 #include "tests/bench/null_sink.hpp"

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "hal/display.hpp"
+#include "core/output/strip_sink.hpp"
 
 namespace lr::bench {
 

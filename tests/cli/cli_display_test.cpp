@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/pixel_format.hpp"
+#include "core/output/pixel_format.hpp"
 #include "host_sim/image_io.hpp"
 #include "tests/support/tmp_dir.hpp"
 

@@ -1,4 +1,4 @@
-// Span dispatch: the state space (core/span_state.hpp), the routine tables generated from it, and
+// Span dispatch: the state space (core/span/span_state.hpp), the routine tables generated from it, and
 // renderers restricted to part of it.
 //   - every state of the full set selects a non-null routine (and fetcher), distinct per state;
 //     outside a restricted set every entry is nullptr;
@@ -18,10 +18,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/camera.hpp"
-#include "core/mipmap.hpp"
-#include "core/renderer.hpp"
-#include "core/span_state.hpp"
+#include "core/scene/camera.hpp"
+#include "core/texture/mipmap.hpp"
+#include "core/raster/renderer.hpp"
+#include "core/span/span_state.hpp"
 #include "host_sim/capture_display.hpp"
 
 namespace lr {

@@ -5,16 +5,16 @@
 #include <cmath>
 #include <vector>
 
-#include "core/camera.hpp"
-#include "core/color.hpp"
-#include "core/divide.hpp"
-#include "core/edge.hpp"
-#include "core/material.hpp"
-#include "core/pixel_format.hpp"
-#include "core/pow_table.hpp"
-#include "core/strip_fill.hpp"
-#include "core/trig.hpp"
-#include "core/vec.hpp"
+#include "core/scene/camera.hpp"
+#include "core/output/color.hpp"
+#include "core/math/divide.hpp"
+#include "core/setup/edge.hpp"
+#include "core/scene/material.hpp"
+#include "core/output/pixel_format.hpp"
+#include "core/math/pow_table.hpp"
+#include "core/raster/strip_fill.hpp"
+#include "core/math/trig.hpp"
+#include "core/math/vec.hpp"
 
 namespace lr {
 namespace {

@@ -8,10 +8,10 @@
 #include <random>
 #include <vector>
 
-#include "core/camera.hpp"
-#include "core/inv_sqrt.hpp"
-#include "core/lighting.hpp"
-#include "core/lighting_table.hpp"
+#include "core/scene/camera.hpp"
+#include "core/math/inv_sqrt.hpp"
+#include "core/lighting/lighting.hpp"
+#include "core/lighting/lighting_table.hpp"
 #include "host_sim/mesh_prep.hpp"
 #include "host_sim/scene.hpp"
 #include "tests/support/core_harness.hpp"
@@ -86,7 +86,7 @@ double worst_rsqrt_error() {
 }
 
 TEST(InvSqrt, ErrorOfEachTableSizeAsDocumented) {
-  // The figures of core/inv_sqrt.hpp, each within 10 % (so the comment stays true).
+  // The figures of core/math/inv_sqrt.hpp, each within 10 % (so the comment stays true).
   auto near = [](double got, double doc) { return got <= doc * 1.1 && got >= doc * 0.9; };
   EXPECT_PRED2(near, (worst_rsqrt_error<4, 0>()), 5.6e-2);
   EXPECT_PRED2(near, (worst_rsqrt_error<4, 1>()), 4.7e-3);

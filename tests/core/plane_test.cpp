@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <random>
 
-#include "core/fixed.hpp"
-#include "core/screen_vertex.hpp"
-#include "core/triangle_setup.hpp"
+#include "core/math/fixed.hpp"
+#include "core/vertex/screen_vertex.hpp"
+#include "core/setup/triangle_setup.hpp"
 
 namespace lr {
 namespace {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "core/camera.hpp"
-#include "core/renderer.hpp"
+#include "core/scene/camera.hpp"
+#include "core/raster/renderer.hpp"
 #include "host_sim/capture_display.hpp"
 #include "host_sim/mesh_prep.hpp"
 #include "host_sim/scene.hpp"

@@ -3,7 +3,7 @@
 // convex closed mesh with back faces culled is covered exactly once inside its silhouette.
 #include <gtest/gtest.h>
 
-#include "core/camera.hpp"
+#include "core/scene/camera.hpp"
 #include "host_sim/mesh_prep.hpp"
 #include "tests/support/core_harness.hpp"
 

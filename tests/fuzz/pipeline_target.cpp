@@ -36,8 +36,8 @@
 #include <memory>
 #include <vector>
 
-#include "core/camera.hpp"
-#include "core/renderer.hpp"
+#include "core/scene/camera.hpp"
+#include "core/raster/renderer.hpp"
 #include "host_sim/capture_display.hpp"
 #include "host_sim/texture_load.hpp"
 #include "tests/fuzz/fuzz_targets.hpp"

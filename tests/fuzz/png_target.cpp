@@ -2,8 +2,8 @@
 #include <string>
 #include <utility>
 
-#include "core/mipmap.hpp"
-#include "core/texture.hpp"
+#include "core/texture/mipmap.hpp"
+#include "core/texture/texture.hpp"
 #include "host_sim/image_io.hpp"
 #include "host_sim/texture_load.hpp"
 #include "tests/fuzz/fuzz_files.hpp"

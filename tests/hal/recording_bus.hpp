@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "core/pixel_format.hpp"
+#include "core/output/pixel_format.hpp"
 #include "hal/panel_bus.hpp"
 #include "hal/panel_config.hpp"
 

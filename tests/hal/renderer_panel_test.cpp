@@ -8,9 +8,9 @@
 #include <memory>
 #include <vector>
 
-#include "core/camera.hpp"
-#include "core/material.hpp"
-#include "core/renderer.hpp"
+#include "core/scene/camera.hpp"
+#include "core/scene/material.hpp"
+#include "core/raster/renderer.hpp"
 #include "hal/panel_sink.hpp"
 #include "host_sim/capture_display.hpp"
 #include "tests/hal/recording_bus.hpp"

@@ -9,7 +9,7 @@
 #include <initializer_list>
 #include <vector>
 
-#include "core/pixel_format.hpp"
+#include "core/output/pixel_format.hpp"
 #include "host_sim/emulator_bus.hpp"
 
 namespace {

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "core/camera.hpp"
-#include "core/material.hpp"
-#include "core/renderer.hpp"
+#include "core/scene/camera.hpp"
+#include "core/scene/material.hpp"
+#include "core/raster/renderer.hpp"
 #include "hal/panel.hpp"
 #include "hal/panel_sink.hpp"
 #include "host_sim/capture_display.hpp"

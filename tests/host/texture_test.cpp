@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/mipmap.hpp"
+#include "core/texture/mipmap.hpp"
 #include "tests/support/file_bytes.hpp"
 #include "tests/support/raw_png.hpp"
 #include "tests/support/tmp_dir.hpp"

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "core/material.hpp"
+#include "core/scene/material.hpp"
 #include "firmware/linux/app_options.hpp"
 #include "firmware/linux/panel_app.hpp"
 #include "host_sim/display_spec.hpp"

@@ -1,6 +1,6 @@
 // Bridges from the core's texture types to the reference renderer's (tests and benchmarks only).
 //
-// Header-only and using only header-only parts of core/texture.hpp, so that lr_reference and its
+// Header-only and using only header-only parts of core/texture/texture.hpp, so that lr_reference and its
 // users need no link dependency on lr_core. The reference samples exactly the texel values the
 // core stores, including the core's own mip levels (the reference never rebuilds a mip chain).
 #pragma once
@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <utility>
 
-#include "core/texture.hpp"
+#include "core/texture/texture.hpp"
 #include "tests/reference/ref_renderer.hpp"
 
 namespace lr::ref {

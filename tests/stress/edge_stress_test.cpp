@@ -18,8 +18,8 @@
 #include <random>
 #include <vector>
 
-#include "core/edge.hpp"
-#include "core/triangle_setup.hpp"
+#include "core/setup/edge.hpp"
+#include "core/setup/triangle_setup.hpp"
 
 namespace lr {
 namespace {

@@ -7,7 +7,7 @@
 #include <limits>
 #include <random>
 
-#include "core/camera.hpp"
+#include "core/scene/camera.hpp"
 #include "host_sim/scene.hpp"
 #include "tests/stress/random_stress.hpp"
 

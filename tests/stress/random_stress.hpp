@@ -26,7 +26,7 @@
 #include <random>
 #include <vector>
 
-#include "core/camera.hpp"
+#include "core/scene/camera.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr::stress {

@@ -17,7 +17,7 @@
 #include <map>
 #include <random>
 
-#include "core/camera.hpp"
+#include "core/scene/camera.hpp"
 #include "host_sim/mesh_prep.hpp"
 #include "tests/support/core_harness.hpp"
 

@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/renderer.hpp"
+#include "core/raster/renderer.hpp"
 #include "host_sim/capture_display.hpp"
 #include "tests/reference/ref_renderer.hpp"
 

@@ -1,0 +1,106 @@
+// Per-vertex (and per-face) lighting: OpenGL's fixed-function model (DESIGN.md §4) in fixed point.
+//
+// colour = emission + global_ambient * Ka
+//        + sum over lights of  La * Ka + max(N.L, 0) * Ld * Kd
+//                              + (N.L > 0 ? max(N.H, 0)^shininess : 0) * Ls * Ks
+// each channel clamped to [0, 1]. H = normalize(L + V): V is the direction to the viewer,
+// constant (infinite viewer, the default) or per vertex (local viewer).
+// Directions are Q1.30 unit vectors; products of two are Q2.60 in int64 (< 2^61) and are
+// brought back to Q1.30 before any sum; colour terms are Q1.15 and sum in int32.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "core/output/color.hpp"
+#include "core/scene/material.hpp"
+#include "core/math/pow_table.hpp"
+#include "core/math/vec.hpp"
+
+namespace lr {
+
+inline constexpr int kMaxLights = 4;
+
+// A light (GL's fixed-function light). Directional: `position` is the direction from the
+// surface towards the light (world space, any non-zero length). Point: `position` is the
+// light's world position, and its three terms are scaled by GL's attenuation
+// 1 / (constant + linear d + quadratic d^2), d the distance to the lit point in world units.
+// Coefficients are Q16.16 (>= 0, their sum at d > 0 must be > 0); the attenuation is kept in
+// Q4.15 and saturates at 16 (GL does not clamp it; a value above 16 only matters where the lit
+// colour saturates anyway unless the light's colours are below 1/16).
+enum class LightKind : uint8_t { kDirectional, kPoint };
+struct Light {
+  LightKind kind = LightKind::kDirectional;
+  Vec3 position{Fixed::from_int(1), Fixed::from_int(1), Fixed::from_int(1)};
+  Color15 ambient{0, 0, 0};
+  Color15 diffuse{Color15::kOne, Color15::kOne, Color15::kOne};
+  Color15 specular{Color15::kOne, Color15::kOne, Color15::kOne};
+  Fixed constant = Fixed::from_int(1), linear{}, quadratic{};
+
+  // The project's convention for "a light of colour c": ambient, diffuse and specular all c.
+  static constexpr Light directional(Vec3 dir, Color15 c) {
+    return {LightKind::kDirectional, dir, c, c, c, Fixed::from_int(1), {}, {}};
+  }
+  static constexpr Light point(Vec3 pos, Color15 c, Fixed kc = Fixed::from_int(1), Fixed kl = {},
+                               Fixed kq = {}) {
+    return {LightKind::kPoint, pos, c, c, c, kc, kl, kq};
+  }
+};
+
+// The lights of a frame.
+struct LightSet {
+  std::array<Light, kMaxLights> lights{};
+  uint8_t count = 0;
+  Color15 global_ambient{0, 0, 0};
+  bool local_viewer = false;  // V = direction to the eye per point (GL_LIGHT_MODEL_LOCAL_VIEWER)
+  bool two_sided = false;  // back faces are lit with the negated normal (GL_LIGHT_MODEL_TWO_SIDE)
+  // True when the lit colour depends on the normal only: directional lights, infinite viewer.
+  constexpr bool normal_only() const {
+    for (int i = 0; i < count; ++i)
+      if (lights[static_cast<size_t>(i)].kind != LightKind::kDirectional) return false;
+    return !local_viewer;
+  }
+};
+
+// Lighting prepared for one material, one light set and one camera: unit directions, half
+// vectors (infinite viewer) and the products of light and material colours. Made per draw.
+struct PreparedLighting {
+  struct Light {
+    Unit30 l;        // towards the light (directional lights)
+    Unit30 h;        // half vector for the infinite viewer (directional lights)
+    uint16_t ka[3];  // La * Ka, Q1.15 (point lights: attenuated per point)
+    uint16_t kd[3];  // Ld * Kd, Q1.15
+    uint16_t ks[3];  // Ls * Ks, Q1.15
+    bool point = false;
+    Vec3 position{};                 // point lights, world
+    int64_t kc = 0, kl = 0, kq = 0;  // attenuation coefficients, Q16.16
+  };
+  std::array<Light, kMaxLights> lights{};
+  uint8_t count = 0;
+  bool any_point = false;
+  int32_t base[3] = {0, 0, 0};  // emission + global ambient * Ka + sum of directional La * Ka
+  uint16_t shininess_q8 = 0;
+  bool local_viewer = false;
+  Vec3 eye{};           // world-space eye position (local viewer)
+  Unit30 view{};        // world-space direction towards the viewer (infinite viewer)
+  Material material{};  // what it was prepared for: draws of equal materials share it
+  // Whether lighting needs the surface position (a point light or the local viewer).
+  bool needs_position() const { return any_point || local_viewer; }
+};
+
+// view_dir: world-space direction from the scene towards the eye (the view's +Z axis).
+PreparedLighting prepare_lighting(const LightSet& lights, const Material& material, Vec3 view_dir,
+                                  Vec3 eye);
+
+// Lit colour of a surface point with unit normal n (world) at world position p (read only for
+// point lights and the local viewer).
+Color15 light_point(const PreparedLighting& pl, const Unit30& n, Vec3 p);
+
+// The same split as GL_SEPARATE_SPECULAR_COLOR does it: primary = emission + ambient + diffuse,
+// secondary = specular, each clamped to [0, 1]. Textures modulate the primary only.
+struct LitColor {
+  Color15 primary, secondary;
+};
+LitColor light_point_split(const PreparedLighting& pl, const Unit30& n, Vec3 p);
+
+}  // namespace lr

@@ -1,0 +1,16 @@
+// Camera matrices with the meaning of gluPerspective and gluLookAt (DESIGN.md §4).
+#pragma once
+
+#include "core/math/mat4.hpp"
+
+namespace lr {
+
+// fovy_degrees in (0, 180), aspect > 0, 0 < near < far; all Q16.16. Depth maps near -> -1 and
+// far -> +1 in NDC. Returns false for arguments outside those ranges (out unchanged).
+bool perspective(Fixed fovy_degrees, Fixed aspect, Fixed near, Fixed far, Mat4& out);
+
+// View matrix looking from eye towards target with up roughly up. Returns false when
+// eye == target or up is parallel to the view direction (out unchanged).
+bool look_at(Vec3 eye, Vec3 target, Vec3 up, Mat4& out);
+
+}  // namespace lr

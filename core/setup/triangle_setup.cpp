@@ -1,0 +1,322 @@
+#include "core/setup/triangle_setup.hpp"
+
+#include "core/math/divide.hpp"
+
+#include <utility>
+
+namespace lr {
+
+void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const PlaneBasis& pb,
+                 const uint32_t q[3], ActiveTriangle& t);
+
+namespace {
+
+// 256 * n / area rounded half away from zero, for area > 0. Returns false when the truncated
+// quotient n / area is 2^30 or more in magnitude (a sub-subpixel needle).
+// |n| < 2^55 (always inside the guard band: |n| < 2 * 2^32 * 2^22): the rounded value is
+// floor(N / area) with N = 256 |n| + area / 2 < 2^63, computed from the basis' reciprocal
+// inv = floor((2^64 - 1) / area): q0 = floor(N inv / 2^64) is at most 2 below the quotient
+// (N inv / 2^64 > N / area - N / 2^64 - 1 / 2^64... > N / area - 1), and the remainder
+// N - q0 area corrects it exactly. Bit for bit the value of 256 q + round(256 r / area) with q, r
+// the truncated quotient and remainder (tests/core/plane_test.cpp), which is the general path.
+bool gradient(int64_t n, const PlaneBasis& pb, int64_t& g) {
+  const uint64_t a = n < 0 ? 0 - static_cast<uint64_t>(n) : static_cast<uint64_t>(n);
+  const auto d = static_cast<uint64_t>(pb.area);
+  if ((a >> 30) >= d) return false;  // |n| >= 2^30 area, i.e. |q| >= 2^30
+  if (a < (uint64_t{1} << 55)) {
+    const uint64_t num = a * kSubpixel + d / 2;
+    uint64_t q = mul_hi(num, pb.inv);
+    uint64_t r = num - q * d;
+    while (r >= d) {  // at most twice
+      ++q;
+      r -= d;
+    }
+    const auto m = static_cast<int64_t>(q);
+    g = n < 0 ? -m : m;
+    return true;
+  }
+  // 256 n is not formed here (n may be near 2^57).
+  const int64_t q = n / pb.area, r = n % pb.area;
+  g = q * kSubpixel + round_div(r * kSubpixel, pb.area);
+  return true;
+}
+
+// A Q1.15 colour channel times q (Q1.30), in Q1.30: <= q.
+uint32_t scale_by_q(uint32_t c15, uint32_t q) {
+  return static_cast<uint32_t>((uint64_t{c15} * q + (1u << 14)) >> 15);
+}
+
+// One texture axis: coordinates (Q12.20) to level-0 texels in Q.8, relative to the triangle's
+// own integer origin, so that the planes never hold more than the triangle's extent however far
+// from 0 the coordinates are. Extent limit: 2^22 texels (e.g. |du| < 2048 on a 2048-texel
+// texture); beyond it the relative coordinates saturate.
+void texture_axis(const int32_t uv[3], uint32_t size, Wrap wrap, bool perspective,
+                  const PlaneBasis& pb, const uint32_t q[3], Plane& plane, int32_t& off,
+                  uint8_t& m) {
+  int64_t c[3];
+  for (int i = 0; i < 3; ++i) c[i] = (int64_t{uv[i]} * size) >> (TexCoord::kFracBits - 8);
+  int64_t lo = c[0] < c[1] ? c[0] : c[1];
+  lo = c[2] < lo ? c[2] : lo;
+  const int64_t base = floor_div(lo, 256) * 256;
+  const int64_t period = int64_t{size} * 256;
+  // Repeat: only the origin's place in the period matters. Clamp: the origin itself
+  // (|base| <= 2^30 since |u| < 2048 and size <= 2048).
+  off =
+      static_cast<int32_t>(wrap == Wrap::kRepeat ? base - floor_div(base, period) * period : base);
+  constexpr int64_t kMaxRel = (int64_t{1} << 30) - 1;
+  uint32_t rel[3];
+  uint32_t hi = 0;
+  for (int i = 0; i < 3; ++i) {
+    int64_t r = c[i] - base;
+    rel[i] = static_cast<uint32_t>(r > kMaxRel ? kMaxRel : r);
+    hi |= rel[i];
+  }
+  const int bits = hi == 0 ? 0 : 32 - clz32(hi);
+  if (perspective) {
+    // s q < 2^(bits + 30): shifting by the bit length of s keeps the plane below 2^30.
+    m = static_cast<uint8_t>(bits);
+    for (int i = 0; i < 3; ++i) rel[i] = static_cast<uint32_t>((uint64_t{rel[i]} * q[i]) >> m);
+  } else {
+    // Affine: s itself, moved up to 2^30 so that the rounded gradient keeps 30 - bits more
+    // fraction bits (its rounding would otherwise add up to half a Q.8 unit per pixel).
+    m = static_cast<uint8_t>(30 - bits);
+    for (int i = 0; i < 3; ++i) rel[i] <<= m;
+  }
+  plane = make_plane(pb, rel);
+}
+
+}  // namespace
+
+PlaneBasis::PlaneBasis(const ScreenVertex* const v[3]) {
+  x0 = v[0]->x;
+  y0 = v[0]->y;
+  ex1 = v[1]->x - x0;
+  ey1 = v[1]->y - y0;
+  ex2 = v[2]->x - x0;
+  ey2 = v[2]->y - y0;
+  const int64_t signed_area = ex1 * ey2 - ex2 * ey1;
+  flip = signed_area < 0;
+  area = flip ? -signed_area : signed_area;
+  inv = area > 0 ? ~uint64_t{0} / static_cast<uint64_t>(area) : 0;
+}
+
+Plane make_plane(const PlaneBasis& pb, const uint32_t a[3]) {
+  const int64_t da1 = int64_t{a[1]} - a[0], da2 = int64_t{a[2]} - a[0];
+  int64_t nx = da1 * pb.ey2 - da2 * pb.ey1;
+  int64_t ny = da2 * pb.ex1 - da1 * pb.ex2;
+  if (pb.flip) {
+    nx = -nx;
+    ny = -ny;
+  }
+  Plane p;
+  int64_t gx = 0, gy = 0;
+  if (pb.area == 0 || !gradient(nx, pb, gx) || !gradient(ny, pb, gy)) {
+    p.base = static_cast<uint32_t>((int64_t{a[0]} + a[1] + a[2]) / 3);
+    return p;
+  }
+  // Value at the centre of pixel (0, 0): |g| < 2^38 and |128 - x0| < 2^22, so each product is
+  // below 2^60 and the sum below 2^61.
+  const int64_t off = gx * (kHalfPixel - pb.x0) + gy * (kHalfPixel - pb.y0);
+  const int64_t base = int64_t{a[0]} + round_div(off, kSubpixel);
+  p.base = static_cast<uint32_t>(static_cast<uint64_t>(base));
+  p.gx = static_cast<uint32_t>(static_cast<uint64_t>(gx));
+  p.gy = static_cast<uint32_t>(static_cast<uint64_t>(gy));
+  return p;
+}
+
+Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]) {
+  return make_plane(PlaneBasis(v), a);
+}
+
+// Whether screen-linear colours are within half an 8-bit level of perspective-correct ones
+// everywhere in the triangle, so that the per-pixel division can be skipped. With barycentrics
+// l_i, u_i = 1 / w_i and S = sum_j l_j u_j (a mean of the u_i), the perspective-correct ones are
+// l'_i = l_i u_i / S, and the two colours differ by sum_i (l'_i - l_i)(a_i - m) for any m (the
+// l' and l both sum to 1): with m the middle of the vertex values, at most
+// (sum_i l_i |u_i - S| / S) x D / 2, D the largest difference of a channel between two vertices.
+// A mean absolute deviation of values in [u_min, u_max] is at most (u_max - u_min) / 2, and
+// S >= u_min, so the difference is at most (R - 1) D / 4 for R = w_max / w_min. Half a level is
+// 32768 / 510 > 64 in Q1.15: (w_max - w_min) D <= 256 w_min suffices (products < 2^49).
+namespace {
+bool affine_is_exact_enough(const ScreenVertex* const v[3]) {
+  uint32_t wmin = v[0]->w, wmax = v[0]->w;
+  for (int i = 1; i < 3; ++i) {
+    wmin = v[i]->w < wmin ? v[i]->w : wmin;
+    wmax = v[i]->w > wmax ? v[i]->w : wmax;
+  }
+  uint32_t d = 0;
+  for (int c = 0; c < 3; ++c) {
+    uint32_t lo = channel(v[0]->color, c), hi = lo;
+    for (int i = 1; i < 3; ++i) {
+      const uint32_t x = channel(v[i]->color, c);
+      lo = x < lo ? x : lo;
+      hi = x > hi ? x : hi;
+    }
+    d = hi - lo > d ? hi - lo : d;
+  }
+  return uint64_t{wmax - wmin} * d <= uint64_t{wmin} * 256;
+}
+}  // namespace
+
+void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
+  const ScreenVertex* v[3] = {in.v[0], in.v[1], in.v[2]};
+  const SurfaceVertex* sf[3] = {in.phong.s[0], in.phong.s[1], in.phong.s[2]};
+  // Sort by y (display rows, top first); a fixed network keeps ties deterministic.
+  auto order = [&](int a, int b) {
+    if (v[b]->y < v[a]->y) {
+      std::swap(v[a], v[b]);
+      std::swap(sf[a], sf[b]);
+    }
+  };
+  order(0, 1);
+  order(1, 2);
+  order(0, 1);
+  int32_t x0 = v[0]->x, y0 = v[0]->y, x1 = v[1]->x, y1 = v[1]->y, x2 = v[2]->x, y2 = v[2]->y;
+  int64_t cross = (int64_t{x1} - x0) * (int64_t{y2} - y0) - (int64_t{x2} - x0) * (int64_t{y1} - y0);
+  t.long_is_left = cross > 0;  // middle vertex right of the long edge
+
+  int32_t first = in.first_row;
+  t.row = static_cast<int16_t>(first);
+  t.last_row = static_cast<int16_t>(in.last_row);
+  int32_t mid = last_row_at_or_above(y1);
+  if (mid < first - 1) mid = first - 1;
+  if (mid > in.last_row) mid = in.last_row;
+  t.mid_row = static_cast<int16_t>(mid);
+  t.long_edge.init(x0, y0, x2, y2, first);
+  if (y2 > y1) t.bottom_edge.init(x1, y1, x2, y2, mid + 1 > first ? mid + 1 : first);
+  if (first <= mid) {
+    t.short_edge.init(x0, y0, x1, y1, first);  // rows exist above y1, so y1 > y0
+  } else {
+    t.short_edge = t.bottom_edge;
+  }
+
+  const PlaneBasis pb(v);  // after the sort: the planes' vertex 0 is the top vertex, as before
+  if (in.depth) {
+    uint32_t z[3] = {v[0]->z, v[1]->z, v[2]->z};
+    t.z = make_plane(pb, z);
+  }
+  const bool tex = in.tex.texture != nullptr;
+  uint32_t q[3] = {1u << 30, 1u << 30, 1u << 30};
+  const bool phong = sf[0] != nullptr;
+  t.colors = in.colors;
+  if (in.colors == ColorPlanes::kPerspective && in.affine_colors_ok && !tex && !phong &&
+      affine_is_exact_enough(v))
+    t.colors = ColorPlanes::kAffine;
+  if (t.colors == ColorPlanes::kPerspective || (tex && in.tex.perspective) || phong) {
+    uint32_t wmin = v[0]->w;
+    for (int i = 1; i < 3; ++i) wmin = v[i]->w < wmin ? v[i]->w : wmin;
+    for (int i = 0; i < 3; ++i) {
+      // wmin <= w: the ratio is in (0, 1], Q1.30, at least 1.
+      uint64_t r = ((uint64_t{wmin} << 30) + v[i]->w / 2) / v[i]->w;
+      q[i] = r == 0 ? 1u : static_cast<uint32_t>(r);
+    }
+    t.q = make_plane(pb, q);
+  }
+  if (t.colors == ColorPlanes::kPerspective) {
+    for (int c = 0; c < 3; ++c) {
+      uint32_t cq[3];
+      for (int i = 0; i < 3; ++i) cq[i] = scale_by_q(channel(v[i]->color, c), q[i]);
+      t.c[c] = make_plane(pb, cq);
+    }
+  } else if (t.colors == ColorPlanes::kAffine) {
+    for (int c = 0; c < 3; ++c) {
+      uint32_t cv[3];
+      for (int i = 0; i < 3; ++i) cv[i] = uint32_t{channel(v[i]->color, c)} << 15;
+      t.c[c] = make_plane(pb, cv);
+    }
+  }
+  if (tex) setup_texture(in.tex, v, pb, q, t);
+  if (phong) setup_phong(in.phong, sf, pb, q, t);
+}
+
+void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const PlaneBasis& pb,
+                 const uint32_t q[3], ActiveTriangle& t) {
+  // Q1.30 values times q (Q1.30), biased: |x q| <= 2^30.
+  auto scaled = [&q](int64_t x, int i) {
+    return static_cast<uint32_t>(((x * q[i]) >> 30) + kPlaneBias);
+  };
+  for (int c = 0; c < 3; ++c) {
+    uint32_t a[3];
+    for (int i = 0; i < 3; ++i) {
+      const Unit30& n = s[i]->normal;
+      const int64_t x = c == 0 ? n.x : c == 1 ? n.y : n.z;
+      a[i] = scaled(ps.negate ? -x : x, i);
+    }
+    t.c[c] = make_plane(pb, a);
+  }
+  t.handedness = s[0]->handedness;
+  if (ps.tangent) {
+    for (int c = 0; c < 3; ++c) {
+      uint32_t a[3];
+      for (int i = 0; i < 3; ++i) a[i] = scaled(int64_t{s[i]->tangent[c]} << 16, i);
+      t.tan[c] = make_plane(pb, a);
+    }
+  }
+  if (ps.position) {
+    const Vec3& o = s[0]->position;
+    t.org[0] = o.x.raw;
+    t.org[1] = o.y.raw;
+    t.org[2] = o.z.raw;
+    int64_t rel[3][3];
+    uint64_t hi = 0;
+    for (int i = 0; i < 3; ++i) {
+      const Vec3& p = s[i]->position;
+      const int64_t d[3] = {int64_t{p.x.raw} - o.x.raw, int64_t{p.y.raw} - o.y.raw,
+                            int64_t{p.z.raw} - o.z.raw};
+      for (int c = 0; c < 3; ++c) {
+        // Triangles wider than 32768 units saturate (the spans read int32 offsets).
+        constexpr int64_t kMax = 0x7FFFFFFF;
+        rel[i][c] = d[c] > kMax ? kMax : d[c] < -kMax ? -kMax : d[c];
+        hi |= abs64(rel[i][c]);
+      }
+    }
+    const int bits = hi == 0 ? 0 : 64 - clz64(hi);  // <= 31
+    t.m_p = static_cast<uint8_t>(bits);
+    for (int c = 0; c < 3; ++c) {
+      uint32_t a[3];
+      // |rel| < 2^bits, q <= 2^30: |rel q| >> bits < 2^30.
+      for (int i = 0; i < 3; ++i)
+        a[i] = static_cast<uint32_t>(((rel[i][c] * q[i]) >> bits) + kPlaneBias);
+      t.spec[c] = make_plane(pb, a);
+    }
+  }
+}
+
+void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const PlaneBasis& pb,
+                   const uint32_t q[3], ActiveTriangle& t) {
+  const TextureLevel& l0 = ts.texture->levels[0];
+  const int32_t us[3] = {v[0]->u, v[1]->u, v[2]->u}, vs[3] = {v[0]->v, v[1]->v, v[2]->v};
+  texture_axis(us, l0.width, ts.wrap_s, ts.perspective, pb, q, t.s, t.off_s, t.m_s);
+  texture_axis(vs, l0.height, ts.wrap_t, ts.perspective, pb, q, t.t, t.off_t, t.m_t);
+  t.const_colors = false;
+  if (!ts.colors) return;
+  bool same = ts.flat;
+  if (!same) {
+    same = true;
+    for (int i = 1; i < 3; ++i)
+      same = same && v[i]->color == v[0]->color && v[i]->spec == v[0]->spec;
+  }
+  if (same) {
+    const Color15 pc = ts.flat ? ts.flat_primary : v[0]->color;
+    const Color15 sc = ts.flat ? ts.flat_secondary : v[0]->spec;
+    for (int c = 0; c < 3; ++c) {
+      t.c[c] = Plane{channel(pc, c), 0, 0};
+      t.spec[c] = Plane{channel(sc, c), 0, 0};
+    }
+    t.const_colors = true;
+    return;
+  }
+  for (int c = 0; c < 3; ++c) {
+    uint32_t p[3], sp[3];
+    for (int i = 0; i < 3; ++i) {
+      uint32_t pc = channel(ts.flat ? ts.flat_primary : v[i]->color, c);
+      uint32_t sc = channel(ts.flat ? ts.flat_secondary : v[i]->spec, c);
+      p[i] = ts.perspective ? scale_by_q(pc, q[i]) : pc << 15;
+      sp[i] = ts.perspective ? scale_by_q(sc, q[i]) : sc << 15;
+    }
+    t.c[c] = make_plane(pb, p);
+    t.spec[c] = make_plane(pb, sp);
+  }
+}
+
+}  // namespace lr

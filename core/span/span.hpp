@@ -1,0 +1,142 @@
+// Span routines: fill one row of one triangle between its edges.
+//
+// One routine per state (depth test on/off x colour planes none/perspective/affine), each a
+// template instance with no per-pixel branch on state (DESIGN.md §5); the table of a renderer's
+// SpanSet holds the instances its states select (span_state.hpp). Per pixel: depth test
+// first, then colour, then the write. Returns the number of pixels written.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+
+#include "core/output/color.hpp"
+#include "core/span/span_state.hpp"
+#include "core/setup/triangle_setup.hpp"
+
+namespace lr {
+
+namespace detail {
+
+// Perspective-correct channel value cq / q in Q1.15 with a 17-bit normalised reciprocal:
+// s = clz(q), qn = q << s in [2^31, 2^32), r = (2^32 - 1) / (qn >> 16) in (2^16, 2^17];
+// ((cq << s) >> 17) * r < 2^32 and ~ (cq / q) 2^31. Relative error < 2^-14 (under 0.02 of an
+// 8-bit level).
+struct Reciprocal {
+  int shift;
+  uint32_t r;
+  int32_t q;
+  explicit Reciprocal(uint32_t plane_q) {
+    int32_t qi = static_cast<int32_t>(plane_q);
+    q = qi < 1 ? 1 : qi;  // plane rounding can only take q below 1 for extreme w ratios
+    shift = clz32(static_cast<uint32_t>(q));
+    uint32_t qn = static_cast<uint32_t>(q) << shift;
+    r = 0xFFFFFFFFu / (qn >> 16);
+  }
+  uint32_t apply(uint32_t plane_cq) const {
+    int32_t v = static_cast<int32_t>(plane_cq);
+    v = v < 0 ? 0 : v > q ? q : v;
+    return clamp_c15(static_cast<int32_t>((((static_cast<uint32_t>(v) << shift) >> 17) * r) >> 16));
+  }
+};
+
+// The depth test (LESS) and write of one pixel: z is the depth plane's value (kDepthMax scale).
+inline bool depth_pass(uint32_t z, uint16_t& stored) {
+  const auto d = static_cast<uint16_t>((z + (1u << 15)) >> 16);
+  const bool pass = d < stored;
+  if (pass) stored = d;
+  return pass;
+}
+
+constexpr uint32_t affine15(uint32_t plane_c) {
+  int32_t v = static_cast<int32_t>(plane_c);
+  return clamp_c15(v >> 15);
+}
+
+}  // namespace detail
+
+template <class PF>
+using SpanFn = uint32_t (*)(const ActiveTriangle& t, typename PF::Storage* px, uint16_t* depth,
+                            int32_t col, int32_t row, int32_t count);
+
+template <class PF, bool kDepth, ColorPlanes kColors>
+uint32_t fill_span(const ActiveTriangle& t, typename PF::Storage* px, uint16_t* depth, int32_t col,
+                   int32_t row, int32_t count) {
+  uint32_t z = 0, dz = 0;
+  if constexpr (kDepth) {
+    z = t.z.at(col, row);
+    dz = t.z.gx;
+  }
+  uint32_t q = 0, dq = 0;
+  std::array<uint32_t, 3> c{}, dc{};
+  if constexpr (kColors != ColorPlanes::kNone) {
+    for (int k = 0; k < 3; ++k) {
+      c[static_cast<size_t>(k)] = t.c[k].at(col, row);
+      dc[static_cast<size_t>(k)] = t.c[k].gx;
+    }
+  }
+  if constexpr (kColors == ColorPlanes::kPerspective) {
+    q = t.q.at(col, row);
+    dq = t.q.gx;
+  }
+  typename PF::Storage flat{};
+  if constexpr (kColors == ColorPlanes::kNone) flat = PF::encode(t.flat);
+
+  uint32_t written = 0;
+  for (int32_t i = 0; i < count; ++i) {
+    bool pass = true;
+    if constexpr (kDepth) {
+      pass = detail::depth_pass(z, depth[i]);
+      z += dz;
+    }
+    if (pass) {
+      if constexpr (kColors == ColorPlanes::kNone) {
+        px[i] = flat;
+      } else if constexpr (kColors == ColorPlanes::kPerspective) {
+        detail::Reciprocal rc(q);
+        px[i] = PF::encode(
+            Rgb8{to_byte(rc.apply(c[0])), to_byte(rc.apply(c[1])), to_byte(rc.apply(c[2]))});
+      } else {
+        px[i] = PF::encode(Rgb8{to_byte(detail::affine15(c[0])), to_byte(detail::affine15(c[1])),
+                                to_byte(detail::affine15(c[2]))});
+      }
+      ++written;
+    }
+    if constexpr (kColors != ColorPlanes::kNone) {
+      c[0] += dc[0];
+      c[1] += dc[1];
+      c[2] += dc[2];
+    }
+    if constexpr (kColors == ColorPlanes::kPerspective) q += dq;
+  }
+  return written;
+}
+
+namespace detail {
+// Entry I of the table (I = untextured_index): the instance, or nullptr when no state of the
+// set selects it (the instance is then never referenced).
+template <class PF, SpanSet kSet, size_t I>
+constexpr SpanFn<PF> span_entry() {
+  if constexpr (kUsedRoutines<kSet>.untextured[I])
+    return &fill_span<PF, (I & 1) != 0, static_cast<ColorPlanes>(I / 2)>;
+  else
+    return nullptr;
+}
+template <class PF, SpanSet kSet, size_t... I>
+constexpr std::array<SpanFn<PF>, sizeof...(I)> make_span_table(std::index_sequence<I...>) {
+  return {span_entry<PF, kSet, I>()...};
+}
+}  // namespace detail
+
+// The routines of a set, generated from the template and the state space (span_state.hpp).
+template <class PF, SpanSet kSet = kAllSpans>
+inline constexpr std::array<SpanFn<PF>, kUntexturedRoutines> kSpanTable =
+    detail::make_span_table<PF, kSet>(std::make_index_sequence<kUntexturedRoutines>{});
+
+template <class PF, SpanSet kSet = kAllSpans>
+constexpr SpanFn<PF> span_routine(bool depth, ColorPlanes colors) {
+  return kSpanTable<PF, kSet>[untextured_index(depth, colors)];
+}
+
+}  // namespace lr

@@ -1,0 +1,116 @@
+#include "core/vertex/clip.hpp"
+
+namespace lr {
+namespace {
+
+constexpr int64_t kRangeLimit = int64_t{1} << 47;
+constexpr int64_t kMinW = int64_t{1} << (ClipCoord::kFracBits - 16);  // w >= 2^-16
+
+// Signed distance to plane i (>= 0 inside). |coordinates| < 2^47 and G <= 8192 keep it < 2^61.
+int64_t distance(const ClipCoord& c, int i, GuardBand g) {
+  switch (i) {
+    case 0:
+      return c.z + c.w;
+    case 1:
+      return c.w - c.z;
+    case 2:
+      return c.x + g.gx * c.w;
+    case 3:
+      return g.gx * c.w - c.x;
+    case 4:
+      return c.y + g.gy * c.w;
+    case 5:
+      return g.gy * c.w - c.y;
+    default:
+      return c.w - kMinW;
+  }
+}
+
+// (a * t) >> 30 for |a| < 2^63 and 0 <= t <= 2^30, without a 128-bit product.
+int64_t mul_frac30(int64_t a, uint32_t t) {
+  uint64_t u = abs64(a);
+  uint64_t hi = (u >> 32) * t;          // < 2^61
+  uint64_t lo = (u & 0xFFFFFFFFu) * t;  // < 2^62
+  uint64_t r = (hi << 2) + (lo >> 30);
+  return a < 0 ? -static_cast<int64_t>(r) : static_cast<int64_t>(r);
+}
+
+// The point where the segment from `in` (inside, d_in >= 0) to `out` (d_out < 0) meets the plane.
+ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, int64_t d_in, int64_t d_out) {
+  uint64_t num = static_cast<uint64_t>(d_in), den = static_cast<uint64_t>(d_in - d_out);  // < 2^62
+  int s = 0;
+  while ((den >> s) >= (uint64_t{1} << 31)) ++s;
+  num >>= s;
+  den >>= s;
+  uint32_t t = static_cast<uint32_t>((num << 30) / den);  // num < den < 2^31: t in [0, 2^30)
+  ClipVertex r;
+  r.p.x = in.p.x + mul_frac30(out.p.x - in.p.x, t);
+  r.p.y = in.p.y + mul_frac30(out.p.y - in.p.y, t);
+  r.p.z = in.p.z + mul_frac30(out.p.z - in.p.z, t);
+  r.p.w = in.p.w + mul_frac30(out.p.w - in.p.w, t);
+  uint16_t c[3];
+  for (int k = 0; k < 3; ++k) {
+    int64_t a = channel(in.color, k), b = channel(out.color, k);
+    c[k] = static_cast<uint16_t>(a + (((b - a) * t) >> 30));
+  }
+  r.color = make_color15(c);
+  for (int k = 0; k < 3; ++k) {
+    int64_t a = channel(in.spec, k), b = channel(out.spec, k);
+    c[k] = static_cast<uint16_t>(a + (((b - a) * t) >> 30));
+  }
+  r.spec = make_color15(c);
+  // |u| < 2^31: the difference is < 2^32 and times t (< 2^30) stays inside int64.
+  r.u = static_cast<int32_t>(in.u + ((int64_t{out.u} - in.u) * t >> 30));
+  r.v = static_cast<int32_t>(in.v + ((int64_t{out.v} - in.v) * t >> 30));
+  // Surface attributes: normal and tangent components are within [-1, 1], positions are
+  // Q16.16 (differences < 2^32): every product with t stays inside int64. The normal needs no
+  // renormalising here (spans renormalise per pixel).
+  auto lerp32 = [t](int32_t a, int32_t b) {
+    return static_cast<int32_t>(a + ((int64_t{b} - a) * t >> 30));
+  };
+  const SurfaceVertex &sa = in.surface, &sb = out.surface;
+  r.surface.normal = {lerp32(sa.normal.x, sb.normal.x), lerp32(sa.normal.y, sb.normal.y),
+                      lerp32(sa.normal.z, sb.normal.z)};
+  r.surface.position = {Fixed::from_raw(lerp32(sa.position.x.raw, sb.position.x.raw)),
+                        Fixed::from_raw(lerp32(sa.position.y.raw, sb.position.y.raw)),
+                        Fixed::from_raw(lerp32(sa.position.z.raw, sb.position.z.raw))};
+  for (int k = 0; k < 3; ++k)
+    r.surface.tangent[k] = static_cast<int16_t>(lerp32(sa.tangent[k], sb.tangent[k]));
+  r.surface.handedness = sa.handedness;
+  return r;
+}
+
+}  // namespace
+
+uint8_t outcode(const ClipCoord& c, GuardBand g) {
+  if (c.x >= kRangeLimit || c.x <= -kRangeLimit || c.y >= kRangeLimit || c.y <= -kRangeLimit ||
+      c.z >= kRangeLimit || c.z <= -kRangeLimit || c.w >= kRangeLimit || c.w <= -kRangeLimit)
+    return kClipOutOfRange;
+  uint8_t code = 0;
+  for (int i = 0; i < kClipPlanes; ++i)
+    if (distance(c, i, g) < 0) code = static_cast<uint8_t>(code | (1u << i));
+  return code;
+}
+
+int clip_polygon(ClipVertex* poly, int n, uint8_t planes, GuardBand g) {
+  ClipVertex tmp[kMaxClipVertices];
+  for (int i = 0; i < kClipPlanes && n > 0; ++i) {
+    if (!(planes & (1u << i))) continue;
+    int m = 0;
+    for (int k = 0; k < n; ++k) {
+      const ClipVertex& a = poly[k];
+      const ClipVertex& b = poly[(k + 1) % n];
+      int64_t da = distance(a.p, i, g), db = distance(b.p, i, g);
+      // A convex polygon gains at most one vertex per plane; the bound only guards against
+      // rounding making a sliver non-convex.
+      if (da >= 0 && m < kMaxClipVertices) tmp[m++] = a;
+      if ((da >= 0) != (db >= 0) && m < kMaxClipVertices)
+        tmp[m++] = da >= 0 ? intersect(a, b, da, db) : intersect(b, a, db, da);
+    }
+    for (int k = 0; k < m; ++k) poly[k] = tmp[k];
+    n = m;
+  }
+  return n;
+}
+
+}  // namespace lr

@@ -1,0 +1,52 @@
+// Clipping in homogeneous (clip) space: near and far planes, a guard band at the sides, and
+// w >= 2^-16. The guard band keeps snapped coordinates small (see screen_vertex.hpp) while
+// triangles that reach far outside the viewport keep their exact edges: the band is at
+// |x_ndc| <= G_x with G_x = max(1, 8192 / width), likewise for y.
+//
+// Clip coordinates (Q28.28 int64) beyond 2^47 in magnitude (|coordinate| >= 2^19) are outside
+// the range the clipper can evaluate without overflow (G * w < 2^60): triangles using such a
+// vertex are rejected and counted, never drawn wrong.
+#pragma once
+
+#include <cstdint>
+
+#include "core/output/color.hpp"
+#include "core/math/mat4.hpp"
+#include "core/vertex/surface_vertex.hpp"
+
+namespace lr {
+
+enum ClipPlane : uint8_t {
+  kClipNear = 1 << 0,
+  kClipFar = 1 << 1,
+  kClipLeft = 1 << 2,
+  kClipRight = 1 << 3,
+  kClipBottom = 1 << 4,
+  kClipTop = 1 << 5,
+  kClipW = 1 << 6,
+  kClipOutOfRange = 1 << 7,  // not a plane: the vertex cannot be clipped safely
+};
+inline constexpr int kClipPlanes = 7;
+inline constexpr int kMaxClipVertices = 3 + kClipPlanes;
+
+struct GuardBand {
+  int32_t gx = 1, gy = 1;  // guard factors in NDC units
+};
+
+struct ClipVertex {
+  ClipCoord p;
+  Color15 color;
+  Color15 spec;
+  int32_t u = 0, v = 0;     // texture coordinates, Q12.20
+  SurfaceVertex surface{};  // per-pixel lighting: interpolated linearly like the colours
+};
+
+uint8_t outcode(const ClipCoord& c, GuardBand g);
+
+// Clips the convex polygon poly[0..n) against the planes in `planes`; returns the new vertex
+// count (0: nothing left). poly must have room for kMaxClipVertices. Intersections are always
+// computed from the inside vertex towards the outside one, so an edge shared by two triangles
+// is cut at the same point in both (no cracks after clipping).
+int clip_polygon(ClipVertex* poly, int n, uint8_t planes, GuardBand g);
+
+}  // namespace lr
