@@ -313,28 +313,23 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
   return written;
 }
 
-namespace detail {
-
-// Entry I of the table (I = phong_index), or nullptr when no state of the set selects it.
-template <class PF, SpanSet kSet, size_t I>
-constexpr PhongSpanFn<PF> phong_entry() {
-  if constexpr (kUsedRoutines<kSet>.phong[I])
-    return &fill_phong_span < PF, (I & 1) != 0,
-           (I & 2) != 0 ? PixelLighting::kTable : PixelLighting::kExact, (I & 4) != 0, (I & 8) != 0,
-           (I & 16) != 0, (I & 32) != 0 > ;
-  else
-    return nullptr;
-}
-template <class PF, SpanSet kSet, size_t... I>
-constexpr std::array<PhongSpanFn<PF>, sizeof...(I)> make_phong_table(std::index_sequence<I...>) {
-  return {phong_entry<PF, kSet, I>()...};
-}
-
-}  // namespace detail
+// The Phong family (dispatch.hpp): fill_phong_span per (depth test, method, second, texture,
+// normal map, environment map); the filter and the mip mode are the draw's, per chunk.
+template <class PF>
+struct PhongSpans {
+  using Layout = PhongLayout;
+  using Fn = PhongSpanFn<PF>;
+  static constexpr auto kUsed = &UsedRoutines::phong;
+  template <bool kDepth, PixelLighting kMethod, bool kSecond, bool kTexture, bool kNormalMap,
+            bool kEnv>
+  static constexpr Fn routine() {
+    return &fill_phong_span<PF, kDepth, kMethod, kSecond, kTexture, kNormalMap, kEnv>;
+  }
+};
 
 template <class PF, SpanSet kSet = kAllSpans>
 inline constexpr std::array<PhongSpanFn<PF>, kPhongRoutines> kPhongSpanTable =
-    detail::make_phong_table<PF, kSet>(std::make_index_sequence<kPhongRoutines>{});
+    make_table<PhongSpans<PF>, kSet>();
 
 // The Phong span routine for a draw: generated from the template and the state space, indexed
 // by its state (nullptr for a state outside kSet, which draw() refuses).

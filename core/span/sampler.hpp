@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "core/span/dispatch.hpp"
 #include "core/span/span_state.hpp"
 #include "core/texture/texture.hpp"
 
@@ -192,43 +193,33 @@ void fetch_batch(const Texture& tex, int level, const int32_t* s, const int32_t*
   }
 }
 
-namespace detail {
-// Entry I of the fetch table (I = fetch_index: wraps + 4 (filter + 2 format)), or nullptr when
-// no state of the set samples a texture or normal map that way.
-template <SpanSet kSet, size_t I>
-constexpr FetchFn fetch_entry() {
-  if constexpr (kUsedRoutines<kSet>.fetch[I])
-    return &fetch_batch < static_cast<TexelFormat>(I / 8), static_cast<Filter>((I / 4) % 2),
-           (I & 2) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat,
-           (I & 1) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat > ;
-  else
-    return nullptr;
-}
-// Environment maps: bilinear, clamped to the edge; entry I = format.
-template <SpanSet kSet, size_t I>
-constexpr FetchFn env_fetch_entry() {
-  if constexpr (kUsedRoutines<kSet>.env_fetch[I])
-    return &fetch_batch<static_cast<TexelFormat>(I), Filter::kBilinear, Wrap::kClampToEdge,
-                        Wrap::kClampToEdge>;
-  else
-    return nullptr;
-}
-template <SpanSet kSet, size_t... I>
-constexpr std::array<FetchFn, sizeof...(I)> make_fetch_table(std::index_sequence<I...>) {
-  return {fetch_entry<kSet, I>()...};
-}
-template <SpanSet kSet, size_t... I>
-constexpr std::array<FetchFn, sizeof...(I)> make_env_fetch_table(std::index_sequence<I...>) {
-  return {env_fetch_entry<kSet, I>()...};
-}
-}  // namespace detail
+// The fetcher family (dispatch.hpp): fetch_batch per (wrap t, wrap s, filter, format), for
+// textures and normal maps.
+struct Fetchers {
+  using Layout = FetchLayout;
+  using Fn = FetchFn;
+  static constexpr auto kUsed = &UsedRoutines::fetch;
+  template <Wrap kWt, Wrap kWs, Filter kFilter, TexelFormat F>
+  static constexpr Fn routine() {
+    return &fetch_batch<F, kFilter, kWs, kWt>;
+  }
+};
+// Environment maps: bilinear, clamped to the edge; one fetcher per format.
+struct EnvFetchers {
+  using Layout = EnvFetchLayout;
+  using Fn = FetchFn;
+  static constexpr auto kUsed = &UsedRoutines::env_fetch;
+  template <TexelFormat F>
+  static constexpr Fn routine() {
+    return &fetch_batch<F, Filter::kBilinear, Wrap::kClampToEdge, Wrap::kClampToEdge>;
+  }
+};
 
 template <SpanSet kSet = kAllSpans>
-inline constexpr std::array<FetchFn, kFetchRoutines> kFetchTable =
-    detail::make_fetch_table<kSet>(std::make_index_sequence<kFetchRoutines>{});
+inline constexpr std::array<FetchFn, kFetchRoutines> kFetchTable = make_table<Fetchers, kSet>();
 template <SpanSet kSet = kAllSpans>
 inline constexpr std::array<FetchFn, kEnvFetchRoutines> kEnvFetchTable =
-    detail::make_env_fetch_table<kSet>(std::make_index_sequence<kEnvFetchRoutines>{});
+    make_table<EnvFetchers, kSet>();
 
 // The fetch routine for a texture format and sampler: generated from the template and the
 // state space, indexed by the state (no tree of ifs); nullptr outside kSet.
@@ -239,7 +230,7 @@ constexpr FetchFn fetch_routine(TexelFormat f, Filter filter, Wrap ws, Wrap wt) 
 // The fetch routine of an environment map (bilinear, clamp to edge) of format f.
 template <SpanSet kSet = kAllSpans>
 constexpr FetchFn env_fetch_routine(TexelFormat f) {
-  return kEnvFetchTable<kSet>[static_cast<size_t>(f)];
+  return kEnvFetchTable<kSet>[env_fetch_index(f)];
 }
 
 }  // namespace lr

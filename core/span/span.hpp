@@ -12,8 +12,9 @@
 #include <utility>
 
 #include "core/output/color.hpp"
-#include "core/span/span_state.hpp"
 #include "core/setup/triangle_setup.hpp"
+#include "core/span/dispatch.hpp"
+#include "core/span/span_state.hpp"
 
 namespace lr {
 
@@ -113,26 +114,22 @@ uint32_t fill_span(const ActiveTriangle& t, typename PF::Storage* px, uint16_t* 
   return written;
 }
 
-namespace detail {
-// Entry I of the table (I = untextured_index): the instance, or nullptr when no state of the
-// set selects it (the instance is then never referenced).
-template <class PF, SpanSet kSet, size_t I>
-constexpr SpanFn<PF> span_entry() {
-  if constexpr (kUsedRoutines<kSet>.untextured[I])
-    return &fill_span<PF, (I & 1) != 0, static_cast<ColorPlanes>(I / 2)>;
-  else
-    return nullptr;
-}
-template <class PF, SpanSet kSet, size_t... I>
-constexpr std::array<SpanFn<PF>, sizeof...(I)> make_span_table(std::index_sequence<I...>) {
-  return {span_entry<PF, kSet, I>()...};
-}
-}  // namespace detail
+// The untextured family (dispatch.hpp): fill_span per (depth test, colour planes).
+template <class PF>
+struct UntexturedSpans {
+  using Layout = UntexturedLayout;
+  using Fn = SpanFn<PF>;
+  static constexpr auto kUsed = &UsedRoutines::untextured;
+  template <bool kDepth, ColorPlanes kColors>
+  static constexpr Fn routine() {
+    return &fill_span<PF, kDepth, kColors>;
+  }
+};
 
 // The routines of a set, generated from the template and the state space (span_state.hpp).
 template <class PF, SpanSet kSet = kAllSpans>
 inline constexpr std::array<SpanFn<PF>, kUntexturedRoutines> kSpanTable =
-    detail::make_span_table<PF, kSet>(std::make_index_sequence<kUntexturedRoutines>{});
+    make_table<UntexturedSpans<PF>, kSet>();
 
 template <class PF, SpanSet kSet = kAllSpans>
 constexpr SpanFn<PF> span_routine(bool depth, ColorPlanes colors) {

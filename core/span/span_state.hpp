@@ -28,8 +28,9 @@
 #include <cstdint>
 
 #include "core/scene/mesh.hpp"
-#include "core/texture/texture.hpp"
 #include "core/setup/triangle_setup.hpp"
+#include "core/span/index_layout.hpp"
+#include "core/texture/texture.hpp"
 
 namespace lr {
 
@@ -198,29 +199,47 @@ constexpr SpanSet span_set_of(const SpanState& s) {
 }
 
 // ---- Routine indices: the layout of each family's table ---------------------------------------
-inline constexpr size_t kUntexturedRoutines = 6;  // depth + 2 colours
-inline constexpr size_t kTexturedRoutines = 36;   // depth + 2 (persp + 3 (env + 2 mip))
-inline constexpr size_t kPhongRoutines = 64;      // bits: see phong_index
-inline constexpr size_t kFetchRoutines = 32;      // wraps + 4 (filter + 2 format)
-inline constexpr size_t kEnvFetchRoutines = 4;    // format (bilinear, clamp to edge)
+// Each family's fields, least significant first (index_layout.hpp); the *_index functions are
+// the layouts' encoders with the fields named.
+using UntexturedLayout = IndexLayout<Field<bool>, Field<ColorPlanes, 3>>;  // depth, colours
+// depth, perspective mode, environment, mip mode
+using TexturedLayout =
+    IndexLayout<Field<bool>, Field<TexPersp, 3>, Field<TexEnv, 2>, Field<MipMode, 3>>;
+// depth, method, second (exact: position planes; table: bilinear), texture, normal map, envmap
+using PhongLayout = IndexLayout<Field<bool>, Field<PixelLighting, 2>, Field<bool>, Field<bool>,
+                                Field<bool>, Field<bool>>;
+// wrap t, wrap s, filter, format
+using FetchLayout =
+    IndexLayout<Field<Wrap, 2>, Field<Wrap, 2>, Field<Filter, 2>, Field<TexelFormat, 4>>;
+// format (environment maps: bilinear, clamp to edge)
+using EnvFetchLayout = IndexLayout<Field<TexelFormat, 4>>;
+
+inline constexpr size_t kUntexturedRoutines = UntexturedLayout::kSize;
+inline constexpr size_t kTexturedRoutines = TexturedLayout::kSize;
+inline constexpr size_t kPhongRoutines = PhongLayout::kSize;
+inline constexpr size_t kFetchRoutines = FetchLayout::kSize;
+inline constexpr size_t kEnvFetchRoutines = EnvFetchLayout::kSize;
+static_assert(kUntexturedRoutines == 6 && kTexturedRoutines == 36 && kPhongRoutines == 64 &&
+              kFetchRoutines == 32 && kEnvFetchRoutines == 4);
+static_assert(UntexturedLayout::round_trips() && TexturedLayout::round_trips() &&
+              PhongLayout::round_trips() && FetchLayout::round_trips() &&
+              EnvFetchLayout::round_trips());
 
 constexpr size_t untextured_index(bool depth, ColorPlanes c) {
-  return (depth ? 1u : 0u) + 2u * static_cast<size_t>(c);
+  return UntexturedLayout::encode(depth, c);
 }
 constexpr size_t textured_index(bool depth, TexPersp p, TexEnv e, MipMode m) {
-  return (depth ? 1u : 0u) + 2u * (static_cast<size_t>(p) +
-                                   3u * (static_cast<size_t>(e) + 2u * static_cast<size_t>(m)));
+  return TexturedLayout::encode(depth, p, e, m);
 }
-// Bits: 1 depth, 2 table method, 4 second (exact: position planes; table: bilinear),
-// 8 texture, 16 normal map, 32 environment map.
 constexpr size_t phong_index(bool depth, PixelLighting method, bool second, bool texture,
                              bool normal_map, bool envmap) {
-  return (depth ? 1u : 0u) | (method == PixelLighting::kTable ? 2u : 0u) | (second ? 4u : 0u) |
-         (texture ? 8u : 0u) | (normal_map ? 16u : 0u) | (envmap ? 32u : 0u);
+  return PhongLayout::encode(depth, method, second, texture, normal_map, envmap);
 }
 constexpr size_t fetch_index(TexelFormat f, Filter filter, Wrap ws, Wrap wt) {
-  return (ws == Wrap::kClampToEdge ? 2u : 0u) + (wt == Wrap::kClampToEdge ? 1u : 0u) +
-         4u * (static_cast<size_t>(filter) + 2u * static_cast<size_t>(f));
+  return FetchLayout::encode(wt, ws, filter, f);
+}
+constexpr size_t env_fetch_index(TexelFormat f) {
+  return EnvFetchLayout::encode(f);
 }
 
 // ---- The enumeration of every state ------------------------------------------------------------
@@ -350,7 +369,7 @@ constexpr UsedRoutines used_routines(const SpanSet& set) {
                             s.normal_map, s.envmap)] = true;
         if (s.envmap)
           for (TexelFormat f : kFormats)
-            if (set.admits_envmap(f)) u.env_fetch[static_cast<size_t>(f)] = true;
+            if (set.admits_envmap(f)) u.env_fetch[env_fetch_index(f)] = true;
         break;
     }
     if (sampled)

@@ -392,26 +392,22 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
                                                                            row, count);
 }
 
-namespace detail {
-// Entry I of the table (I = textured_index: depth + 2 (persp + 3 (env + 2 mip))), or nullptr
-// when no state of the set selects it.
-template <class PF, SpanSet kSet, size_t I>
-constexpr TexSpanFn<PF> tex_span_entry() {
-  if constexpr (kUsedRoutines<kSet>.textured[I])
-    return &fill_tex_span<PF, (I & 1) != 0, static_cast<TexPersp>((I / 2) % 3),
-                          static_cast<TexEnv>((I / 6) % 2), static_cast<MipMode>(I / 12)>;
-  else
-    return nullptr;
-}
-template <class PF, SpanSet kSet, size_t... I>
-constexpr std::array<TexSpanFn<PF>, sizeof...(I)> make_tex_span_table(std::index_sequence<I...>) {
-  return {tex_span_entry<PF, kSet, I>()...};
-}
-}  // namespace detail
+// The textured family (dispatch.hpp): fill_tex_span per (depth test, perspective mode,
+// environment, mip mode); the filter is the fetcher's.
+template <class PF>
+struct TexturedSpans {
+  using Layout = TexturedLayout;
+  using Fn = TexSpanFn<PF>;
+  static constexpr auto kUsed = &UsedRoutines::textured;
+  template <bool kDepth, TexPersp kPersp, TexEnv kEnv, MipMode kMip>
+  static constexpr Fn routine() {
+    return &fill_tex_span<PF, kDepth, kPersp, kEnv, kMip>;
+  }
+};
 
 template <class PF, SpanSet kSet = kAllSpans>
 inline constexpr std::array<TexSpanFn<PF>, kTexturedRoutines> kTexSpanTable =
-    detail::make_tex_span_table<PF, kSet>(std::make_index_sequence<kTexturedRoutines>{});
+    make_table<TexturedSpans<PF>, kSet>();
 
 // The textured span routine for a draw: generated from the template and the state space,
 // indexed by its state (nullptr for a state outside kSet, which draw() refuses).

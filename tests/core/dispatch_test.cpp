@@ -443,7 +443,8 @@ TEST(SpanDispatch, StatesOutsideARestrictedSetHaveNoRoutine) {
   for (size_t i = 0; i < kFetchRoutines; ++i)
     if (kFetchTable<kSet>[i] != nullptr) {
       ++fetchers;
-      EXPECT_EQ((i / 4) % 2, 0u) << "a bilinear fetcher in a nearest-only set";
+      EXPECT_EQ(FetchLayout::field<2>(i), Filter::kNearest)
+          << "a bilinear fetcher in a nearest-only set";
     }
   for (auto p : kTexSpanTable<PF, kSet>) tex += p != nullptr ? 1 : 0;
   EXPECT_EQ(fetchers, 16);
