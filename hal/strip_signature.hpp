@@ -6,17 +6,18 @@
 // [W b / 8, W (b + 1) / 8)); each band gets a 32-bit hash of its pixels (row by row, left to
 // right) and the strip one hash of the band hashes. Memory: 44 bytes per strip, O(height / K).
 //
-// The hash is FNV-1a over 16-bit words: h = (h ^ v) * 16777619 per pixel, v the RGB565 value as it
-// goes on the wire (so the hashes are the same on every CPU). Each step is a bijection of h for
-// a given v and of v for a given h, so two strips that differ in one pixel always get different
-// band hashes, and strips that differ in one band always different strip hashes; larger changes
-// go unnoticed with a probability of about 2^-32 per band.
+// The hash is FNV-1a over 16-bit words (core/math/hash.hpp): one step per pixel, v the RGB565
+// value as it goes on the wire (so the hashes are the same on every CPU). Each step is a bijection
+// of h for a given v and of v for a given h, so two strips that differ in one pixel always get
+// different band hashes, and strips that differ in one band always different strip hashes; larger
+// changes go unnoticed with a probability of about 2^-32 per band.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <span>
 
+#include "core/math/hash.hpp"
 #include "core/output/pixel_format.hpp"
 #include "core/output/strip_sink.hpp"
 
@@ -47,9 +48,6 @@ constexpr uint16_t band_begin(uint16_t width, int band) {
                                static_cast<uint32_t>(kSignatureBands));
 }
 
-inline constexpr uint32_t kFnvOffset = 2166136261u;
-inline constexpr uint32_t kFnvPrime = 16777619u;
-
 // Signs a strip of rect.width x rect.height Rgb565Be pixels, rows packed (pixels.size() must be
 // at least width x height; fewer sign as an unknown strip).
 constexpr StripSignature sign_strip(const StripRect& rect,
@@ -60,17 +58,17 @@ constexpr StripSignature sign_strip(const StripRect& rect,
   std::array<uint16_t, kSignatureBands + 1> edge{};
   for (int b = 0; b <= kSignatureBands; ++b)
     edge[static_cast<size_t>(b)] = band_begin(rect.width, b);
-  s.bands.fill(kFnvOffset);
+  s.bands.fill(kFnv1a32Offset);
   for (size_t row = 0; row < rect.height; ++row) {
     const Rgb565Be::Storage* p = pixels.data() + row * w;
     for (size_t b = 0; b < static_cast<size_t>(kSignatureBands); ++b) {
       uint32_t h = s.bands[b];
-      for (size_t c = edge[b]; c < edge[b + 1]; ++c) h = (h ^ Rgb565Be::to_value(p[c])) * kFnvPrime;
+      for (size_t c = edge[b]; c < edge[b + 1]; ++c) h = fnv1a32(h, Rgb565Be::to_value(p[c]));
       s.bands[b] = h;
     }
   }
-  uint32_t h = kFnvOffset;
-  for (uint32_t band : s.bands) h = (h ^ band) * kFnvPrime;
+  uint32_t h = kFnv1a32Offset;
+  for (uint32_t band : s.bands) h = fnv1a32(h, band);
   s.hash = h;
   s.rect = rect;
   return s;

@@ -14,7 +14,7 @@
 // Renderer::invalidate_strips() then), and an active list too small for the frame (a frame that
 // drops triangles for lack of active slots renders every strip of the next frame).
 //
-// Mixing: h = ((h ^ v) * 0x01000193) ^ (... >> 13) per 32-bit word. Both steps are bijections of
+// Mixing: mix_word (FNV-1a, then h ^= h >> 13) per 32-bit word. Both steps are bijections of
 // h for a given v, and the first of v for a given h: inputs that differ in one word always give
 // different signatures; any larger difference goes unnoticed with a probability of about 2^-32
 // per strip (the same order as the display path's pixel signatures, hal/strip_signature.hpp).
@@ -24,6 +24,7 @@
 
 #include "core/output/color.hpp"
 #include "core/math/fixed.hpp"
+#include "core/math/hash.hpp"
 #include "core/math/mat4.hpp"
 #include "core/math/vec.hpp"
 
@@ -40,11 +41,8 @@ struct DrawRecord;
 // An order-dependent 32-bit hash of a sequence of words (see above). Same value on every CPU.
 class InputHash {
  public:
-  constexpr explicit InputHash(uint32_t seed = 2166136261u) : h_(seed) {}
-  constexpr void add(uint32_t v) {
-    uint32_t x = (h_ ^ v) * 0x01000193u;
-    h_ = x ^ (x >> 13);
-  }
+  constexpr explicit InputHash(uint32_t seed = kFnv1a32Offset) : h_(seed) {}
+  constexpr void add(uint32_t v) { h_ = mix_word(h_, v); }
   constexpr void add(int32_t v) { add(static_cast<uint32_t>(v)); }
   constexpr void add(bool v) { add(uint32_t{v}); }
   constexpr void add(Fixed f) { add(f.raw); }

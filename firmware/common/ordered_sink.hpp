@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <span>
 
+#include "core/math/hash.hpp"
 #include "core/output/pixel_format.hpp"
 #include "core/output/status.hpp"
 #include "core/output/strip_sink.hpp"
@@ -93,20 +94,12 @@ class OrderedStripSink final : public StripSink<PF> {
   uint32_t strips_ = 0;
 };
 
-// FNV-1a (32 bit), the firmware's frame checksum.
-struct Fnv1a {
-  static constexpr uint32_t kOffset = 2166136261u;
-  static constexpr uint32_t kPrime = 16777619u;
-  uint32_t value = kOffset;
-  constexpr void add(uint8_t byte) { value = (value ^ byte) * kPrime; }
-};
-
 // Folds every pixel into FNV-1a as its wire bytes: RGB565 big-endian (high byte first) for a
 // 16-bit format, rows top to bottom. Integer arithmetic only, so the host build of the same
 // firmware prints the same value. `enabled = false` makes strips free (benchmarks).
 template <class PF>
 struct ChecksumConsumer {
-  Fnv1a hash;
+  Fnv1a32 hash;  // the firmware's frame checksum
   bool enabled = true;
   Status begin(uint16_t, uint16_t) {
     hash = {};
@@ -114,7 +107,7 @@ struct ChecksumConsumer {
   }
   Status strip(const StripRect&, std::span<const typename PF::Storage> pixels) {
     if (!enabled) return Status::kOk;
-    Fnv1a h = hash;
+    Fnv1a32 h = hash;
     for (const auto& p : pixels) {
       const unsigned v = PF::to_value(p);
       h.add(static_cast<uint8_t>(v >> 8));

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <span>
 
+#include "core/math/hash.hpp"
 #include "core/output/pixel_format.hpp"
 #include "core/output/status.hpp"
 #include "firmware/common/ordered_sink.hpp"
@@ -39,7 +40,7 @@ class PpmFile {
     std::array<uint8_t, 3 * kChunkPixels> bytes;
     for (size_t done = 0; done < pixels.size();) {
       const size_t n = pixels.size() - done < kChunkPixels ? pixels.size() - done : kChunkPixels;
-      Fnv1a h = hash_;
+      Fnv1a32 h = hash_;
       for (size_t i = 0; i < n; ++i) {
         const Rgb8 c = PF::decode(pixels[done + i]);
         bytes[3 * i] = c.r;
@@ -102,7 +103,7 @@ class PpmFile {
 
   const char* path_;
   int handle_ = -1;
-  Fnv1a hash_;
+  Fnv1a32 hash_;
   uint32_t bytes_ = 0;
 };
 

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/math/hash.hpp"
 #include "host_sim/mesh_prep.hpp"
 #include "host_sim/obj_loader.hpp"
 #include "host_sim/scene.hpp"
@@ -23,24 +24,18 @@
 namespace lr {
 namespace {
 
-constexpr uint64_t kFnvOffset = 0xcbf29ce484222325u, kFnvPrime = 0x100000001b3u;
-
-uint64_t fnv1a(uint64_t h, uint8_t byte) {
-  return (h ^ byte) * kFnvPrime;
-}
-
 struct FrameHash {
-  uint64_t rgb = kFnvOffset, depth = kFnvOffset;
+  uint64_t rgb = 0, depth = 0;
 };
 
 FrameHash hash_frame(const host::RenderResult& r) {
-  FrameHash h;
-  for (uint8_t b : r.image.rgb) h.rgb = fnv1a(h.rgb, b);
+  Fnv1a64 rgb, depth;
+  for (uint8_t b : r.image.rgb) rgb.add(b);
   for (uint16_t d : r.depth) {  // little-endian whatever the target's byte order
-    h.depth = fnv1a(h.depth, static_cast<uint8_t>(d & 0xFF));
-    h.depth = fnv1a(h.depth, static_cast<uint8_t>(d >> 8));
+    depth.add(static_cast<uint8_t>(d & 0xFF));
+    depth.add(static_cast<uint8_t>(d >> 8));
   }
-  return h;
+  return {rgb.value, depth.value};
 }
 
 // Renders, checks that the frame shows something, prints and compares its hashes.

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/math/hash.hpp"
 #include "hal/panel_sink.hpp"
 #include "tests/hal/recording_bus.hpp"
 
@@ -522,11 +523,11 @@ TEST(StripSignature, HashesAreTheWireBytesOnEveryCpu) {
   std::vector<Pixel> px(16);
   for (size_t i = 0; i < px.size(); ++i) px[i] = Rgb565Be::from_value(unsigned(i * 4099u));
   const StripSignature s = sign_strip({0, 0, 8, 2}, px);
-  uint32_t band0 = kFnvOffset;
-  for (unsigned v : {0u * 4099u, 8u * 4099u}) band0 = (band0 ^ (v & 0xFFFFu)) * kFnvPrime;
+  uint32_t band0 = kFnv1a32Offset;
+  for (unsigned v : {0u * 4099u, 8u * 4099u}) band0 = fnv1a32(band0, v & 0xFFFFu);
   EXPECT_EQ(s.bands[0], band0);
-  uint32_t h = kFnvOffset;
-  for (uint32_t b : s.bands) h = (h ^ b) * kFnvPrime;
+  uint32_t h = kFnv1a32Offset;
+  for (uint32_t b : s.bands) h = fnv1a32(h, b);
   EXPECT_EQ(s.hash, h);
   EXPECT_EQ(s.hash, 0xE1688A3Du);  // pinned: the same on every platform
 }
