@@ -62,9 +62,24 @@ struct IndexLayout {
   static constexpr bool round_trips() { return round_trips_at(std::index_sequence_for<Fs...>{}); }
 
  private:
+  // Two forms of the same value, each the shorter code where it applies (these run per triangle
+  // and strip): with every radix a power of two the digits are bit fields, joined by or; else
+  // Horner's scheme, v0 + r0 (v1 + r1 (v2 + ...)), one multiply-add per field.
+  static constexpr bool kBitFields = (((Fs::kValues & (Fs::kValues - 1)) == 0) && ...);
+
   template <size_t... K>
   static constexpr size_t encode_at(std::index_sequence<K...>, typename Fs::Type... v) {
-    return (size_t{0} + ... + (kStride[K] * static_cast<size_t>(v)));
+    if constexpr (kBitFields)
+      return (size_t{0} | ... | (kStride[K] * static_cast<size_t>(v)));
+    else
+      return horner<Fs...>(v...);
+  }
+  template <class F, class... Rest>
+  static constexpr size_t horner(typename F::Type v, typename Rest::Type... rest) {
+    if constexpr (sizeof...(Rest) == 0)
+      return static_cast<size_t>(v);
+    else
+      return static_cast<size_t>(v) + F::kValues * horner<Rest...>(rest...);
   }
   template <size_t... K>
   static constexpr bool round_trips_at(std::index_sequence<K...>) {
