@@ -3,7 +3,8 @@
 # footprint image (firmware/footprint: unlit, gouraud, tex_nearest, tex_bilinear, phong at
 # 320x240, RGB565, strips of 8 rows, storage for 1,000 triangles), and the link guard.
 #
-#   bash scripts/footprint.sh [BUILD_DIR ...]     (default: build/cortex-m0plus build/cortex-m4f)
+#   bash scripts/footprint.sh [--write-docs] [BUILD_DIR ...]
+#                                     (default: build/cortex-m0plus build/cortex-m4f)
 #
 # For each bare-metal build tree that exists (others are skipped with a note):
 #   1. builds the footprint images (cmake --build -j2 --target lr_fp_*);
@@ -23,6 +24,8 @@
 #   5. prints a markdown table per core and the RAM breakdown by store (nm -S of the image's
 #      g_store_* arrays), and, for Cortex-M0+ trees, which configurations fit the micro:bit
 #      (flash <= its FLASH, RAM + worst-case stack <= its RAM; firmware/common/microbit.ld).
+#      With --write-docs the report goes to docs/measurements/footprint.md when every check
+#      passed (scripts/write_measurements.py); it is then printed at the end, not as it runs.
 # Exit status: non-zero on any failure (guard, analysis, run, bound, missing tools).
 set -uo pipefail
 
@@ -74,7 +77,16 @@ else
 fi
 
 declare -A checksum_of  # config -> "core checksum" of the first core that ran it
-if [[ $# -gt 0 ]]; then trees=("$@"); else trees=(build/cortex-m0plus build/cortex-m4f); fi
+write_docs=0
+trees=()
+for a in "$@"; do
+  if [[ $a == --write-docs ]]; then write_docs=1; else trees+=("$a"); fi
+done
+[[ ${#trees[@]} -gt 0 ]] || trees=(build/cortex-m0plus build/cortex-m4f)
+if ((write_docs)); then
+  report=$(mktemp)
+  exec 3>&1 >"$report"  # the report, printed (and written to the docs) after the last tree
+fi
 
 for tree in "${trees[@]}"; do
   if [[ ! -f $tree/CMakeCache.txt ]]; then
@@ -203,6 +215,16 @@ for tree in "${trees[@]}"; do
     echo
   fi
 done
+
+if ((write_docs)); then
+  exec 1>&3 3>&-
+  cat "$report"
+  if [[ $status -eq 0 ]]; then
+    grep -v '^footprint: ' "$report" | python3 scripts/write_measurements.py footprint \
+      "bash scripts/footprint.sh --write-docs" "Footprint: flash, RAM and stack per configuration" || status=1
+  fi
+  rm -f "$report"
+fi
 
 if [[ $status -ne 0 ]]; then
   echo "footprint: FAILED" >&2
