@@ -13,8 +13,8 @@
 
 namespace lr::host {
 
-// 8-bit RGB image, rows top to bottom (row 0 = top, DESIGN.md §4), 3 bytes per pixel, no padding:
-// rgb.size() == width * height * 3.
+// 8-bit RGB image, rows top to bottom (row 0 = top, docs/conventions.md#coordinates), 3 bytes per
+// pixel, no padding: rgb.size() == width * height * 3.
 struct ImageRgb8 {
   int width = 0, height = 0;
   std::vector<uint8_t> rgb;

@@ -1,10 +1,10 @@
 // Mesh preparation for the host simulator: bounds, the --fit transform, procedural meshes for tests
 // and demos, and writing a mesh back as OBJ text. Host only (uses the heap).
 //
-// Procedural meshes follow the conventions of host_mesh.hpp / DESIGN.md §4: counter-clockwise
-// triangles seen from outside, unit per-vertex normals pointing outwards (the analytic normals of
-// the surface), uvs in [0, 1] with v = 1 at the top of the image, and tangents from
-// compute_tangents (tangents.hpp) for normal mapping. Vertices are duplicated along
+// Procedural meshes follow the conventions of host_mesh.hpp and docs/conventions.md:
+// counter-clockwise triangles seen from outside, unit per-vertex normals pointing outwards (the
+// analytic normals of the surface), uvs in [0, 1] with v = 1 at the top of the image, and tangents
+// from compute_tangents (tangents.hpp) for normal mapping. Vertices are duplicated along
 // texture seams (and at the poles of the sphere, one per slice); the duplicates have bit-identical
 // positions, so the closed meshes are watertight when vertices are welded by position.
 // Counts are clamped to a valid range: at least the minimum stated, at most 2048.

@@ -33,11 +33,12 @@
 // before any newmtl is an error. A material name defined again (in the same or a later MTL)
 // replaces the earlier definition in place.
 //
-// Smooth normals (corners without vn) follow DESIGN.md §4: the normalized sum, over every face that
-// uses the position, of the face's area vector (for a triangle the cross product of two edges, not
-// normalized; for a polygon the sum of those of its fan, i.e. twice its vector area; a face counts
-// once per position even if the position repeats in it). A zero sum gives (0, 0, 1). Positions are
-// scaled by a power of two before the sum so that huge coordinates cannot overflow.
+// Smooth normals (corners without vn) follow docs/conventions.md#lighting: the normalized sum,
+// over every face that uses the position, of the face's area vector (for a triangle the cross
+// product of two edges, not normalized; for a polygon the sum of those of its fan, i.e. twice its
+// vector area; a face counts once per position even if the position repeats in it). A zero sum
+// gives (0, 0, 1). Positions are scaled by a power of two before the sum so that huge coordinates
+// cannot overflow.
 //
 // Errors are one line "FILE:LINE: what is wrong" (LINE 1-based; for "no faces" the last line).
 // Numbers are read with std::from_chars (a leading '+' is accepted); trailing garbage, NaN/Inf and

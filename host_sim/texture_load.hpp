@@ -1,7 +1,7 @@
 // Textures for the host: PNG files (or images in memory) converted to the core's texel formats,
-// rows flipped to bottom-first storage (DESIGN.md §4), with an optional mip chain built by the
-// core's own lr::build_mip_chain (so the simulator, the asset converter and firmware that builds
-// its chain at run time all hold the same texels). Host only: uses the heap.
+// rows flipped to bottom-first storage (docs/conventions.md#textures), with an optional mip chain
+// built by the core's own lr::build_mip_chain (so the simulator, the asset converter and firmware
+// that builds its chain at run time all hold the same texels). Host only: uses the heap.
 #pragma once
 
 #include <cstdint>

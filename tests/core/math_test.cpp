@@ -138,7 +138,7 @@ TEST(PowTable, DefaultTablesWithinTwoAndAQuarterQ15UnitsOfStdPow) {
       worst = std::max(worst, std::fabs(got - ref));
     }
   }
-  EXPECT_LE(worst, 2.25);  // measured 2.16
+  EXPECT_LE(worst, 2.25);  // docs/numerics.md#specular-power-xs
   EXPECT_GT(worst, 0.5);   // the bound is tight: a broken table would not be this close
   EXPECT_EQ(DefaultPowTable::pow_q15(0, 0), 32768u);  // pow(0, 0) = 1
   EXPECT_EQ(DefaultPowTable::pow_q15(0, 256), 0u);
