@@ -1,6 +1,6 @@
 // The independent OpenGL check: the same scenes rendered by the fixed-point core and by Mesa's
 // software OpenGL (OSMesa, fixed-function state per DESIGN.md section 4), compared pixel by
-// pixel. Bounds (issue 5): coverage mismatches at most 0.05 % of the pixels; lit scenes PSNR
+// pixel. Bounds: coverage mismatches at most 0.05 % of the pixels; lit scenes PSNR
 // >= 40 dB over the pixels both cover; nearest-textured scenes the same texel on >= 99.5 % of
 // the pixels. The double reference is compared with Mesa too, so that a difference can be told
 // apart as the core's (core differs, reference agrees) or a convention (both differ).
