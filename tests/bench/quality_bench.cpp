@@ -1,4 +1,4 @@
-// Quality benchmark (issue 5, items 1-2): time, instructions, RAM and error against the double
+// Quality benchmark: time, instructions, RAM and error against the double
 // reference for every quality setting the core offers, on five 320x240 scenes:
 //   knot     the 4,000-triangle torus knot, gold (the demo scene), one light;
 //   sphere   a 40 x 60 UV sphere, four lights, shininess 96, a global ambient;

@@ -1,4 +1,4 @@
-// Texture benchmark (issue 3, item 9): filter x perspective mode x mip mode on two 320x240
+// Texture benchmark: filter x perspective mode x mip mode on two 320x240
 // scenes rendered with the core (RGB565 big-endian strips of 8 rows into a null sink):
 //   cube    a perspective-correct textured cube (6 faces, uv 0..1 each, 64x64 RGB565 texture
 //           with its mip chain), rotated so three faces show, lit by one light (modulate);

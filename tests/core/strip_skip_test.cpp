@@ -1,4 +1,4 @@
-// Skipping unchanged strips (issue 8, item 3): a renderer with strip input signatures
+// Skipping unchanged strips: a renderer with strip input signatures
 // (FrameStorage::strip_inputs) and a display that retains the last frame must show, frame after
 // frame, exactly what a renderer that draws every strip shows, while leaving out the strips whose
 // inputs did not change.

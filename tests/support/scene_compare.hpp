@@ -68,7 +68,9 @@ struct Comparison {
   host::RenderResult core;
   ref::RefFrame reference;
 
-  double fraction_within1() const { return both ? double(within1) / double(both) : 1.0; }
+  // 0 when no pixel is covered by both: comparing nothing must not count as accurate. Every
+  // test also bounds `both` from below (a frame that lost most of its pixels compares few).
+  double fraction_within1() const { return both ? double(within1) / double(both) : 0.0; }
   std::string summary() const {
     char buf[256];
     std::snprintf(buf, sizeof buf,
