@@ -1,11 +1,12 @@
 // lineraster-asset: converts an OBJ (+MTL) and a PNG into a C++ header of constexpr data in the
-// core's formats (see asset_writer.hpp). Any wrong option or bad file: one line on stderr, exit
-// status 2, no output written.
+// core's formats (see asset_writer.hpp). The options are a table (option_table.hpp's rules). Any
+// wrong option or bad file: one line on stderr, exit status 2, no output written.
 #include <cstdio>
 #include <string>
 #include <string_view>
 
 #include "host_sim/programs/asset_writer.hpp"
+#include "host_sim/programs/option_table.hpp"
 
 namespace {
 
@@ -46,55 +47,99 @@ std::string quoted_command_line(int argc, char** argv) {
   return s;
 }
 
+// What the command line asks for.
+struct AssetArgs {
+  lr::host::AssetOptions asset;
+  std::string out;
+  bool help = false, have_name = false;
+};
+
+using lr::host::OptionArg;
+using lr::host::OptionError;
+using lr::host::OptionKind;
+using Row = lr::host::OptionRow<AssetArgs>;
+
+constexpr std::string_view kFormatError = "--format needs rgb565, rgb888, l8 or palette8";
+constexpr std::string_view kSubdivideError = "--subdivide needs 0..4";
+
+OptionError help(AssetArgs& a, const OptionArg&) {
+  a.help = true;
+  return {};
+}
+
+// The missing value's message is also the bad value's.
+const Row kOptions[] = {
+    {"--help", OptionKind::kStop, help},
+    {"-h", OptionKind::kStop, help},
+    {"--obj", OptionKind::kValue,
+     [](AssetArgs& a, const OptionArg& v) {
+       a.asset.obj_path = v.value;
+       return OptionError{};
+     },
+     "--obj needs a file name"},
+    {"--texture", OptionKind::kValue,
+     [](AssetArgs& a, const OptionArg& v) {
+       a.asset.texture_path = v.value;
+       return OptionError{};
+     },
+     "--texture needs a file name"},
+    {"--format", OptionKind::kValue,
+     [](AssetArgs& a, const OptionArg& v) {
+       return lr::host::parse_texel_format(v.value, a.asset.format) ? OptionError{}
+                                                                    : OptionError(kFormatError);
+     },
+     kFormatError},
+    {"--mipmaps", OptionKind::kFlag,
+     [](AssetArgs& a, const OptionArg&) {
+       a.asset.mipmaps = true;
+       return OptionError{};
+     }},
+    {"--fit", OptionKind::kFlag,
+     [](AssetArgs& a, const OptionArg&) {
+       a.asset.fit = true;
+       return OptionError{};
+     }},
+    {"--subdivide", OptionKind::kValue,
+     [](AssetArgs& a, const OptionArg& v) {
+       if (v.value.size() != 1 || v.value[0] < '0' || v.value[0] > '4')
+         return OptionError(kSubdivideError);
+       a.asset.subdivide = v.value[0] - '0';
+       return OptionError{};
+     },
+     kSubdivideError},
+    {"--name", OptionKind::kValue,
+     [](AssetArgs& a, const OptionArg& v) {
+       a.asset.name = v.value;
+       a.have_name = true;
+       return OptionError{};
+     },
+     "--name needs a C++ identifier"},
+    {"--out", OptionKind::kValue,
+     [](AssetArgs& a, const OptionArg& v) {
+       a.out = v.value;
+       return OptionError{};
+     },
+     "--out needs a file name"},
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  lr::host::AssetOptions o;
-  std::string out;
-  bool have_name = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string_view a = argv[i];
-    // A value never starts with "--": "--obj --out x.hpp" is a missing value, not a file "--out".
-    auto value = [&](std::string& v) {
-      if (i + 1 >= argc || std::string_view(argv[i + 1]).substr(0, 2) == "--") return false;
-      v = argv[++i];
-      return true;
-    };
-    std::string v;
-    if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    } else if (a == "--obj") {
-      if (!value(o.obj_path)) return fail("--obj needs a file name");
-    } else if (a == "--texture") {
-      if (!value(o.texture_path)) return fail("--texture needs a file name");
-    } else if (a == "--format") {
-      if (!value(v) || !lr::host::parse_texel_format(v, o.format))
-        return fail("--format needs rgb565, rgb888, l8 or palette8");
-    } else if (a == "--mipmaps") {
-      o.mipmaps = true;
-    } else if (a == "--fit") {
-      o.fit = true;
-    } else if (a == "--subdivide") {
-      if (!value(v) || v.size() != 1 || v[0] < '0' || v[0] > '4')
-        return fail("--subdivide needs 0..4");
-      o.subdivide = v[0] - '0';
-    } else if (a == "--name") {
-      if (!value(o.name)) return fail("--name needs a C++ identifier");
-      have_name = true;
-    } else if (a == "--out") {
-      if (!value(out)) return fail("--out needs a file name");
-    } else {
-      return fail("unknown option '" + std::string(a) + "' (--help lists them)");
-    }
+  AssetArgs args;
+  std::string error;
+  if (!lr::host::parse_options<AssetArgs>(kOptions, argc, argv, "(--help lists them)", args, error))
+    return fail(error);
+  if (args.help) {
+    std::fputs(kUsage, stdout);
+    return 0;
   }
+  lr::host::AssetOptions& o = args.asset;
   if (o.obj_path.empty()) return fail("--obj FILE is required");
-  if (!have_name) return fail("--name IDENT is required");
+  if (!args.have_name) return fail("--name IDENT is required");
   if (!lr::host::valid_asset_name(o.name))
     return fail("--name '" + o.name + "' is not a usable C++ identifier");
-  if (out.empty()) return fail("--out FILE.hpp is required");
+  if (args.out.empty()) return fail("--out FILE.hpp is required");
   o.command_line = quoted_command_line(argc, argv);
-  std::string error;
-  if (!lr::host::write_asset_header(o, out, error)) return fail(error);
+  if (!lr::host::write_asset_header(o, args.out, error)) return fail(error);
   return 0;
 }
