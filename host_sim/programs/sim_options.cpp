@@ -52,7 +52,7 @@ bool parse_double(std::string_view s, double& out) {
 
 // A whole number within +-1e9, written as any finite decimal ("12", "12.0", "1.2e1").
 bool parse_int(std::string_view s, int& out) {
-  double d;
+  double d = 0;
   if (!parse_double(s, d) || d != std::floor(d) || d < -1e9 || d > 1e9) return false;
   out = static_cast<int>(d);
   return true;
@@ -150,7 +150,7 @@ OptionError choose(const OptionArg& a, std::initializer_list<Choice<T>> choices,
 
 // A whole number in [lo, hi], else "bad value 'V' (lo..hi)".
 OptionError int_in(const OptionArg& a, int lo, int hi, int& out) {
-  int n;
+  int n = 0;
   if (!parse_int(a.value, n) || n < lo || n > hi)
     return a.bad(std::to_string(lo) + ".." + std::to_string(hi));
   out = n;
@@ -162,7 +162,7 @@ OptionError vec3(const OptionArg& a, Vec3d& out) {
 }
 
 OptionError color(const OptionArg& a, Vec3d& out) {
-  Vec3d c;
+  Vec3d c{};
   if (!parse_vec3(a.value, c) || !unit_color(c)) return a.bad("expected r,g,b in [0,1]");
   out = c;
   return {};
@@ -242,7 +242,7 @@ OptionError depth_file(SimOptions& o, const OptionArg& a) {
 }
 
 OptionError strip_height(SimOptions& o, const OptionArg& a) {
-  int n;
+  int n = 0;
   if (!parse_int(a.value, n) || (n != 1 && n != 2 && n != 4 && n != 8 && n != 16 && n != 32))
     return a.bad("1, 2, 4, 8, 16 or 32");
   o.scene.strip_height = n;
@@ -255,7 +255,7 @@ OptionError number(const OptionArg& a, double& out) {
 }
 
 OptionError fovy(SimOptions& o, const OptionArg& a) {
-  double d;
+  double d = 0;
   if (OptionError e = number(a, d); !e.empty()) return e;
   if (d <= 0 || d >= 180) return a.bad("0 < fovy < 180");
   o.scene.fovy = d;
@@ -263,7 +263,7 @@ OptionError fovy(SimOptions& o, const OptionArg& a) {
 }
 
 OptionError near_plane(SimOptions& o, const OptionArg& a) {
-  double d;
+  double d = 0;
   if (OptionError e = number(a, d); !e.empty()) return e;
   if (d <= 0) return a.bad("near > 0");
   o.scene.near = d;
@@ -271,14 +271,14 @@ OptionError near_plane(SimOptions& o, const OptionArg& a) {
 }
 
 OptionError model_rotate_y(SimOptions& o, const OptionArg& a) {
-  double d;
+  double d = 0;
   if (OptionError e = number(a, d); !e.empty()) return e;
   o.scene.model_rotate_y = std::fmod(d, 360.0);
   return {};
 }
 
 OptionError shininess(SimOptions& o, const OptionArg& a) {
-  double d;
+  double d = 0;
   if (OptionError e = number(a, d); !e.empty()) return e;
   if (d < 0 || d > 128) return a.bad("0..128");
   o.scene.material.shininess = d;
@@ -287,7 +287,7 @@ OptionError shininess(SimOptions& o, const OptionArg& a) {
 }
 
 OptionError light_dir(SimOptions& o, const OptionArg& a) {
-  Vec3d p;
+  Vec3d p{};
   if (OptionError e = vec3(a, p); !e.empty()) return e;
   if (p[0] == 0 && p[1] == 0 && p[2] == 0) return a.bad("zero direction");
   o.light_dirs.push_back(p);
@@ -328,7 +328,7 @@ OptionError lighting(SimOptions& o, const OptionArg& a) {
 }
 
 OptionError lighting_table(SimOptions& o, const OptionArg& a) {
-  int n;
+  int n = 0;
   if (OptionError e = int_in(a, 8, 256, n); !e.empty()) return e;
   o.scene.table.size = static_cast<uint16_t>(n);
   note_first(o.phong_only, a.name);
