@@ -9,9 +9,9 @@
 #include <memory>
 #include <vector>
 
-#include "core/scene/camera.hpp"
 #include "core/raster/renderer.hpp"
-#include "host_sim/obj_loader.hpp"
+#include "core/scene/camera.hpp"
+#include "host_sim/formats/obj_loader.hpp"
 #include "tests/bench/null_sink.hpp"
 
 namespace {

@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "core/raster/renderer.hpp"
-#include "host_sim/mesh_prep.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
 #include "tests/bench/bench_common.hpp"
 #include "tests/bench/null_sink.hpp"
 #include "tests/support/scene_compare.hpp"

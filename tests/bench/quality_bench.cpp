@@ -51,12 +51,12 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/camera.hpp"
 #include "core/raster/renderer.hpp"
-#include "host_sim/capture_display.hpp"
-#include "host_sim/mesh_prep.hpp"
-#include "host_sim/obj_loader.hpp"
-#include "host_sim/texture_load.hpp"
+#include "core/scene/camera.hpp"
+#include "host_sim/emulator/capture_display.hpp"
+#include "host_sim/formats/obj_loader.hpp"
+#include "host_sim/formats/texture_load.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
 #include "tests/bench/bench_common.hpp"
 #include "tests/bench/null_sink.hpp"
 #include "tests/support/scene_compare.hpp"

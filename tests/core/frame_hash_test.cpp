@@ -13,10 +13,10 @@
 #include <cstdio>
 #include <string>
 
-#include "host_sim/mesh_prep.hpp"
-#include "host_sim/obj_loader.hpp"
-#include "host_sim/scene.hpp"
-#include "host_sim/texture_load.hpp"
+#include "host_sim/formats/obj_loader.hpp"
+#include "host_sim/formats/texture_load.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
+#include "host_sim/scene/scene.hpp"
 #include "tests/support/scene_compare.hpp"
 #include "tests/support/scenes.hpp"
 

@@ -8,12 +8,12 @@
 #include <random>
 #include <vector>
 
-#include "core/scene/camera.hpp"
-#include "core/math/inv_sqrt.hpp"
 #include "core/lighting/lighting.hpp"
 #include "core/lighting/lighting_table.hpp"
-#include "host_sim/mesh_prep.hpp"
-#include "host_sim/scene.hpp"
+#include "core/math/inv_sqrt.hpp"
+#include "core/scene/camera.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
+#include "host_sim/scene/scene.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <set>
 
-#include "host_sim/texture_load.hpp"
+#include "host_sim/formats/texture_load.hpp"
 #include "tests/support/core_harness.hpp"
 #include "tests/support/scene_compare.hpp"
 #include "tests/support/scenes.hpp"

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "host_sim/host_mesh.hpp"
-#include "host_sim/scene.hpp"
+#include "host_sim/formats/host_mesh.hpp"
+#include "host_sim/scene/scene.hpp"
 
 namespace lr::glcheck {
 

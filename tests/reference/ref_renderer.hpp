@@ -27,7 +27,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "host_sim/host_mesh.hpp"
+#include "host_sim/formats/host_mesh.hpp"
 #include "tests/reference/ref_math.hpp"
 
 namespace lr::ref {

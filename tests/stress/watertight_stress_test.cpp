@@ -18,7 +18,7 @@
 #include <random>
 
 #include "core/scene/camera.hpp"
-#include "host_sim/mesh_prep.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr {
