@@ -70,7 +70,7 @@ if [[ "$run_qemu" == 1 && -n "${LR_HOST_SMOKE:-}" ]]; then
 fi
 
 # The link guard's rules (heap, exceptions, floating point): scripts/lib/firmware_rules.sh.
-# shellcheck source=lib/firmware_rules.sh
+# shellcheck source=scripts/lib/firmware_rules.sh
 source "$repo_root/scripts/lib/firmware_rules.sh"
 
 # link_guard ELF: 0 if the ELF breaks none of the rules; else prints what it holds.

@@ -27,7 +27,7 @@ set -uo pipefail
 
 cd "$(dirname "$0")/.."
 root=$PWD
-# shellcheck source=lib/firmware_rules.sh
+# shellcheck source=scripts/lib/firmware_rules.sh
 source scripts/lib/firmware_rules.sh
 prefix=arm-none-eabi-
 qemu_timeout=${LR_FOOTPRINT_QEMU_TIMEOUT:-120}

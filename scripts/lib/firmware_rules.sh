@@ -1,3 +1,4 @@
+# shellcheck shell=bash disable=SC2034  # sourced: the variables are used by the scripts that source it
 # What a linked bare-metal image may not contain: the one list of the link guard, sourced by
 # scripts/ci_cross.sh and scripts/footprint.sh (bash; defines variables and functions only).
 #
