@@ -130,12 +130,12 @@ bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<
             d.uvs.push_back(tc);
           }
           if (tangents) {
-            Tangent16 t;
-            if (!to_tangent16(mesh.tangents[vi], t)) {
+            Tangent16 tan16;
+            if (!to_tangent16(mesh.tangents[vi], tan16)) {
               error = "mesh: tangent of vertex " + std::to_string(vi) + " is not finite";
               return false;
             }
-            d.tangents.push_back(t);
+            d.tangents.push_back(tan16);
           }
         }
         tri[static_cast<size_t>(k)] = it->second;
