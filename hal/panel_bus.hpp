@@ -7,7 +7,7 @@
 // wait() has returned kOk for it. A bus never holds more than one transfer in flight. Every
 // wait is bounded: wait() returns kTimeout when the transfer did not finish in time, kDisplayError
 // when it failed; after either the bus is idle again (the transfer is abandoned) and usable.
-// Implementations: hal/linux/spidev_bus (spidev + libgpiod), hal/usb/ft232h_bus (libusb,
+// Implementations: hal/host/linux/spidev_bus (spidev + libgpiod), hal/host/usb/ft232h_bus (libusb,
 // FT232H MPSSE), a board's own (bare metal: its SPI/DMA registers), and recording buses in the
 // tests and the panel emulator.
 #pragma once

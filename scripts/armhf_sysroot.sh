@@ -34,8 +34,8 @@ apt_dir=$(realpath -m "$(dirname "$sysroot")/$arch-apt")
 
 # The -dev packages and the runtime packages their .so links point to. The tests link libpng and
 # zlib statically (the toolchain file prefers .a), the runtime packages keep the .so links whole.
-# libgpiod (1.6) and libusb-1.0 are for the Linux display backends (hal/linux, hal/usb); programs
-# link them as shared libraries, and libudev1 is there because libusb-1.0.so needs it (at link
+# libgpiod (1.6) and libusb-1.0 are for the Linux display backends (hal/host/linux,
+# hal/host/usb); programs link them as shared libraries, and libudev1 is there because libusb-1.0.so needs it (at link
 # time through -rpath-link, at run time in the emulated guest of scripts/ci_guest.sh).
 pkgs=(libgtest-dev libpng-dev libpng16-16 zlib1g-dev zlib1g
       libgpiod-dev libgpiod2 libusb-1.0-0-dev libusb-1.0-0 libudev1)

@@ -9,10 +9,12 @@
 # counts, solved as it explains).
 # Benchmark figures: printed, never compared with a threshold.
 #
-# Usage: scripts/bench_cortex_m.sh [build tree ...]  (default: build/cortex-m4f build/cortex-m0plus)
+# Usage: scripts/bench_cortex_m.sh [--write-docs] [build tree ...]
+#          (default: build/cortex-m4f build/cortex-m0plus)
 #   LR_BENCH_HOST  the host build of the benchmark (default build/debug/tests/firmware_host/lr_bench_host)
 #   LR_ICOUNT_PLUGIN  the plugin (scripts/icount.sh's default otherwise)
-# Tables also go to out/bench_cortex_m/<tree>.md.
+# Tables also go to out/bench_cortex_m/<tree>.md and, with --write-docs, all trees' to
+# docs/measurements/bench_cortex_m.md (scripts/write_measurements.py).
 set -euo pipefail
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
@@ -25,9 +27,14 @@ host_bench="${LR_BENCH_HOST:-build/debug/tests/firmware_host/lr_bench_host}"
 [[ -x "$host_bench" ]] || fail "$host_bench not built (cmake --build --preset debug --target lr_bench_host)"
 host_out="$("$host_bench")" || fail "the host build of the benchmark failed: $host_out"
 
-trees=("$@")
+write_docs=0
+trees=()
+for a in "$@"; do
+  if [[ $a == --write-docs ]]; then write_docs=1; else trees+=("$a"); fi
+done
 [[ ${#trees[@]} -gt 0 ]] || trees=(build/cortex-m4f build/cortex-m0plus)
 mkdir -p out/bench_cortex_m
+tables=()
 
 # 320 x 240 RGB565 = 1,228,800 bits per frame on a 62.5 MHz SPI clock.
 spi_fps="$(awk 'BEGIN { printf "%.1f", 62.5e6 / (320 * 240 * 16) }')"
@@ -107,4 +114,15 @@ for tree in "${trees[@]}"; do
   cat "$table"
   echo
   echo "bench_cortex_m: $core: $(grep -c '^lr_bench: case ' <<<"$run") frames identical to the host's"
+  tables+=("$table")
 done
+
+if ((write_docs)); then
+  for table in "${tables[@]}"; do
+    echo "## $(basename "$table" .md)"
+    echo
+    cat "$table"
+    echo
+  done | python3 scripts/write_measurements.py bench_cortex_m "bash scripts/bench_cortex_m.sh --write-docs" \
+    "Instructions per frame on Cortex-M"
+fi

@@ -6,6 +6,7 @@ case (before and after its measured frame), and one "lr_bench: case NAME checksu
 line per case after its markers. Each case's instruction count is the difference of its two
 markers. Prints two Markdown tables computed from those counts and the frame statistics the
 firmware prints with them (nothing is asserted; a missing case is reported and its row left out).
+`scripts/bench_cortex_m.sh --write-docs` puts them in docs/measurements/bench_cortex_m.md.
 
 Early outs (firmware/bench/cases.hpp says which cases go together): each row divides the
 difference of two frames by what the early out dropped.

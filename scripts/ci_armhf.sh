@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# 32-bit ARM Linux run (issue 5, item 6: bit-identical on every platform): builds the core, the
+# 32-bit ARM Linux run (frames bit-identical on every platform): builds the core, the
 # host simulator and the tests for armhf (the armhf preset: toolchain/arm-linux-gnueabihf.cmake)
 # and runs them through CTest under qemu-arm. core_frame_hash_test compares each frame's hash
 # with the x86-64 value, so a pass means the ARM frames equal the x86-64 ones byte for byte.

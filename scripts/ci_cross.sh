@@ -2,7 +2,8 @@
 # Cross-compile check of every Cortex-M target. For each preset (cortex-m0plus, cortex-m4f,
 # cortex-m7, cortex-m33: toolchain/cortex-*.cmake, LR_HOST=OFF), one configure and one build into
 # build/<preset>, then:
-#   - the link guard: no ELF of the build tree may hold a heap or exception machinery;
+#   - the link guard: no ELF of the build tree may hold a heap, exception machinery or floating
+#     point (the rules: scripts/lib/firmware_rules.sh);
 #   - with LR_CROSS_RUN_QEMU=1, under qemu-system-arm with semihosting, each run bounded by
 #     `timeout` (a hung firmware never stops QEMU by itself):
 #       lr_smoke on the preset's board (LR_FW_BOARD; board names are QEMU machine names,
@@ -45,7 +46,7 @@ problem() {
   failures=$((failures + 1))
 }
 
-for tool in arm-none-eabi-g++ arm-none-eabi-gcc arm-none-eabi-nm arm-none-eabi-size; do
+for tool in arm-none-eabi-g++ arm-none-eabi-gcc arm-none-eabi-nm arm-none-eabi-objdump arm-none-eabi-readelf arm-none-eabi-size; do
   if ! command -v "$tool" >/dev/null 2>&1; then
     fail "$tool not found on PATH. Install the Arm GNU toolchain (Debian/Ubuntu: gcc-arm-none-eabi," \
       "libnewlib-arm-none-eabi, libstdc++-arm-none-eabi-newlib; the project's setup script does this)."
@@ -68,23 +69,17 @@ if [[ "$run_qemu" == 1 && -n "${LR_HOST_SMOKE:-}" ]]; then
   echo "ci_cross: host frame: $host_sum"
 fi
 
-# Symbols that mean a heap or exception support got linked in, defined (T, W, ...) or not (U).
-#   malloc family and the newlib reentrant variants, the heap's sbrk,
-#   operator new/delete (32-bit size_t: _Znwj, _Znaj, plus the nothrow and aligned forms),
-#   exception allocation and throwing.
-forbidden_re='^(malloc|free|calloc|realloc|memalign|aligned_alloc|posix_memalign|_sbrk|sbrk|_sbrk_r|_malloc_r|_free_r|_calloc_r|_realloc_r|_Znwj|_Znaj|_ZdlPv|_ZdaPv|_Znw.*|_Zna.*|_ZdlPv.*|_ZdaPv.*|__cxa_allocate_exception|__cxa_throw|__cxa_begin_catch)$'
+# The link guard's rules (heap, exceptions, floating point): scripts/lib/firmware_rules.sh.
+# shellcheck source=scripts/lib/firmware_rules.sh
+source "$repo_root/scripts/lib/firmware_rules.sh"
 
-# link_guard ELF: 0 if the ELF holds none of the forbidden symbols.
+# link_guard ELF: 0 if the ELF breaks none of the rules; else prints what it holds.
 link_guard() {
-  local elf="$1" symbols found
-  symbols="$(arm-none-eabi-nm "$elf")" || { echo "ci_cross: arm-none-eabi-nm could not read $elf" >&2; return 1; }
-  # nm lines: "<address> <type> <name>" or "         U <name>": the name is the last field.
-  found="$(awk '{print $NF}' <<<"$symbols" | grep -E "$forbidden_re" || true)"
-  if [[ -n "$found" ]]; then
-    echo "ci_cross: forbidden symbols in $elf (the map file's --cref section says who references them):" >&2
-    grep -E " ($(tr '\n' '|' <<<"$found" | sed 's/|$//'))\$" <<<"$symbols" | sed 's/^/    /' >&2
-    return 1
-  fi
+  local elf="$1" found
+  found="$(lr_fw_guard "$elf")" && return 0
+  echo "ci_cross: $elf breaks the firmware rules (the map file's --cref section says who references a symbol):" >&2
+  sed 's/^/    /' <<<"$found" >&2
+  return 1
 }
 
 indent() { sed 's/^/    /'; }
@@ -183,9 +178,9 @@ for preset in "${presets[@]}"; do
   mapfile -t elfs < <(find "$build_dir" -name '*.elf' -type f | sort)
   guard_ok=0
   for elf in "${elfs[@]}"; do
-    if link_guard "$elf"; then guard_ok=$((guard_ok + 1)); else problem "[$preset] $elf links heap or exception support"; fi
+    if link_guard "$elf"; then guard_ok=$((guard_ok + 1)); else problem "[$preset] $elf fails the link guard"; fi
   done
-  echo "ci_cross: [$preset] link guard (no malloc/free/_sbrk/operator new/exceptions): $guard_ok of ${#elfs[@]} ELFs clean"
+  echo "ci_cross: [$preset] link guard ($lr_fw_guard_what): $guard_ok of ${#elfs[@]} ELFs clean"
   read -r text data bss _ < <(arm-none-eabi-size "$smoke_elf" | tail -n 1)
   sizes="lr_smoke text $text data $data bss $bss"
 

@@ -3,13 +3,13 @@
 # footprint image (firmware/footprint: unlit, gouraud, tex_nearest, tex_bilinear, phong at
 # 320x240, RGB565, strips of 8 rows, storage for 1,000 triangles), and the link guard.
 #
-#   bash scripts/footprint.sh [BUILD_DIR ...]     (default: build/cortex-m0plus build/cortex-m4f)
+#   bash scripts/footprint.sh [--write-docs] [BUILD_DIR ...]
+#                                     (default: build/cortex-m0plus build/cortex-m4f)
 #
 # For each bare-metal build tree that exists (others are skipped with a note):
 #   1. builds the footprint images (cmake --build -j2 --target lr_fp_*);
-#   2. link guard: no malloc/free/_sbrk (and newlib's reentrant forms), operator new/delete,
-#      __cxa_* (but __cxa_pure_virtual/__cxa_deleted_virtual, defined by startup.cpp),
-#      __gxx_personality_* or _Unwind_* in ANY .elf of the tree;
+#   2. link guard: no heap, exception support, soft-float helper or FPU arithmetic in ANY .elf
+#      of the tree (the rules, shared with scripts/ci_cross.sh: scripts/lib/firmware_rules.sh);
 #   3. per image: flash = every loaded byte (vector table, code, .rodata, unwind index, init
 #      arrays, and .data's load image: objdump -h sections with LOAD); RAM = .data + .bss (the
 #      ALLOC sections in the map file's RAM region), without the reserved .stack section, whose
@@ -23,11 +23,15 @@
 #   5. prints a markdown table per core and the RAM breakdown by store (nm -S of the image's
 #      g_store_* arrays), and, for Cortex-M0+ trees, which configurations fit the micro:bit
 #      (flash <= its FLASH, RAM + worst-case stack <= its RAM; firmware/common/microbit.ld).
+#      With --write-docs the report goes to docs/measurements/footprint.md when every check
+#      passed (scripts/write_measurements.py); it is then printed at the end, not as it runs.
 # Exit status: non-zero on any failure (guard, analysis, run, bound, missing tools).
 set -uo pipefail
 
 cd "$(dirname "$0")/.."
 root=$PWD
+# shellcheck source=scripts/lib/firmware_rules.sh
+source scripts/lib/firmware_rules.sh
 prefix=arm-none-eabi-
 qemu_timeout=${LR_FOOTPRINT_QEMU_TIMEOUT:-120}
 configs=(unlit gouraud tex_nearest tex_bilinear phong)
@@ -41,7 +45,7 @@ fail() {
 # 12345 -> 12,345
 group() { sed -e ':a' -e 's/\B[0-9]\{3\}\>/,&/' -e 'ta' <<<"$1"; }
 
-for tool in "${prefix}objdump" "${prefix}nm" python3 qemu-system-arm; do
+for tool in "${prefix}objdump" "${prefix}nm" "${prefix}readelf" python3 qemu-system-arm; do
   command -v "$tool" >/dev/null || { echo "footprint: $tool not found (bash scripts/setup.sh test)" >&2; exit 1; }
 done
 
@@ -74,7 +78,16 @@ else
 fi
 
 declare -A checksum_of  # config -> "core checksum" of the first core that ran it
-if [[ $# -gt 0 ]]; then trees=("$@"); else trees=(build/cortex-m0plus build/cortex-m4f); fi
+write_docs=0
+trees=()
+for a in "$@"; do
+  if [[ $a == --write-docs ]]; then write_docs=1; else trees+=("$a"); fi
+done
+[[ ${#trees[@]} -gt 0 ]] || trees=(build/cortex-m0plus build/cortex-m4f)
+if ((write_docs)); then
+  report=$(mktemp)
+  exec 3>&1 >"$report"  # the report, printed (and written to the docs) after the last tree
+fi
 
 for tree in "${trees[@]}"; do
   if [[ ! -f $tree/CMakeCache.txt ]]; then
@@ -96,27 +109,20 @@ for tree in "${trees[@]}"; do
     continue
   fi
 
-  # ---- Link guard: every ELF of the tree.
-  forbidden='^(malloc|free|calloc|realloc|memalign|aligned_alloc|posix_memalign|valloc|pvalloc|_sbrk|sbrk|_sbrk_r|_malloc_r|_free_r|_calloc_r|_realloc_r|_memalign_r|_Zn[wa][jm].*|_Zd[la]Pv.*|__cxa_.*|__gxx_personality_.*|_Unwind_.*)$'
-  allowed='^(__cxa_pure_virtual|__cxa_deleted_virtual)$'
+  # ---- Link guard: every ELF of the tree (the rules: scripts/lib/firmware_rules.sh).
   elfs=0 clean=0
   while IFS= read -r elf; do
     elfs=$((elfs + 1))
-    if ! syms=$("${prefix}nm" "$elf" 2>/dev/null); then
-      fail "$elf: nm could not read it"
-      continue
-    fi
-    bad=$(awk '{print $NF}' <<<"$syms" | grep -E "$forbidden" | grep -vE "$allowed" | sort -u | tr '\n' ' ')
-    if [[ -n $bad ]]; then
-      fail "link guard: $elf holds $bad"
-    else
+    if found=$(lr_fw_guard "$elf"); then
       clean=$((clean + 1))
+    else
+      fail "link guard: $elf:"$'\n'"$(sed 's/^/    /' <<<"$found")"
     fi
   done < <(find "$tree" -name '*.elf' -type f | sort)
 
   echo "### $core ($tree)"
   echo
-  echo "Link guard (no malloc, free, _sbrk, operator new/delete, __cxa_* exceptions, unwinder): $clean of $elfs ELFs clean."
+  echo "Link guard ($lr_fw_guard_what): $clean of $elfs ELFs clean."
   echo
   echo "| configuration | flash | RAM | worst-case stack | measured stack (QEMU) | main alone (static) |"
   echo "|---|---:|---:|---:|---:|---:|"
@@ -203,6 +209,16 @@ for tree in "${trees[@]}"; do
     echo
   fi
 done
+
+if ((write_docs)); then
+  exec 1>&3 3>&-
+  cat "$report"
+  if [[ $status -eq 0 ]]; then
+    grep -v '^footprint: ' "$report" | python3 scripts/write_measurements.py footprint \
+      "bash scripts/footprint.sh --write-docs" "Footprint: flash, RAM and stack per configuration" || status=1
+  fi
+  rm -f "$report"
+fi
 
 if [[ $status -ne 0 ]]; then
   echo "footprint: FAILED" >&2

@@ -8,7 +8,7 @@
 # with g++) and the script fails.
 # Usage: scripts/fuzz.sh [seconds per target, default 60] [target ...]   (obj, png, pipeline)
 #        scripts/fuzz.sh --ci [target ...]: a fixed number of runs from a fixed seed and a fresh
-#        working corpus (about 20-45 s per target): nearly the same inputs on every run (libFuzzer
+#        working corpus: nearly the same inputs on every run (libFuzzer
 #        is not bit-for-bit repeatable), so CI rarely passes or fails by luck; open-ended
 #        exploration is the timed form above.
 # Needs clang and libclang-rt-14-dev (scripts/setup.sh test installs them).

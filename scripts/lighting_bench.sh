@@ -1,5 +1,5 @@
 #!/bin/bash
-# Lighting benchmark (issue 4): per shading mode (flat, Gouraud, Phong exact, Phong with a
+# Lighting benchmark: per shading mode (flat, Gouraud, Phong exact, Phong with a
 # normal-indexed lighting table of 16..256 cells, nearest or bilinear) on a sphere and on the
 # torus knot (320x240, RGB565 strips of 8):
 #   1. builds the release configuration's lr_lighting_bench;
@@ -9,12 +9,18 @@
 #   3. callgrind per configuration (counting only inside lighting_bench_frame: begin_frame,
 #      draws with their lighting tables, render), JOBS at a time -> exact host instructions;
 #   4. prints a table: instructions per frame, per lit pixel, the extra per lit pixel over
-#      Gouraud, PSNR -> build/release/lighting_bench.md.
-# Benchmarks print figures; they never pass or fail on time. About a minute on 2 cores.
-# Usage: scripts/lighting_bench.sh [jobs for the callgrind runs, default 2]
+#      Gouraud, PSNR -> build/release/lighting_bench.md (and, with --write-docs,
+#      docs/measurements/lighting_bench.md: scripts/write_measurements.py).
+# Benchmarks print figures; they never pass or fail on time.
+# Usage: scripts/lighting_bench.sh [--write-docs] [jobs for the callgrind runs, default 2]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-jobs=${1:-2}
+write_docs=0
+args=()
+for a in "$@"; do
+  if [[ $a == --write-docs ]]; then write_docs=1; else args+=("$a"); fi
+done
+jobs=${args[0]:-2}
 build=build/release
 bench="$build/tests/bench/lr_lighting_bench"
 raw="$build/lighting_bench_raw.csv"
@@ -68,3 +74,7 @@ open(md, "w").write(text)
 print(text)
 PY
 echo "lighting_bench: table in $md"
+if ((write_docs)); then
+  python3 scripts/write_measurements.py lighting_bench "bash scripts/lighting_bench.sh --write-docs" \
+    "Per-pixel lighting: cost against error" <"$md"
+fi

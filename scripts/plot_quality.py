@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Quality benchmark report (issue 5): reads build/release/quality_bench.csv (written by
+"""Quality benchmark report: reads build/release/quality_bench.csv (written by
 scripts/quality_bench.sh), writes the Markdown table (same path, .md) and JSON (.json), plots
 instructions per frame (x, log) against mean absolute error (y, symlog) with one marker per
 (scene, setting) and the Pareto front of each scene marked, and prints the fronts.

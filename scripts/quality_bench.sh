@@ -1,5 +1,5 @@
 #!/bin/bash
-# Quality benchmark (issue 5): time, instructions, RAM and error against the double reference for
+# Quality benchmark: time, instructions, RAM and error against the double reference for
 # every quality setting of the core on five 320x240 scenes (knot, sphere, clipped ground plane,
 # textured cube, textured ground plane to the horizon; see tests/bench/quality_bench.cpp).
 #   1. builds the release configuration's lr_quality_bench;
@@ -10,12 +10,19 @@
 #   4. joins them into build/release/quality_bench.csv, then scripts/plot_quality.py writes
 #      build/release/quality_bench.md (+ .json), the plot build/release/quality_pareto.png
 #      (LR_PLOT_OUT=docs/images/quality_pareto.png to refresh the README's) and prints the
-#      Pareto front of each scene (instructions against mean error).
-# Benchmarks print figures; they never pass or fail on time. About 2-3 minutes on 2 cores.
-# Usage: scripts/quality_bench.sh [jobs for the callgrind runs, default 2]
+#      Pareto front of each scene (instructions against mean error). With --write-docs the
+#      table also goes to docs/measurements/quality_bench.md (scripts/write_measurements.py)
+#      and the plot to docs/images/quality_pareto.png, the README's.
+# Benchmarks print figures; they never pass or fail on time.
+# Usage: scripts/quality_bench.sh [--write-docs] [jobs for the callgrind runs, default 2]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-jobs=${1:-2}
+write_docs=0
+args=()
+for a in "$@"; do
+  if [[ $a == --write-docs ]]; then write_docs=1; else args+=("$a"); fi
+done
+jobs=${args[0]:-2}
 build=build/release
 bench="$build/tests/bench/lr_quality_bench"
 raw="$build/quality_bench_raw.csv"
@@ -69,4 +76,10 @@ awk -F, -v OFS=, -v dir="$tmp" '
   }' "$raw" >"$csv"
 
 echo "== table, plot and Pareto fronts"
-"$py" scripts/plot_quality.py "$csv" "${LR_PLOT_OUT:-$build/quality_pareto.png}"
+plot_default=$build/quality_pareto.png
+((write_docs)) && plot_default=docs/images/quality_pareto.png
+"$py" scripts/plot_quality.py "$csv" "${LR_PLOT_OUT:-$plot_default}"
+if ((write_docs)); then
+  python3 scripts/write_measurements.py quality_bench "bash scripts/quality_bench.sh --write-docs" \
+    "Accuracy and stability: every quality setting" <"$build/quality_bench.md"
+fi

@@ -9,7 +9,8 @@ if [ "$what" = test ]; then
          libstdc++-arm-none-eabi-newlib qemu-system-arm
          g++-arm-linux-gnueabihf g++-aarch64-linux-gnu qemu-user python3-matplotlib
          clang libclang-rt-14-dev
-         pkg-config libgpiod-dev libusb-1.0-0-dev  # host display backends (hal/linux, hal/usb)
+         clang-format clang-tidy  # scripts/format.sh, scripts/tidy.sh (Debian 12: version 14)
+         pkg-config libgpiod-dev libusb-1.0-0-dev  # display backends (hal/host)
          device-tree-compiler cpio)  # the ARM Linux guest of scripts/ci_guest.sh
 fi
 missing=()

@@ -1,5 +1,6 @@
 #!/bin/bash
-# Installs what is missing, builds and runs every test: the debug build, the same suite under
+# Installs what is missing, checks the sources (clang-format, clang-tidy, the include layers),
+# builds and runs every test: the debug build, the same suite under
 # AddressSanitizer + UndefinedBehaviorSanitizer, the bare-metal builds for Cortex-M0+, M4F, M7 and
 # M33 run under QEMU (smoke, fault, demo frames against lineraster-sim, instruction-count check,
 # footprint with its link and stack guards), the 32-bit ARM Linux build run under qemu-arm, the
@@ -20,8 +21,17 @@ step() {
   return 0
 }
 
-step "debug build + tests"
+# Source checks first (they need only the debug tree's compile_commands.json). A failure is
+# reported here and fails the run at the end, after every test has run: a formatting slip does
+# not hide the test results.
+step "source checks: clang-format, clang-tidy (core/, hal/), include layers"
 cmake --preset debug >/dev/null
+source_failures=()
+bash scripts/format.sh --check || source_failures+=("clang-format (bash scripts/format.sh)")
+bash scripts/tidy.sh build/debug || source_failures+=("clang-tidy (bash scripts/tidy.sh)")
+python3 scripts/check_layers.py || source_failures+=("include layers (python3 scripts/check_layers.py --matrix)")
+
+step "debug build + tests"
 cmake --build --preset debug -j"$jobs"
 ctest --preset debug -j"$jobs"
 # Host programs the later steps use: the CLI, the converter, the instruction-counting plugin and
@@ -77,4 +87,8 @@ bash scripts/lighting_bench.sh
 LR_BENCH_HOST=$host/tests/firmware_host/lr_bench_host bash scripts/bench_cortex_m.sh
 
 step ""
+if [[ ${#source_failures[@]} -gt 0 ]]; then
+  printf '== FAIL: source check: %s\n' "${source_failures[@]}" >&2
+  exit 1
+fi
 echo "== all tests passed ($SECONDS s)"

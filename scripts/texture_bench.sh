@@ -1,17 +1,23 @@
 #!/bin/bash
-# Texture benchmark figures (issue 3): filter x perspective mode x mip mode on the textured cube
+# Texture benchmark figures: filter x perspective mode x mip mode on the textured cube
 # and on the ground plane to the horizon, 320x240, RGB565 strips of 8 rows into a null sink.
 #   1. builds the release configuration's lr_texture_bench;
 #   2. `--table`: pixels, host time per frame (median of 15 runs) and error against the double
 #      reference per configuration -> build/release/texture_bench.csv;
 #   3. callgrind per configuration (counting only inside texture_bench_frame: begin_frame, draws,
 #      render) -> exact host instructions per frame, plus an untextured baseline per scene;
-#   4. prints a Markdown table, also written to build/release/texture_bench.md.
+#   4. prints a Markdown table, also written to build/release/texture_bench.md (and, with
+#      --write-docs, to docs/measurements/texture_bench.md: scripts/write_measurements.py).
 # Benchmarks print figures; they never pass or fail on time.
-# Usage: scripts/texture_bench.sh [jobs for the callgrind runs, default: number of CPUs]
+# Usage: scripts/texture_bench.sh [--write-docs] [jobs for the callgrind runs, default: number of CPUs]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-jobs=${1:-$(nproc)}
+write_docs=0
+args=()
+for a in "$@"; do
+  if [[ $a == --write-docs ]]; then write_docs=1; else args+=("$a"); fi
+done
+jobs=${args[0]:-$(nproc)}
 build=build/release
 bench="$build/tests/bench/lr_texture_bench"
 csv="$build/texture_bench.csv"
@@ -90,3 +96,7 @@ awk -F, -v dir="$tmp" '
   }' "$csv" >"$md"
 
 cat "$md"
+if ((write_docs)); then
+  python3 scripts/write_measurements.py texture_bench "bash scripts/texture_bench.sh --write-docs" \
+    "Texturing: time against error" <"$md"
+fi

@@ -3,8 +3,8 @@
 // compared byte for byte (scripts/ci_firmware.sh).
 //
 // Every Fixed here comes from a consteval conversion of the number the CLI parses: the CLI
-// rounds v * 65536 to the nearest integer at run time (host_sim/scene.cpp to_fixed), and so does
-// Fixed::from_double at compile time. The doubles exist only in the compiler: nothing in the
+// rounds v * 65536 to the nearest integer at run time (host_sim/scene/scene.cpp to_fixed), and
+// so does Fixed::from_double at compile time. The doubles exist only in the compiler: nothing in the
 // firmware image computes with floating point.
 #pragma once
 

@@ -2,8 +2,8 @@
 
 #include <string_view>
 
-#include "hal/linux/parse_number.hpp"
-#include "host_sim/display_spec.hpp"
+#include "hal/host/display_spec.hpp"
+#include "hal/host/parse_number.hpp"
 
 namespace lr::app {
 

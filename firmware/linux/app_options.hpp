@@ -1,13 +1,13 @@
 // lr_panel_app's command line, parsed without opening anything (the unit test runs it on any
 // machine). The --display and --panel values have lineraster-sim's syntax: --panel is parsed by
-// host_sim/display_spec (compiled in on its own: it needs no libpng), the spidev details by the
+// hal/host/display_spec (lr_display_spec: it needs no libpng), the spidev details by the
 // backend's own parse_spidev_spec.
 #pragma once
 
 #include <cstdint>
 #include <string>
 
-#include "hal/linux/spidev_bus.hpp"
+#include "hal/host/linux/spidev_bus.hpp"
 #include "hal/panel_config.hpp"
 
 namespace lr::app {

@@ -11,7 +11,7 @@ namespace {
 
 static_assert(demo_knot::draw_count == 1, "the demo mesh is one draw");
 
-// lineraster-sim's defaults (host_sim/scene.hpp SceneOptions): --fovy 60 --near 0.1 --far 100
+// lineraster-sim's defaults (host_sim/scene/scene.hpp SceneOptions): --fovy 60 --near 0.1 --far 100
 // --eye 0,0,3 --target 0,0,0 --up 0,1,0, background black. Fixed::from_double rounds v * 65536
 // to nearest at compile time as the CLI's to_fixed does at run time.
 constexpr Fixed kFovy = Fixed::from_double(60.0);

@@ -1,6 +1,7 @@
 // lr_panel_app: the demo scene on an SPI panel (ST7789 / ILI9341) from a Linux board of the
 // Raspberry Pi class: spidev carries the bytes, libgpiod drives D/C, reset and backlight
-// (hal/linux). Options: app_options.cpp. Output, one line each, key=value so scripts can read it:
+// (hal/host/linux). Options: app_options.cpp. Output, one line each, key=value so scripts can
+// read it:
 //   lr_panel_app: st7789 240x240 rotation 0 (image 240x240) on /dev/spidev0.0 ...
 //   frame=0 degrees=0 bytes=... pixel_bytes=... command_bytes=... strips_sent=...
 //     strips_narrowed=... strips_skipped=... pixels_written=... ms=...
@@ -17,8 +18,8 @@
 
 #include "firmware/linux/app_options.hpp"
 #include "firmware/linux/panel_app.hpp"
-#include "hal/linux/spidev_bus.hpp"
-#include "host_sim/display_spec.hpp"
+#include "hal/host/display_spec.hpp"
+#include "hal/host/linux/spidev_bus.hpp"
 
 namespace {
 

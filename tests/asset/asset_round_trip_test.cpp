@@ -20,10 +20,10 @@
 #include "core/scene/camera.hpp"
 #include "cube_rgb565.hpp"
 #include "cube_rgb888.hpp"
-#include "host_sim/asset_writer.hpp"
-#include "host_sim/obj_loader.hpp"
-#include "host_sim/scene.hpp"
-#include "host_sim/texture_load.hpp"
+#include "host_sim/formats/obj_loader.hpp"
+#include "host_sim/formats/texture_load.hpp"
+#include "host_sim/programs/asset_writer.hpp"
+#include "host_sim/scene/scene.hpp"
 #include "knot_l8.hpp"
 #include "knot_palette8.hpp"
 #include "tests/support/core_harness.hpp"
@@ -147,6 +147,9 @@ TEST(AssetRoundTrip, CubeFittedRgb888EqualsTheLoadedFiles) {
   const Loaded l = load("cube.obj", "checker.png", TexelFormat::kRgb888, false, true);
   expect_same_data(LR_ASSET_VIEW(cube_rgb888), l);
   EXPECT_EQ(cube_rgb888::texture.level_count, 1);
+  ASSERT_EQ(l.draws.size(), 2u);
+  EXPECT_FALSE(cube_rgb888::textured[0]);  // cube_red: no map_Kd
+  EXPECT_TRUE(cube_rgb888::textured[1]);   // cube_white: map_Kd checker.png
 }
 
 TEST(AssetRoundTrip, TorusKnotWithTexturePalette8EqualsTheLoadedFiles) {
@@ -164,24 +167,10 @@ TEST(AssetRoundTrip, TorusKnotWithTextureL8EqualsTheLoadedFiles) {
 
 // ---- Frames ------------------------------------------------------------------------------------
 
-// Sets the draw state's texture when lr::DrawState has texture fields (they arrive with the
-// textured span routines); until then the frames are compared untextured.
-template <class State>
-bool set_texture(State& st, const Texture* texture) {
-  if constexpr (requires { st.texture = texture; }) {
-    st.texture = texture;
-    st.sampler.filter = Filter::kNearest;
-    st.sampler.mip = texture->level_count > 1 ? MipMode::kNearest : MipMode::kNone;
-    return true;
-  } else {
-    return false;
-  }
-}
-
 struct Frame {
   ImageRgb8 image;
   size_t covered = 0;
-  bool textured = false;
+  size_t textured_draws = 0;
 };
 
 // Renders meshes[i] with materials[i] (textured where textured[i]) at 160x120 from a corner,
@@ -204,7 +193,12 @@ Frame render(std::span<const Mesh> meshes, std::span<const Material> materials,
   Frame f;
   for (size_t i = 0; i < meshes.size(); ++i) {
     DrawState st;
-    if (textured[i] && texture) f.textured = set_texture(st, texture) || f.textured;
+    if (textured[i] && texture) {
+      st.texture = texture;
+      st.sampler.filter = Filter::kNearest;
+      st.sampler.mip = texture->level_count > 1 ? MipMode::kNearest : MipMode::kNone;
+      ++f.textured_draws;
+    }
     EXPECT_EQ(h.renderer().draw(meshes[i], lr::scale(scale), materials[i], st), Status::kOk);
   }
   Status s;
@@ -225,7 +219,9 @@ Frame render_loaded(const Loaded& l, std::span<const bool> textured, Fixed scale
 }
 
 // Fitted models (radius 1) are drawn 1.6 times larger, to fill about as much of the frame.
-void expect_same_frame(const AssetView& h, const Loaded& l, bool fitted) {
+// textured_draws: how many draws the files give the texture (map_Kd, or --texture: every draw
+// with uvs); the frames are compared textured, never silently without.
+void expect_same_frame(const AssetView& h, const Loaded& l, bool fitted, size_t textured_draws) {
   const Fixed scale = fitted ? Fixed::from_double(1.6) : Fixed::from_int(1);
   const Frame a = render(h.meshes, h.materials, h.textured, h.texture, scale);
   const Frame b = render_loaded(l, h.textured, scale);
@@ -235,36 +231,37 @@ void expect_same_frame(const AssetView& h, const Loaded& l, bool fitted) {
   EXPECT_EQ(differing, 0u);
   EXPECT_EQ(a.covered, b.covered);
   EXPECT_GT(a.covered, 160u * 120u / 20) << "the model should fill a good part of the frame";
-  if (!a.textured) {
-    std::printf("note: lr::DrawState has no texture fields yet: frames compared untextured\n");
-  } else {
-    // The texture must show: the textured frame differs from the same draws untextured.
-    const auto off = std::make_unique<bool[]>(h.textured.size());  // all false
-    const Frame plain = render(h.meshes, h.materials,
-                               std::span<const bool>(off.get(), h.textured.size()), nullptr, scale);
-    EXPECT_NE(plain.image.rgb, a.image.rgb);
-  }
+  ASSERT_EQ(a.textured_draws, textured_draws) << "draws the header gives the texture";
+  ASSERT_EQ(b.textured_draws, textured_draws);
+  // The texture must show: the textured frame differs from the same draws untextured.
+  const auto off = std::make_unique<bool[]>(h.textured.size());  // all false
+  const Frame plain = render(h.meshes, h.materials,
+                             std::span<const bool>(off.get(), h.textured.size()), nullptr, scale);
+  EXPECT_EQ(plain.textured_draws, 0u);
+  EXPECT_NE(plain.image.rgb, a.image.rgb) << "the texture does not show";
 }
 
 TEST(AssetRoundTripFrames, CubeRgb565RendersTheSameFrameAsTheLoadedFiles) {
   expect_same_frame(LR_ASSET_VIEW(cube_rgb565),
-                    load("cube.obj", "checker.png", TexelFormat::kRgb565, true, false), false);
+                    load("cube.obj", "checker.png", TexelFormat::kRgb565, true, false), false,
+                    1);  // cube_white
 }
 
 TEST(AssetRoundTripFrames, CubeRgb888RendersTheSameFrameAsTheLoadedFiles) {
   expect_same_frame(LR_ASSET_VIEW(cube_rgb888),
-                    load("cube.obj", "checker.png", TexelFormat::kRgb888, false, true), true);
+                    load("cube.obj", "checker.png", TexelFormat::kRgb888, false, true), true, 1);
 }
 
 TEST(AssetRoundTripFrames, KnotPalette8RendersTheSameFrameAsTheLoadedFiles) {
   expect_same_frame(LR_ASSET_VIEW(knot_palette8),
-                    load("torus_knot.obj", "checker.png", TexelFormat::kPalette8, true, true),
-                    true);
+                    load("torus_knot.obj", "checker.png", TexelFormat::kPalette8, true, true), true,
+                    knot_palette8::draw_count);
 }
 
 TEST(AssetRoundTripFrames, KnotL8RendersTheSameFrameAsTheLoadedFiles) {
   expect_same_frame(LR_ASSET_VIEW(knot_l8),
-                    load("torus_knot.obj", "checker.png", TexelFormat::kL8, true, false), false);
+                    load("torus_knot.obj", "checker.png", TexelFormat::kL8, true, false), false,
+                    knot_l8::draw_count);
 }
 
 // ---- The tool's command line

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/camera.hpp"
 #include "core/raster/renderer.hpp"
-#include "host_sim/mesh_prep.hpp"
-#include "host_sim/scene.hpp"
+#include "core/scene/camera.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
+#include "host_sim/scene/scene.hpp"
 
 namespace lr::bench {
 

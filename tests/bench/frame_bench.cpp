@@ -9,9 +9,9 @@
 #include <memory>
 #include <vector>
 
-#include "core/scene/camera.hpp"
 #include "core/raster/renderer.hpp"
-#include "host_sim/obj_loader.hpp"
+#include "core/scene/camera.hpp"
+#include "host_sim/formats/obj_loader.hpp"
 #include "tests/bench/null_sink.hpp"
 
 namespace {
@@ -105,7 +105,7 @@ BENCHMARK(BM_TorusKnotGouraud<Rgb565Be, 8>)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TorusKnotGouraud<Rgb565Be, 32>)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TorusKnotGouraud<Rgb888, 8>)->Unit(benchmark::kMicrosecond);
 
-// Skipping unchanged strips (issue 8): the knot stands still while a small cube (12 triangles,
+// Skipping unchanged strips: the knot stands still while a small cube (12 triangles,
 // about 20 x 20 pixels) circles in front of it, one step per frame. With strip signatures only
 // the strips the cube left or entered are rendered; without, every strip of every frame.
 struct MovingCube {

@@ -1,4 +1,4 @@
-// Lighting benchmark (issue 4, item 7): cost and error of each shading mode on two 320x240
+// Lighting benchmark: cost and error of each shading mode on two 320x240
 // scenes:
 //   sphere  tests/support/scenes.hpp's phong_sphere(): a 40 x 60 UV sphere, two coloured
 //           directional lights, shininess 64 (nothing saturates);
@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "core/raster/renderer.hpp"
-#include "host_sim/mesh_prep.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
 #include "tests/bench/bench_common.hpp"
 #include "tests/bench/null_sink.hpp"
 #include "tests/support/scene_compare.hpp"

@@ -25,7 +25,7 @@ class NullSink final : public StripSink<PF> {
     std::span<typename PF::Storage> px;
     this->take_back(lease, px);
     Rgb8 a = PF::decode(px[0]), b = PF::decode(px[size_t(r.width) * r.height - 1]);
-    sum_ += a.r + a.g + a.b + b.r + b.g + b.b;
+    sum_ += static_cast<uint64_t>(a.r + a.g + a.b + b.r + b.g + b.b);
     return Status::kOk;
   }
   Status end_frame() override { return Status::kOk; }

@@ -1,4 +1,4 @@
-// Quality benchmark (issue 5, items 1-2): time, instructions, RAM and error against the double
+// Quality benchmark: time, instructions, RAM and error against the double
 // reference for every quality setting the core offers, on five 320x240 scenes:
 //   knot     the 4,000-triangle torus knot, gold (the demo scene), one light;
 //   sphere   a 40 x 60 UV sphere, four lights, shininess 96, a global ambient;
@@ -51,12 +51,12 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/camera.hpp"
 #include "core/raster/renderer.hpp"
-#include "host_sim/capture_display.hpp"
-#include "host_sim/mesh_prep.hpp"
-#include "host_sim/obj_loader.hpp"
-#include "host_sim/texture_load.hpp"
+#include "core/scene/camera.hpp"
+#include "host_sim/emulator/capture_display.hpp"
+#include "host_sim/formats/obj_loader.hpp"
+#include "host_sim/formats/texture_load.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
 #include "tests/bench/bench_common.hpp"
 #include "tests/bench/null_sink.hpp"
 #include "tests/support/scene_compare.hpp"

@@ -1,4 +1,4 @@
-// Texture benchmark (issue 3, item 9): filter x perspective mode x mip mode on two 320x240
+// Texture benchmark: filter x perspective mode x mip mode on two 320x240
 // scenes rendered with the core (RGB565 big-endian strips of 8 rows into a null sink):
 //   cube    a perspective-correct textured cube (6 faces, uv 0..1 each, 64x64 RGB565 texture
 //           with its mip chain), rotated so three faces show, lit by one light (modulate);
@@ -29,11 +29,11 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/camera.hpp"
 #include "core/raster/renderer.hpp"
-#include "host_sim/capture_display.hpp"
-#include "host_sim/mesh_prep.hpp"
-#include "host_sim/texture_load.hpp"
+#include "core/scene/camera.hpp"
+#include "host_sim/emulator/capture_display.hpp"
+#include "host_sim/formats/texture_load.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
 #include "tests/bench/bench_common.hpp"
 #include "tests/bench/null_sink.hpp"
 #include "tests/support/scene_compare.hpp"

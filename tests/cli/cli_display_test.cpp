@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "core/output/pixel_format.hpp"
-#include "host_sim/image_io.hpp"
+#include "host_sim/formats/image_io.hpp"
 #include "tests/support/tmp_dir.hpp"
 
 namespace {

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "host_sim/image_io.hpp"
+#include "host_sim/formats/image_io.hpp"
 #include "tests/support/tmp_dir.hpp"
 
 namespace {
@@ -89,7 +89,8 @@ TEST(Cli, PpmByExtensionAndStatsJson) {
   EXPECT_NE(r.out.find("\"bytes_per_binned_triangle\":16"), std::string::npos);
 }
 
-// --subdivide N: four triangles for one, N times, over V + E vertices (host_sim/mesh_prep.hpp).
+// --subdivide N: four triangles for one, N times, over V + E vertices
+// (host_sim/scene/mesh_prep.hpp).
 TEST(Cli, SubdivideMultipliesTheTrianglesByFour) {
   std::string out = tmpdir() + "/s.ppm";
   Outcome r = run("--obj " + kMesh + " --fit --subdivide 1 --stats --out " + out);

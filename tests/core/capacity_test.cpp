@@ -1,8 +1,8 @@
 // Full stores drop work and count it; the frame still renders what fit, unchanged.
 #include <gtest/gtest.h>
 
-#include "host_sim/mesh_prep.hpp"
-#include "host_sim/scene.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
+#include "host_sim/scene/scene.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr {

@@ -31,6 +31,9 @@ TEST(Clipping, WideGroundPlaneThroughTheNearPlaneRendersExactly) {
   std::printf("ground plane (unlit): %s, clipped=%u\n", c.summary().c_str(), c.core.stats.clipped);
   EXPECT_EQ(c.core.stats.clipped, 2u);  // both triangles cross the near plane
   EXPECT_EQ(c.core.stats.binned_inputs, 2u);
+  // The plane's far edge (50 units away, 1 below the eye) is 2.3 degrees above the view axis:
+  // row 120 - 120 tan(2.3) / tan(30) = 112; every row below it is covered edge to edge.
+  EXPECT_GE(c.both, size_t(o.width) * 127);
   // The near corners of the plane project to |x_ndc| ~ 100 and beyond.
   EXPECT_LE(c.coverage_diff, size_t(o.width * o.height) / 2000);  // <= 0.05 %
   EXPECT_GE(c.fraction_within1(), 0.999);
@@ -63,6 +66,9 @@ TEST(Clipping, LitGroundPlaneSeenFromLowAngle) {
   std::string err;
   ASSERT_TRUE(test::compare_scene(mesh, o, c, err)) << err;
   std::printf("ground plane (lit, far 400): %s\n", c.summary().c_str());
+  // The far edge (300 units away, 0.5 below the eye) is 0.2 degrees above the view axis: the
+  // plane covers the lower half of the frame and a row more.
+  EXPECT_GE(c.both, size_t(o.width) * 120);
   EXPECT_LE(c.coverage_diff, size_t(o.width * o.height) / 2000);
   EXPECT_GE(c.fraction_within1(), 0.999);
 }

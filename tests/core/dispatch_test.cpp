@@ -18,11 +18,11 @@
 #include <utility>
 #include <vector>
 
-#include "core/scene/camera.hpp"
-#include "core/texture/mipmap.hpp"
 #include "core/raster/renderer.hpp"
+#include "core/scene/camera.hpp"
 #include "core/span/span_state.hpp"
-#include "host_sim/capture_display.hpp"
+#include "core/texture/mipmap.hpp"
+#include "host_sim/emulator/capture_display.hpp"
 
 namespace lr {
 namespace {

@@ -1,4 +1,4 @@
-// Bit-identical frames on every platform (issue 5, item 6): fixed scenes rendered through
+// Bit-identical frames on every platform: fixed scenes rendered through
 // host::render_scene, each frame's bytes (8-bit RGB, then the 16-bit depth buffer as
 // little-endian bytes) hashed with 64-bit FNV-1a and compared with constants computed on x86-64.
 // The same test built for 32-bit ARM Linux runs under qemu-arm (the armhf preset,
@@ -14,10 +14,10 @@
 #include <string>
 
 #include "core/math/hash.hpp"
-#include "host_sim/mesh_prep.hpp"
-#include "host_sim/obj_loader.hpp"
-#include "host_sim/scene.hpp"
-#include "host_sim/texture_load.hpp"
+#include "host_sim/formats/obj_loader.hpp"
+#include "host_sim/formats/texture_load.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
+#include "host_sim/scene/scene.hpp"
 #include "tests/support/scene_compare.hpp"
 #include "tests/support/scenes.hpp"
 

@@ -8,12 +8,12 @@
 #include <random>
 #include <vector>
 
-#include "core/scene/camera.hpp"
-#include "core/math/inv_sqrt.hpp"
 #include "core/lighting/lighting.hpp"
 #include "core/lighting/lighting_table.hpp"
-#include "host_sim/mesh_prep.hpp"
-#include "host_sim/scene.hpp"
+#include "core/math/inv_sqrt.hpp"
+#include "core/scene/camera.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
+#include "host_sim/scene/scene.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr {
@@ -86,7 +86,8 @@ double worst_rsqrt_error() {
 }
 
 TEST(InvSqrt, ErrorOfEachTableSizeAsDocumented) {
-  // The figures of core/math/inv_sqrt.hpp, each within 10 % (so the comment stays true).
+  // The figures of docs/numerics.md#inverse-square-root-table-and-newton-step, each within 10 %
+  // (so the table there stays true).
   auto near = [](double got, double doc) { return got <= doc * 1.1 && got >= doc * 0.9; };
   EXPECT_PRED2(near, (worst_rsqrt_error<4, 0>()), 5.6e-2);
   EXPECT_PRED2(near, (worst_rsqrt_error<4, 1>()), 4.7e-3);

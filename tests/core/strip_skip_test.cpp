@@ -1,4 +1,4 @@
-// Skipping unchanged strips (issue 8, item 3): a renderer with strip input signatures
+// Skipping unchanged strips: a renderer with strip input signatures
 // (FrameStorage::strip_inputs) and a display that retains the last frame must show, frame after
 // frame, exactly what a renderer that draws every strip shows, while leaving out the strips whose
 // inputs did not change.
@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/camera.hpp"
 #include "core/raster/renderer.hpp"
-#include "host_sim/capture_display.hpp"
-#include "host_sim/mesh_prep.hpp"
-#include "host_sim/scene.hpp"
-#include "host_sim/texture_load.hpp"
+#include "core/scene/camera.hpp"
+#include "host_sim/emulator/capture_display.hpp"
+#include "host_sim/formats/texture_load.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
+#include "host_sim/scene/scene.hpp"
 #include "tests/support/scenes.hpp"
 
 namespace lr {

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/scene/camera.hpp"
-#include "host_sim/mesh_prep.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr {

@@ -36,10 +36,10 @@
 #include <memory>
 #include <vector>
 
-#include "core/scene/camera.hpp"
 #include "core/raster/renderer.hpp"
-#include "host_sim/capture_display.hpp"
-#include "host_sim/texture_load.hpp"
+#include "core/scene/camera.hpp"
+#include "host_sim/emulator/capture_display.hpp"
+#include "host_sim/formats/texture_load.hpp"
 #include "tests/fuzz/fuzz_targets.hpp"
 
 namespace lr::fuzz {

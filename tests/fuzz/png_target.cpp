@@ -4,8 +4,8 @@
 
 #include "core/texture/mipmap.hpp"
 #include "core/texture/texture.hpp"
-#include "host_sim/image_io.hpp"
-#include "host_sim/texture_load.hpp"
+#include "host_sim/formats/image_io.hpp"
+#include "host_sim/formats/texture_load.hpp"
 #include "tests/fuzz/fuzz_files.hpp"
 #include "tests/fuzz/fuzz_targets.hpp"
 

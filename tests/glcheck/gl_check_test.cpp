@@ -1,6 +1,6 @@
 // The independent OpenGL check: the same scenes rendered by the fixed-point core and by Mesa's
-// software OpenGL (OSMesa, fixed-function state per DESIGN.md section 4), compared pixel by
-// pixel. Bounds (issue 5): coverage mismatches at most 0.05 % of the pixels; lit scenes PSNR
+// software OpenGL (OSMesa, fixed-function state per docs/conventions.md), compared pixel by
+// pixel. Bounds: coverage mismatches at most 0.05 % of the pixels; lit scenes PSNR
 // >= 40 dB over the pixels both cover; nearest-textured scenes the same texel on >= 99.5 % of
 // the pixels. The double reference is compared with Mesa too, so that a difference can be told
 // apart as the core's (core differs, reference agrees) or a convention (both differ).
@@ -14,15 +14,15 @@
 #include <cstdlib>
 #include <string>
 
-#include "host_sim/image_io.hpp"
-#include "host_sim/mesh_prep.hpp"
-#include "host_sim/obj_loader.hpp"
-#include "host_sim/texture_load.hpp"
+#include "host_sim/formats/image_io.hpp"
+#include "host_sim/formats/obj_loader.hpp"
+#include "host_sim/formats/texture_load.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
 #include "tests/glcheck/osmesa_scene.hpp"
 #include "tests/support/scene_compare.hpp"
 #include "tests/support/scenes.hpp"
 
-// Mesa's OSMesa keeps about 200 bytes per OSMesaMakeCurrent after the context is destroyed
+// Mesa's OSMesa keeps a small allocation per OSMesaMakeCurrent after the context is destroyed
 // (libOSMesa.so.8, Mesa 22.3): not ours to fix; LeakSanitizer (the ASan run) ignores it.
 extern "C" __attribute__((used)) const char* __lsan_default_suppressions() {
   return "leak:libOSMesa.so\n";
@@ -209,7 +209,7 @@ TEST(GlCheck, FlatTorusKnotWithFaceNormalsAndLocalViewer) {
   const Triple local = render_three("torus_knot_flat_local_viewer", m, o);
   expect_coverage(local.core_gl);
   // The core (and the reference) take the local viewer's eye vector at the triangle's centroid,
-  // GL at the provoking vertex: measured 49.4 dB.
+  // GL at the provoking vertex.
   EXPECT_GE(local.core_gl.psnr, 40.0);
 }
 
@@ -244,7 +244,7 @@ TEST(GlCheck, FlatUnlitGroundPlaneTakesTheLastVertexColourAndBreaksTiesAsGl) {
   // Mesa agrees with it on every pixel. The core projects with Q16.16 matrices: its snapped
   // vertices may lie one subpixel from the exact rounding (here all four y, 0.5-0.7 subpixel
   // before rounding), which moves the diagonal off the tied centres, and those take the other
-  // triangle's colour. Bound: at most 0.5 % of the pixels (measured 0.18 %, all on the diagonal).
+  // triangle's colour. Bound: at most 0.5 % of the pixels, all on the diagonal.
   host::SceneOptions o;
   o.unlit = true;
   o.shading = Shading::kFlat;

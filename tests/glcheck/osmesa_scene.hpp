@@ -1,5 +1,5 @@
 // Renders a host scene with Mesa's software OpenGL (OSMesa, offscreen, fixed-function GL 1.x)
-// with the state DESIGN.md section 4 describes: the same double matrices as the reference
+// with the state docs/conventions.md describes: the same double matrices as the reference
 // (tests/support/scene_compare.hpp), directional lights whose ambient, diffuse and specular
 // colours are white, the options' material, GL_DITHER off, depth test LESS, GL_NORMALIZE, CCW
 // front faces. Textures are uploaded texel for texel as the core holds them (host::texel_rgb8),
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "host_sim/host_mesh.hpp"
-#include "host_sim/scene.hpp"
+#include "host_sim/formats/host_mesh.hpp"
+#include "host_sim/scene/scene.hpp"
 
 namespace lr::glcheck {
 

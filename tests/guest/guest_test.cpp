@@ -1,6 +1,6 @@
 // Runs inside the emulated ARM Linux guest of scripts/ci_guest.sh (tests/guest/init.sh starts
-// it) and drives the Linux display backends on a real kernel: SpidevBus (hal/linux: spidev +
-// libgpiod) on a spi-gpio bus over the virt board's PL061 GPIO chip, and UsbBulk (hal/usb:
+// it) and drives the Linux display backends on a real kernel: SpidevBus (hal/host/linux: spidev +
+// libgpiod) on a spi-gpio bus over the virt board's PL061 GPIO chip, and UsbBulk (hal/host/usb:
 // libusb) on a USB gadget. One line per check ("PASS name: details" / "FAIL name: details") and
 // a summary ("guest: N passed, M failed"), which the host script reads from the serial console.
 //
@@ -32,8 +32,8 @@
 #include <string>
 #include <vector>
 
-#include "hal/linux/spidev_bus.hpp"
-#include "hal/usb/usb_bulk.hpp"
+#include "hal/host/linux/spidev_bus.hpp"
+#include "hal/host/usb/usb_bulk.hpp"
 
 namespace {
 

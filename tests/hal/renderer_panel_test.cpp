@@ -8,11 +8,11 @@
 #include <memory>
 #include <vector>
 
+#include "core/raster/renderer.hpp"
 #include "core/scene/camera.hpp"
 #include "core/scene/material.hpp"
-#include "core/raster/renderer.hpp"
 #include "hal/panel_sink.hpp"
-#include "host_sim/capture_display.hpp"
+#include "host_sim/emulator/capture_display.hpp"
 #include "tests/hal/recording_bus.hpp"
 
 namespace lr {

@@ -2,7 +2,7 @@
 // MADCTL (every MY/MX/MV combination, each rotation on the common modules with their known
 // offsets), BGR, inversion, sleep and display off, pixel formats, chip-select pauses, malformed
 // streams and timing; then EmulatorBus (transactions, deferred transfers, misuse).
-#include "host_sim/panel_emulator.hpp"
+#include "host_sim/emulator/panel_emulator.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/output/pixel_format.hpp"
-#include "host_sim/emulator_bus.hpp"
+#include "host_sim/emulator/emulator_bus.hpp"
 
 namespace {
 

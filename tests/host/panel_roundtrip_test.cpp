@@ -10,16 +10,16 @@
 #include <string>
 #include <vector>
 
+#include "core/raster/renderer.hpp"
 #include "core/scene/camera.hpp"
 #include "core/scene/material.hpp"
-#include "core/raster/renderer.hpp"
 #include "hal/panel.hpp"
 #include "hal/panel_sink.hpp"
-#include "host_sim/capture_display.hpp"
-#include "host_sim/emulator_bus.hpp"
-#include "host_sim/obj_loader.hpp"
-#include "host_sim/panel_emulator.hpp"
-#include "host_sim/scene.hpp"
+#include "host_sim/emulator/capture_display.hpp"
+#include "host_sim/emulator/emulator_bus.hpp"
+#include "host_sim/emulator/panel_emulator.hpp"
+#include "host_sim/formats/obj_loader.hpp"
+#include "host_sim/scene/scene.hpp"
 
 namespace {
 

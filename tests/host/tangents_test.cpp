@@ -1,14 +1,14 @@
 // Tangents for normal mapping: along increasing u, orthogonal to the normal, handedness so that
 // w * cross(normal, tangent) points along increasing v; degenerate input gets a valid frame.
-#include "host_sim/tangents.hpp"
-#include "host_sim/vec3d.hpp"
+#include "host_sim/scene/tangents.hpp"
+#include "host_sim/scene/vec3d.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "host_sim/mesh_prep.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
 
 namespace lr::host {
 namespace {
@@ -57,6 +57,7 @@ TEST(Tangents, MirroredUGivesMinusXAndLeftHandedness) {
   HostMesh m = make_grid(3, 3);
   for (Vec2d& uv : m.uvs) uv[0] = 1.0 - uv[0];
   compute_tangents(m);
+  ASSERT_EQ(m.tangents.size(), m.positions.size());
   for (size_t i = 0; i < m.tangents.size(); ++i) {
     expect_tangent(m.tangents[i], {-1, 0, 0, -1}, 1e-15, i);
     // The bitangent still points along increasing v (+y).
@@ -69,6 +70,7 @@ TEST(Tangents, MirroredVKeepsTheTangentAndFlipsW) {
   HostMesh m = make_grid(3, 2);
   for (Vec2d& uv : m.uvs) uv[1] = 1.0 - uv[1];
   compute_tangents(m);
+  ASSERT_EQ(m.tangents.size(), m.positions.size());
   for (size_t i = 0; i < m.tangents.size(); ++i)
     expect_tangent(m.tangents[i], {1, 0, 0, -1}, 1e-15, i);
 }
@@ -79,6 +81,7 @@ TEST(Tangents, RotatedUvsRotateTheTangent) {
   for (size_t i = 0; i < m.uvs.size(); ++i)
     m.uvs[i] = {(m.positions[i][1] + 1) / 2, (1 - m.positions[i][0]) / 2};
   compute_tangents(m);
+  ASSERT_EQ(m.tangents.size(), m.positions.size());
   for (size_t i = 0; i < m.tangents.size(); ++i)
     expect_tangent(m.tangents[i], {0, 1, 0, 1}, 1e-15, i);
 }

@@ -1,8 +1,8 @@
-// Host textures (host_sim/texture_load): every PNG colour type lands on the expected texels in
-// every texel format, rows are flipped (storage row 0 = the file's bottom row), palettes (<= 256
+// Host textures (host_sim/formats/texture_load): every PNG colour type lands on the expected texels
+// in every texel format, rows are flipped (storage row 0 = the file's bottom row), palettes (<= 256
 // and > 256 colours), the L8 weights, NPOT sizes with a mip chain that validates, the size limit,
 // copies and moves that keep their spans valid, and errors that name the file.
-#include "host_sim/texture_load.hpp"
+#include "host_sim/formats/texture_load.hpp"
 
 #include <gtest/gtest.h>
 #include <png.h>

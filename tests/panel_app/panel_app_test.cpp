@@ -20,9 +20,9 @@
 #include "core/scene/material.hpp"
 #include "firmware/linux/app_options.hpp"
 #include "firmware/linux/panel_app.hpp"
-#include "host_sim/display_spec.hpp"
-#include "host_sim/obj_loader.hpp"
-#include "host_sim/scene.hpp"
+#include "hal/host/display_spec.hpp"
+#include "host_sim/formats/obj_loader.hpp"
+#include "host_sim/scene/scene.hpp"
 #include "tests/hal/recording_bus.hpp"
 #include "tests/support/tmp_dir.hpp"
 

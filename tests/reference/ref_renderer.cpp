@@ -642,11 +642,11 @@ void render(const host::HostMesh& mesh, const RefParams& params, RefFrame& out) 
       // du = (dA - u dB) / B exactly (likewise v).
       double dB[2] = {0, 0}, dAu[2] = {0, 0}, dAv[2] = {0, 0};
       if (tex) {
-        for (int k = 0; k < 3; ++k) {
-          const int k1 = (k + 1) % 3;
-          const int q = s.order[(k + 2) % 3];  // the vertex edge k weighs
-          const double g[2] = {-static_cast<double>(s.y[k1] - s.y[k]) * S / area,
-                               static_cast<double>(s.x[k1] - s.x[k]) * S / area};
+        for (int e = 0; e < 3; ++e) {
+          const int e1 = (e + 1) % 3;
+          const int q = s.order[(e + 2) % 3];  // the vertex edge e weighs
+          const double g[2] = {-static_cast<double>(s.y[e1] - s.y[e]) * S / area,
+                               static_cast<double>(s.x[e1] - s.x[e]) * S / area};
           const ClipVert& cv = poly_a[f[q]];
           for (int a = 0; a < 2; ++a) {
             dB[a] += g[a] * inv_w[f[q]];

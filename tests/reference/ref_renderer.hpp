@@ -1,6 +1,6 @@
 // Double-precision reference renderer (tests and benchmarks only, never firmware).
 //
-// Follows the conventions of DESIGN.md section 4 (those of OpenGL) but evaluates everything
+// Follows the conventions of docs/conventions.md (those of OpenGL) but evaluates everything
 // directly per pixel: exact integer edge functions on the snapped vertices for coverage, and
 // perspective-correct barycentrics for the attributes. No incremental stepping, no fixed point.
 //
@@ -16,7 +16,7 @@
 //   with a texture: (u, v) interpolated perspective-correctly, level of detail from the exact
 //   analytic screen-space derivatives of (u, v) at the pixel centre, sampled per GL (section 8.14
 //   of the 4.x spec: GL_NEAREST / GL_LINEAR, GL_*_MIPMAP_NEAREST / _LINEAR, GL_REPEAT /
-//   GL_CLAMP_TO_EDGE), combined per DESIGN.md section 4 (GL_MODULATE with
+//   GL_CLAMP_TO_EDGE), combined per docs/conventions.md#textures (GL_MODULATE with
 //   GL_SEPARATE_SPECULAR_COLOR, or GL_REPLACE).
 // Phong shading carries world normals, world and model positions and tangents through clipping
 // like the colours and lights every covered pixel (see RefParams: normal_interp, envmap,
@@ -27,7 +27,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "host_sim/host_mesh.hpp"
+#include "host_sim/formats/host_mesh.hpp"
 #include "tests/reference/ref_math.hpp"
 
 namespace lr::ref {

@@ -143,6 +143,8 @@ TEST(EdgeStress, LongEdgesOfEveryOctantStepExactlyOnEveryRow) {
   EXPECT_EQ(c.x_mismatch, 0u);
   EXPECT_EQ(c.column_mismatch, 0u);
   EXPECT_EQ(c.err_bad, 0u);
+  // 13 of the directions span the band's full height (2^15 rows), each tried 12 times.
+  EXPECT_GT(c.rows, uint64_t{13 * 12} * 32000);
   std::printf("[ stress ] %zu long edges, %llu rows stepped, 0 allowed mismatches: %llu found\n",
               edges, static_cast<unsigned long long>(c.rows),
               static_cast<unsigned long long>(c.x_mismatch + c.column_mismatch));
@@ -177,6 +179,8 @@ TEST(EdgeStress, RandomEdgesAnywhereInTheGuardBandStepExactly) {
   EXPECT_EQ(c.x_mismatch, 0u);
   EXPECT_EQ(c.column_mismatch, 0u);
   EXPECT_EQ(c.err_bad, 0u);
+  // A quarter of the edges are steep ones 300 rows long.
+  EXPECT_GT(c.rows, uint64_t{1000} * 290);
   std::printf("[ stress ] 4000 random edges, %llu rows stepped, exact on all\n",
               static_cast<unsigned long long>(c.rows));
 }

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "core/scene/camera.hpp"
-#include "host_sim/scene.hpp"
+#include "host_sim/scene/scene.hpp"
 #include "tests/stress/random_stress.hpp"
 
 namespace lr {

@@ -357,4 +357,24 @@ inline void expect_clean(const RunFigures& f) {
   EXPECT_EQ(f.out_of_band, 0u);
 }
 
+// Zero mismatches mean nothing if nothing was drawn: lower bounds on the work, from the mix.
+// Screen space: the general, on-centre and giant triangles (30 of every 64) nearly all reach
+// the edge table, the general ones alone cover over a hundred pixels each on average; the
+// out-of-limit ones (2 of 64) are rejected.
+inline void expect_screen_work(const RunFigures& f) {
+  EXPECT_GE(f.binned, f.triangles * 2 / 5) << "binned";
+  EXPECT_GE(f.pixels, f.triangles * 30) << "pixels written";
+  EXPECT_GE(f.rejected, f.triangles / 40) << "rejected beyond the limit";
+  EXPECT_LE(f.rejected, f.triangles / 20) << "rejected beyond the limit";
+}
+
+// 3D: more than one triangle in seven has its three vertices in the view volume and spans a
+// good part of the 64 x 64 view; most others have near-plane, eye-plane or huge vertices and
+// keep a piece after clipping: at least a third binned, a quarter clipped.
+inline void expect_3d_work(const RunFigures& f) {
+  EXPECT_GE(f.binned, f.triangles / 3) << "binned";
+  EXPECT_GE(f.clipped, f.triangles / 4) << "clipped";
+  EXPECT_GE(f.pixels, f.triangles * 100) << "pixels written";
+}
+
 }  // namespace lr::stress

@@ -21,6 +21,7 @@ TEST(RandomTrianglesLong, ScreenSpace) {
   stress::RunFigures f;
   stress::run_screen(8000000, 101, f);
   stress::expect_clean(f);
+  stress::expect_screen_work(f);
   std::printf("[ stress ] long, screen space: %llu random triangles, %llu pixels, 0 mismatches\n",
               (unsigned long long)f.triangles, (unsigned long long)f.pixels);
 }
@@ -30,6 +31,7 @@ TEST(RandomTrianglesLong, ThroughTheVertexStageWithClipping) {
   stress::RunFigures f;
   stress::run_3d(2000000, 102, f);
   stress::expect_clean(f);
+  stress::expect_3d_work(f);
   std::printf("[ stress ] long, 3D: %llu random triangles, %llu clipped, %llu pixels\n",
               (unsigned long long)f.triangles, (unsigned long long)f.clipped,
               (unsigned long long)f.pixels);

@@ -21,6 +21,7 @@ TEST(RandomTriangles, ScreenSpaceMatchTheExactReference) {
   stress::RunFigures f;
   stress::run_screen(count_from_env("LR_STRESS_SCREEN", 800000), 1, f);
   stress::expect_clean(f);
+  stress::expect_screen_work(f);
   std::printf(
       "[ stress ] screen space: %llu random triangles in %llu frames (%llu binned, %llu rejected "
       "beyond the limit, %llu culled), %llu pixels written, %llu owner mismatches\n",
@@ -33,6 +34,7 @@ TEST(RandomTriangles, ThroughTheVertexStageWithClipping) {
   stress::RunFigures f;
   stress::run_3d(count_from_env("LR_STRESS_3D", 200000), 2, f);
   stress::expect_clean(f);
+  stress::expect_3d_work(f);
   std::printf(
       "[ stress ] 3D: %llu random triangles in %llu frames (%llu binned, %llu clipped, %llu "
       "culled or clipped away), %llu pixels written, %llu owner mismatches\n",

@@ -18,7 +18,7 @@
 #include <random>
 
 #include "core/scene/camera.hpp"
-#include "host_sim/mesh_prep.hpp"
+#include "host_sim/scene/mesh_prep.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr {
@@ -214,6 +214,10 @@ void check_mesh(const Poly& p, bool convex, std::mt19937_64& rng, Figures& fig) 
     }
 }
 
+// The identities hold trivially on an empty frame: the views must show the meshes. A mesh about
+// a unit across, 2 to 8 units away, in a 24..120-pixel view: hundreds of pixels on average.
+constexpr uint64_t kMinPixelsPerView = 100;
+
 TEST(WatertightStress, RandomConvexPolyhedraAreCoveredExactlyOnceInsideTheSilhouette) {
   std::mt19937_64 rng(31);
   Figures fig;
@@ -224,6 +228,7 @@ TEST(WatertightStress, RandomConvexPolyhedraAreCoveredExactlyOnceInsideTheSilhou
   EXPECT_EQ(fig.convex_double_hits, 0u);
   EXPECT_EQ(fig.cracks, 0u);
   EXPECT_GT(fig.closed_checked, 250u);
+  EXPECT_GT(fig.silhouette_pixels, kMinPixelsPerView * fig.closed_checked);
   std::printf(
       "[ stress ] %llu convex polyhedra (%llu seen from outside: %llu silhouette pixels, each "
       "hit once), 0 mismatches with the reference\n",
@@ -239,6 +244,7 @@ TEST(WatertightStress, JitteredSpheresKeepTheWindingIdentity) {
   EXPECT_EQ(fig.write_mismatch, 0u);
   EXPECT_EQ(fig.winding_bad, 0u);
   EXPECT_GT(fig.closed_checked, 200u);
+  EXPECT_GT(fig.silhouette_pixels, kMinPixelsPerView * fig.closed_checked);
   std::printf(
       "[ stress ] %llu jittered spheres (%llu closed views, %llu silhouette pixels): front hits = "
       "back hits >= 1 inside, 0 outside on every pixel\n",

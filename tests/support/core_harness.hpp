@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/raster/renderer.hpp"
-#include "host_sim/capture_display.hpp"
+#include "host_sim/emulator/capture_display.hpp"
 #include "tests/reference/ref_renderer.hpp"
 
 namespace lr::test {

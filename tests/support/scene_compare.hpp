@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <string>
 
-#include "host_sim/scene.hpp"
-#include "host_sim/tangents.hpp"
-#include "host_sim/texture_load.hpp"
+#include "host_sim/formats/texture_load.hpp"
+#include "host_sim/scene/scene.hpp"
+#include "host_sim/scene/tangents.hpp"
 #include "tests/reference/ref_renderer.hpp"
 #include "tests/reference/ref_texture_core.hpp"
 
@@ -68,7 +68,9 @@ struct Comparison {
   host::RenderResult core;
   ref::RefFrame reference;
 
-  double fraction_within1() const { return both ? double(within1) / double(both) : 1.0; }
+  // 0 when no pixel is covered by both: comparing nothing must not count as accurate. Every
+  // test also bounds `both` from below (a frame that lost most of its pixels compares few).
+  double fraction_within1() const { return both ? double(within1) / double(both) : 0.0; }
   std::string summary() const {
     char buf[256];
     std::snprintf(buf, sizeof buf,

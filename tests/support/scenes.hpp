@@ -3,11 +3,12 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 
-#include "host_sim/host_mesh.hpp"
-#include "host_sim/image_io.hpp"
-#include "host_sim/scene.hpp"
+#include "host_sim/formats/host_mesh.hpp"
+#include "host_sim/formats/image_io.hpp"
+#include "host_sim/scene/scene.hpp"
 
 namespace lr::test {
 
@@ -80,6 +81,12 @@ inline host::SceneOptions sphere_four_lights() {
   o.eye = {0.5, 0.8, 3.2};
   return o;
 }
+
+// A lower bound on the pixels the unit sphere covers seen from the eye of sphere_four_lights()
+// and phong_sphere() (|eye| = 3.34) in a 240-pixel-high frame: its outline is a circle of
+// angular radius asin(1 / 3.34) = 17.4 degrees, 120 tan(17.4) / tan(30) = 65 pixels in radius
+// (pi 65^2 > 13200); the outline of a UV sphere of 24 x 32 or more facets lies just inside it.
+inline constexpr size_t kUnitSpherePixels = 13000;
 
 // The per-pixel lighting sphere (Phong shading; make_uv_sphere(40, 60)), lit so that nothing
 // saturates: a key light, a bluish fill light from the other side, a small global ambient, an

@@ -1,0 +1,37 @@
+# lr_backend_pkg(PREFIX MODULE): pkg_check_modules(PREFIX QUIET IMPORTED_TARGET MODULE) for the
+# host display backends (hal/host/linux, hal/host/usb). In cross builds only the target's .pc
+# files are read (under CMAKE_FIND_ROOT_PATH), never the build machine's; the environment is restored
+# afterwards. Sets PREFIX_FOUND to FALSE (with a reason in PREFIX_WHY) when pkg-config is missing
+# or a cross build has no CMAKE_FIND_ROOT_PATH.
+function(lr_backend_pkg prefix module)
+  find_package(PkgConfig QUIET)
+  if(NOT PKG_CONFIG_FOUND)
+    set(${prefix}_FOUND FALSE PARENT_SCOPE)
+    set(${prefix}_WHY "pkg-config not found" PARENT_SCOPE)
+    return()
+  endif()
+  set(_pc_libdir "$ENV{PKG_CONFIG_LIBDIR}")
+  set(_pc_sysroot "$ENV{PKG_CONFIG_SYSROOT_DIR}")
+  if(CMAKE_CROSSCOMPILING)
+    if(NOT CMAKE_FIND_ROOT_PATH)
+      set(${prefix}_FOUND FALSE PARENT_SCOPE)
+      set(${prefix}_WHY "cross build without CMAKE_FIND_ROOT_PATH" PARENT_SCOPE)
+      return()
+    endif()
+    set(_pc_dirs "")
+    foreach(_root IN LISTS CMAKE_FIND_ROOT_PATH)
+      list(APPEND _pc_dirs "${_root}/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/pkgconfig"
+           "${_root}/usr/share/pkgconfig")
+    endforeach()
+    string(REPLACE ";" ":" _pc_dirs "${_pc_dirs}")
+    list(GET CMAKE_FIND_ROOT_PATH 0 _first_root)
+    set(ENV{PKG_CONFIG_LIBDIR} "${_pc_dirs}")
+    set(ENV{PKG_CONFIG_SYSROOT_DIR} "${_first_root}")
+  endif()
+  pkg_check_modules(${prefix} QUIET IMPORTED_TARGET GLOBAL ${module})
+  set(ENV{PKG_CONFIG_LIBDIR} "${_pc_libdir}")
+  set(ENV{PKG_CONFIG_SYSROOT_DIR} "${_pc_sysroot}")
+  set(${prefix}_FOUND "${${prefix}_FOUND}" PARENT_SCOPE)
+  set(${prefix}_VERSION "${${prefix}_VERSION}" PARENT_SCOPE)
+  set(${prefix}_WHY "${module} not found" PARENT_SCOPE)
+endfunction()

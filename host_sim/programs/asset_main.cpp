@@ -1,0 +1,145 @@
+// lineraster-asset: converts an OBJ (+MTL) and a PNG into a C++ header of constexpr data in the
+// core's formats (see asset_writer.hpp). The options are a table (option_table.hpp's rules). Any
+// wrong option or bad file: one line on stderr, exit status 2, no output written.
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+#include "host_sim/programs/asset_writer.hpp"
+#include "host_sim/programs/option_table.hpp"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: lineraster-asset --obj FILE [--texture FILE.png] [--format rgb565|rgb888|l8|palette8]\n"
+    "  [--mipmaps] [--fit] [--subdivide N] --name IDENT --out FILE.hpp\n"
+    "Writes a C++ header with the mesh (Q16.16 positions, Q1.14 normals, Q12.20 uvs, indices,\n"
+    "materials) and the texture (level 0 and, with --mipmaps, its mip chain) as constexpr data in\n"
+    "namespace IDENT. Without --texture, the first material's map_Kd is used (if any).\n"
+    "--subdivide N: each triangle split in 4 at its edge midpoints, N times (0..4), before the "
+    "fit.\n"
+    "Defaults: --format rgb565, no mipmaps, no fit, no subdivision.\n";
+
+int fail(const std::string& msg) {
+  std::fprintf(stderr, "lineraster-asset: %s\n", msg.c_str());
+  return 2;
+}
+
+std::string quoted_command_line(int argc, char** argv) {
+  std::string s = "lineraster-asset";
+  for (int i = 1; i < argc; ++i) {
+    std::string_view a = argv[i];
+    s += ' ';
+    if (!a.empty() && a.find_first_of(" \t'\"") == std::string_view::npos) {
+      s += a;
+    } else {
+      s += '\'';
+      for (char c : a) {
+        if (c == '\'') {
+          s += "'\\''";
+        } else {
+          s += c;
+        }
+      }
+      s += '\'';
+    }
+  }
+  return s;
+}
+
+// What the command line asks for.
+struct AssetArgs {
+  lr::host::AssetOptions asset;
+  std::string out;
+  bool help = false, have_name = false;
+};
+
+using lr::host::OptionArg;
+using lr::host::OptionError;
+using lr::host::OptionKind;
+using Row = lr::host::OptionRow<AssetArgs>;
+
+constexpr std::string_view kFormatError = "--format needs rgb565, rgb888, l8 or palette8";
+constexpr std::string_view kSubdivideError = "--subdivide needs 0..4";
+
+OptionError help(AssetArgs& a, const OptionArg&) {
+  a.help = true;
+  return {};
+}
+
+// The missing value's message is also the bad value's.
+const Row kOptions[] = {
+    {"--help", OptionKind::kStop, help},
+    {"-h", OptionKind::kStop, help},
+    {"--obj", OptionKind::kValue,
+     [](AssetArgs& a, const OptionArg& v) {
+       a.asset.obj_path = v.value;
+       return OptionError{};
+     },
+     "--obj needs a file name"},
+    {"--texture", OptionKind::kValue,
+     [](AssetArgs& a, const OptionArg& v) {
+       a.asset.texture_path = v.value;
+       return OptionError{};
+     },
+     "--texture needs a file name"},
+    {"--format", OptionKind::kValue,
+     [](AssetArgs& a, const OptionArg& v) {
+       return lr::host::parse_texel_format(v.value, a.asset.format) ? OptionError{}
+                                                                    : OptionError(kFormatError);
+     },
+     kFormatError},
+    {"--mipmaps", OptionKind::kFlag,
+     [](AssetArgs& a, const OptionArg&) {
+       a.asset.mipmaps = true;
+       return OptionError{};
+     }},
+    {"--fit", OptionKind::kFlag,
+     [](AssetArgs& a, const OptionArg&) {
+       a.asset.fit = true;
+       return OptionError{};
+     }},
+    {"--subdivide", OptionKind::kValue,
+     [](AssetArgs& a, const OptionArg& v) {
+       if (v.value.size() != 1 || v.value[0] < '0' || v.value[0] > '4')
+         return OptionError(kSubdivideError);
+       a.asset.subdivide = v.value[0] - '0';
+       return OptionError{};
+     },
+     kSubdivideError},
+    {"--name", OptionKind::kValue,
+     [](AssetArgs& a, const OptionArg& v) {
+       a.asset.name = v.value;
+       a.have_name = true;
+       return OptionError{};
+     },
+     "--name needs a C++ identifier"},
+    {"--out", OptionKind::kValue,
+     [](AssetArgs& a, const OptionArg& v) {
+       a.out = v.value;
+       return OptionError{};
+     },
+     "--out needs a file name"},
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  AssetArgs args;
+  std::string error;
+  if (!lr::host::parse_options<AssetArgs>(kOptions, argc, argv, "(--help lists them)", args, error))
+    return fail(error);
+  if (args.help) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  lr::host::AssetOptions& o = args.asset;
+  if (o.obj_path.empty()) return fail("--obj FILE is required");
+  if (!args.have_name) return fail("--name IDENT is required");
+  if (!lr::host::valid_asset_name(o.name))
+    return fail("--name '" + o.name + "' is not a usable C++ identifier");
+  if (args.out.empty()) return fail("--out FILE.hpp is required");
+  o.command_line = quoted_command_line(argc, argv);
+  if (!lr::host::write_asset_header(o, args.out, error)) return fail(error);
+  return 0;
+}

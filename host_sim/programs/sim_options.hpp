@@ -1,0 +1,42 @@
+// lineraster-sim's command line: what it asks for, read through the option table of
+// sim_options.cpp (one row per option; the rules are option_table.hpp's) and then checked as a
+// whole (the options that need others, the panel's frame size).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "hal/host/display_spec.hpp"
+#include "hal/panel_config.hpp"
+#include "host_sim/scene/scene.hpp"
+
+namespace lr::host {
+
+// Everything the command line asks for; the defaults are the CLI's.
+struct SimOptions {
+  SceneOptions scene;  // width and height are the panel's when a display is given
+  std::string obj, out = "out.png", depth_out;
+  bool help = false;   // --help / -h: print the usage, nothing else
+  bool stats = false;  // --stats: the frame's statistics as one JSON line
+  int frames = 0;      // --frames N; 0: one frame, no per-frame lines
+  int subdivisions = 0;
+  DisplaySpec display;  // kind kNone: the frame goes to --out only
+  PanelConfig panel{};  // the panel behind --display (from --panel or the emulator's value)
+
+  // Recorded while reading, resolved by the checks once every option is read (they come in
+  // any order).
+  std::vector<Vec3d> light_dirs;    // --light-dir
+  std::vector<LightOption> lights;  // --light
+  std::string phong_only;           // the first option given that only Phong shading uses
+  std::string table_only;           // the first option given that only the lighting table uses
+  bool has_panel = false, width_given = false, height_given = false;
+};
+
+// Reads and checks argv. False with a one-line message (without the program's name); with
+// --help, true and `help` set (the options after it are not read, none is checked).
+bool parse_sim_options(int argc, const char* const* argv, SimOptions& out, std::string& error);
+
+// The --help text (README.md shows it verbatim).
+const char* sim_usage();
+
+}  // namespace lr::host

@@ -1,0 +1,129 @@
+// Rendering a HostMesh with the fixed-point core on the host: converts the double-precision
+// mesh and options to the core's formats (rejecting what they cannot hold), builds the camera,
+// lights and materials, and runs the strip renderer into a capture display.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/output/frame_stats.hpp"
+#include "core/scene/material.hpp"
+#include "core/scene/mesh.hpp"
+#include "core/texture/texture.hpp"
+#include "host_sim/formats/host_mesh.hpp"
+#include "host_sim/formats/image_io.hpp"
+
+namespace lr::host {
+
+struct MaterialOptions {
+  Vec3d ambient{0.1, 0.1, 0.1};
+  Vec3d diffuse{0.8, 0.8, 0.8};
+  Vec3d specular{0.5, 0.5, 0.5};
+  Vec3d emission{0.0, 0.0, 0.0};
+  double shininess = 32.0;  // GL range [0, 128]
+};
+
+// A light as the options describe it (GL's fixed-function light; see core/lighting/lighting.hpp).
+// Directional: xyz is the world-space direction from the surface towards the light (any
+// non-zero length). Point: xyz is the light's world position, and its terms are scaled by GL's
+// attenuation 1 / (constant + linear d + quadratic d^2) (coefficients >= 0, not all 0).
+// `color` in [0, 1] is its ambient, diffuse and specular colour (the project's convention).
+struct LightOption {
+  bool point = false;
+  Vec3d xyz{1, 1, 1};
+  Vec3d color{1, 1, 1};
+  double constant = 1, linear = 0, quadratic = 0;
+};
+
+// Everything lineraster-sim's options describe (defaults are the CLI's).
+struct SceneOptions {
+  int width = 320, height = 240;
+  double fovy = 60.0, near = 0.1, far = 100.0;
+  Vec3d eye{0, 0, 3}, target{0, 0, 0}, up{0, 1, 0};
+  bool fit = false;
+  double model_scale = 1.0, model_rotate_y = 0.0;
+  Vec3d model_translate{0, 0, 0};
+  Shading shading = Shading::kGouraud;  // kFlat, kGouraud or kPhong (lit per pixel)
+  bool unlit = false;
+  std::vector<Vec3d> light_dirs{{1, 1, 1}};  // world space, towards the light; colour white
+  std::vector<LightOption> lights;  // when not empty: the lights, and light_dirs is not used
+  Vec3d global_ambient{0, 0, 0};
+  bool local_viewer = false;
+  bool two_sided = false;  // back faces lit with the negated normal (GL_LIGHT_MODEL_TWO_SIDE)
+  // Phong shading only: how a pixel is lit (kTable needs directional lights only and no local
+  // viewer), the table's size and filter, and the sphere environment map and tangent-space
+  // normal map (PNG files; the normal map is loaded as RGB888, the environment map in
+  // texture_format; both at level 0). A normal map needs texture coordinates in the mesh; its
+  // tangents are the mesh's, or computed (compute_tangents) when the mesh has none.
+  PixelLighting pixel_lighting = PixelLighting::kExact;
+  LightingTableSpec table{};
+  std::string envmap, normalmap;
+  MaterialOptions material;
+  bool use_mesh_materials =
+      true;  // MTL materials of the mesh win unless material options were given
+  Vec3d background{0, 0, 0};
+  bool depth_test = true;
+  Cull cull = Cull::kNone;
+  Perspective perspective = Perspective::kExact;
+  int strip_height = 8;  // 1, 2, 4, 8, 16 or 32
+  // Texturing. The texture is `texture` when given, else each material's map_Kd (when the mesh
+  // has texture coordinates). Lit draws modulate the texel (specular added after), unlit ones
+  // replace the colour by the texel.
+  std::string texture;
+  TexelFormat texture_format = TexelFormat::kRgb565;
+  Filter filter = Filter::kBilinear;
+  Wrap wrap = Wrap::kRepeat;
+  MipMode mipmap = MipMode::kNone;
+  const Texture* texture_object = nullptr;  // for tests and tools: used instead of any file
+};
+
+struct RenderResult {
+  ImageRgb8 image;
+  std::vector<uint16_t> depth;  // 16-bit window depth per pixel, 65535 where nothing was drawn
+  FrameStats stats;
+  uint32_t strips = 0;
+  uint64_t bytes = 0;
+};
+
+// The model transform the options describe, applied to positions in double:
+// translate * rotate_y * scale * fit. Used by the reference renderer's tests too.
+struct ModelTransform {
+  Vec3d fit_center{0, 0, 0};
+  double fit_scale = 1.0;
+};
+ModelTransform model_transform(const HostMesh& mesh, const SceneOptions& options);
+
+// A mesh in the core's formats: one piece with one material and at most 65535 vertices.
+struct FixedDraw {
+  std::vector<Vec3> positions;
+  std::vector<Normal16> normals;
+  std::vector<Rgb8> colors;   // empty when the mesh has none
+  std::vector<TexCoord> uvs;  // empty when the mesh has none
+  std::vector<std::array<uint16_t, 3>> triangles;
+  std::vector<Tangent16> tangents;  // empty when the mesh has none; Q1.14, w = +-16384
+  Material material;
+  int32_t material_index = -1;  // the HostMesh material it came from, -1 for the options' one
+  Mesh mesh() const { return {positions, normals, colors, uvs, triangles, tangents}; }
+};
+
+// Converts the mesh (with the options' fit applied) to the core's formats, split by material
+// and into pieces of at most 65535 vertices. The asset converter uses the same conversion.
+bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& options,
+                       std::vector<FixedDraw>& draws, std::string& error);
+
+// Renders; on failure returns false with a one-line error (nothing rendered). Phong frames get
+// the SurfaceVertex store (as large as the vertex store), one PreparedLighting per distinct
+// material and, for PixelLighting::kTable, one split table (2 (size + 1)^2 words) per material.
+bool render_scene(const HostMesh& mesh, const SceneOptions& options, RenderResult& out,
+                  std::string& error);
+
+// The core's conversions, exposed for tests: false when the value cannot be represented.
+bool to_fixed(double v, Fixed& out);
+bool to_texcoord(const Vec2d& uv, TexCoord& out);
+Color15 to_color15(const Vec3d& c);
+// A unit tangent (x, y, z) in Q1.14 and w = +16384 for w >= 0, else -16384; false when a
+// component is not finite.
+bool to_tangent16(const Vec4d& t, Tangent16& out);
+
+}  // namespace lr::host

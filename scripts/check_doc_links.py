@@ -1,0 +1,99 @@
+#!/usr/bin/env python3
+"""Checks the links of the project's Markdown files: every relative link must name a file of the
+repository, and every #anchor a heading of its target (GitHub's slugs: lower case, punctuation
+dropped, spaces to hyphens). Also flags `tests/...::Suite.Name` references whose test does not
+exist in that file, so that docs/raster-rules.md keeps naming real tests.
+
+Usage: scripts/check_doc_links.py [FILE.md ...]   (default: README.md and docs/**/*.md)
+Exit status 1 on any broken link or test reference, with one line per problem.
+"""
+import glob
+import os
+import re
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+LINK = re.compile(r"(?<!!)\[[^\]]*\]\(([^)\s]+)\)|!\[[^\]]*\]\(([^)\s]+)\)")
+TEST_REF = re.compile(r"`(tests/[\w/.-]+\.cpp)::(\w+)\.(\w+)`|`::(\w+)\.(\w+)`")
+
+
+def slug(heading):
+    s = heading.strip().lower()
+    s = re.sub(r"[^\w\- ]", "", s)
+    return s.replace(" ", "-")
+
+
+def anchors(path):
+    out, seen = set(), {}
+    in_code = False
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            if line.startswith("```"):
+                in_code = not in_code
+            if in_code:
+                continue
+            m = re.match(r"#{1,6} (.*)", line)
+            if m:
+                base = slug(m.group(1))
+                n = seen.get(base, 0)
+                seen[base] = n + 1
+                out.add(base if n == 0 else f"{base}-{n}")
+    return out
+
+
+def tests_in(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+    except OSError:
+        return None
+    return set(re.findall(r"^TEST(?:_F|_P)?\((\w+),\s*(\w+)\)", text, re.M))
+
+
+def check(md):
+    problems = []
+    text = open(md, encoding="utf-8").read()
+    # Links (outside code blocks).
+    body = re.sub(r"```.*?```", "", text, flags=re.S)
+    for m in LINK.finditer(body):
+        target = m.group(1) or m.group(2)
+        if re.match(r"[a-z]+://", target) or target.startswith("mailto:"):
+            continue
+        path, _, anchor = target.partition("#")
+        full = os.path.normpath(os.path.join(os.path.dirname(md), path)) if path else md
+        if not os.path.exists(full):
+            problems.append(f"{os.path.relpath(md, ROOT)}: no file {target}")
+            continue
+        if anchor and full.endswith(".md") and anchor not in anchors(full):
+            problems.append(f"{os.path.relpath(md, ROOT)}: no heading #{anchor} in {path or 'itself'}")
+    # Test references: `tests/x_test.cpp::Suite.Name`, and `::Suite.Name` for the last file named.
+    last = None
+    for m in TEST_REF.finditer(text):
+        if m.group(1):
+            last, suite, name = m.group(1), m.group(2), m.group(3)
+        else:
+            suite, name = m.group(4), m.group(5)
+        if last is None:
+            continue
+        found = tests_in(os.path.join(ROOT, last))
+        if found is None:
+            problems.append(f"{os.path.relpath(md, ROOT)}: no test file {last}")
+        elif (suite, name) not in found:
+            problems.append(f"{os.path.relpath(md, ROOT)}: no test {suite}.{name} in {last}")
+    return problems
+
+
+def main():
+    files = sys.argv[1:] or [os.path.join(ROOT, "README.md")] + sorted(
+        glob.glob(os.path.join(ROOT, "docs", "**", "*.md"), recursive=True))
+    problems = []
+    for md in files:
+        problems += check(os.path.abspath(md))
+    for p in problems:
+        print(p)
+    print(f"check_doc_links: {len(files)} files, {len(problems)} problems")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
