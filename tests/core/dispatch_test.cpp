@@ -774,10 +774,9 @@ constexpr SpanState fetch_sweep_state(Filter filter) {
 
 // Fetcher I (fetch_index) with `small`, a renderer restricted to it.
 void check_fetcher_with(size_t I, RigBase& small) {
-  const auto format = static_cast<TexelFormat>(I / 8);
-  const auto filter = static_cast<Filter>((I / 4) % 2);
-  const Wrap ws = (I & 2) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat;
-  const Wrap wt = (I & 1) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat;
+  const TexelFormat format = FetchLayout::field<3>(I);
+  const Filter filter = FetchLayout::field<2>(I);
+  const Wrap ws = FetchLayout::field<1>(I), wt = FetchLayout::field<0>(I);
   DrawSetup u = setup_for(fetch_sweep_state(filter), assets());
   u.state.texture = &format_texture(format);
   u.state.sampler.wrap_s = ws;
@@ -792,7 +791,7 @@ void check_fetcher_with(size_t I, RigBase& small) {
   // Another format, wrap or filter: refused.
   ASSERT_EQ(draw_scene(small, u), Status::kOk);
   DrawState s = u.state;
-  s.texture = &format_texture(static_cast<TexelFormat>((I / 8 + 1) % 4));
+  s.texture = &format_texture(static_cast<TexelFormat>((static_cast<size_t>(format) + 1) % 4));
   EXPECT_EQ(small.r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
             Status::kInvalidArgument);
   s = u.state;
@@ -807,10 +806,9 @@ void check_fetcher_with(size_t I, RigBase& small) {
 
 template <size_t I>
 void check_fetcher() {
-  constexpr auto kFormat = static_cast<TexelFormat>(I / 8);
-  constexpr auto kFilter = static_cast<Filter>((I / 4) % 2);
-  constexpr Wrap kWs = (I & 2) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat;
-  constexpr Wrap kWt = (I & 1) != 0 ? Wrap::kClampToEdge : Wrap::kRepeat;
+  constexpr TexelFormat kFormat = FetchLayout::field<3>(I);
+  constexpr Filter kFilter = FetchLayout::field<2>(I);
+  constexpr Wrap kWs = FetchLayout::field<1>(I), kWt = FetchLayout::field<0>(I);
   static_assert(fetch_index(kFormat, kFilter, kWs, kWt) == I);
   constexpr SpanSet kSet =
       span_set_of(fetch_sweep_state(kFilter)).only(kFormat).only_wraps(kWs, kWt);
