@@ -24,7 +24,7 @@ namespace lr {
 
 namespace detail {
 template <class Family, SpanSet kSet, size_t I, size_t... K>
-constexpr typename Family::Fn table_entry(std::index_sequence<K...>) {
+constexpr typename Family::Fn table_entry(std::index_sequence<K...> /*fields*/) {
   using Layout = typename Family::Layout;
   if constexpr ((kUsedRoutines<kSet>.*Family::kUsed)[I])
     return Family::template routine<Layout::template field<K>(I)...>();
@@ -34,7 +34,8 @@ constexpr typename Family::Fn table_entry(std::index_sequence<K...>) {
 }  // namespace detail
 
 template <class Family, SpanSet kSet, size_t... I>
-constexpr std::array<typename Family::Fn, sizeof...(I)> make_table(std::index_sequence<I...>) {
+constexpr std::array<typename Family::Fn, sizeof...(I)> make_table(
+    std::index_sequence<I...> /*indices*/) {
   constexpr auto kFieldSeq = std::make_index_sequence<Family::Layout::kFields>{};
   return {detail::table_entry<Family, kSet, I>(kFieldSeq)...};
 }

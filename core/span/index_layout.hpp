@@ -68,7 +68,7 @@ struct IndexLayout {
   static constexpr bool kBitFields = (((Fs::kValues & (Fs::kValues - 1)) == 0) && ...);
 
   template <size_t... K>
-  static constexpr size_t encode_at(std::index_sequence<K...>, typename Fs::Type... v) {
+  static constexpr size_t encode_at(std::index_sequence<K...> /*fields*/, typename Fs::Type... v) {
     if constexpr (kBitFields)
       return (size_t{0} | ... | (kStride[K] * static_cast<size_t>(v)));
     else
@@ -82,7 +82,7 @@ struct IndexLayout {
       return static_cast<size_t>(v) + F::kValues * horner<Rest...>(rest...);
   }
   template <size_t... K>
-  static constexpr bool round_trips_at(std::index_sequence<K...>) {
+  static constexpr bool round_trips_at(std::index_sequence<K...> /*fields*/) {
     for (size_t i = 0; i < kSize; ++i)
       if (encode(field<K>(i)...) != i) return false;
     return true;

@@ -23,6 +23,7 @@
 // same predicate (SpanSet::admits), so a restricted renderer never reaches a nullptr entry.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -330,11 +331,8 @@ struct UsedRoutines {
   std::array<bool, kFetchRoutines> fetch{};
   std::array<bool, kEnvFetchRoutines> env_fetch{};
   constexpr bool any_fetch() const {
-    for (bool u : fetch)
-      if (u) return true;
-    for (bool u : env_fetch)
-      if (u) return true;
-    return false;
+    auto used = [](bool u) { return u; };
+    return std::ranges::any_of(fetch, used) || std::ranges::any_of(env_fetch, used);
   }
 };
 
