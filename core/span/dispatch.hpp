@@ -10,8 +10,9 @@
 // with that state's routine, or nullptr when no state kSet admits selects it: that instance is
 // then never referenced, so never linked. The result is a constexpr array (in flash).
 //
-// Keyed by the SpanSet value and the family type only: GCC 12 can give two instantiations
-// keyed by array-valued template arguments that contain zeros the same symbol.
+// Instances are keyed by the SpanSet value and the family type only, never by an array of
+// flags: GCC 12 can mangle two array-valued template arguments that contain zeros to the same
+// symbol, and the two instances then collide at link time.
 #pragma once
 
 #include <array>
