@@ -1,4 +1,5 @@
-// Per-vertex (and per-face) lighting: OpenGL's fixed-function model (DESIGN.md §4) in fixed point.
+// Per-vertex (and per-face) lighting: OpenGL's fixed-function model in fixed point
+// (docs/conventions.md#lighting).
 //
 // colour = emission + global_ambient * Ka
 //        + sum over lights of  La * Ka + max(N.L, 0) * Ld * Kd

@@ -20,8 +20,8 @@ void fill_lighting_table(const PreparedLighting& pl, uint16_t size, bool split,
         x = px < 0 ? -((int64_t{1} << 30) - ay) : (int64_t{1} << 30) - ay;
         y = py < 0 ? -((int64_t{1} << 30) - ax) : (int64_t{1} << 30) - ax;
       }
-      // The table's inverse square root (as the spans renormalise): a tenth of the cost of an
-      // exact square root and division, within 2^-15 of unit length.
+      // The table's inverse square root (as the spans renormalise): no square root, no division,
+      // within 2^-15 of unit length.
       Unit30 u{0, 0, 1 << 30};
       DefaultInvSqrt::normalize(x, y, z, u);
       const size_t k = (j * n + i) * (split ? 2 : 1);

@@ -2,16 +2,8 @@
 // colour of a material depends on the surface normal only, so Phong shading can look it up
 // instead of evaluating the lighting model per pixel.
 //
-// Parameterisation: the octahedral map. A normal n goes to p = (n.x, n.y) / (|n.x| + |n.y| +
-// |n.z|); the lower hemisphere (n.z < 0) is folded out, p' = ((1 - |p.y|) sgn p.x, (1 - |p.x|)
-// sgn p.y). p in [-1, 1]^2 is continuous over the whole sphere, and the map needs no square
-// root: any positive multiple of n gives the same p, so the interpolated normal needs neither
-// renormalising nor its perspective division. The table holds (size + 1)^2 samples at the
-// lattice points p = (2 i / size - 1, 2 j / size - 1), each the lit colour of that direction in
-// 10 bits per channel (0x3FF = 1.0; two words per sample when the primary and the specular
-// colour stay apart for a texture). Lookup: the nearest sample, or the 4 around p blended with
-// 8-bit weights. Sizes 8..256; error against per-pixel evaluation in tests/core/phong_test.cpp
-// and the quality benchmark.
+// Parameterisation (octahedral, no square root), sample format and lookup:
+// docs/numerics.md#the-normal-indexed-lighting-table.
 #pragma once
 
 #include <cstddef>
@@ -57,7 +49,8 @@ inline void octahedral_q8(int32_t x, int32_t y, int32_t z, uint32_t size, uint32
   uint32_t ax = x < 0 ? 0u - static_cast<uint32_t>(x) : static_cast<uint32_t>(x);
   uint32_t ay = y < 0 ? 0u - static_cast<uint32_t>(y) : static_cast<uint32_t>(y);
   uint32_t az = z < 0 ? 0u - static_cast<uint32_t>(z) : static_cast<uint32_t>(z);
-  // Bring |x| + |y| + |z| into [2^13, 2^15): a 32-bit reciprocal then gives 15-bit coordinates.
+  // Bring the largest component into [2^12, 2^13), so |x| + |y| + |z| is in [2^12, 3 * 2^13):
+  // a 32-bit reciprocal then gives 15-bit coordinates.
   uint32_t m = ax | ay | az;
   if (m == 0) m = 1;
   const int top = 31 - clz32(m);

@@ -1,6 +1,6 @@
 // Exact integer division by one divisor many times: one reciprocal, then a multiply-high and a
-// remainder correction per quotient, instead of a 64-bit division each (on 32-bit Arm a 64-bit
-// division is a library call of about 100 instructions; this is about 20).
+// remainder correction per quotient, instead of a 64-bit division each (a library call on
+// 32-bit Arm).
 #pragma once
 
 #include <cstdint>
@@ -21,9 +21,8 @@ constexpr uint64_t mul_hi(uint64_t a, uint64_t b) {
 #endif
 }
 
-// floor(n / d) for a fixed d > 0 and any n < 2^63, bit for bit the quotient of a division.
-// With inv = floor((2^64 - 1) / d): inv <= 2^64 / d, so q0 = floor(n inv / 2^64) <= n / d, and
-// inv > 2^64 / d - 2, so q0 > n / d - 2 n / 2^64 - 1 > n / d - 2: at most two corrections.
+// floor(n / d) for a fixed d > 0 and any n < 2^63, bit for bit the quotient of a division
+// (at most two corrections: docs/numerics.md#one-division-many-quotients).
 class Divider {
  public:
   constexpr explicit Divider(uint64_t d) : d_(d), inv_(~uint64_t{0} / d) {}

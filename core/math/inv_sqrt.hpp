@@ -2,17 +2,11 @@
 // normals per pixel (and the sphere-map and tangent-frame vectors) without a square root or a
 // division.
 //
-// f in [1, 4) (a sum of squares scaled by a power of 4) is looked up by its top kBits bits:
-// 3 * 2^(kBits - 2) entries of 1/sqrt in Q1.30 (each with equal relative error at both ends of
-// its bucket), then kNewton Newton steps y' = y (3 - f y^2) / 2 in 64-bit integers. Largest
-// relative error of 1/sqrt(f) over [1, 4) (tests/core/inv_sqrt_test.cpp):
-//   kBits  entries   no Newton step   one step   two steps
-//     4        12        5.6e-2          4.7e-3     3.4e-5
-//     6        48        1.5e-2          3.5e-4
-//     8       192        3.9e-3          2.3e-5
-//    10       768        9.8e-4          1.5e-6
-// The default (8 bits, one step: 768 bytes) keeps a renormalised Q1.30 unit vector's length
-// within 2^-15 of 1: under one LSB of the Q1.14 normals meshes store.
+// f in [1, 4) (a sum of squares scaled by a power of 4) is looked up by its top kBits bits
+// (3 * 2^(kBits - 2) entries of 1/sqrt in Q1.30), then kNewton Newton steps in 64-bit
+// integers. The default (8 bits, one step) keeps a unit vector's length within 2^-15 of 1. Error
+// per size: docs/numerics.md#inverse-square-root-table-and-newton-step (checked by
+// tests/core/phong_test.cpp).
 #pragma once
 
 #include <array>

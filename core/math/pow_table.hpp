@@ -4,10 +4,7 @@
 //
 // x: Q1.30 in [0, 2^30] (N.H of two Q1.30 unit vectors). s: shininess in Q8.8, [0, 128].
 // Result: Q1.15 in [0, 32768]. log2(x) >= -30 fits Q8.24; s * log2(x) >= -3840 stays in int64.
-// Error against std::pow over x in [0, 1] and s in [0, 128] (tests/core/math_test.cpp):
-//   tables 6/6 bits (520 B): 20.9 Q1.15 units;  8/8 (2 KB, default): 2.2 units = 0.017 of an
-//   8-bit level;  9/8 (3 KB): 1.0;  10/8 (5 KB): 0.7. The log table's interpolation dominates
-//   (its error is multiplied by s).
+// Error per table size: docs/numerics.md#specular-power-xs (checked by tests/core/math_test.cpp).
 #pragma once
 
 #include <array>

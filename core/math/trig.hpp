@@ -2,8 +2,8 @@
 //
 // Angles are Fixed degrees (Q16.16, any value: reduced modulo 360 exactly in integers).
 // Results are Fixed in [-1, 1]. The table holds sin over [0, 90] degrees in kTrigSteps + 1
-// entries (Q1.30); linear interpolation between entries has an error below
-// (pi/2 / kTrigSteps)^2 / 8 = 4.7e-6 for 256 steps, under half a Q16.16 unit.
+// entries (Q1.30); linear interpolation between entries stays under half a Q16.16 unit
+// (docs/numerics.md#sine-and-cosine).
 #pragma once
 
 #include <array>

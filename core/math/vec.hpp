@@ -45,9 +45,8 @@ constexpr Vec3 operator-(Vec3 a, Vec3 b) {
   return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
 
-// Dot product of Q16.16 vectors in Q32.32 (int64; |result| < 3 * 2^62 / ... see note).
-// Each product is < 2^62 in magnitude; the sum of three is shifted by 2 first so it cannot
-// overflow: the result is in Q32.30.
+// Dot product of Q16.16 vectors in Q32.30 (int64): each product (< 2^62) is shifted by 2
+// first, so the sum of three stays below 2^62.
 constexpr int64_t dot_q30(Vec3 a, Vec3 b) {
   return ((int64_t{a.x.raw} * b.x.raw) >> 2) + ((int64_t{a.y.raw} * b.y.raw) >> 2) +
          ((int64_t{a.z.raw} * b.z.raw) >> 2);

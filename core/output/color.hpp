@@ -3,7 +3,7 @@
 // Color15: linear colour, Q1.15 per channel in uint16 (32768 = 1.0). The working format of
 // lighting and interpolation: channels are clamped to [0, 1] wherever GL clamps, so 32768 is
 // the largest value stored; 1/32768 resolution is 128 times finer than one 8-bit level.
-// Rgb8: 8 bits per channel, what the reference and host frames hold (DESIGN.md §4).
+// Rgb8: 8 bits per channel, what the reference and host frames hold.
 #pragma once
 
 #include <array>

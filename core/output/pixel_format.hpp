@@ -2,7 +2,8 @@
 //
 // Each format says how one pixel is stored (Storage), how many bytes it puts on the wire and
 // how an 8-bit colour becomes a stored pixel. Conversion to RGB565 rounds to nearest
-// (r5 = (31 r8 + 127) / 255, DESIGN.md §4) through tables built at compile time.
+// (r5 = (31 r8 + 127) / 255: docs/numerics.md#colour-conversions) through tables built at
+// compile time.
 #pragma once
 
 #include <array>

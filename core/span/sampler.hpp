@@ -6,13 +6,9 @@
 // texels as GL's clamping of the indices). A level l of a mip chain then scales them by its size
 // ratio (exact shifts for powers of two). Texels come out as 0x00RRGGBB.
 //
-// Bilinear (x = s - 0.5 texel, GL_LINEAR):
-//   RGB565 and palette textures blend packed: a 565 texel spread over 32 bits with the mask
-//   0x07E0F81F leaves 5 or 6 free bits above each channel, so one multiply by a 5-bit weight
-//   blends all three channels; three blends (two rows, then between them) with rounding.
-//   Weights: 5 bits (the position is quantised to 1/32 texel); error: at most 1 unit of the
-//   5- or 6-bit channel against an exact blend of the same texels (8.2 / 4.0 levels of 255).
-//   RGB888 and L8 blend per channel with 8-bit weights: error <= 1 level of 255.
+// Bilinear (x = s - 0.5 texel, GL_LINEAR): RGB565 and palette textures blend the packed 5/6/5
+// fields with 5-bit weights, RGB888 and L8 per channel with 8-bit weights
+// (docs/numerics.md#packed-rgb565-bilinear-blend).
 // Batches are chosen per draw (format x filter x wrap s x wrap t: one function per
 // combination, from the renderer's SpanSet: span_state.hpp), so no pixel branches on texture
 // state.

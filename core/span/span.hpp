@@ -1,7 +1,7 @@
 // Span routines: fill one row of one triangle between its edges.
 //
 // One routine per state (depth test on/off x colour planes none/perspective/affine), each a
-// template instance with no per-pixel branch on state (DESIGN.md §5); the table of a renderer's
+// template instance with no per-pixel branch on state; the table of a renderer's
 // SpanSet holds the instances its states select (span_state.hpp). Per pixel: depth test
 // first, then colour, then the write. Returns the number of pixels written.
 #pragma once
@@ -20,10 +20,8 @@ namespace lr {
 
 namespace detail {
 
-// Perspective-correct channel value cq / q in Q1.15 with a 17-bit normalised reciprocal:
-// s = clz(q), qn = q << s in [2^31, 2^32), r = (2^32 - 1) / (qn >> 16) in (2^16, 2^17];
-// ((cq << s) >> 17) * r < 2^32 and ~ (cq / q) 2^31. Relative error < 2^-14 (under 0.02 of an
-// 8-bit level).
+// Perspective-correct channel value cq / q in Q1.15 with a 17-bit normalised reciprocal
+// (relative error below 2^-14: docs/numerics.md#perspective-correct-attributes).
 struct Reciprocal {
   int shift;
   uint32_t r;

@@ -1,23 +1,21 @@
 // Textured span routines.
 //
 // A span is processed in chunks of up to 32 pixels. Per chunk: the mip level is chosen (level
-// of detail from the screen-space derivatives of the texel coordinates at the chunk's first
-// pixel); pass A tests depth pixel by pixel and, for the pixels that pass only, computes the
+// of detail from the texel coordinates' screen-space derivatives at the chunk's centre pixel);
+// pass A tests depth pixel by pixel and, for the pixels that pass only, computes the
 // texel coordinates and colours; the fetch routine of the draw (format x filter x wrap, see
 // sampler.hpp) reads their texels in one batch; pass B combines texel and colour and writes.
 // So pixels hidden by depth cost no texel fetch and no colour, and no pixel branches on state:
 // the routine is a template instance per (depth, perspective mode, texture environment, mip
 // mode), the fetch a function per texture state, called once per chunk.
 //
-// Perspective modes (DESIGN.md §4):
+// Perspective modes (docs/conventions.md#textures):
 //   kExact: s = (s q)/q per pixel with a ~30-bit reciprocal of q (a 17-bit estimate by one
 //           32-bit division, one Newton step in 64 bits); level of detail every 8 pixels.
 //   kSpan:  exact at the first pixel of each chunk of span_len (8, 16, 32) pixels and at the
 //           chunk's end (the last chunk ends on the span's last pixel), linear in between.
 //   kAffine: s linear in screen space; level of detail once per span.
-// Level of detail: L = max(|(ds/dx, dt/dx)|, |(ds/dy, dt/dy)|) in level-0 texels, from exact
-// differences over one pixel at the chunk's centre pixel; D = log2 L in Q.8 (a 256-entry table
-// for the mantissa).
+// Level of detail: docs/conventions.md#textures (the rule) and docs/numerics.md#level-of-detail.
 #pragma once
 
 #include <array>
@@ -37,6 +35,7 @@ namespace lr {
 namespace detail {
 
 // R ~ 2^63 / (q << shift) for a Q1.30 plane value q (values below 1 count as 1).
+// One Newton step on a 17-bit estimate: docs/numerics.md#perspective-correct-attributes.
 struct PreciseRecip {
   uint32_t r;
   int shift;

@@ -1,10 +1,8 @@
 // Textures: texel storage (flash or RAM), mip chains, and the sampler state of a draw.
 //
-// Conventions (DESIGN.md §4, those of OpenGL): texture coordinates (u, v) with v = 0 at the
-// bottom edge of the image file and v = 1 at its top. Levels store their rows bottom row first
-// (row 0 holds v near 0: the image file's last row), so the texel in column i and storage row r
-// has its centre at u = (i + 0.5) / width, v = (r + 0.5) / height. Nearest and bilinear
-// sampling follow GL_NEAREST and GL_LINEAR; wrap modes follow GL_REPEAT and GL_CLAMP_TO_EDGE.
+// Conventions (OpenGL's; docs/conventions.md#textures): v = 0 at the bottom edge of the image
+// file; levels store their rows bottom row first, so the texel in column i and storage row r
+// has its centre at u = (i + 0.5) / width, v = (r + 0.5) / height.
 #pragma once
 
 #include <array>
