@@ -76,8 +76,7 @@ bash scripts/fuzz.sh --ci
 
 step "figures (benchmarks print, they do not pass or fail)"
 cmake --preset release >/dev/null
-# lr_bench_host: count_instructions.sh's host counts of the Cortex-M budget cases (about 25 s of
-# compiling on 2 cores, 3 s under callgrind).
+# lr_bench_host: count_instructions.sh's host counts of the Cortex-M budget cases.
 cmake --build --preset release -j"$jobs" --target lr_frame_bench lr_bench_host
 ./build/release/tests/bench/lr_frame_bench --benchmark_min_time=0.2
 bash scripts/count_instructions.sh build/release

@@ -242,9 +242,9 @@ TEST(GlCheck, FlatUnlitGroundPlaneTakesTheLastVertexColourAndBreaksTiesAsGl) {
   // through a pixel centre every few pixels, and the fill rule alone decides which triangle (and
   // so which flat colour) each of those centres gets. The reference snaps the exact projection;
   // Mesa agrees with it on every pixel. The core projects with Q16.16 matrices: its snapped
-  // vertices may lie one subpixel from the exact rounding (here all four y, 0.5-0.7 subpixel
-  // before rounding), which moves the diagonal off the tied centres, and those take the other
-  // triangle's colour. Bound: at most 0.5 % of the pixels, all on the diagonal.
+  // vertices may lie one subpixel from the exact rounding (here all four y do), which moves the
+  // diagonal off the tied centres, and those take the other triangle's colour. Bound: at most
+  // 0.5 % of the pixels, all on the diagonal.
   host::SceneOptions o;
   o.unlit = true;
   o.shading = Shading::kFlat;
