@@ -34,6 +34,8 @@ consteval std::array<uint32_t, (size_t{3} << (kBits - 2))> make_inv_sqrt_table()
   const double step = 1.0 / double(size_t{1} << (kBits - 2));
   for (size_t i = 0; i < t.size(); ++i) {
     const double lo = 1.0 + double(i) * step, hi = lo + step;
+    // Positive table values: adding 0.5 and truncating is round-half-up, as intended.
+    // NOLINTNEXTLINE(bugprone-incorrect-roundings)
     t[i] = static_cast<uint32_t>(2.0 / (ct_sqrt(lo) + ct_sqrt(hi)) * 1073741824.0 + 0.5);
   }
   return t;

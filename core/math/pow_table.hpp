@@ -41,6 +41,8 @@ consteval std::array<int32_t, (size_t{1} << kBits) + 1> make_log2_table() {  // 
   std::array<int32_t, (size_t{1} << kBits) + 1> t{};
   for (int i = 0; i <= (1 << kBits); ++i)
     t[static_cast<size_t>(i)] =
+        // Positive table values: adding 0.5 and truncating is round-half-up, as intended.
+        // NOLINTNEXTLINE(bugprone-incorrect-roundings)
         static_cast<int32_t>(ct_ln(1.0 + double(i) / (1 << kBits)) / kLn2 * 16777216.0 + 0.5);
   return t;
 }
@@ -49,6 +51,8 @@ consteval std::array<uint32_t, (size_t{1} << kBits) + 1> make_exp2_table() {  //
   std::array<uint32_t, (size_t{1} << kBits) + 1> t{};
   for (int j = 0; j <= (1 << kBits); ++j)
     t[static_cast<size_t>(j)] =
+        // Positive table values: adding 0.5 and truncating is round-half-up, as intended.
+        // NOLINTNEXTLINE(bugprone-incorrect-roundings)
         static_cast<uint32_t>(ct_exp(-kLn2 * j / (1 << kBits)) * 1073741824.0 + 0.5);
   return t;
 }

@@ -36,6 +36,8 @@ consteval std::array<int32_t, kTrigSteps + 1> make_sin_table() {
   constexpr double kHalfPi = 1.57079632679489661923;
   for (int i = 0; i <= kTrigSteps; ++i) {
     double s = ct_sin(kHalfPi * i / kTrigSteps);
+    // Positive table values: adding 0.5 and truncating is round-half-up, as intended.
+    // NOLINTNEXTLINE(bugprone-incorrect-roundings)
     t[static_cast<size_t>(i)] = static_cast<int32_t>(s * (1 << 30) + 0.5);
   }
   return t;
