@@ -24,15 +24,10 @@
 #include <utility>
 
 #include "core/span/span_state.hpp"
+#include "core/texture/texel_fetch.hpp"
 #include "core/texture/texture.hpp"
 
 namespace lr {
-
-using Texel = uint32_t;  // 0x00RRGGBB
-
-// Fetches n texels of level `level` at coordinates (s[i], t[i]).
-using FetchFn = void (*)(const Texture& tex, int level, const int32_t* s, const int32_t* t, int n,
-                         Texel* out);
 
 namespace detail {
 

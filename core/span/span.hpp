@@ -13,7 +13,7 @@
 
 #include "core/output/color.hpp"
 #include "core/span/span_state.hpp"
-#include "core/setup/triangle_setup.hpp"
+#include "core/setup/active_triangle.hpp"
 
 namespace lr {
 
