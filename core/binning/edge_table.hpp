@@ -3,8 +3,7 @@
 // sorting. With strip signatures (strip_inputs.hpp) it also holds each strip's input signature.
 //
 // classify() is the binner's test of a triangle (facing, area, rows and columns it covers);
-// add() puts a classified triangle into the bucket of its first strip. Both run per triangle:
-// they are inline.
+// add() puts a classified triangle into the bucket of its first strip.
 #pragma once
 
 #include <cstddef>
@@ -49,44 +48,22 @@ class EdgeTable {
   }
 
   // The binner's tests: kBinned when the triangle would be binned (capacity aside), with its
-  // first and last row (clamped to the viewport) in r0, r1.
+  // first and last row (clamped to the viewport) in r0, r1. Out of line (edge_table.cpp):
+  // inlined into the front end's triangle loop, its many live values spill to the stack.
   Outcome classify(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
-                   Cull cull, int32_t& r0, int32_t& r1) const {
-    const int64_t area = signed_area2(v0, v1, v2);
-    if (area == 0) return Outcome::kZeroArea;
-    const bool front = front_facing(area);
-    if ((cull == Cull::kBack && !front) || (cull == Cull::kFront && front))
-      return Outcome::kBackface;
-    int32_t ymin = v0.y < v1.y ? v0.y : v1.y, ymax = v0.y > v1.y ? v0.y : v1.y;
-    ymin = v2.y < ymin ? v2.y : ymin;
-    ymax = v2.y > ymax ? v2.y : ymax;
-    int32_t xmin = v0.x < v1.x ? v0.x : v1.x, xmax = v0.x > v1.x ? v0.x : v1.x;
-    xmin = v2.x < xmin ? v2.x : xmin;
-    xmax = v2.x > xmax ? v2.x : xmax;
-    r0 = first_row_below(ymin);
-    r1 = last_row_at_or_above(ymax);
-    if (r0 < 0) r0 = 0;
-    if (r1 > height_ - 1) r1 = height_ - 1;
-    // Columns whose centres can pass both edge tests: [ceil((xmin-128)/256),
-    // ceil((xmax-128)/256)).
-    int32_t c0 = (xmin - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
-    int32_t c1 = (xmax - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
-    if (c0 < 0) c0 = 0;
-    if (c1 > width_) c1 = width_;
-    if (r0 > r1 || c0 >= c1) return Outcome::kOffscreen;
-    return Outcome::kBinned;
-  }
+                   Cull cull, int32_t& r0, int32_t& r1) const;
 
   bool full() const { return count_ >= triangles_.size(); }
 
-  // Adds t (its `next` is set here) to the bucket of the strip of row r0. Not full().
-  void add(const BinnedTriangle& t, int32_t r0) {
+  // Appends a triangle to the bucket of the strip of row r0 and returns it for the caller to
+  // fill in (its `next` is set here). Not full().
+  BinnedTriangle& add(int32_t r0) {
     const auto index = static_cast<uint16_t>(count_++);
-    BinnedTriangle& b = triangles_[index];
-    b = t;
+    BinnedTriangle& t = triangles_[index];
     uint16_t& head = buckets_[static_cast<size_t>(r0 / strip_height_)];
-    b.next = head;
+    t.next = head;
     head = index;
+    return t;
   }
 
   // Mixes a triangle's signature into those of the strips of rows [r0, r1]. signing().

@@ -145,7 +145,14 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
     h.add(flat_spec);
     edges_.sign(r0, r1, h.value());
   }
-  edges_.add({{a, b, c}, kNoTriangle, draw, flat, flat_spec, 0}, r0);
+  BinnedTriangle& t = edges_.add(r0);
+  t.v[0] = a;
+  t.v[1] = b;
+  t.v[2] = c;
+  t.draw = draw;
+  t.flat = flat;
+  t.flat_spec = flat_spec;
+  t.reserved = 0;
   ++stats_.triangles_binned;
   return Outcome::kBinned;
 }
@@ -166,8 +173,6 @@ struct FrontEnd::MeshDraw {
   const size_t base;  // the mesh's first vertex store entry
   const uint8_t draw;
 
-  bool lazy_lit() const { return plan.lit && plan.gouraud; }
-
   [[gnu::always_inline]] void triangle(const std::array<uint16_t, 3>& tri) {
     const size_t n = mesh.positions.size();
     if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
@@ -176,7 +181,7 @@ struct FrontEnd::MeshDraw {
     }
     uint16_t vi[3] = {static_cast<uint16_t>(base + tri[0]), static_cast<uint16_t>(base + tri[1]),
                       static_cast<uint16_t>(base + tri[2])};
-    const ScreenVertex* sv[3] = {&fe.vertices_[vi[0]], &fe.vertices_[vi[1]], &fe.vertices_[vi[2]]};
+    ScreenVertex* const sv[3] = {&fe.vertices_[vi[0]], &fe.vertices_[vi[1]], &fe.vertices_[vi[2]]};
     const uint8_t oc_or = sv[0]->outcode | sv[1]->outcode | sv[2]->outcode;
     const uint8_t oc_and = sv[0]->outcode & sv[1]->outcode & sv[2]->outcode;
     if (oc_or & kClipOutOfRange) {
@@ -189,7 +194,24 @@ struct FrontEnd::MeshDraw {
     }
     int32_t rows[2] = {0, 0};
     bool classified = false;
-    if (lazy_lit() && !light_on_first_use(tri, vi, sv, oc_or, rows, classified)) return;
+    if (plan.lit && plan.gouraud) {
+      // Vertices are lit on first use by a triangle that is drawn: those only culled, off-screen
+      // or covering no pixel centre are never lit. bin() takes the rows classify() found here.
+      if (oc_or == 0 && !plan.two_sided) {
+        const Outcome r = fe.edges_.classify(*sv[0], *sv[1], *sv[2], state.cull, rows[0], rows[1]);
+        classified = true;
+        if (r != Outcome::kBinned) {
+          count_outcome(fe.stats_, false, r);
+          return;
+        }
+      }
+      for (int k = 0; k < 3; ++k) {
+        if (sv[k]->color_pending) {
+          stage.light(mesh, colors, tri[static_cast<size_t>(k)], false, *sv[k]);
+          sv[k]->color_pending = 0;
+        }
+      }
+    }
     // Two-sided lighting: back faces are lit with the negated normal (GL decides per polygon).
     ClipCoord clip[3];
     if (oc_or != 0)
@@ -208,32 +230,6 @@ struct FrontEnd::MeshDraw {
       return;
     }
     clip_and_bin(vi, sv, clip, oc_or, back && plan.gouraud, flat, flat_spec);
-  }
-
-  // Lit Gouraud: vertices are lit on first use by a triangle that is drawn, so that those only
-  // culled, off-screen or covering no pixel centre are never lit. A triangle inside every plane
-  // (and one-sided) is classified first: false when it is not binned (counted); bin() then takes
-  // the rows found here.
-  [[gnu::always_inline]] bool light_on_first_use(const std::array<uint16_t, 3>& tri,
-                                                 const uint16_t (&vi)[3],
-                                                 const ScreenVertex* const (&sv)[3], uint8_t oc_or,
-                                                 int32_t (&rows)[2], bool& classified) {
-    if (oc_or == 0 && !plan.two_sided) {
-      const Outcome r = fe.edges_.classify(*sv[0], *sv[1], *sv[2], state.cull, rows[0], rows[1]);
-      classified = true;
-      if (r != Outcome::kBinned) {
-        count_outcome(fe.stats_, false, r);
-        return false;
-      }
-    }
-    for (int k = 0; k < 3; ++k) {
-      ScreenVertex& v = fe.vertices_[vi[k]];
-      if (v.color_pending) {
-        stage.light(mesh, colors, tri[static_cast<size_t>(k)], false, v);
-        v.color_pending = 0;
-      }
-    }
-    return true;
   }
 
   // The colours of a triangle without colour planes: flat shading (lit by its face normal, or
@@ -257,7 +253,7 @@ struct FrontEnd::MeshDraw {
 
   // A triangle inside every plane. A two-sided Gouraud back face gets its own copies of its
   // vertices, with the back colours.
-  [[gnu::always_inline]] void bin_inside(uint16_t (&vi)[3], const ScreenVertex* const (&sv)[3],
+  [[gnu::always_inline]] void bin_inside(uint16_t (&vi)[3], ScreenVertex* const (&sv)[3],
                                          bool back_copies, Rgb8 flat, Rgb8 flat_spec,
                                          const int32_t* rows) {
     if (back_copies) {
@@ -281,8 +277,7 @@ struct FrontEnd::MeshDraw {
   // A triangle crossing a plane: clipped in homogeneous space, the polygon's vertices projected
   // into the vertex store, binned as a fan. Clip coordinates are recomputed from the mesh rather
   // than stored per vertex: only triangles that cross a plane pay for it.
-  [[gnu::always_inline]] void clip_and_bin(const uint16_t (&vi)[3],
-                                           const ScreenVertex* const (&sv)[3],
+  [[gnu::always_inline]] void clip_and_bin(const uint16_t (&vi)[3], ScreenVertex* const (&sv)[3],
                                            const ClipCoord (&clip)[3], uint8_t oc_or,
                                            bool back_colored, Rgb8 flat, Rgb8 flat_spec) {
     ++fe.stats_.clipped;

@@ -72,10 +72,7 @@ class Renderer {
   // inputs equal the last rendered frame's are not rendered: the sink is told to keep() them.
   // The renderer assumes the sink shows its last frame: after rendering into another sink (or
   // drawing on the display otherwise) call invalidate_strips().
-  Status render(StripSink<PF>& sink, DepthSink* depth_sink = nullptr) {
-    if (!front_.configured()) return Status::kInvalidArgument;
-    return strip_.render(front_.frame(), front_.mutable_stats(), sink, depth_sink);
-  }
+  Status render(StripSink<PF>& sink, DepthSink* depth_sink = nullptr);
 
   const FrameStats& stats() const { return front_.stats(); }
   std::span<const ScreenVertex> screen_vertices() const { return front_.screen_vertices(); }
@@ -96,5 +93,11 @@ class Renderer {
   FrontEnd front_;
   StripLoop<PF, K, kSpans> strip_;
 };
+
+template <class PF, int K, SpanSet kSpans>
+Status Renderer<PF, K, kSpans>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
+  if (!front_.configured()) return Status::kInvalidArgument;
+  return strip_.render(front_.frame(), front_.mutable_stats(), sink, depth_sink);
+}
 
 }  // namespace lr

@@ -53,9 +53,11 @@ class StripLoop {
     return true;
   }
 
-  // Rasterizes `frame` into the sink, counting into `stats` (see Renderer::render).
-  Status render(const BinnedFrame& frame, FrameStats& stats, StripSink<PF>& sink,
-                DepthSink* depth_sink);
+  // Rasterizes `frame` into the sink, counting into `stats` (see Renderer::render). Always
+  // inlined into Renderer::render, its one caller: the renderer's render() is then the strip
+  // loop itself, which the compiler inlines where the sink's type is known (direct calls).
+  [[gnu::always_inline]] Status render(const BinnedFrame& frame, FrameStats& stats,
+                                       StripSink<PF>& sink, DepthSink* depth_sink);
 
   // Forgets the strip signatures of the last frame (see Renderer::invalidate_strips).
   void invalidate_strips() { inputs_known_ = false; }
@@ -82,8 +84,8 @@ class StripLoop {
 };
 
 template <class PF, int K, SpanSet kSpans>
-Status StripLoop<PF, K, kSpans>::render(const BinnedFrame& frame, FrameStats& stats,
-                                        StripSink<PF>& sink, DepthSink* depth_sink) {
+inline Status StripLoop<PF, K, kSpans>::render(const BinnedFrame& frame, FrameStats& stats,
+                                               StripSink<PF>& sink, DepthSink* depth_sink) {
   frame_ = frame;
   stats_ = &stats;
   resolve_fetchers();

@@ -20,6 +20,10 @@ void transform_tangent(const Mat4& model, const Tangent16& t, int16_t out[3]) {
 
 }  // namespace
 
+Unit30 transform_normal_call(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
+  return transform_normal(nm, x, y, z);
+}
+
 VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width,
                          int height)
     : model_(model),
@@ -29,8 +33,9 @@ VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guar
       width_(width),
       height_(height) {}
 
-void VertexStage::transform(const Mesh& mesh, const VertexColors& colors, ScreenVertex* out,
+void VertexStage::transform(const Mesh& mesh, const VertexColors& draw_colors, ScreenVertex* out,
                             SurfaceVertex* surfaces) const {
+  const VertexColors colors = draw_colors;  // a copy: kept in registers across the calls below
   const size_t n = mesh.positions.size();
   for (size_t i = 0; i < n; ++i) {
     ScreenVertex& sv = out[i];
@@ -44,7 +49,8 @@ void VertexStage::transform(const Mesh& mesh, const VertexColors& colors, Screen
     if (surfaces != nullptr) {
       sv.color = Color15{};
       SurfaceVertex& su = surfaces[i];
-      su.normal = world_normal(mesh.normals[i]);
+      const Normal16& nn = mesh.normals[i];
+      su.normal = transform_normal_call(nm_, nn.x, nn.y, nn.z);
       su.position = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
       if (colors.tangents) {
         transform_tangent(model_, mesh.tangents[i], su.tangent);

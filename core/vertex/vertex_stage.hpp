@@ -22,7 +22,8 @@
 
 namespace lr {
 
-// Model-space vector times a normal matrix (Q16.16 entries) as int64, then normalised.
+// Model-space vector times a normal matrix (Q16.16 entries) as int64, then normalised. Inline:
+// where the vector is a Normal16 the compiler multiplies 32 x 32 bits instead of 64 x 64.
 inline Unit30 transform_normal(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
   int64_t r[3];
   for (int i = 0; i < 3; ++i)
@@ -31,6 +32,9 @@ inline Unit30 transform_normal(const Mat4& nm, int64_t x, int64_t y, int64_t z) 
   normalize_unit30(r[0], r[1], r[2], u);
   return u;
 }
+// The same out of line, for the paths that are not per lit vertex (Phong surfaces, face
+// normals): one copy of the code.
+Unit30 transform_normal_call(const Mat4& nm, int64_t x, int64_t y, int64_t z);
 
 // Face normal of a model-space triangle as a Q1.30 unit vector (counter-clockwise winding).
 inline Unit30 face_normal_model(Vec3 p0, Vec3 p1, Vec3 p2) {
@@ -80,7 +84,8 @@ class VertexStage {
                  SurfaceVertex* surfaces) const;
 
   // Lit colour(s) of mesh vertex i, with the normal negated or not (two-sided back faces).
-  void light(const Mesh& mesh, const VertexColors& colors, size_t i, bool back,
+  // (colors by value here and in light_face: the caller's copy stays in registers.)
+  void light(const Mesh& mesh, const VertexColors colors, size_t i, bool back,
              ScreenVertex& sv) const {
     Unit30 nw = world_normal(mesh.normals[i]);
     if (back) nw = negate(nw);
@@ -95,7 +100,7 @@ class VertexStage {
   }
 
   // The lit colour of a flat-shaded triangle (face normal, centroid) of model-space corners.
-  LitColor light_face(const VertexColors& colors, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+  LitColor light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1, const Vec3& p2,
                       bool back) const;
 
   ClipCoord clip(const Vec3& model_position) const { return transform_point(mvp_, model_position); }
@@ -112,10 +117,10 @@ class VertexStage {
   int32_t width_, height_;
 };
 
-inline LitColor VertexStage::light_face(const VertexColors& colors, const Vec3& p0, const Vec3& p1,
+inline LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1,
                                         const Vec3& p2, bool back) const {
   const Unit30 fm = face_normal_model(p0, p1, p2);
-  Unit30 fw = transform_normal(nm_, fm.x, fm.y, fm.z);
+  Unit30 fw = transform_normal_call(nm_, fm.x, fm.y, fm.z);
   if (back) fw = negate(fw);
   Vec3 centroid{};
   if (colors.need_position) {
