@@ -165,13 +165,14 @@ struct FrontEnd::MeshDraw {
   const Mesh& mesh;
   const DrawState& state;
   const VertexStage& stage;
-  // Back faces' colours (two-sided Gouraud, 3 entries): written before use on each back face.
-  ScreenVertex* back_colors;
-  // Copies, not references: the loop keeps them in registers.
+  // Copies of the draw's plan and colours, not references to them.
   const DrawPlan plan;
   const VertexColors colors;
   const size_t base;  // the mesh's first vertex store entry
   const uint8_t draw;
+  // Back faces' colours (two-sided Gouraud): written before use on each back face; one set per
+  // draw, because a value-initialised local per triangle cost a 120-byte memset each.
+  ScreenVertex back_colors[3] = {};
 
   [[gnu::always_inline]] void triangle(const std::array<uint16_t, 3>& tri) {
     const size_t n = mesh.positions.size();
@@ -379,9 +380,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   stage.transform(mesh, colors, vertices_.data() + base,
                   plan.kind.phong ? surfaces_.data() + base : nullptr);
 
-  // Declared once per draw: a value-initialised local per triangle cost a 120-byte memset each.
-  ScreenVertex back_colors[3];
-  MeshDraw d{*this, mesh, state, stage, back_colors, plan, colors, base, draw_index};
+  MeshDraw d{*this, mesh, state, stage, plan, colors, base, draw_index};
   for (uint32_t t = 0; t < tri_count; ++t) d.triangle(mesh.triangles[t]);
   return dropped() > dropped_before ? Status::kCapacity : Status::kOk;
 }
