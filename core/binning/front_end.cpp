@@ -157,11 +157,8 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
   return Outcome::kBinned;
 }
 
-// One draw()'s triangles: each is culled, lit (lit Gouraud: its vertices on first use; flat:
-// its face), clipped when it crosses a plane, and binned. The steps are always inlined: they are
-// one loop body, whose locals share one stack frame.
+// What draw()'s triangle loop reads of its draw.
 struct FrontEnd::MeshDraw {
-  FrontEnd& fe;
   const Mesh& mesh;
   const DrawState& state;
   const VertexStage& stage;
@@ -173,65 +170,6 @@ struct FrontEnd::MeshDraw {
   // Back faces' colours (two-sided Gouraud): written before use on each back face; one set per
   // draw, because a value-initialised local per triangle cost a 120-byte memset each.
   ScreenVertex back_colors[3] = {};
-
-  [[gnu::always_inline]] void triangle(const std::array<uint16_t, 3>& tri) {
-    const size_t n = mesh.positions.size();
-    if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
-      ++fe.stats_.rejected_invalid;
-      return;
-    }
-    uint16_t vi[3] = {static_cast<uint16_t>(base + tri[0]), static_cast<uint16_t>(base + tri[1]),
-                      static_cast<uint16_t>(base + tri[2])};
-    ScreenVertex* const sv[3] = {&fe.vertices_[vi[0]], &fe.vertices_[vi[1]], &fe.vertices_[vi[2]]};
-    const uint8_t oc_or = sv[0]->outcode | sv[1]->outcode | sv[2]->outcode;
-    const uint8_t oc_and = sv[0]->outcode & sv[1]->outcode & sv[2]->outcode;
-    if (oc_or & kClipOutOfRange) {
-      ++fe.stats_.rejected_invalid;
-      return;
-    }
-    if (oc_and != 0) {
-      ++fe.stats_.clipped_away;
-      return;
-    }
-    int32_t rows[2] = {0, 0};
-    bool classified = false;
-    if (plan.lit && plan.gouraud) {
-      // Vertices are lit on first use by a triangle that is drawn: those only culled, off-screen
-      // or covering no pixel centre are never lit. bin() takes the rows classify() found here.
-      if (oc_or == 0 && !plan.two_sided) {
-        const Outcome r = fe.edges_.classify(*sv[0], *sv[1], *sv[2], state.cull, rows[0], rows[1]);
-        classified = true;
-        if (r != Outcome::kBinned) {
-          count_outcome(fe.stats_, false, r);
-          return;
-        }
-      }
-      for (int k = 0; k < 3; ++k) {
-        if (sv[k]->color_pending) {
-          stage.light(mesh, colors, tri[static_cast<size_t>(k)], false, *sv[k]);
-          sv[k]->color_pending = 0;
-        }
-      }
-    }
-    // Two-sided lighting: back faces are lit with the negated normal (GL decides per polygon).
-    ClipCoord clip[3];
-    if (oc_or != 0)
-      for (int k = 0; k < 3; ++k) clip[k] = stage.clip(mesh.positions[tri[static_cast<size_t>(k)]]);
-    bool back = false;
-    if (plan.two_sided)
-      back =
-          oc_or == 0 ? back_facing(signed_area2(*sv[0], *sv[1], *sv[2])) : !front_facing_clip(clip);
-    if (back && plan.gouraud)
-      for (int k = 0; k < 3; ++k)
-        stage.light(mesh, colors, tri[static_cast<size_t>(k)], true, back_colors[k]);
-    Rgb8 flat{}, flat_spec{};
-    flat_colors(tri, *sv[2], back, flat, flat_spec);
-    if (oc_or == 0) {
-      bin_inside(vi, sv, back && plan.gouraud, flat, flat_spec, classified ? rows : nullptr);
-      return;
-    }
-    clip_and_bin(vi, sv, clip, oc_or, back && plan.gouraud, flat, flat_spec);
-  }
 
   // The colours of a triangle without colour planes: flat shading (lit by its face normal, or
   // the last vertex's colour), or an unlit mesh's one colour.
@@ -251,90 +189,150 @@ struct FrontEnd::MeshDraw {
       flat = to_rgb8_sat(colors.material);
     }
   }
-
-  // A triangle inside every plane. A two-sided Gouraud back face gets its own copies of its
-  // vertices, with the back colours.
-  [[gnu::always_inline]] void bin_inside(uint16_t (&vi)[3], ScreenVertex* const (&sv)[3],
-                                         bool back_copies, Rgb8 flat, Rgb8 flat_spec,
-                                         const int32_t* rows) {
-    if (back_copies) {
-      if (!fe.vertices_fit(3)) {
-        count_outcome(fe.stats_, false, Outcome::kVertexCapacity);
-        return;
-      }
-      for (int k = 0; k < 3; ++k) {
-        ScreenVertex& nv = fe.vertices_[fe.vertex_count_ + static_cast<size_t>(k)];
-        nv = *sv[k];
-        nv.color = back_colors[k].color;
-        nv.spec = back_colors[k].spec;
-        vi[k] = static_cast<uint16_t>(fe.vertex_count_ + static_cast<size_t>(k));
-      }
-      fe.vertex_count_ += 3;
-    }
-    const Outcome r = fe.bin(vi[0], vi[1], vi[2], draw, flat, flat_spec, state.cull, rows);
-    count_outcome(fe.stats_, r == Outcome::kBinned, r);
-  }
-
-  // A triangle crossing a plane: clipped in homogeneous space, the polygon's vertices projected
-  // into the vertex store, binned as a fan. Clip coordinates are recomputed from the mesh rather
-  // than stored per vertex: only triangles that cross a plane pay for it.
-  [[gnu::always_inline]] void clip_and_bin(const uint16_t (&vi)[3], ScreenVertex* const (&sv)[3],
-                                           const ClipCoord (&clip)[3], uint8_t oc_or,
-                                           bool back_colored, Rgb8 flat, Rgb8 flat_spec) {
-    ++fe.stats_.clipped;
-    ClipVertex poly[kMaxClipVertices];
-    for (int k = 0; k < 3; ++k) {
-      const ScreenVertex& src = back_colored ? back_colors[k] : *sv[k];
-      poly[k].p = clip[k];
-      poly[k].color = src.color;
-      poly[k].spec = src.spec;
-      poly[k].u = sv[k]->u;
-      poly[k].v = sv[k]->v;
-      if (plan.kind.phong) poly[k].surface = fe.surfaces_[vi[k]];
-    }
-    const int m = clip_polygon(poly, 3, oc_or, stage.guard());
-    if (m < 3) {
-      ++fe.stats_.clipped_away;
-      return;
-    }
-    if (!fe.vertices_fit(static_cast<size_t>(m)) ||
-        (plan.kind.phong && !fe.surfaces_fit(static_cast<size_t>(m)))) {
-      ++fe.stats_.dropped_vertex_capacity;
-      return;
-    }
-    const auto first = static_cast<uint16_t>(fe.vertex_count_);
-    int projected = 0;
-    for (int k = 0; k < m; ++k) {
-      ScreenVertex& nv = fe.vertices_[fe.vertex_count_ + static_cast<size_t>(k)];
-      nv.color = poly[k].color;
-      nv.spec = poly[k].spec;
-      nv.u = poly[k].u;
-      nv.v = poly[k].v;
-      nv.outcode = 0;
-      if (stage.project(poly[k].p, nv)) ++projected;
-      if (plan.kind.phong)
-        fe.surfaces_[fe.vertex_count_ + static_cast<size_t>(k)] = poly[k].surface;
-    }
-    if (projected != m) {
-      ++fe.stats_.clipped_away;
-      return;
-    }
-    fe.vertex_count_ += static_cast<size_t>(m);
-    bool binned = false;
-    Outcome last = Outcome::kClippedAway;
-    for (int k = 1; k + 1 < m; ++k) {
-      const Outcome r =
-          fe.bin(first, static_cast<uint16_t>(first + k), static_cast<uint16_t>(first + k + 1),
-                 draw, flat, flat_spec, state.cull);
-      if (r == Outcome::kBinned)
-        binned = true;
-      else
-        last = r;
-    }
-    count_outcome(fe.stats_, binned, last);
-  }
 };
 
+// One triangle of a draw: culled, lit (lit Gouraud: its vertices on first use; flat: its face),
+// clipped when it crosses a plane, and binned. This and the two ends below are always inlined
+// into draw(): one loop body, whose locals share one stack frame.
+void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
+  const size_t n = d.mesh.positions.size();
+  if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
+    ++stats_.rejected_invalid;
+    return;
+  }
+  uint16_t vi[3] = {static_cast<uint16_t>(d.base + tri[0]), static_cast<uint16_t>(d.base + tri[1]),
+                    static_cast<uint16_t>(d.base + tri[2])};
+  ScreenVertex* const sv[3] = {&vertices_[vi[0]], &vertices_[vi[1]], &vertices_[vi[2]]};
+  const uint8_t oc_or = sv[0]->outcode | sv[1]->outcode | sv[2]->outcode;
+  const uint8_t oc_and = sv[0]->outcode & sv[1]->outcode & sv[2]->outcode;
+  if (oc_or & kClipOutOfRange) {
+    ++stats_.rejected_invalid;
+    return;
+  }
+  if (oc_and != 0) {
+    ++stats_.clipped_away;
+    return;
+  }
+  int32_t rows[2] = {0, 0};
+  bool classified = false;
+  if (d.plan.lit && d.plan.gouraud) {
+    // Vertices are lit on first use by a triangle that is drawn: those only culled, off-screen
+    // or covering no pixel centre are never lit. bin() takes the rows classify() found here.
+    if (oc_or == 0 && !d.plan.two_sided) {
+      const Outcome r = edges_.classify(*sv[0], *sv[1], *sv[2], d.state.cull, rows[0], rows[1]);
+      classified = true;
+      if (r != Outcome::kBinned) {
+        count_outcome(stats_, false, r);
+        return;
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (sv[k]->color_pending) {
+        d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], false, *sv[k]);
+        sv[k]->color_pending = 0;
+      }
+    }
+  }
+  // Two-sided lighting: back faces are lit with the negated normal (GL decides per polygon).
+  ClipCoord clip[3];
+  if (oc_or != 0)
+    for (int k = 0; k < 3; ++k)
+      clip[k] = d.stage.clip(d.mesh.positions[tri[static_cast<size_t>(k)]]);
+  bool back = false;
+  if (d.plan.two_sided)
+    back =
+        oc_or == 0 ? back_facing(signed_area2(*sv[0], *sv[1], *sv[2])) : !front_facing_clip(clip);
+  if (back && d.plan.gouraud)
+    for (int k = 0; k < 3; ++k)
+      d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], true, d.back_colors[k]);
+  Rgb8 flat{}, flat_spec{};
+  d.flat_colors(tri, *sv[2], back, flat, flat_spec);
+  if (oc_or == 0) {
+    bin_inside(d, vi, sv, back && d.plan.gouraud, flat, flat_spec, classified ? rows : nullptr);
+    return;
+  }
+  clip_and_bin(d, vi, sv, clip, oc_or, back && d.plan.gouraud, flat, flat_spec);
+}
+
+// A triangle inside every plane. A two-sided Gouraud back face gets its own copies of its
+// vertices, with the back colours.
+void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&sv)[3],
+                          bool back_copies, Rgb8 flat, Rgb8 flat_spec, const int32_t* rows) {
+  if (back_copies) {
+    if (!vertices_fit(3)) {
+      count_outcome(stats_, false, Outcome::kVertexCapacity);
+      return;
+    }
+    for (int k = 0; k < 3; ++k) {
+      ScreenVertex& nv = vertices_[vertex_count_ + static_cast<size_t>(k)];
+      nv = *sv[k];
+      nv.color = d.back_colors[k].color;
+      nv.spec = d.back_colors[k].spec;
+      vi[k] = static_cast<uint16_t>(vertex_count_ + static_cast<size_t>(k));
+    }
+    vertex_count_ += 3;
+  }
+  const Outcome r = bin(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows);
+  count_outcome(stats_, r == Outcome::kBinned, r);
+}
+
+// A triangle crossing a plane: clipped in homogeneous space, the polygon's vertices projected
+// into the vertex store, binned as a fan. Clip coordinates are recomputed from the d.mesh rather
+// than stored per vertex: only triangles that cross a plane pay for it.
+void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* const (&sv)[3],
+                            const ClipCoord (&clip)[3], uint8_t oc_or, bool back_colored, Rgb8 flat,
+                            Rgb8 flat_spec) {
+  ++stats_.clipped;
+  ClipVertex poly[kMaxClipVertices];
+  for (int k = 0; k < 3; ++k) {
+    const ScreenVertex& src = back_colored ? d.back_colors[k] : *sv[k];
+    poly[k].p = clip[k];
+    poly[k].color = src.color;
+    poly[k].spec = src.spec;
+    poly[k].u = sv[k]->u;
+    poly[k].v = sv[k]->v;
+    if (d.plan.kind.phong) poly[k].surface = surfaces_[vi[k]];
+  }
+  const int m = clip_polygon(poly, 3, oc_or, d.stage.guard());
+  if (m < 3) {
+    ++stats_.clipped_away;
+    return;
+  }
+  if (!vertices_fit(static_cast<size_t>(m)) ||
+      (d.plan.kind.phong && !surfaces_fit(static_cast<size_t>(m)))) {
+    ++stats_.dropped_vertex_capacity;
+    return;
+  }
+  const auto first = static_cast<uint16_t>(vertex_count_);
+  int projected = 0;
+  for (int k = 0; k < m; ++k) {
+    ScreenVertex& nv = vertices_[vertex_count_ + static_cast<size_t>(k)];
+    nv.color = poly[k].color;
+    nv.spec = poly[k].spec;
+    nv.u = poly[k].u;
+    nv.v = poly[k].v;
+    nv.outcode = 0;
+    if (d.stage.project(poly[k].p, nv)) ++projected;
+    if (d.plan.kind.phong) surfaces_[vertex_count_ + static_cast<size_t>(k)] = poly[k].surface;
+  }
+  if (projected != m) {
+    ++stats_.clipped_away;
+    return;
+  }
+  vertex_count_ += static_cast<size_t>(m);
+  bool binned = false;
+  Outcome last = Outcome::kClippedAway;
+  for (int k = 1; k + 1 < m; ++k) {
+    const Outcome r =
+        bin(first, static_cast<uint16_t>(first + k), static_cast<uint16_t>(first + k + 1), d.draw,
+            flat, flat_spec, d.state.cull);
+    if (r == Outcome::kBinned)
+      binned = true;
+    else
+      last = r;
+  }
+  count_outcome(stats_, binned, last);
+}
 Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& material,
                       const DrawState& state) {
   if (!configured_) return Status::kInvalidArgument;
@@ -380,8 +378,8 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   stage.transform(mesh, colors, vertices_.data() + base,
                   plan.kind.phong ? surfaces_.data() + base : nullptr);
 
-  MeshDraw d{*this, mesh, state, stage, plan, colors, base, draw_index};
-  for (uint32_t t = 0; t < tri_count; ++t) d.triangle(mesh.triangles[t]);
+  MeshDraw d{mesh, state, stage, plan, colors, base, draw_index};
+  for (uint32_t t = 0; t < tri_count; ++t) draw_triangle(d, mesh.triangles[t]);
   return dropped() > dropped_before ? Status::kCapacity : Status::kOk;
 }
 

@@ -104,7 +104,16 @@ class FrontEnd {
   }
 
  private:
-  struct MeshDraw;  // one draw()'s triangle loop (front_end.cpp)
+  struct MeshDraw;  // one draw()'s context (front_end.cpp)
+  // draw()'s loop body and its two ends (front_end.cpp, always inlined into draw()).
+  [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
+  [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
+                                                ScreenVertex* const (&sv)[3], bool back_copies,
+                                                Rgb8 flat, Rgb8 flat_spec, const int32_t* rows);
+  [[gnu::always_inline]] inline void clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3],
+                                                  ScreenVertex* const (&sv)[3],
+                                                  const ClipCoord (&clip)[3], uint8_t oc_or,
+                                                  bool back_colored, Rgb8 flat, Rgb8 flat_spec);
 
   // rows: the triangle's first and last row when classify() already passed it (its tests are
   // not repeated), else nullptr.
