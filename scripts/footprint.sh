@@ -20,8 +20,8 @@
 #      complete, and the stack high-water mark the image measures (stack_probe.hpp) must not
 #      exceed the static bound of the reset path — a static analysis that underestimates fails
 #      here. Frames of the same configuration must be identical on every core (integer code);
-#   5. prints a markdown table per core and the RAM breakdown by store (nm -S of the image's
-#      g_store_* arrays), and, for Cortex-M0+ trees, which configurations fit the micro:bit
+#   5. prints a markdown table per core and the RAM breakdown by store (the sizes the phong
+#      image prints), and, for Cortex-M0+ trees, which configurations fit the micro:bit
 #      (flash <= its FLASH, RAM + worst-case stack <= its RAM; firmware/common/microbit.ld).
 #      With --write-docs the report goes to docs/measurements/footprint.md when every check
 #      passed (scripts/write_measurements.py); it is then printed at the end, not as it runs.
@@ -51,12 +51,14 @@ done
 
 # Calls through pointers in these images, for stack_usage.py: the renderer calls the sink's
 # virtual methods and the span routines of its families; textured and Phong spans call texel
-# fetchers; Reset_Handler calls the static constructors (none: the images constant-initialise).
+# fetchers; the front end calls the renderer's admission test; Reset_Handler calls the static
+# constructors (none: the images constant-initialise).
 indirect_rules=(
-  --indirect-from 'lr::Renderer<.*>::(render|raster_triangle)\('
+  --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|raster_triangle)\('
   'OrderedStripSink<.*>::|lr::StripSink<.*>::(retains_frame|keep)\(|lr::fill_span<|lr::fill_tex_span<|lr::fill_phong_span<'
   --indirect-from 'lr::(detail::)?fill_(tex_span_body|tex_span|phong_span)<' 'lr::fetch_batch<'
   --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'
+  --indirect-from 'lr::FrontEnd::draw(_screen)?\(' 'lr::admits<'
 )
 
 # The limits of the micro:bit (firmware/common/microbit.ld), in bytes.
@@ -187,9 +189,10 @@ for tree in "${trees[@]}"; do
     # The store breakdown, from the image with every store (Phong: also its surfaces).
     if [[ $cfg == phong ]]; then
       declare -A st=()
-      while read -r _ size _ name; do
-        st[${name##*g_store_}]=$((16#$size))
-      done < <("${prefix}nm" -S -C "$elf" | grep 'g_store_')
+      # The image prints its stores' sizes in this order (firmware/footprint/main.cpp).
+      read -r -a sizes <<<"$(sed -n 's/^footprint: stores \(.*\)/\1/p' <<<"$run")"
+      names=(vertices triangles buckets active active_index depth strip_buffers draws surfaces pixel_lights)
+      for i in "${!names[@]}"; do st[${names[$i]}]=${sizes[$i]:-0}; done
       all=0
       for k in "${!st[@]}"; do all=$((all + st[$k])); done
       breakdown="vertex store $(group "${st[vertices]:-0}") B, triangles $(group $(( ${st[triangles]:-0} + ${st[buckets]:-0} ))) B (with $(group "${st[buckets]:-0}") B of strip bucket heads), active $(group $(( ${st[active]:-0} + ${st[active_index]:-0} ))) B (with $(group "${st[active_index]:-0}") B of index), depth strip $(group "${st[depth]:-0}") B, strip buffers $(group "${st[strip_buffers]:-0}") B, draw records $(group "${st[draws]:-0}") B, surfaces for Phong $(group $(( ${st[surfaces]:-0} + ${st[pixel_lights]:-0} ))) B (with $(group "${st[pixel_lights]:-0}") B of prepared lighting); $(group "$all") B in all"

@@ -84,7 +84,9 @@ struct PreparedLighting {
   bool local_viewer = false;
   Vec3 eye{};           // world-space eye position (local viewer)
   Unit30 view{};        // world-space direction towards the viewer (infinite viewer)
-  Material material{};  // what it was prepared for: draws of equal materials share it
+  // What it was prepared for: draws of equal materials share it. Zero by default (not GL's
+  // default material), so that a static store of prepared lighting stays in .bss.
+  Material material{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, 0};
   // Whether lighting needs the surface position (a point light or the local viewer).
   bool needs_position() const { return any_point || local_viewer; }
 };

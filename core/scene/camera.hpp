@@ -1,9 +1,19 @@
-// Camera matrices with the meaning of gluPerspective and gluLookAt (DESIGN.md §4).
+// The camera of a frame, and its matrices with the meaning of gluPerspective and gluLookAt
+// (DESIGN.md §4).
 #pragma once
 
 #include "core/math/mat4.hpp"
+#include "core/math/vec.hpp"
 
 namespace lr {
+
+// View and projection matrices (OpenGL meaning), and the eye position in world space (for the
+// local viewer).
+struct Camera {
+  Mat4 view = Mat4::identity();
+  Mat4 projection = Mat4::identity();
+  Vec3 eye{};
+};
 
 // fovy_degrees in (0, 180), aspect > 0, 0 < near < far; all Q16.16. Depth maps near -> -1 and
 // far -> +1 in NDC. Returns false for arguments outside those ranges (out unchanged).

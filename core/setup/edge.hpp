@@ -71,13 +71,4 @@ struct EdgeWalker {
   int32_t column() const { return (x + (kSubpixel - 1)) >> kSubpixelBits; }
 };
 
-// First row whose centre lies strictly below y (subpixels): rows with centre in (y, ...].
-constexpr int32_t first_row_below(int32_t y) {
-  return static_cast<int32_t>(floor_div(int64_t{y} - kHalfPixel, kSubpixel)) + 1;
-}
-// Last row whose centre lies at or above y: rows with centre in (..., y].
-constexpr int32_t last_row_at_or_above(int32_t y) {
-  return static_cast<int32_t>(floor_div(int64_t{y} - kHalfPixel, kSubpixel));
-}
-
 }  // namespace lr

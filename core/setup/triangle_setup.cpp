@@ -94,7 +94,7 @@ PlaneBasis::PlaneBasis(const ScreenVertex* const v[3]) {
   ey1 = v[1]->y - y0;
   ex2 = v[2]->x - x0;
   ey2 = v[2]->y - y0;
-  const int64_t signed_area = ex1 * ey2 - ex2 * ey1;
+  const int64_t signed_area = signed_area2(*v[0], *v[1], *v[2]);
   flip = signed_area < 0;
   area = flip ? -signed_area : signed_area;
   inv = area > 0 ? ~uint64_t{0} / static_cast<uint64_t>(area) : 0;
@@ -172,8 +172,8 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
   order(1, 2);
   order(0, 1);
   int32_t x0 = v[0]->x, y0 = v[0]->y, x1 = v[1]->x, y1 = v[1]->y, x2 = v[2]->x, y2 = v[2]->y;
-  int64_t cross = (int64_t{x1} - x0) * (int64_t{y2} - y0) - (int64_t{x2} - x0) * (int64_t{y1} - y0);
-  t.long_is_left = cross > 0;  // middle vertex right of the long edge
+  // Vertices sorted top to bottom: a positive area puts the middle vertex right of the long edge.
+  t.long_is_left = signed_area2(*v[0], *v[1], *v[2]) > 0;
 
   int32_t first = in.first_row;
   t.row = static_cast<int16_t>(first);
@@ -277,7 +277,7 @@ void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const Pl
       // |rel| < 2^bits, q <= 2^30: |rel q| >> bits < 2^30.
       for (int i = 0; i < 3; ++i)
         a[i] = static_cast<uint32_t>(((rel[i][c] * q[i]) >> bits) + kPlaneBias);
-      t.spec[c] = make_plane(pb, a);
+      t.extra.position[c] = make_plane(pb, a);
     }
   }
 }
@@ -301,7 +301,7 @@ void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const
     const Color15 sc = ts.flat ? ts.flat_secondary : v[0]->spec;
     for (int c = 0; c < 3; ++c) {
       t.c[c] = Plane{channel(pc, c), 0, 0};
-      t.spec[c] = Plane{channel(sc, c), 0, 0};
+      t.extra.spec[c] = Plane{channel(sc, c), 0, 0};
     }
     t.const_colors = true;
     return;
@@ -315,7 +315,7 @@ void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const
       sp[i] = ts.perspective ? scale_by_q(sc, q[i]) : sc << 15;
     }
     t.c[c] = make_plane(pb, p);
-    t.spec[c] = make_plane(pb, sp);
+    t.extra.spec[c] = make_plane(pb, sp);
   }
 }
 

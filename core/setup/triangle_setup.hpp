@@ -15,7 +15,7 @@
 //   c_i  colour channel i, Q1.15 scaled by 2^15 = Q2.30, [0, 2^30] (affine colours)
 // Phong triangles (signed values stored with a bias of 2^31 so that the planes stay unsigned):
 //   c_i  normal component i (Q1.30) times q, in Q1.30: |value| <= q <= 2^30
-//   spec_i world position component i relative to org (Q16.16, clamped to int32) times q,
+//   position_i world position component i relative to org (Q16.16, clamped to int32) times q,
 //        shifted right by m_p (the bit length of the largest relative value): |value| < 2^30
 //   tan_i tangent component i (Q1.14 << 16) times q: |value| <= 2^30
 // Gradient numerators are < 2^57; gradients beyond 2^38 per pixel only occur for needles
@@ -25,62 +25,12 @@
 #include <cstdint>
 
 #include "core/output/color.hpp"
-#include "core/setup/edge.hpp"
+#include "core/setup/active_triangle.hpp"
+#include "core/texture/texture.hpp"
 #include "core/vertex/screen_vertex.hpp"
 #include "core/vertex/surface_vertex.hpp"
-#include "core/texture/texture.hpp"
 
 namespace lr {
-
-struct Plane {
-  uint32_t base = 0, gx = 0, gy = 0;
-  uint32_t at(int32_t c, int32_t r) const {
-    return base + gx * static_cast<uint32_t>(c) + gy * static_cast<uint32_t>(r);
-  }
-};
-
-enum class ColorPlanes : uint8_t { kNone, kPerspective, kAffine };
-
-struct ActiveTriangle {
-  EdgeWalker long_edge;    // top vertex to bottom vertex
-  EdgeWalker short_edge;   // the short edge of the current row (top, then bottom)
-  EdgeWalker bottom_edge;  // middle vertex to bottom vertex, positioned at row mid_row + 1
-  int16_t row = 0;         // next row to draw
-  int16_t mid_row = 0;     // last row drawn with the top short edge
-  int16_t last_row = 0;    // last row to draw (inclusive, clamped to the viewport)
-  uint16_t index = 0;      // binned triangle index: submission order
-  bool long_is_left = false;
-  uint8_t draw = 0;  // draw record of the triangle's state
-  // The colour planes this triangle has: the draw's, except that a perspective-correct draw's
-  // triangle gets affine planes when they are within half an 8-bit level of it (setup_triangle).
-  ColorPlanes colors = ColorPlanes::kNone;
-  Rgb8 flat{};  // colour of flat-shaded triangles
-  Plane z;
-  Plane q;
-  Plane c[3];
-  // Textured triangles. s, t: texel coordinates of level 0 in Q.8 relative to the triangle's
-  // own origin (off_s, off_t; see setup_texture), as s * q >> m_s (perspective) or s << m_s
-  // (affine).
-  Plane s, t;
-  Plane spec[3];  // secondary colour, in the format of c
-  int32_t off_s = 0, off_t = 0;
-  uint8_t m_s = 0, m_t = 0;
-  // Textured, modulated: the colours are the same at the three vertices; c[i].base and
-  // spec[i].base hold them (Q1.15) and there are no colour planes.
-  bool const_colors = false;
-  // Phong triangles: tangent planes, the position planes' origin (world Q16.16) and shift, and
-  // the bitangent's handedness (+-16384).
-  uint8_t m_p = 0;
-  int16_t handedness = 0;
-  Plane tan[3];
-  int32_t org[3] = {0, 0, 0};
-};
-
-inline constexpr uint32_t kPlaneBias = 1u << 31;
-// A biased signed plane value back to int32.
-constexpr int32_t unbias(uint32_t v) {
-  return static_cast<int32_t>(v - kPlaneBias);
-}
 
 // Per-pixel lighting attributes of a Phong triangle.
 struct PhongSetup {

@@ -28,14 +28,14 @@
 #include <utility>
 
 #include "core/output/color.hpp"
-#include "core/binning/frame_builder.hpp"
+#include "core/binning/draw_record.hpp"
 #include "core/math/inv_sqrt.hpp"
 #include "core/lighting/lighting.hpp"
 #include "core/lighting/lighting_table.hpp"
 #include "core/span/sampler.hpp"
 #include "core/span/span.hpp"
 #include "core/span/tex_span.hpp"
-#include "core/setup/triangle_setup.hpp"
+#include "core/setup/active_triangle.hpp"
 
 namespace lr {
 
@@ -90,13 +90,15 @@ constexpr uint32_t channel8(Texel t, int c) {
 
 }  // namespace detail
 
-template <class PF, bool kDepth, PixelLighting kMethod, bool kSecond, bool kTexture,
+// kPositionOrBilinear is the method's own switch: the exact method's position planes, the table
+// method's bilinear lookup (DrawRecord::position or ::table_bilinear).
+template <class PF, bool kDepth, PixelLighting kMethod, bool kPositionOrBilinear, bool kTexture,
           bool kNormalMap, bool kEnv>
 uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typename PF::Storage* px,
                          uint16_t* depth, int32_t col, int32_t row, int32_t count) {
   constexpr bool kExact = kMethod == PixelLighting::kExact;
-  constexpr bool kPosition = kExact && kSecond;   // exact: position planes
-  constexpr bool kBilinear = !kExact && kSecond;  // table: bilinear lookup
+  constexpr bool kPosition = kExact && kPositionOrBilinear;    // exact: position planes
+  constexpr bool kBilinear = !kExact && kPositionOrBilinear;  // table: bilinear lookup
   constexpr bool kUv = kTexture || kNormalMap;
   constexpr bool kSplit = kTexture || kEnv;
   // Whether the normal must be a true unit vector (else the table takes it as it comes).
@@ -111,7 +113,7 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
   uint32_t n[3], p[3] = {0, 0, 0}, tg[3] = {0, 0, 0};
   for (int c = 0; c < 3; ++c) {
     n[c] = tri.c[c].at(col, row);
-    if constexpr (kPosition) p[c] = tri.spec[c].at(col, row);
+    if constexpr (kPosition) p[c] = tri.extra.position[c].at(col, row);
     if constexpr (kNormalMap) tg[c] = tri.tan[c].at(col, row);
   }
   if constexpr (kUv) {
@@ -198,7 +200,7 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
       q += tri.q.gx;
       for (int c = 0; c < 3; ++c) {
         n[c] += tri.c[c].gx;
-        if constexpr (kPosition) p[c] += tri.spec[c].gx;
+        if constexpr (kPosition) p[c] += tri.extra.position[c].gx;
         if constexpr (kNormalMap) tg[c] += tri.tan[c].gx;
       }
       if constexpr (kUv) {

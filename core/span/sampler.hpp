@@ -21,15 +21,10 @@
 
 #include "core/span/dispatch.hpp"
 #include "core/span/span_state.hpp"
+#include "core/texture/texel_fetch.hpp"
 #include "core/texture/texture.hpp"
 
 namespace lr {
-
-using Texel = uint32_t;  // 0x00RRGGBB
-
-// Fetches n texels of level `level` at coordinates (s[i], t[i]).
-using FetchFn = void (*)(const Texture& tex, int level, const int32_t* s, const int32_t* t, int n,
-                         Texel* out);
 
 namespace detail {
 

@@ -12,7 +12,7 @@
 #include <utility>
 
 #include "core/output/color.hpp"
-#include "core/setup/triangle_setup.hpp"
+#include "core/setup/active_triangle.hpp"
 #include "core/span/dispatch.hpp"
 #include "core/span/span_state.hpp"
 

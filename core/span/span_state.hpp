@@ -28,15 +28,11 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/scene/mesh.hpp"
-#include "core/setup/triangle_setup.hpp"
+#include "core/scene/draw_state.hpp"
 #include "core/span/index_layout.hpp"
 #include "core/texture/texture.hpp"
 
 namespace lr {
-
-// How a textured span interpolates: exactly per pixel, exactly every span_len pixels, or affine.
-enum class TexPersp : uint8_t { kExact, kSpan, kAffine };
 
 enum class SpanFamily : uint8_t { kUntextured, kTextured, kPhong };
 

@@ -24,11 +24,11 @@
 #include <utility>
 
 #include "core/output/color.hpp"
-#include "core/binning/frame_builder.hpp"
+#include "core/binning/draw_record.hpp"
 #include "core/math/pow_table.hpp"
 #include "core/span/sampler.hpp"
 #include "core/span/span.hpp"
-#include "core/setup/triangle_setup.hpp"
+#include "core/setup/active_triangle.hpp"
 
 namespace lr {
 
@@ -139,7 +139,7 @@ struct PlaneValues {
     if (colors) {
       for (int k = 0; k < 3; ++k) {
         c[k] = tri.c[k].at(col, row);
-        c[k + 3] = tri.spec[k].at(col, row);
+        c[k + 3] = tri.extra.spec[k].at(col, row);
       }
     }
   }
@@ -205,7 +205,7 @@ uint32_t fill_tex_span_body(const ActiveTriangle& tri, const DrawRecord& d,
   if constexpr (kConstColors)
     for (int k = 0; k < 3; ++k) {
       prim[k] = clamp_c15(static_cast<int32_t>(tri.c[k].base));
-      sec[k] = clamp_c15(static_cast<int32_t>(tri.spec[k].base));
+      sec[k] = clamp_c15(static_cast<int32_t>(tri.extra.spec[k].base));
     }
   constexpr int kMaxChunk = 32;
   const Texture& tex = *d.texture;
@@ -228,7 +228,7 @@ uint32_t fill_tex_span_body(const ActiveTriangle& tri, const DrawRecord& d,
   gx.t = tri.t.gx;
   for (int k = 0; k < 3; ++k) {
     gx.c[k] = tri.c[k].gx;
-    gx.c[k + 3] = tri.spec[k].gx;
+    gx.c[k + 3] = tri.extra.spec[k].gx;
   }
 
   int32_t affine_lod = 0;

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "core/math/fixed.hpp"
 #include "core/output/color.hpp"
 
 namespace lr {
@@ -11,6 +12,15 @@ namespace lr {
 inline constexpr int kSubpixelBits = 8;                   // DESIGN.md §3 default
 inline constexpr int32_t kSubpixel = 1 << kSubpixelBits;  // subpixels per pixel
 inline constexpr int32_t kHalfPixel = kSubpixel / 2;
+
+// First row whose centre lies strictly below y (subpixels): rows with centre in (y, ...].
+constexpr int32_t first_row_below(int32_t y) {
+  return static_cast<int32_t>(floor_div(int64_t{y} - kHalfPixel, kSubpixel)) + 1;
+}
+// Last row whose centre lies at or above y: rows with centre in (..., y].
+constexpr int32_t last_row_at_or_above(int32_t y) {
+  return static_cast<int32_t>(floor_div(int64_t{y} - kHalfPixel, kSubpixel));
+}
 
 // Largest viewport side. Guard-band clipping keeps every snapped coordinate within
 // [-8192 - W/2, 8192 + W/2] pixels, so |x|, |y| < 2^14 pixels = 2^22 subpixels and edge deltas
@@ -31,8 +41,27 @@ struct ScreenVertex {
   Color15 color{};       // lit or given colour (the primary colour when textured and lit)
   Color15 spec{};        // secondary (specular) colour of textured, lit draws; else 0
   uint8_t outcode = 0;   // clip planes this vertex is outside of (0: projected fields valid)
-  uint8_t unlit = 0;     // vertex stage: 1 while its colour waits for its first drawn triangle
+  uint8_t color_pending = 0;  // vertex stage: 1 while its colour waits for the first triangle
+                              // that is drawn with it (lit Gouraud: vertices are lit lazily)
 };
 static_assert(sizeof(ScreenVertex) == 40);
+
+// Twice the signed area of the triangle (a, b, c) on the display, from the snapped subpixel
+// positions (subpixels^2): (b - a) x (c - a). |area| < 2^47 inside the guard band, exact in int64.
+constexpr int64_t signed_area2(const ScreenVertex& a, const ScreenVertex& b,
+                               const ScreenVertex& c) {
+  return (int64_t{b.x} - a.x) * (int64_t{c.y} - a.y) - (int64_t{c.x} - a.x) * (int64_t{b.y} - a.y);
+}
+
+// Facing, GL's default (glFrontFace(GL_CCW)): a triangle is front-facing when its vertices run
+// counter-clockwise in NDC, where y points up. The display's y points down, which mirrors the
+// winding: counter-clockwise in NDC is clockwise on the display, a negative signed_area2.
+// A zero area is neither front- nor back-facing (such triangles cover no pixel and are culled).
+constexpr bool front_facing(int64_t area2) {
+  return area2 < 0;
+}
+constexpr bool back_facing(int64_t area2) {
+  return area2 > 0;
+}
 
 }  // namespace lr

@@ -74,17 +74,19 @@ constexpr size_t kActive = 5000;
 constexpr size_t kActiveSmall = 1024;
 constexpr uint16_t kTableSize = 32;
 
-std::array<lr::ScreenVertex, kVertexCapacity> g_vertices{};
-std::array<lr::BinnedTriangle, kTriangleCapacity> g_triangles{};
-std::array<lr::DrawRecord, 4> g_draws{};
-std::array<uint16_t, kStrips> g_buckets{};
-std::array<lr::ActiveTriangle, kActive> g_active{};
-std::array<uint16_t, 2 * kActive> g_active_index{};
-std::array<uint16_t, kStripPixels> g_depth{};
-std::array<lr::SurfaceVertex, kSurfaceCapacity> g_surfaces{};
 // Phong draws: one lighting table and one prepared lighting per material (the cube has two).
-std::array<uint32_t, 2 * lr::lighting_table_words(kTableSize, false)> g_tables{};
-std::array<lr::PreparedLighting, 2> g_pixel_lights{};
+constexpr lr::FrameCapacities kCapacities{
+    .width = kWidth,
+    .height = kHeight,
+    .strip_height = kStripRows,
+    .vertices = kVertexCapacity,
+    .triangles = kTriangleCapacity,
+    .draws = 4,
+    .active = kActive,
+    .surfaces = kSurfaceCapacity,
+    .lighting_table_words = 2 * lr::lighting_table_words(kTableSize, false),
+    .pixel_lights = 2};
+lr::StaticFrameStorage<kCapacities> g_store;
 std::array<std::array<Pixel, kStripPixels>, 2> g_strips{};
 
 lr::Renderer<PF, kStripRows> g_renderer;
@@ -110,16 +112,9 @@ struct Prepared {
 
 bool prepare(const bench::BenchCase& c, Prepared& p) {
   const size_t active = c.mesh == bench::Mesh3::kKnot64k ? kActive : kActiveSmall;
-  const lr::FrameStorage storage{g_vertices,
-                                 g_triangles,
-                                 g_draws,
-                                 g_buckets,
-                                 std::span(g_active).first(active),
-                                 std::span(g_active_index).first(2 * active),
-                                 g_depth,
-                                 g_surfaces,
-                                 g_tables,
-                                 g_pixel_lights};
+  lr::FrameStorage storage = g_store.storage();
+  storage.active = storage.active.first(active);
+  storage.active_index = storage.active_index.first(2 * active);
   if (!check(g_renderer.configure(storage, kWidth, kHeight), "configure")) return false;
   if (!lr::fw::demo::make_camera(c.view, kWidth, kHeight, p.camera)) {
     sh::write("lr_bench: camera rejected\n");

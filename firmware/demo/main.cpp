@@ -46,14 +46,15 @@ constexpr size_t kTriangleCapacity = total_triangles() + scene::kClipMargin;
 constexpr size_t kActive = scene::kActiveCapacity;
 static_assert(kVertexCapacity <= 0xFFFF && kTriangleCapacity <= 0xFFFE, "uint16 indices");
 
-// Value-initialised: constant initialisation, so the stores go to .bss and cost no startup code.
-std::array<lr::ScreenVertex, kVertexCapacity> g_vertices{};
-std::array<lr::BinnedTriangle, kTriangleCapacity> g_triangles{};
-std::array<lr::DrawRecord, scene::asset::draw_count> g_draws{};
-std::array<uint16_t, kStrips> g_buckets{};
-std::array<lr::ActiveTriangle, kActive> g_active{};
-std::array<uint16_t, 2 * kActive> g_active_index{};
-std::array<uint16_t, kStripPixels> g_depth{};
+// Constant-initialised: the stores go to .bss and cost no startup code.
+constexpr lr::FrameCapacities kCapacities{.width = kWidth,
+                                          .height = kHeight,
+                                          .strip_height = kStripRows,
+                                          .vertices = kVertexCapacity,
+                                          .triangles = kTriangleCapacity,
+                                          .draws = scene::asset::draw_count,
+                                          .active = kActive};
+lr::StaticFrameStorage<kCapacities> g_store;
 std::array<std::array<PF::Storage, kStripPixels>, 2> g_strips{};
 
 // Only the span routines of the scene's draw states are linked (scene::kSpans, an lr::SpanSet:
@@ -72,9 +73,7 @@ bool check(lr::Status st, const char* what) {
 using lr::fw::report;
 
 bool render_frame() {
-  const lr::FrameStorage storage{g_vertices, g_triangles,    g_draws, g_buckets,
-                                 g_active,   g_active_index, g_depth};
-  if (!check(g_renderer.configure(storage, kWidth, kHeight), "configure")) return false;
+  if (!check(g_renderer.configure(g_store.storage(), kWidth, kHeight), "configure")) return false;
   lr::Camera camera;
   if (!lr::fw::demo::make_camera(scene::kView, kWidth, kHeight, camera)) {
     sh::write("lr_demo: camera rejected\n");

@@ -98,25 +98,19 @@ constexpr size_t kStripPixels = size_t{kWidth} * kStripRows;
 //    rims cross the most), 103 from other heights. 128 = the peak + 1/3 for other views. An
 //    overflow drops triangles (counted in FrameStats, and fatal here), it corrupts nothing.
 //  - Phong only: one SurfaceVertex per vertex-store entry, one PreparedLighting (one material).
-constexpr size_t kMaxTriangles = 1024;
-constexpr size_t kMaxVertices = 640;
-constexpr size_t kMaxActive = 128;
-constexpr size_t kMaxDraws = 2;
-constexpr size_t kSurfaces = kPhong ? kMaxVertices : 0;
-constexpr size_t kPixelLights = kPhong ? 1 : 0;
+constexpr lr::FrameCapacities kCapacities{.width = kWidth,
+                                          .height = kHeight,
+                                          .strip_height = kStripRows,
+                                          .vertices = 640,
+                                          .triangles = 1024,
+                                          .draws = 2,
+                                          .active = 128,
+                                          .surfaces = kPhong ? 640 : 0,
+                                          .pixel_lights = kPhong ? 1u : 0u};
 
-// Value-initialised: constant initialisation, zero-filled in .bss, no constructor at startup.
-// The names (g_store_*) are what scripts/footprint.sh reads the RAM breakdown from (nm -S).
-std::array<lr::ScreenVertex, kMaxVertices> g_store_vertices{};
-std::array<lr::BinnedTriangle, kMaxTriangles> g_store_triangles{};
-std::array<uint16_t, kStrips> g_store_buckets{};
-std::array<lr::DrawRecord, kMaxDraws> g_store_draws{};
-std::array<lr::ActiveTriangle, kMaxActive> g_store_active{};
-std::array<uint16_t, 2 * kMaxActive> g_store_active_index{};
-std::array<uint16_t, kStripPixels> g_store_depth{};
+// Constant-initialised, zero-filled in .bss, no constructor at startup.
+lr::StaticFrameStorage<kCapacities> g_store;
 std::array<std::array<Pixel, kStripPixels>, 2> g_store_strip_buffers{};
-std::array<lr::SurfaceVertex, kSurfaces> g_store_surfaces{};
-std::array<lr::PreparedLighting, kPixelLights> g_store_pixel_lights{};
 
 lr::Renderer<PF, kStripRows, kSpans> g_renderer;
 // The display: every strip folded into FNV-1a (the smoke test's checksum, so that frames compare
@@ -176,12 +170,7 @@ void report(const char* label, uint32_t value, bool hex = false) {
 }
 
 bool render_frame() {
-  lr::FrameStorage storage{g_store_vertices, g_store_triangles, g_store_draws,
-                           g_store_buckets,  g_store_active,    g_store_active_index,
-                           g_store_depth};
-  storage.surfaces = g_store_surfaces;
-  storage.pixel_lights = g_store_pixel_lights;
-  if (!check(g_renderer.configure(storage, kWidth, kHeight), "configure")) return false;
+  if (!check(g_renderer.configure(g_store.storage(), kWidth, kHeight), "configure")) return false;
 
   // The torus seen from 40 degrees above its plane, filling two thirds of the screen (52,000
   // pixels): every strip but a few at the top and bottom has work.
@@ -241,6 +230,20 @@ int main() {
     ok = false;
   }
   report("checksum", g_checksum.hash.value, true);
+  // The stores' bytes, for scripts/footprint.sh's RAM breakdown, in this order: vertices,
+  // triangles, buckets, active, active_index, depth, strip_buffers, draws, surfaces,
+  // pixel_lights.
+  static constexpr uint32_t kStoreBytes[] = {
+      sizeof(g_store.vertices),     sizeof(g_store.triangles), sizeof(g_store.buckets),
+      sizeof(g_store.active),       sizeof(g_store.active_index), sizeof(g_store.depth),
+      sizeof(g_store_strip_buffers), sizeof(g_store.draws),    sizeof(g_store.surfaces),
+      sizeof(g_store.pixel_lights)};
+  sh::write("footprint: stores");
+  for (const uint32_t bytes : kStoreBytes) {
+    sh::write(" ");
+    sh::write_dec(bytes);
+  }
+  sh::write("\n");
 
   const uint32_t* const lowest = fp::stack_high_water();
   report("sp at main", static_cast<uint32_t>(reinterpret_cast<uintptr_t>(sp_at_main)), true);

@@ -51,19 +51,17 @@ size_t DemoScene::triangle_count() {
 
 bool DemoScene::configure(int width, int height, std::string& error) {
   const Mesh& mesh = demo_knot::meshes[0];
-  const size_t w = static_cast<size_t>(std::max(width, 0));
-  const size_t h = static_cast<size_t>(std::max(height, 0));
-  vertices_.assign(mesh.positions.size() + kClipHeadroom, ScreenVertex{});
-  triangles_.assign(mesh.triangles.size() + kClipHeadroom, BinnedTriangle{});
-  draws_.assign(1, DrawRecord{});
-  buckets_.assign((h + kStripRows - 1) / kStripRows, 0);
-  active_.assign(kActive, ActiveTriangle{});
-  active_index_.assign(2 * kActive, 0);
-  depth_.assign(w * kStripRows, 0);
+  FrameCapacities caps;
+  caps.width = std::max(width, 0);
+  caps.height = std::max(height, 0);
+  caps.strip_height = kStripRows;
+  caps.vertices = mesh.positions.size() + kClipHeadroom;
+  caps.triangles = mesh.triangles.size() + kClipHeadroom;
+  caps.draws = 1;
+  caps.active = kActive;
+  store_ = std::make_unique<BasicFrameStorage<std::vector>>(caps);
   renderer_ = std::make_unique<SceneRenderer>();
-  const FrameStorage storage{vertices_, triangles_, draws_, buckets_,
-                             active_,   active_index_, depth_};
-  if (renderer_->configure(storage, width, height) != Status::kOk) {
+  if (renderer_->configure(store_->storage(), width, height) != Status::kOk) {
     error = "viewport " + std::to_string(width) + "x" + std::to_string(height) +
             " refused by the renderer (1.." + std::to_string(kMaxViewport) + " each way)";
     return false;

@@ -48,13 +48,7 @@ class DemoScene {
 
  private:
   int width_ = 0, height_ = 0;
-  std::vector<ScreenVertex> vertices_;
-  std::vector<BinnedTriangle> triangles_;
-  std::vector<DrawRecord> draws_;
-  std::vector<uint16_t> buckets_;
-  std::vector<ActiveTriangle> active_;
-  std::vector<uint16_t> active_index_;
-  std::vector<uint16_t> depth_;
+  std::unique_ptr<BasicFrameStorage<std::vector>> store_;
   std::unique_ptr<SceneRenderer> renderer_;
 };
 

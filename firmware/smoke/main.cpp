@@ -115,16 +115,15 @@ constexpr size_t kMaxVertices = kSmallRam ? 8 : 64;
 constexpr size_t kMaxTriangles = kSmallRam ? 8 : 64;
 constexpr size_t kMaxActive = kSmallRam ? 8 : 32;
 
-// Value-initialised ({}): constant initialisation, so the zero-filled stores go to .bss and
-// need no constructor at startup (default-initialised, records whose members are only partly
-// initialised, e.g. BinnedTriangle, would get a dynamic initialiser).
-std::array<lr::ScreenVertex, kMaxVertices> g_vertices{};
-std::array<lr::BinnedTriangle, kMaxTriangles> g_triangles{};
-std::array<lr::DrawRecord, kSmallRam ? 1 : 4> g_draws{};  // one draw in this scene
-std::array<uint16_t, kStrips> g_buckets{};
-std::array<lr::ActiveTriangle, kMaxActive> g_active{};
-std::array<uint16_t, 2 * kMaxActive> g_active_index{};
-std::array<uint16_t, kStripPixels> g_depth{};
+// Constant-initialised: the zero-filled stores go to .bss and need no constructor at startup.
+constexpr lr::FrameCapacities kCapacities{.width = kWidth,
+                                          .height = kHeight,
+                                          .strip_height = kStripRows,
+                                          .vertices = kMaxVertices,
+                                          .triangles = kMaxTriangles,
+                                          .draws = kSmallRam ? 1u : 4u,  // one draw in this scene
+                                          .active = kMaxActive};
+lr::StaticFrameStorage<kCapacities> g_store;
 std::array<std::array<Pixel, kStripPixels>, 2> g_strip_buffers{};
 
 // Gouraud only: no textured or Phong span routines linked (lr::SpanSet, core/span/span_state.hpp).
@@ -146,9 +145,7 @@ bool check(lr::Status st, const char* what) {
 using lr::fw::report;
 
 bool render_frame() {
-  const lr::FrameStorage storage{g_vertices, g_triangles,    g_draws, g_buckets,
-                                 g_active,   g_active_index, g_depth};
-  if (!check(g_renderer.configure(storage, kWidth, kHeight), "configure")) return false;
+  if (!check(g_renderer.configure(g_store.storage(), kWidth, kHeight), "configure")) return false;
 
   lr::Camera camera;
   camera.eye = {Fixed::from_double(1.6), Fixed::from_double(1.4), Fixed::from_double(3.6)};

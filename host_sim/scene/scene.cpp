@@ -252,26 +252,26 @@ template <int K>
 bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
               const SceneOptions& o, RenderResult& out, std::string& error) {
   using PF = Rgb888;
-  const size_t w = static_cast<size_t>(o.width), h = static_cast<size_t>(o.height);
-  std::vector<ScreenVertex> vertices(0xFFFF);
-  std::vector<BinnedTriangle> triangles(0xFFFE);
-  std::vector<DrawRecord> records(256);
-  std::vector<uint16_t> buckets((h + K - 1) / K);
-  std::vector<ActiveTriangle> active(4096);
-  std::vector<uint16_t> active_index(2 * active.size());
-  std::vector<uint16_t> depth(w * K);
   // Phong only: a SurfaceVertex per vertex-store entry, the lighting prepared per material, and
   // for kTable the table pool: one table per material, split (two words per sample) as textured
   // or environment-mapped draws need it.
   const bool phong = o.shading == Shading::kPhong;
   const size_t materials = phong ? distinct_materials(draws) : 0;
-  std::vector<SurfaceVertex> surfaces(phong ? vertices.size() : 0);
-  std::vector<PreparedLighting> pixel_lights(materials);
-  std::vector<uint32_t> tables(o.pixel_lighting == PixelLighting::kTable
-                                   ? materials * lighting_table_words(o.table.size, true)
-                                   : 0);
-  FrameStorage storage{vertices,     triangles, records,  buckets, active,
-                       active_index, depth,     surfaces, tables,  pixel_lights};
+  FrameCapacities caps;
+  caps.width = std::max(o.width, 0);
+  caps.height = std::max(o.height, 0);
+  caps.strip_height = K;
+  caps.vertices = 0xFFFF;
+  caps.triangles = 0xFFFE;
+  caps.draws = 256;
+  caps.active = 4096;
+  caps.surfaces = phong ? caps.vertices : 0;
+  caps.pixel_lights = materials;
+  caps.lighting_table_words = o.pixel_lighting == PixelLighting::kTable
+                                  ? materials * lighting_table_words(o.table.size, true)
+                                  : 0;
+  BasicFrameStorage<std::vector> store(caps);
+  const FrameStorage storage = store.storage();
   auto renderer = std::make_unique<Renderer<PF, K>>();
   if (renderer->configure(storage, o.width, o.height) != Status::kOk) {
     error = "viewport: width and height must be 1.." + std::to_string(kMaxViewport);
@@ -337,7 +337,7 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
       return false;
     }
   }
-  CaptureDisplay<PF> display(w * K);
+  CaptureDisplay<PF> display(static_cast<size_t>(caps.width) * K);  // one strip
   DepthCapture depth_capture;
   depth_capture.resize(o.width, o.height);
   Status s = renderer->render(display, &depth_capture);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/output/frame_stats.hpp"
+#include "core/scene/draw_state.hpp"
 #include "core/scene/material.hpp"
 #include "core/scene/mesh.hpp"
 #include "core/texture/texture.hpp"

@@ -63,17 +63,22 @@ Scene load_scene() {
 
 template <class PF, int K>
 struct Frame {
-  std::vector<ScreenVertex> vertices = std::vector<ScreenVertex>(4096);
-  std::vector<BinnedTriangle> triangles = std::vector<BinnedTriangle>(8192);
-  std::vector<DrawRecord> draws = std::vector<DrawRecord>(4);
-  std::vector<uint16_t> buckets = std::vector<uint16_t>((240 + K - 1) / K);
-  std::vector<ActiveTriangle> active = std::vector<ActiveTriangle>(4096);
-  std::vector<uint16_t> index = std::vector<uint16_t>(8192);
-  std::vector<uint16_t> depth = std::vector<uint16_t>(320 * K);
+  // Strip signatures kept, used only after configure(true) (enable_skipping).
+  BasicFrameStorage<std::vector> store{FrameCapacities{.width = 320,
+                                                       .height = 240,
+                                                       .strip_height = K,
+                                                       .vertices = 4096,
+                                                       .triangles = 8192,
+                                                       .draws = 4,
+                                                       .active = 4096,
+                                                       .strip_skipping = true}};
   Renderer<PF, K> renderer;
   NullSink<PF> sink{320 * K};
-  Frame() {
-    renderer.configure({vertices, triangles, draws, buckets, active, index, depth}, 320, 240);
+  Frame() { configure(false); }
+  void configure(bool skip) {
+    FrameStorage s = store.storage();
+    if (!skip) s.strip_inputs = {};
+    renderer.configure(s, 320, 240);
   }
 };
 
@@ -154,11 +159,8 @@ __attribute__((noinline)) Status counted_moving_frame(Frame<Rgb565Be, 8>& f, con
   return moving_frame(f, scene, cube, step);
 }
 
-void enable_skipping(Frame<Rgb565Be, 8>& f, std::vector<uint32_t>& inputs) {
-  inputs.assign(2 * 30, 0);
-  FrameStorage s{f.vertices, f.triangles, f.draws, f.buckets, f.active, f.index, f.depth};
-  s.strip_inputs = inputs;
-  f.renderer.configure(s, 320, 240);
+void enable_skipping(Frame<Rgb565Be, 8>& f) {
+  f.configure(true);
   f.sink.set_retain(true);
 }
 
@@ -167,8 +169,7 @@ void BM_MovingCubeOverKnot(benchmark::State& state) {
   static const Scene scene = load_scene();
   static const MovingCube cube;
   auto f = std::make_unique<Frame<Rgb565Be, 8>>();
-  std::vector<uint32_t> inputs;
-  if (kSkip) enable_skipping(*f, inputs);
+  if (kSkip) enable_skipping(*f);
   int step = 0;
   uint64_t frames = 0, skipped = 0, set_up = 0, tested = 0;
   for (auto _ : state) {
@@ -208,8 +209,7 @@ int main(int argc, char** argv) {
     Scene scene = load_scene();
     MovingCube cube;
     auto f = std::make_unique<Frame<Rgb565Be, 8>>();
-    std::vector<uint32_t> inputs;
-    if (skip) enable_skipping(*f, inputs);
+    if (skip) enable_skipping(*f);
     Status s = Status::kOk;
     for (int i = 0; i < (first ? 0 : 10) && s == Status::kOk; ++i)
       s = moving_frame(*f, scene, cube, i);

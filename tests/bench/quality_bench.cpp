@@ -243,17 +243,16 @@ Prepared prepare(const host::HostMesh& mesh, const host::SceneOptions& o) {
 
 template <class PF, int K>
 struct Frame {
-  std::vector<ScreenVertex> vertices = std::vector<ScreenVertex>(8192);
-  std::vector<BinnedTriangle> triangles = std::vector<BinnedTriangle>(8192);
-  std::vector<DrawRecord> draws = std::vector<DrawRecord>(16);
-  std::vector<uint16_t> buckets = std::vector<uint16_t>((kHeight + K - 1) / K);
-  std::vector<ActiveTriangle> active = std::vector<ActiveTriangle>(4096);
-  std::vector<uint16_t> index = std::vector<uint16_t>(8192);
-  std::vector<uint16_t> depth = std::vector<uint16_t>(kWidth * K);
+  BasicFrameStorage<std::vector> store{FrameCapacities{.width = kWidth,
+                                                       .height = kHeight,
+                                                       .strip_height = K,
+                                                       .vertices = 8192,
+                                                       .triangles = 8192,
+                                                       .draws = 16,
+                                                       .active = 4096}};
   Renderer<PF, K> renderer;
   Frame() {
-    if (renderer.configure({vertices, triangles, draws, buckets, active, index, depth}, kWidth,
-                           kHeight) != Status::kOk)
+    if (renderer.configure(store.storage(), kWidth, kHeight) != Status::kOk)
       die("configure failed");
   }
 };
@@ -385,7 +384,7 @@ Row measure_k(const Config& c, int timed_runs) {
                   uint64_t(st.triangles_binned) * st.bytes_per_binned_triangle +
                   uint64_t(st.max_active) * st.bytes_per_active_triangle + st.bytes_per_strip +
                   uint64_t(kWidth) * K * sizeof(Rgb565Be::Storage) +
-                  f->buckets.size() * sizeof(uint16_t) + p.draws.size() * sizeof(DrawRecord);
+                  f->store.buckets.size() * sizeof(uint16_t) + p.draws.size() * sizeof(DrawRecord);
   if (o.texture_object) row.texture_bytes = texture_bytes(*o.texture_object, o.mipmap);
 
   // Error: the same prepared frame in RGB888 with its depth, against the reference.

@@ -101,22 +101,22 @@ TEST(Capacity, InvalidIndicesAndCoordinatesAreRejectedAndCounted) {
 }
 
 TEST(Capacity, BadConfigurationIsRefused) {
-  std::vector<ScreenVertex> v(10);
-  std::vector<BinnedTriangle> t(10);
-  std::vector<DrawRecord> d(4);
-  std::vector<uint16_t> buckets(3), depth(64 * 8);
-  std::vector<ActiveTriangle> active(4);
-  std::vector<uint16_t> index(8);
-  FrameStorage s{v, t, d, buckets, active, index, depth};
+  BasicFrameStorage<std::vector> store(FrameCapacities{.width = 64,
+                                                       .height = 64,
+                                                       .strip_height = 8,
+                                                       .vertices = 10,
+                                                       .triangles = 10,
+                                                       .draws = 4,
+                                                       .active = 4});
+  FrameStorage s = store.storage();
+  s.buckets = s.buckets.first(3);
   auto r = std::make_unique<Renderer<Rgb888, 8>>();
   EXPECT_EQ(r->configure(s, 64, 64), Status::kInvalidArgument);  // 8 strips need 8 buckets
-  buckets.resize(8);
-  s.buckets = buckets;
+  s.buckets = store.storage().buckets;
   EXPECT_EQ(r->configure(s, 64, 64), Status::kOk);
   EXPECT_EQ(r->configure(s, 65, 64), Status::kInvalidArgument);  // depth too small for the width
   EXPECT_EQ(r->configure(s, 0, 64), Status::kInvalidArgument);
-  index.resize(7);
-  s.active_index = index;
+  s.active_index = s.active_index.first(7);
   EXPECT_EQ(r->configure(s, 64, 64), Status::kInvalidArgument);
 }
 

@@ -160,7 +160,7 @@ Mat4 place(double x, double y, double z, double rx, double ry) {
 class RigBase {
  public:
   virtual ~RigBase() = default;
-  FrameBuilder& r() { return *builder_; }
+  FrontEnd& r() { return *builder_; }
   host::ImageRgb8 render() {
     EXPECT_EQ(render_frame(), Status::kOk);
     return display_.image();
@@ -168,42 +168,30 @@ class RigBase {
 
  protected:
   RigBase()
-      : vertices_(256),
-        triangles_(256),
-        draws_(8),
-        buckets_((kH + kK - 1) / kK),
-        active_(64),
-        active_index_(128),
-        depth_(kW * kK),
-        surfaces_(256),
-        tables_(4 * lighting_table_words(32, true)),
-        pixel_lights_(8),
+      : store_(FrameCapacities{.width = kW,
+                               .height = kH,
+                               .strip_height = kK,
+                               .vertices = 256,
+                               .triangles = 256,
+                               .draws = 8,
+                               .active = 64,
+                               .surfaces = 256,
+                               .lighting_table_words = 4 * lighting_table_words(32, true),
+                               .pixel_lights = 8}),
         display_(kW * kK) {}
-  FrameStorage storage() {
-    return {vertices_,     triangles_, draws_,    buckets_, active_,
-            active_index_, depth_,     surfaces_, tables_,  pixel_lights_};
-  }
+  FrameStorage storage() { return store_.storage(); }
   virtual Status render_frame() = 0;
 
-  std::vector<ScreenVertex> vertices_;
-  std::vector<BinnedTriangle> triangles_;
-  std::vector<DrawRecord> draws_;
-  std::vector<uint16_t> buckets_;
-  std::vector<ActiveTriangle> active_;
-  std::vector<uint16_t> active_index_;
-  std::vector<uint16_t> depth_;
-  std::vector<SurfaceVertex> surfaces_;
-  std::vector<uint32_t> tables_;
-  std::vector<PreparedLighting> pixel_lights_;
+  BasicFrameStorage<std::vector> store_;
   host::CaptureDisplay<PF> display_;
-  FrameBuilder* builder_ = nullptr;
+  FrontEnd* builder_ = nullptr;
 };
 
 template <SpanSet kSet>
 class Rig final : public RigBase {
  public:
   Rig() : renderer_(std::make_unique<Renderer<PF, kK, kSet>>()) {
-    builder_ = renderer_.get();
+    builder_ = &renderer_->front_end();
     EXPECT_EQ(renderer_->configure(storage(), kW, kH), Status::kOk);
   }
 
@@ -214,7 +202,7 @@ class Rig final : public RigBase {
 
 // ---- The scene of a state --------------------------------------------------------------------
 
-// The draw state, lights and material that select `s` (the inverse of FrameBuilder::span_state).
+// The draw state, lights and material that select `s` (the inverse of span_state_of, core/span/admission.hpp).
 struct DrawSetup {
   DrawState state;
   LightSet lights;

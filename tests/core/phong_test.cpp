@@ -300,24 +300,20 @@ TEST(LightingTable, RefusesLightsThatDependOnPosition) {
   }
 }
 
-// Storage for tests of the stores' capacities.
-struct SmallStorage {
-  std::vector<ScreenVertex> vertices = std::vector<ScreenVertex>(8192);
-  std::vector<BinnedTriangle> triangles = std::vector<BinnedTriangle>(8192);
-  std::vector<DrawRecord> draws = std::vector<DrawRecord>(8);
-  std::vector<uint16_t> buckets = std::vector<uint16_t>(30);
-  std::vector<ActiveTriangle> active = std::vector<ActiveTriangle>(256);
-  std::vector<uint16_t> active_index = std::vector<uint16_t>(512);
-  std::vector<uint16_t> depth = std::vector<uint16_t>(320 * 8);
-  std::vector<SurfaceVertex> surfaces;
-  std::vector<uint32_t> tables;
-  std::vector<PreparedLighting> pls;
+// Storage for tests of the stores' capacities: 320x240 in strips of 8, room for 8192 vertices
+// and triangles, the given Phong stores.
+struct SmallStorage : BasicFrameStorage<std::vector> {
   SmallStorage(size_t n_surfaces, size_t n_table_words, size_t n_pls)
-      : surfaces(n_surfaces), tables(n_table_words), pls(n_pls) {}
-  FrameStorage storage() {
-    return {vertices,     triangles, draws,    buckets, active,
-            active_index, depth,     surfaces, tables,  pls};
-  }
+      : BasicFrameStorage(FrameCapacities{.width = 320,
+                                          .height = 240,
+                                          .strip_height = 8,
+                                          .vertices = 8192,
+                                          .triangles = 8192,
+                                          .draws = 8,
+                                          .active = 256,
+                                          .surfaces = n_surfaces,
+                                          .lighting_table_words = n_table_words,
+                                          .pixel_lights = n_pls}) {}
 };
 
 TEST(LightingTable, DrawsOfOneMaterialShareOneTable) {

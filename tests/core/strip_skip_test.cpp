@@ -70,32 +70,20 @@ Vec3 v3(double x, double y, double z) {
 // A renderer with its own storage and capture display; `skip` gives it strip signatures.
 struct Rig {
   explicit Rig(bool skip, size_t max_active = 256)
-      : vertices(8192),
-        triangles(8192),
-        draws(16),
-        buckets(kStrips),
-        active(max_active),
-        active_index(2 * max_active),
-        depth(size_t{kW} * kK),
-        surfaces(8192),
-        pixel_lights(8),
-        inputs(skip ? 2 * kStrips : 0),
+      : store(FrameCapacities{.width = kW,
+                              .height = kH,
+                              .strip_height = kK,
+                              .vertices = 8192,
+                              .triangles = 8192,
+                              .draws = 16,
+                              .active = max_active,
+                              .surfaces = 8192,
+                              .pixel_lights = 8,
+                              .strip_skipping = skip}),
         display(size_t{kW} * kK) {
-    FrameStorage s{vertices, triangles, draws, buckets, active, active_index, depth, surfaces};
-    s.pixel_lights = pixel_lights;
-    s.strip_inputs = inputs;
-    configured = renderer.configure(s, kW, kH);
+    configured = renderer.configure(store.storage(), kW, kH);
   }
-  std::vector<ScreenVertex> vertices;
-  std::vector<BinnedTriangle> triangles;
-  std::vector<DrawRecord> draws;
-  std::vector<uint16_t> buckets;
-  std::vector<ActiveTriangle> active;
-  std::vector<uint16_t> active_index;
-  std::vector<uint16_t> depth;
-  std::vector<SurfaceVertex> surfaces;
-  std::vector<PreparedLighting> pixel_lights;
-  std::vector<uint32_t> inputs;
+  BasicFrameStorage<std::vector> store;
   host::CaptureDisplay<PF> display;
   Renderer<PF, kK> renderer;
   Status configured = Status::kInvalidArgument;
@@ -284,18 +272,20 @@ TEST(StripSkip, ActiveOverflowTurnsSkippingOffForTheNextFrame) {
 }
 
 TEST(StripSkip, SignatureStorageIsChecked) {
-  std::vector<ScreenVertex> vertices(16);
-  std::vector<BinnedTriangle> triangles(16);
-  std::vector<DrawRecord> draws(1);
-  std::vector<uint16_t> buckets(kStrips), active_index(16), depth(size_t{kW} * kK);
-  std::vector<ActiveTriangle> active(8);
-  std::vector<uint32_t> inputs(2 * kStrips - 1);
-  FrameStorage s{vertices, triangles, draws, buckets, active, active_index, depth};
-  s.strip_inputs = inputs;
+  BasicFrameStorage<std::vector> store(FrameCapacities{.width = kW,
+                                                       .height = kH,
+                                                       .strip_height = kK,
+                                                       .vertices = 16,
+                                                       .triangles = 16,
+                                                       .active = 8,
+                                                       .strip_skipping = true});
+  FrameStorage s = store.storage();
+  constexpr size_t kWords = 2 * kStrips;
+  ASSERT_EQ(s.strip_inputs.size(), kWords);
+  s.strip_inputs = s.strip_inputs.first(kWords - 1);  // one word short
   Renderer<PF, kK> r;
   EXPECT_EQ(r.configure(s, kW, kH), Status::kInvalidArgument);
-  inputs.resize(2 * kStrips);
-  s.strip_inputs = inputs;
+  s.strip_inputs = store.storage().strip_inputs;
   EXPECT_EQ(r.configure(s, kW, kH), Status::kOk);
 }
 

@@ -106,19 +106,20 @@ void run(const Header& h, Bytes& in) {
   const size_t n_triangles = small ? size_t{h.b[14] & 127u} + 1u : 2048u;
   const size_t n_draws = small ? static_cast<size_t>(h.b[14] >> 7) + 1u : 8u;
   const size_t n_active = small ? size_t{h.b[15] % 16u} + 1u : 512u;
-  std::vector<ScreenVertex> vertices(n_vertices);
-  std::vector<BinnedTriangle> triangles(n_triangles);
-  std::vector<DrawRecord> draws(n_draws);
-  std::vector<uint16_t> buckets(static_cast<size_t>((height + K - 1) / K));
-  std::vector<ActiveTriangle> active(n_active);
-  std::vector<uint16_t> active_index(2 * n_active);
-  std::vector<uint16_t> depth(static_cast<size_t>(width) * K);
-  std::vector<SurfaceVertex> surfaces(small ? n_vertices / 2 + 1 : n_vertices);
-  std::vector<uint32_t> tables(small ? 200 : 2 * lighting_table_words(kMaxLightingTable, true));
-  std::vector<PreparedLighting> pixel_lights(small ? 1 : 4);
+  FrameCapacities caps;
+  caps.width = width;
+  caps.height = height;
+  caps.strip_height = K;
+  caps.vertices = n_vertices;
+  caps.triangles = n_triangles;
+  caps.draws = n_draws;
+  caps.active = n_active;
+  caps.surfaces = small ? n_vertices / 2 + 1 : n_vertices;
+  caps.lighting_table_words = small ? 200 : 2 * lighting_table_words(kMaxLightingTable, true);
+  caps.pixel_lights = small ? 1 : 4;
+  BasicFrameStorage<std::vector> store(caps);
   auto renderer = std::make_unique<Renderer<PF, K>>();
-  FrameStorage storage{vertices,     triangles, draws,    buckets, active,
-                       active_index, depth,     surfaces, tables,  pixel_lights};
+  const FrameStorage storage = store.storage();
   LR_FUZZ_CHECK(renderer->configure(storage, width, height) == Status::kOk);
 
   // Draw state and texture.

@@ -37,18 +37,16 @@ class Scene {
  public:
   // skip: strip input signatures, so that strips with unchanged inputs are not rendered.
   explicit Scene(bool skip = false)
-      : vertices_(256),
-        triangles_(256),
-        draws_(4),
-        buckets_(kStrips),
-        active_(64),
-        active_index_(128),
-        depth_(size_t{kWidth} * kRows),
-        inputs_(skip ? 2 * kStrips : 0),
+      : store_(FrameCapacities{.width = kWidth,
+                               .height = kHeight,
+                               .strip_height = kRows,
+                               .vertices = 256,
+                               .triangles = 256,
+                               .draws = 4,
+                               .active = 64,
+                               .strip_skipping = skip}),
         renderer_(std::make_unique<Renderer<PF, kRows, kUntexturedSpans>>()) {
-    FrameStorage s{vertices_, triangles_, draws_, buckets_, active_, active_index_, depth_};
-    s.strip_inputs = inputs_;
-    configured_ = renderer_->configure(s, kWidth, kHeight);
+    configured_ = renderer_->configure(store_.storage(), kWidth, kHeight);
   }
   Status configured() const { return configured_; }
   const FrameStats& stats() const { return renderer_->stats(); }
@@ -79,14 +77,7 @@ class Scene {
   }
 
  private:
-  std::vector<ScreenVertex> vertices_;
-  std::vector<BinnedTriangle> triangles_;
-  std::vector<DrawRecord> draws_;
-  std::vector<uint16_t> buckets_;
-  std::vector<ActiveTriangle> active_;
-  std::vector<uint16_t> active_index_;
-  std::vector<uint16_t> depth_;
-  std::vector<uint32_t> inputs_;
+  BasicFrameStorage<std::vector> store_;
   std::unique_ptr<Renderer<PF, kRows, kUntexturedSpans>> renderer_;
   Status configured_ = Status::kInvalidArgument;
 };

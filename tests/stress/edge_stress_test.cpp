@@ -361,8 +361,7 @@ Tri random_tri(std::mt19937_64& rng, int64_t extent) {
 }
 
 int64_t area2(const Tri& t) {
-  return (int64_t{t.v[1].x} - t.v[0].x) * (int64_t{t.v[2].y} - t.v[0].y) -
-         (int64_t{t.v[2].x} - t.v[0].x) * (int64_t{t.v[1].y} - t.v[0].y);
+  return signed_area2(t.v[0], t.v[1], t.v[2]);
 }
 
 TEST(AttributeDrift, SteppedPlanesStayWithinHalfAUnitPerPixelOfDistance) {

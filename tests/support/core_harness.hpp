@@ -19,21 +19,10 @@ class CoreHarness {
               size_t max_active = 1024, size_t max_draws = 64)
       : width_(width),
         height_(height),
-        vertices_(max_vertices),
-        triangles_(max_triangles),
-        draws_(max_draws),
-        buckets_(static_cast<size_t>((height + K - 1) / K)),
-        active_(max_active),
-        active_index_(2 * max_active),
-        depth_(static_cast<size_t>(width) * K),
-        surfaces_(max_vertices),
-        tables_(4 * lighting_table_words(kMaxLightingTable, true)),
-        pixel_lights_(16),
+        store_(capacities(width, height, max_vertices, max_triangles, max_active, max_draws)),
         display_(static_cast<size_t>(width) * K),
         renderer_(std::make_unique<Renderer<PF, K>>()) {
-    FrameStorage s{vertices_,     triangles_, draws_,    buckets_, active_,
-                   active_index_, depth_,     surfaces_, tables_,  pixel_lights_};
-    configured_ = renderer_->configure(s, width, height);
+    configured_ = renderer_->configure(store_.storage(), width, height);
   }
   Status configured() const { return configured_; }
   Renderer<PF, K>& renderer() { return *renderer_; }
@@ -52,16 +41,24 @@ class CoreHarness {
 
  private:
   int width_, height_;
-  std::vector<ScreenVertex> vertices_;
-  std::vector<BinnedTriangle> triangles_;
-  std::vector<DrawRecord> draws_;
-  std::vector<uint16_t> buckets_;
-  std::vector<ActiveTriangle> active_;
-  std::vector<uint16_t> active_index_;
-  std::vector<uint16_t> depth_;
-  std::vector<SurfaceVertex> surfaces_;
-  std::vector<uint32_t> tables_;
-  std::vector<PreparedLighting> pixel_lights_;
+  // Every store, with room for Phong draws: a surface per vertex, 16 materials, 4 tables.
+  static FrameCapacities capacities(int width, int height, size_t vertices, size_t triangles,
+                                    size_t active, size_t draws) {
+    FrameCapacities c;
+    c.width = width;
+    c.height = height;
+    c.strip_height = K;
+    c.vertices = vertices;
+    c.triangles = triangles;
+    c.draws = draws;
+    c.active = active;
+    c.surfaces = vertices;
+    c.lighting_table_words = 4 * lighting_table_words(kMaxLightingTable, true);
+    c.pixel_lights = 16;
+    return c;
+  }
+
+  BasicFrameStorage<std::vector> store_;
   host::CaptureDisplay<PF> display_;
   host::DepthCapture depth_capture_;
   std::unique_ptr<Renderer<PF, K>> renderer_;

@@ -1,0 +1,79 @@
+// The draw record: one per draw() call, what the strip loop and the span routines need of the
+// draw's state (which routine, its textures and lighting). Written by the front end when a draw
+// is added; the strip loop fills in the texel fetchers when it renders.
+#pragma once
+
+#include <cstdint>
+
+#include "core/lighting/lighting.hpp"
+#include "core/lighting/lighting_table.hpp"
+#include "core/math/mat4.hpp"
+#include "core/scene/draw_state.hpp"
+#include "core/texture/texel_fetch.hpp"
+#include "core/texture/texture.hpp"
+
+namespace lr {
+
+// Every default is zero bytes (false, nullptr, the enums' first value), so that a static store
+// of records stays in .bss; the front end sets every field a draw uses.
+struct DrawRecord {
+  ColorPlanes colors = ColorPlanes::kNone;  // untextured draws
+  bool depth = false;                       // the depth test (DrawState::depth_test)
+  bool flat = false;
+  const Texture* texture = nullptr;  // textured draws
+  // The texel fetchers (fetch, env_fetch, nmap_fetch) are chosen by the strip loop when it
+  // renders (StripLoop::resolve_fetchers), from the texture's format, the filter and the wraps,
+  // in the tables of its SpanSet: firmware links only the fetchers of the states its set admits.
+  FetchFn fetch = nullptr;
+  Filter filter = Filter::kNearest;  // the sampler's, for the texture and the normal map
+  TexPersp persp = TexPersp::kExact;
+  uint8_t span_len = 0;  // kSpan: 8, 16 or 32
+  TexEnv env = TexEnv::kModulate;
+  MipMode mip = MipMode::kNone;
+  Wrap wrap_s = Wrap::kRepeat, wrap_t = Wrap::kRepeat;  // the sampler's, as filter
+  // Phong (per-pixel lighting) draws.
+  bool phong = false;
+  PixelLighting method = PixelLighting::kExact;
+  bool two_sided = false;  // back faces get the negated normal
+  bool position = false;   // planes of the world position (point lights, local viewer)
+  bool table_bilinear = false;
+  const PreparedLighting* lighting = nullptr;  // exact mode; the viewer for environment maps
+  LightingTable table{};                       // table mode
+  const Texture* envmap = nullptr;
+  FetchFn env_fetch = nullptr;
+  const Texture* normal_map = nullptr;
+  FetchFn nmap_fetch = nullptr;
+  Mat4 view{};  // the camera's view matrix (environment maps: world to eye directions)
+  // Signature of everything above that decides pixels (core/binning/strip_inputs.hpp), with the
+  // material of per-pixel lighting; set once per draw when strip skipping is on.
+  uint32_t inputs = 0;
+};
+
+// The colour planes of an untextured draw (its record and its span state agree through this).
+constexpr ColorPlanes color_planes_of(const DrawState& state, bool has_color_planes) {
+  if (state.shading == Shading::kFlat || !has_color_planes) return ColorPlanes::kNone;
+  return state.perspective == Perspective::kAffine ? ColorPlanes::kAffine
+                                                   : ColorPlanes::kPerspective;
+}
+
+// The textured span mode of a Perspective (the span length aside).
+constexpr TexPersp tex_persp_of(Perspective p) {
+  return p == Perspective::kExact    ? TexPersp::kExact
+         : p == Perspective::kAffine ? TexPersp::kAffine
+                                     : TexPersp::kSpan;
+}
+
+// What selects a draw's span routine besides its DrawState, as the front end decides it from
+// the mesh and the lights.
+struct DrawKind {
+  bool phong = false;         // lit per pixel
+  bool color_planes = false;  // untextured, not flat: colour planes (else one colour)
+  bool position = false;      // the lighting needs the surface position (point lights, local
+                              // viewer): Phong's exact method interpolates it
+};
+
+// Whether the renderer links a routine for a draw and its textures (core/span/admission.hpp).
+// The front end refuses a draw it does not admit; nullptr admits every draw.
+using AdmitFn = bool (*)(const DrawState& state, const DrawKind& kind);
+
+}  // namespace lr

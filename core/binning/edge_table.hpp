@@ -1,0 +1,94 @@
+// The edge table: one list head per strip (its bucket), linked through the binned triangles in
+// submission order, so that the strip loop finds the triangles that start in a strip without
+// sorting. With strip signatures (strip_inputs.hpp) it also holds each strip's input signature.
+//
+// classify() is the binner's test of a triangle (facing, area, rows and columns it covers);
+// add() puts a classified triangle into the bucket of its first strip.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "core/binning/binned_triangle.hpp"
+#include "core/binning/outcome.hpp"
+#include "core/binning/strip_inputs.hpp"
+#include "core/scene/draw_state.hpp"
+#include "core/vertex/screen_vertex.hpp"
+
+namespace lr {
+
+class EdgeTable {
+ public:
+  // Takes the stores for a viewport of `height` rows in strips of `strip_height`: false when
+  // the buckets (one per strip) or the signatures (none, or two per strip) do not fit.
+  bool configure(std::span<BinnedTriangle> triangles, std::span<uint16_t> buckets,
+                 std::span<uint32_t> strip_inputs, int width, int height, int strip_height) {
+    const int strips = (height + strip_height - 1) / strip_height;
+    if (buckets.size() < static_cast<size_t>(strips)) return false;
+    if (!strip_inputs.empty() && strip_inputs.size() < 2 * static_cast<size_t>(strips))
+      return false;
+    triangles_ =
+        triangles.size() > kMaxStoreEntries - 1 ? triangles.first(kMaxStoreEntries - 1) : triangles;
+    buckets_ = buckets;
+    strip_inputs_ = strip_inputs;
+    width_ = width;
+    height_ = height;
+    strip_height_ = strip_height;
+    strips_ = strips;
+    return true;
+  }
+
+  // Empties every bucket; with signatures, starts each strip's from the frame's.
+  void begin_frame(uint32_t frame_signature) {
+    count_ = 0;
+    for (int i = 0; i < strips_; ++i) buckets_[static_cast<size_t>(i)] = kNoTriangle;
+    if (signing())
+      for (int i = 0; i < strips_; ++i) strip_inputs_[static_cast<size_t>(i)] = frame_signature;
+  }
+
+  // The binner's tests: kBinned when the triangle would be binned (capacity aside), with its
+  // first and last row (clamped to the viewport) in r0, r1. Out of line (edge_table.cpp):
+  // inlined into the front end's triangle loop, its many live values spill to the stack.
+  Outcome classify(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
+                   Cull cull, int32_t& r0, int32_t& r1) const;
+
+  bool full() const { return count_ >= triangles_.size(); }
+
+  // Appends a triangle to the bucket of the strip of row r0 and returns it for the caller to
+  // fill in (its `next` is set here). Not full().
+  BinnedTriangle& add(int32_t r0) {
+    const auto index = static_cast<uint16_t>(count_++);
+    BinnedTriangle& t = triangles_[index];
+    uint16_t& head = buckets_[static_cast<size_t>(r0 / strip_height_)];
+    t.next = head;
+    head = index;
+    return t;
+  }
+
+  // Mixes a triangle's signature into those of the strips of rows [r0, r1]. signing().
+  void sign(int32_t r0, int32_t r1, uint32_t triangle_signature) {
+    for (int32_t s = r0 / strip_height_; s <= r1 / strip_height_; ++s) {
+      uint32_t& sig = strip_inputs_[static_cast<size_t>(s)];
+      InputHash hs(sig);
+      hs.add(triangle_signature);
+      sig = hs.value();
+    }
+  }
+
+  bool signing() const { return !strip_inputs_.empty(); }
+  size_t size() const { return count_; }
+  int strips() const { return strips_; }
+  std::span<BinnedTriangle> triangles() const { return triangles_.first(count_); }
+  std::span<uint16_t> buckets() const { return buckets_.first(static_cast<size_t>(strips_)); }
+  std::span<uint32_t> strip_inputs() const { return strip_inputs_; }
+
+ private:
+  std::span<BinnedTriangle> triangles_{};
+  std::span<uint16_t> buckets_{};
+  std::span<uint32_t> strip_inputs_{};
+  int width_ = 0, height_ = 0, strip_height_ = 1, strips_ = 0;
+  size_t count_ = 0;
+};
+
+}  // namespace lr

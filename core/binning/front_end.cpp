@@ -1,0 +1,430 @@
+#include "core/binning/front_end.hpp"
+
+#include "core/lighting/lighting_table.hpp"
+#include "core/vertex/vertex_stage.hpp"
+
+namespace lr {
+namespace {
+
+Rgb8 to_rgb8_sat(Color15 c) {
+  auto b = [](uint16_t v) { return to_byte(clamp_c15(v)); };
+  return {b(c.r), b(c.g), b(c.b)};
+}
+
+// What draw() decides about a draw from its state, its mesh and the lights.
+struct DrawPlan {
+  DrawKind kind;
+  bool lit = false;
+  bool gouraud = false;  // per-vertex colours: lit Gouraud, or unlit and interpolated
+  bool textured = false;
+  bool split = false;      // textured, lit, modulated: primary and specular colours apart
+  bool two_sided = false;  // Gouraud and flat: back faces lit with the negated normal
+};
+
+// The checks of draw() (kInvalidArgument: nothing is added, nothing counted), and its plan.
+Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& lights, DrawPlan& p) {
+  const size_t n = mesh.positions.size();
+  if ((!mesh.normals.empty() && mesh.normals.size() != n) ||
+      (!mesh.colors.empty() && mesh.colors.size() != n))
+    return Status::kInvalidArgument;
+  p.lit = state.lighting;
+  // Phong is per-pixel lighting; unlit, it is the same as Gouraud.
+  p.kind.phong = p.lit && state.shading == Shading::kPhong;
+  p.gouraud = state.shading != Shading::kFlat && !p.kind.phong;
+  if (p.lit && state.shading != Shading::kFlat && mesh.normals.empty())
+    return Status::kInvalidArgument;
+  p.textured = state.texture != nullptr;
+  // Unlit meshes without vertex colours have one colour: no colour planes needed.
+  p.kind.color_planes = p.gouraud && (p.lit || !mesh.colors.empty() || p.textured);
+  p.kind.position = !lights.normal_only();
+  if (p.textured) {
+    if (validate(*state.texture) != Status::kOk) return Status::kInvalidArgument;
+    if (state.sampler.mip != MipMode::kNone && state.texture->level_count < 2)
+      return Status::kInvalidArgument;
+  }
+  if ((p.textured || (p.kind.phong && state.normal_map)) && !mesh.uvs.empty() &&
+      mesh.uvs.size() != n)
+    return Status::kInvalidArgument;
+  if (p.kind.phong) {
+    if (state.envmap && validate(*state.envmap) != Status::kOk) return Status::kInvalidArgument;
+    if (state.normal_map && (validate(*state.normal_map) != Status::kOk ||
+                             mesh.tangents.size() != n || mesh.uvs.size() != n))
+      return Status::kInvalidArgument;
+    if (state.pixel_lighting == PixelLighting::kTable &&
+        (!lights.normal_only() || state.table.size < kMinLightingTable ||
+         state.table.size > kMaxLightingTable))
+      return Status::kInvalidArgument;
+  }
+  // Textured, lit and modulated: primary and specular colours kept apart (GL's separate
+  // specular colour), so that the texel modulates the primary only.
+  p.split = p.textured && p.lit && state.sampler.env == TexEnv::kModulate;
+  p.two_sided = p.lit && lights.two_sided && !p.kind.phong;  // Phong flips at setup
+  return Status::kOk;
+}
+
+}  // namespace
+
+Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int strip_height,
+                           AdmitFn admit) {
+  configured_ = false;
+  if (width < 1 || height < 1 || width > kMaxViewport || height > kMaxViewport)
+    return Status::kInvalidArgument;
+  if (strip_height < 1 || strip_height > 32) return Status::kInvalidArgument;
+  if (s.draws.empty() || s.draws.size() > 256) return Status::kInvalidArgument;
+  if (!edges_.configure(s.triangles, s.buckets, s.strip_inputs, width, height, strip_height))
+    return Status::kInvalidArgument;
+  vertices_ =
+      s.vertices.size() > kMaxStoreEntries ? s.vertices.first(kMaxStoreEntries) : s.vertices;
+  draws_ = s.draws;
+  surfaces_ = s.surfaces;
+  lighting_tables_ = s.lighting_tables;
+  pixel_lights_ = s.pixel_lights;
+  width_ = width;
+  height_ = height;
+  strip_height_ = strip_height;
+  guard_.gx = 8192 / width > 1 ? 8192 / width : 1;
+  guard_.gy = 8192 / height > 1 ? 8192 / height : 1;
+  admit_ = admit;
+  configured_ = true;
+  return Status::kOk;
+}
+
+Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 background) {
+  if (!configured_) return Status::kInvalidArgument;
+  if (lights.count > kMaxLights) return Status::kInvalidArgument;
+  camera_ = camera;
+  lights_ = lights;
+  background_ = background;
+  vertex_count_ = draw_count_ = 0;
+  pixel_light_count_ = table_words_used_ = 0;
+  // What every strip depends on: the viewport, the background, the camera (per-pixel lighting
+  // and environment maps read it) and the lights (per-pixel lighting).
+  uint32_t frame_signature = 0;
+  if (edges_.signing()) {
+    InputHash h;
+    h.add(static_cast<uint32_t>(width_) | static_cast<uint32_t>(height_) << 16);
+    h.add(static_cast<uint32_t>(strip_height_));
+    h.add(background);
+    h.add(camera);
+    h.add(lights);
+    frame_signature = h.value();
+  }
+  edges_.begin_frame(frame_signature);
+  stats_ = FrameStats{};
+  stats_.bytes_per_vertex = sizeof(ScreenVertex);
+  stats_.bytes_per_binned_triangle = sizeof(BinnedTriangle);
+  return Status::kOk;
+}
+
+Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
+                      Cull cull, const int32_t* rows) {
+  const ScreenVertex& v0 = vertices_[a];
+  const ScreenVertex& v1 = vertices_[b];
+  const ScreenVertex& v2 = vertices_[c];
+  int32_t r0 = 0, r1 = 0;
+  if (rows != nullptr) {
+    r0 = rows[0];
+    r1 = rows[1];
+  } else {
+    const Outcome result = edges_.classify(v0, v1, v2, cull, r0, r1);
+    if (result != Outcome::kBinned) return result;
+  }
+  if (edges_.full()) return Outcome::kCapacity;
+  if (edges_.signing()) {
+    const DrawRecord& d = draws_[draw];
+    InputHash h(d.inputs);
+    h.add(v0);
+    h.add(v1);
+    h.add(v2);
+    if (d.phong) {
+      h.add(surfaces_[a]);
+      h.add(surfaces_[b]);
+      h.add(surfaces_[c]);
+    }
+    h.add(flat);
+    h.add(flat_spec);
+    edges_.sign(r0, r1, h.value());
+  }
+  BinnedTriangle& t = edges_.add(r0);
+  t.v[0] = a;
+  t.v[1] = b;
+  t.v[2] = c;
+  t.draw = draw;
+  t.flat = flat;
+  t.flat_spec = flat_spec;
+  t.reserved = 0;
+  ++stats_.triangles_binned;
+  return Outcome::kBinned;
+}
+
+// What draw()'s triangle loop reads of its draw.
+struct FrontEnd::MeshDraw {
+  const Mesh& mesh;
+  const DrawState& state;
+  const VertexStage& stage;
+  // Copies of the draw's plan and colours, not references to them.
+  const DrawPlan plan;
+  const VertexColors colors;
+  const size_t base;  // the mesh's first vertex store entry
+  const uint8_t draw;
+  // Back faces' colours (two-sided Gouraud): written before use on each back face; one set per
+  // draw, because a value-initialised local per triangle cost a 120-byte memset each.
+  ScreenVertex back_colors[3] = {};
+
+  // The colours of a triangle without colour planes: flat shading (lit by its face normal, or
+  // the last vertex's colour), or an unlit mesh's one colour.
+  [[gnu::always_inline]] void flat_colors(const std::array<uint16_t, 3>& tri,
+                                          const ScreenVertex& last, bool back, Rgb8& flat,
+                                          Rgb8& flat_spec) const {
+    if (!plan.gouraud && !plan.kind.phong) {
+      if (plan.lit) {
+        const LitColor lc = stage.light_face(colors, mesh.positions[tri[0]], mesh.positions[tri[1]],
+                                             mesh.positions[tri[2]], back);
+        flat = to_rgb8_sat(lc.primary);
+        if (plan.split) flat_spec = to_rgb8_sat(lc.secondary);
+      } else {
+        flat = to_rgb8_sat(last.color);  // GL's provoking vertex: the last one
+      }
+    } else if (!plan.kind.color_planes && !plan.kind.phong) {
+      flat = to_rgb8_sat(colors.material);
+    }
+  }
+};
+
+// One triangle of a draw: culled, lit (lit Gouraud: its vertices on first use; flat: its face),
+// clipped when it crosses a plane, and binned. This and the two ends below are always inlined
+// into draw(): one loop body, whose locals share one stack frame.
+void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
+  const size_t n = d.mesh.positions.size();
+  if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
+    ++stats_.rejected_invalid;
+    return;
+  }
+  uint16_t vi[3] = {static_cast<uint16_t>(d.base + tri[0]), static_cast<uint16_t>(d.base + tri[1]),
+                    static_cast<uint16_t>(d.base + tri[2])};
+  ScreenVertex* const sv[3] = {&vertices_[vi[0]], &vertices_[vi[1]], &vertices_[vi[2]]};
+  const uint8_t oc_or = sv[0]->outcode | sv[1]->outcode | sv[2]->outcode;
+  const uint8_t oc_and = sv[0]->outcode & sv[1]->outcode & sv[2]->outcode;
+  if (oc_or & kClipOutOfRange) {
+    ++stats_.rejected_invalid;
+    return;
+  }
+  if (oc_and != 0) {
+    ++stats_.clipped_away;
+    return;
+  }
+  int32_t rows[2] = {0, 0};
+  bool classified = false;
+  if (d.plan.lit && d.plan.gouraud) {
+    // Vertices are lit on first use by a triangle that is drawn: those only culled, off-screen
+    // or covering no pixel centre are never lit. bin() takes the rows classify() found here.
+    if (oc_or == 0 && !d.plan.two_sided) {
+      const Outcome r = edges_.classify(*sv[0], *sv[1], *sv[2], d.state.cull, rows[0], rows[1]);
+      classified = true;
+      if (r != Outcome::kBinned) {
+        count_outcome(stats_, false, r);
+        return;
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (sv[k]->color_pending) {
+        d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], false, *sv[k]);
+        sv[k]->color_pending = 0;
+      }
+    }
+  }
+  // Two-sided lighting: back faces are lit with the negated normal (GL decides per polygon).
+  ClipCoord clip[3];
+  if (oc_or != 0)
+    for (int k = 0; k < 3; ++k)
+      clip[k] = d.stage.clip(d.mesh.positions[tri[static_cast<size_t>(k)]]);
+  bool back = false;
+  if (d.plan.two_sided)
+    back =
+        oc_or == 0 ? back_facing(signed_area2(*sv[0], *sv[1], *sv[2])) : !front_facing_clip(clip);
+  if (back && d.plan.gouraud)
+    for (int k = 0; k < 3; ++k)
+      d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], true, d.back_colors[k]);
+  Rgb8 flat{}, flat_spec{};
+  d.flat_colors(tri, *sv[2], back, flat, flat_spec);
+  if (oc_or == 0) {
+    bin_inside(d, vi, sv, back && d.plan.gouraud, flat, flat_spec, classified ? rows : nullptr);
+    return;
+  }
+  clip_and_bin(d, vi, sv, clip, oc_or, back && d.plan.gouraud, flat, flat_spec);
+}
+
+// A triangle inside every plane. A two-sided Gouraud back face gets its own copies of its
+// vertices, with the back colours.
+void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&sv)[3],
+                          bool back_copies, Rgb8 flat, Rgb8 flat_spec, const int32_t* rows) {
+  if (back_copies) {
+    if (!vertices_fit(3)) {
+      count_outcome(stats_, false, Outcome::kVertexCapacity);
+      return;
+    }
+    for (int k = 0; k < 3; ++k) {
+      ScreenVertex& nv = vertices_[vertex_count_ + static_cast<size_t>(k)];
+      nv = *sv[k];
+      nv.color = d.back_colors[k].color;
+      nv.spec = d.back_colors[k].spec;
+      vi[k] = static_cast<uint16_t>(vertex_count_ + static_cast<size_t>(k));
+    }
+    vertex_count_ += 3;
+  }
+  const Outcome r = bin(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows);
+  count_outcome(stats_, r == Outcome::kBinned, r);
+}
+
+// A triangle crossing a plane: clipped in homogeneous space, the polygon's vertices projected
+// into the vertex store, binned as a fan. Clip coordinates are recomputed from the d.mesh rather
+// than stored per vertex: only triangles that cross a plane pay for it.
+void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* const (&sv)[3],
+                            const ClipCoord (&clip)[3], uint8_t oc_or, bool back_colored, Rgb8 flat,
+                            Rgb8 flat_spec) {
+  ++stats_.clipped;
+  ClipVertex poly[kMaxClipVertices];
+  for (int k = 0; k < 3; ++k) {
+    const ScreenVertex& src = back_colored ? d.back_colors[k] : *sv[k];
+    poly[k].p = clip[k];
+    poly[k].color = src.color;
+    poly[k].spec = src.spec;
+    poly[k].u = sv[k]->u;
+    poly[k].v = sv[k]->v;
+    if (d.plan.kind.phong) poly[k].surface = surfaces_[vi[k]];
+  }
+  const int m = clip_polygon(poly, 3, oc_or, d.stage.guard());
+  if (m < 3) {
+    ++stats_.clipped_away;
+    return;
+  }
+  if (!vertices_fit(static_cast<size_t>(m)) ||
+      (d.plan.kind.phong && !surfaces_fit(static_cast<size_t>(m)))) {
+    ++stats_.dropped_vertex_capacity;
+    return;
+  }
+  const auto first = static_cast<uint16_t>(vertex_count_);
+  int projected = 0;
+  for (int k = 0; k < m; ++k) {
+    ScreenVertex& nv = vertices_[vertex_count_ + static_cast<size_t>(k)];
+    nv.color = poly[k].color;
+    nv.spec = poly[k].spec;
+    nv.u = poly[k].u;
+    nv.v = poly[k].v;
+    nv.outcode = 0;
+    if (d.stage.project(poly[k].p, nv)) ++projected;
+    if (d.plan.kind.phong) surfaces_[vertex_count_ + static_cast<size_t>(k)] = poly[k].surface;
+  }
+  if (projected != m) {
+    ++stats_.clipped_away;
+    return;
+  }
+  vertex_count_ += static_cast<size_t>(m);
+  bool binned = false;
+  Outcome last = Outcome::kClippedAway;
+  for (int k = 1; k + 1 < m; ++k) {
+    const Outcome r =
+        bin(first, static_cast<uint16_t>(first + k), static_cast<uint16_t>(first + k + 1), d.draw,
+            flat, flat_spec, d.state.cull);
+    if (r == Outcome::kBinned)
+      binned = true;
+    else
+      last = r;
+  }
+  count_outcome(stats_, binned, last);
+}
+Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& material,
+                      const DrawState& state) {
+  if (!configured_) return Status::kInvalidArgument;
+  DrawPlan plan;
+  if (plan_draw(mesh, state, lights_, plan) != Status::kOk) return Status::kInvalidArgument;
+  // A state the renderer links no routine for is refused (nothing added, nothing counted).
+  if (!admitted(state, plan.kind)) return Status::kInvalidArgument;
+  const size_t n = mesh.positions.size();
+  const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
+  stats_.triangles_in += tri_count;
+  if (plan.kind.phong && !surfaces_fit(n)) {
+    stats_.dropped_vertex_capacity += tri_count;
+    return Status::kCapacity;
+  }
+  uint8_t draw_index = 0;
+  if (add_draw_record(state, plan.kind.color_planes, n, tri_count, draw_index) != Status::kOk)
+    return Status::kCapacity;
+
+  const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
+  PreparedLighting pl;
+  if (plan.lit) pl = prepare_lighting(lights_, material, view_dir, camera_.eye);
+  if (plan.kind.phong && add_phong_state(state, pl, draws_[draw_index]) != Status::kOk) {
+    --draw_count_;
+    stats_.dropped_triangle_capacity += tri_count;
+    return Status::kCapacity;
+  }
+  if (edges_.signing()) sign_draw(draw_index, plan.kind.phong ? &material : nullptr);
+  const uint32_t dropped_before = dropped();
+
+  VertexColors colors;
+  colors.lit = plan.lit;
+  colors.pending = plan.lit && plan.gouraud;
+  colors.split = plan.split;
+  colors.surfaces = plan.kind.phong;
+  colors.need_position = pl.needs_position();
+  colors.tangents = plan.kind.phong && state.normal_map != nullptr;
+  colors.material = material.diffuse;
+  colors.lighting = &pl;
+  const VertexStage stage(camera_, model, guard_, width_, height_);
+  const size_t base = vertex_count_;
+  vertex_count_ += n;
+  stats_.vertices_transformed += static_cast<uint32_t>(n);
+  stage.transform(mesh, colors, vertices_.data() + base,
+                  plan.kind.phong ? surfaces_.data() + base : nullptr);
+
+  MeshDraw d{mesh, state, stage, plan, colors, base, draw_index};
+  for (uint32_t t = 0; t < tri_count; ++t) draw_triangle(d, mesh.triangles[t]);
+  return dropped() > dropped_before ? Status::kCapacity : Status::kOk;
+}
+
+Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
+                             std::span<const std::array<uint16_t, 3>> triangles,
+                             const DrawState& state) {
+  if (!configured_) return Status::kInvalidArgument;
+  const bool gouraud = state.shading == Shading::kGouraud;
+  if (!admitted(state, {false, gouraud, !lights_.normal_only()})) return Status::kInvalidArgument;
+  const size_t n = vertices.size();
+  const auto tri_count = static_cast<uint32_t>(triangles.size());
+  stats_.triangles_in += tri_count;
+  uint8_t draw_index = 0;
+  if (add_draw_record(state, gouraud, n, tri_count, draw_index) != Status::kOk)
+    return Status::kCapacity;
+  if (edges_.signing()) sign_draw(draw_index, nullptr);
+  const uint32_t dropped_before = dropped();
+  const size_t base = vertex_count_;
+  const int32_t limit = (kMaxViewport * 3) << kSubpixelBits;  // inside the coordinate budget
+  for (size_t i = 0; i < n; ++i) {
+    ScreenVertex v = vertices[i];
+    if (v.w == 0) v.w = 1u << 16;
+    bool ok = v.x > -limit && v.x < limit && v.y > -limit && v.y < limit && v.z <= kDepthMax;
+    v.outcode = ok ? 0 : kClipOutOfRange;
+    vertices_[base + i] = v;
+  }
+  vertex_count_ += n;
+  for (const std::array<uint16_t, 3>& tri : triangles) {
+    if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
+      ++stats_.rejected_invalid;
+      continue;
+    }
+    const uint16_t vi[3] = {static_cast<uint16_t>(base + tri[0]),
+                            static_cast<uint16_t>(base + tri[1]),
+                            static_cast<uint16_t>(base + tri[2])};
+    if ((vertices_[vi[0]].outcode | vertices_[vi[1]].outcode | vertices_[vi[2]].outcode) != 0) {
+      ++stats_.rejected_invalid;
+      continue;
+    }
+    const Rgb8 flat = to_rgb8_sat(vertices_[vi[2]].color);
+    const Rgb8 flat_spec = to_rgb8_sat(vertices_[vi[2]].spec);
+    const Outcome r = bin(vi[0], vi[1], vi[2], draw_index, flat, flat_spec, state.cull);
+    count_outcome(stats_, r == Outcome::kBinned, r);
+  }
+  return dropped() > dropped_before ? Status::kCapacity : Status::kOk;
+}
+
+}  // namespace lr

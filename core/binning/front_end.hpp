@@ -1,0 +1,158 @@
+// The front half of a frame: the vertex stage and binning, up to the edge table.
+//
+// draw() transforms, lights, clips, projects and snaps a mesh's vertices into the vertex store
+// (core/vertex/vertex_stage.hpp), culls its triangles and bins the survivors by their first
+// strip (core/binning/edge_table.hpp). Nothing here depends on the pixel format or the strip
+// height's type: the strip loop reads what was binned through frame() (a BinnedFrame).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "core/binning/binned_triangle.hpp"
+#include "core/binning/draw_record.hpp"
+#include "core/binning/edge_table.hpp"
+#include "core/binning/outcome.hpp"
+#include "core/lighting/lighting.hpp"
+#include "core/math/mat4.hpp"
+#include "core/output/color.hpp"
+#include "core/output/frame_stats.hpp"
+#include "core/output/status.hpp"
+#include "core/scene/camera.hpp"
+#include "core/scene/draw_state.hpp"
+#include "core/scene/material.hpp"
+#include "core/scene/mesh.hpp"
+#include "core/vertex/clip.hpp"
+#include "core/vertex/screen_vertex.hpp"
+#include "core/vertex/surface_vertex.hpp"
+
+namespace lr {
+
+// The front end's stores (its part of FrameStorage, core/raster/frame_storage.hpp).
+struct FrontEndStorage {
+  std::span<ScreenVertex> vertices;
+  std::span<BinnedTriangle> triangles;
+  std::span<DrawRecord> draws;
+  std::span<uint16_t> buckets;
+  std::span<SurfaceVertex> surfaces{};
+  std::span<uint32_t> lighting_tables{};
+  std::span<PreparedLighting> pixel_lights{};
+  std::span<uint32_t> strip_inputs{};
+};
+
+// What the strip loop reads of a binned frame. It consumes the edge table as it goes: it
+// empties the buckets, relinks the triangles it carries over a skipped strip, fills in the
+// draws' texel fetchers and writes the second half of the strip signatures (the last rendered
+// frame's).
+struct BinnedFrame {
+  std::span<const ScreenVertex> vertices;
+  std::span<const SurfaceVertex> surfaces;  // Phong draws: indexed like vertices
+  std::span<BinnedTriangle> triangles;
+  std::span<DrawRecord> draws;
+  std::span<uint16_t> buckets;       // one list head per strip
+  std::span<uint32_t> strip_inputs;  // empty, or this frame's signatures then the last frame's
+  int width = 0, height = 0, strip_height = 1, strips = 0;
+  Rgb8 background{};
+};
+
+class FrontEnd {
+ public:
+  // Checks the stores against the viewport (width, height in [1, kMaxViewport]) and strip
+  // height (1..32). Must succeed before begin_frame. admit: the renderer's test of a draw's
+  // span state (nullptr: every draw is admitted).
+  Status configure(const FrontEndStorage& storage, int width, int height, int strip_height,
+                   AdmitFn admit = nullptr);
+  // Refuses every call until the next successful configure().
+  void deconfigure() { configured_ = false; }
+  bool configured() const { return configured_; }
+
+  // Starts a frame: clears the stores and the statistics.
+  Status begin_frame(const Camera& camera, const LightSet& lights, Rgb8 background);
+
+  // Adds a mesh (see Renderer::draw).
+  Status draw(const Mesh& mesh, const Mat4& model, const Material& material,
+              const DrawState& state);
+  // Adds triangles already in screen space (see Renderer::draw_screen).
+  Status draw_screen(std::span<const ScreenVertex> vertices,
+                     std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
+
+  const FrameStats& stats() const { return stats_; }
+  // The strip loop counts its work into the same statistics.
+  FrameStats& mutable_stats() { return stats_; }
+  std::span<const ScreenVertex> screen_vertices() const { return vertices_.first(vertex_count_); }
+  std::span<const BinnedTriangle> binned_triangles() const { return edges_.triangles(); }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int strip_height() const { return strip_height_; }
+  GuardBand guard_band() const { return guard_; }
+
+  // The frame binned since begin_frame().
+  BinnedFrame frame() {
+    return {vertices_.first(vertex_count_),
+            surfaces_,
+            edges_.triangles(),
+            draws_.first(draw_count_),
+            edges_.buckets(),
+            edges_.strip_inputs(),
+            width_,
+            height_,
+            strip_height_,
+            edges_.strips(),
+            background_};
+  }
+
+ private:
+  struct MeshDraw;  // one draw()'s context (front_end.cpp)
+  // draw()'s loop body and its two ends (front_end.cpp, always inlined into draw()).
+  [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
+  [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
+                                                ScreenVertex* const (&sv)[3], bool back_copies,
+                                                Rgb8 flat, Rgb8 flat_spec, const int32_t* rows);
+  [[gnu::always_inline]] inline void clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3],
+                                                  ScreenVertex* const (&sv)[3],
+                                                  const ClipCoord (&clip)[3], uint8_t oc_or,
+                                                  bool back_colored, Rgb8 flat, Rgb8 flat_spec);
+
+  // rows: the triangle's first and last row when classify() already passed it (its tests are
+  // not repeated), else nullptr.
+  Outcome bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
+              Cull cull, const int32_t* rows = nullptr);
+  // Refuses a draw the renderer links no routine for.
+  bool admitted(const DrawState& state, const DrawKind& kind) const {
+    return admit_ == nullptr || admit_(state, kind);
+  }
+  // Draw records (draw_records.cpp): a new record for a draw's state, its per-pixel lighting,
+  // its signature once final.
+  Status add_draw_record(const DrawState& state, bool color_planes, size_t vertices,
+                         uint32_t triangles, uint8_t& index);
+  Status add_phong_state(const DrawState& state, const PreparedLighting& pl, DrawRecord& r);
+  void sign_draw(uint8_t index, const Material* per_pixel_material);
+  bool surfaces_fit(size_t vertices) const {
+    return surfaces_.size() >= vertex_count_ && vertices <= surfaces_.size() - vertex_count_;
+  }
+  bool vertices_fit(size_t vertices) const { return vertices <= vertices_.size() - vertex_count_; }
+  uint32_t dropped() const {
+    return stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity;
+  }
+
+  std::span<ScreenVertex> vertices_{};
+  std::span<DrawRecord> draws_{};
+  std::span<SurfaceVertex> surfaces_{};
+  std::span<uint32_t> lighting_tables_{};
+  std::span<PreparedLighting> pixel_lights_{};
+  EdgeTable edges_{};
+  FrameStats stats_{};
+  int width_ = 0, height_ = 0, strip_height_ = 1;
+  GuardBand guard_{};
+  Camera camera_{};
+  LightSet lights_{};
+  Rgb8 background_{};
+  size_t vertex_count_ = 0, draw_count_ = 0;
+  size_t pixel_light_count_ = 0, table_words_used_ = 0;
+  bool configured_ = false;
+  AdmitFn admit_ = nullptr;
+};
+
+}  // namespace lr

@@ -1,0 +1,342 @@
+// The strip loop: a binned frame rasterized strip by strip into a display sink.
+//
+// StripLoop<PF, K, kSpans>: PF the strip's pixel format, K the strip height in rows (1..32),
+// kSpans the span states it links routines for (span_state.hpp). Per strip: triangles whose
+// first row falls in it join the active list (kept in submission order, so depth ties and
+// no-depth drawing resolve as in GL) and are set up (core/setup/triangle_setup.hpp); each active
+// triangle fills its rows of the strip with its span routine; finished triangles leave; the
+// strip goes to the sink. With strip signatures, a strip whose inputs did not change since the
+// last rendered frame is stepped over instead (skip_strip).
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "core/binning/front_end.hpp"
+#include "core/output/depth_sink.hpp"
+#include "core/output/frame_stats.hpp"
+#include "core/output/status.hpp"
+#include "core/output/strip_sink.hpp"
+#include "core/raster/strip_fill.hpp"
+#include "core/setup/active_triangle.hpp"
+#include "core/setup/triangle_setup.hpp"
+#include "core/span/phong_span.hpp"
+#include "core/span/span.hpp"
+#include "core/span/span_state.hpp"
+#include "core/span/tex_span.hpp"
+
+namespace lr {
+
+// The strip loop's stores (its part of FrameStorage, core/raster/frame_storage.hpp).
+struct StripStorage {
+  std::span<ActiveTriangle> active;  // triangles being rasterized at once
+  std::span<uint16_t> active_index;  // 2 x active.size(): draw order and free slots
+  std::span<uint16_t> depth;         // width x K (16-bit depth of one strip)
+};
+
+template <class PF, int K, SpanSet kSpans = kAllSpans>
+class StripLoop {
+  static_assert(K >= 1 && K <= 32, "strip height K must be 1..32");
+
+ public:
+  using Pixel = typename PF::Storage;
+
+  // Checks the stores against the viewport width; forgets the strip signatures.
+  bool configure(const StripStorage& s, int width) {
+    if (s.depth.size() < static_cast<size_t>(width) * static_cast<size_t>(K)) return false;
+    if (s.active_index.size() < 2 * s.active.size() || s.active.size() > kMaxStoreEntries)
+      return false;
+    storage_ = s;
+    inputs_known_ = false;
+    return true;
+  }
+
+  // Rasterizes `frame` into the sink, counting into `stats` (see Renderer::render). Always
+  // inlined into Renderer::render, its one caller: the renderer's render() is then the strip
+  // loop itself, which the compiler inlines where the sink's type is known (direct calls).
+  [[gnu::always_inline]] Status render(const BinnedFrame& frame, FrameStats& stats,
+                                       StripSink<PF>& sink, DepthSink* depth_sink);
+
+  // Forgets the strip signatures of the last frame (see Renderer::invalidate_strips).
+  void invalidate_strips() { inputs_known_ = false; }
+
+ private:
+  void activate(int strip);
+  void skip_strip(int strip, int y0, int rows);
+  void resolve_fetchers();
+  void raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows);
+  void retire(int next_row);
+
+  // Whether the set links the affine colour routine, without and with depth: only then may a
+  // perspective-colour triangle be given affine planes (setup_triangle).
+  static constexpr bool kAffineColors[2] = {
+      kUsedRoutines<kSpans>.untextured[untextured_index(false, ColorPlanes::kAffine)],
+      kUsedRoutines<kSpans>.untextured[untextured_index(true, ColorPlanes::kAffine)]};
+
+  StripStorage storage_{};
+  BinnedFrame frame_{};  // the frame being rendered
+  FrameStats* stats_ = nullptr;
+  size_t active_count_ = 0;
+  size_t free_count_ = 0;
+  bool inputs_known_ = false;  // strip_inputs' second half describes the last frame rendered
+};
+
+template <class PF, int K, SpanSet kSpans>
+inline Status StripLoop<PF, K, kSpans>::render(const BinnedFrame& frame, FrameStats& stats,
+                                               StripSink<PF>& sink, DepthSink* depth_sink) {
+  frame_ = frame;
+  stats_ = &stats;
+  resolve_fetchers();
+  const auto w = static_cast<size_t>(frame_.width);
+  stats.bytes_per_strip = static_cast<uint32_t>(w * K * (sizeof(Pixel) + sizeof(uint16_t)));
+  active_count_ = 0;
+  free_count_ = storage_.active.size();
+  uint16_t* free_slots = storage_.active_index.data() + storage_.active.size();
+  for (size_t i = 0; i < free_count_; ++i)
+    free_slots[i] = static_cast<uint16_t>(free_count_ - 1 - i);
+
+  // Until this frame has reached the display whole, the signatures describe nothing shown.
+  const bool had_inputs = inputs_known_;
+  inputs_known_ = false;
+  Status st =
+      sink.begin_frame(static_cast<uint16_t>(frame_.width), static_cast<uint16_t>(frame_.height));
+  if (st != Status::kOk) return st;
+  const bool may_skip = had_inputs && depth_sink == nullptr && sink.retains_frame();
+  uint32_t* inputs = frame_.strip_inputs.empty() ? nullptr : frame_.strip_inputs.data();
+  const auto last = static_cast<size_t>(frame_.strips);  // the last frame's half
+  const Pixel bg = PF::encode(frame_.background);
+  for (int s = 0; s < frame_.strips; ++s) {
+    const int y0 = s * K;
+    const int rows = std::min(K, frame_.height - y0);
+    const size_t count = w * static_cast<size_t>(rows);
+    const StripRect rect{0, static_cast<uint16_t>(y0), static_cast<uint16_t>(frame_.width),
+                         static_cast<uint16_t>(rows)};
+    if (inputs != nullptr) {
+      const auto i = static_cast<size_t>(s);
+      if (may_skip && inputs[i] == inputs[last + i]) {
+        skip_strip(s, y0, rows);
+        ++stats.strips_skipped;
+        ++stats.strips;
+        st = sink.keep(rect);
+        if (st != Status::kOk) return st;
+        continue;
+      }
+      inputs[last + i] = inputs[i];
+    }
+    StripLease<PF> lease;
+    st = sink.acquire(lease);
+    if (st != Status::kOk) return st;
+    std::span<Pixel> px = lease.pixels();
+    if (px.size() < count) return Status::kInvalidArgument;
+    fill_pixels(px.data(), count, bg);
+    activate(s);
+    std::span<uint16_t> depth = storage_.depth.first(count);
+    if (active_count_ == 0) {
+      ++stats.empty_strips;
+      if (depth_sink) fill_pixels(depth.data(), count, uint16_t{0xFFFF});
+    } else {
+      fill_pixels(depth.data(), count, uint16_t{0xFFFF});
+      const uint16_t* order = storage_.active_index.data();
+      for (size_t i = 0; i < active_count_; ++i)
+        raster_triangle(storage_.active[order[i]], px.data(), y0, rows);
+      retire(y0 + rows);
+    }
+    if (depth_sink) depth_sink->on_depth(rect, depth);
+    ++stats.strips;
+    st = sink.submit(rect, std::move(lease));
+    if (st != Status::kOk) return st;
+  }
+  st = sink.end_frame();
+  // A frame that dropped triangles for lack of active slots dropped them by what else was
+  // active, which a strip's signature does not describe: the next frame renders everything.
+  inputs_known_ = st == Status::kOk && inputs != nullptr && stats.dropped_active_capacity == 0;
+  return st;
+}
+
+// A strip whose inputs did not change: the triangles active in it are stepped over its rows
+// without drawing; those that start in it and end in it are never set up, those that go on are
+// handed to the next strip's bucket (in submission order), to be set up at that strip's first row.
+template <class PF, int K, SpanSet kSpans>
+void StripLoop<PF, K, kSpans>::skip_strip(int strip, int y0, int rows) {
+  const int next_row = y0 + rows;
+  const uint16_t* order = storage_.active_index.data();
+  for (size_t i = 0; i < active_count_; ++i) {
+    ActiveTriangle& t = storage_.active[order[i]];
+    walk_rows(t, std::min<int>(t.last_row, next_row - 1), [](int) {});
+  }
+  retire(next_row);
+
+  const std::span<BinnedTriangle> tris = frame_.triangles;
+  const std::span<uint16_t> buckets = frame_.buckets;
+  const int strips = frame_.strips;
+  uint16_t& head = buckets[static_cast<size_t>(strip)];
+  uint16_t carried = kNoTriangle, *tail = &carried;
+  if (strip + 1 < strips) {
+    for (uint16_t i = head; i != kNoTriangle; i = tris[i].next) {
+      const BinnedTriangle& bt = tris[i];
+      const int32_t ymax = std::max(
+          {frame_.vertices[bt.v[0]].y, frame_.vertices[bt.v[1]].y, frame_.vertices[bt.v[2]].y});
+      if (last_row_at_or_above(ymax) >= next_row) {
+        *tail = i;
+        tail = &tris[i].next;
+      }
+    }
+  }
+  *tail = kNoTriangle;
+  head = kNoTriangle;
+  // Both lists run from the latest submission to the earliest: merge them.
+  uint16_t& next = buckets[static_cast<size_t>(strip + 1 < strips ? strip + 1 : strip)];
+  uint16_t a = carried, b = strip + 1 < strips ? next : kNoTriangle, merged = kNoTriangle;
+  uint16_t* out = &merged;
+  while (a != kNoTriangle || b != kNoTriangle) {
+    uint16_t& pick = (b == kNoTriangle || (a != kNoTriangle && a > b)) ? a : b;
+    *out = pick;
+    out = &tris[pick].next;
+    pick = tris[pick].next;
+  }
+  *out = kNoTriangle;
+  if (strip + 1 < strips) next = merged;
+}
+
+// The texel fetchers of this frame's draws (DrawRecord): here, in the template, from the tables
+// of kSpans, so that a renderer references only the fetch routines its set admits (none without
+// textured or Phong states). The front end refused every draw whose textures the set does not
+// admit.
+template <class PF, int K, SpanSet kSpans>
+void StripLoop<PF, K, kSpans>::resolve_fetchers() {
+  if constexpr (kUsedRoutines<kSpans>.any_fetch()) {
+    for (DrawRecord& d : frame_.draws) {
+      if (d.texture != nullptr)
+        d.fetch = fetch_routine<kSpans>(d.texture->format, d.filter, d.wrap_s, d.wrap_t);
+      if (d.envmap != nullptr) d.env_fetch = env_fetch_routine<kSpans>(d.envmap->format);
+      if (d.normal_map != nullptr)
+        d.nmap_fetch = fetch_routine<kSpans>(d.normal_map->format, d.filter, d.wrap_s, d.wrap_t);
+    }
+  }
+}
+
+template <class PF, int K, SpanSet kSpans>
+void StripLoop<PF, K, kSpans>::activate(int strip) {
+  const std::span<BinnedTriangle> tris = frame_.triangles;
+  uint16_t& head = frame_.buckets[static_cast<size_t>(strip)];
+  size_t m = 0;
+  for (uint16_t i = head; i != kNoTriangle; i = tris[i].next) ++m;
+  if (m == 0) return;
+  // The list runs from the latest submission to the earliest: when the active list cannot take
+  // them all, the latest are the ones dropped.
+  size_t fit = std::min(m, free_count_);
+  stats_->dropped_active_capacity += static_cast<uint32_t>(m - fit);
+  uint16_t node = head;
+  for (size_t skip = m - fit; skip > 0; --skip) node = tris[node].next;
+  head = kNoTriangle;
+
+  // Merge from the back: existing entries are in ascending submission order, the bucket gives
+  // descending order.
+  uint16_t* order = storage_.active_index.data();
+  uint16_t* free_slots = order + storage_.active.size();
+  ptrdiff_t i = static_cast<ptrdiff_t>(active_count_) - 1;
+  ptrdiff_t out = static_cast<ptrdiff_t>(active_count_ + fit) - 1;
+  for (; node != kNoTriangle; node = tris[node].next) {
+    while (i >= 0 && storage_.active[order[i]].index > node) order[out--] = order[i--];
+    uint16_t slot = free_slots[--free_count_];
+    const BinnedTriangle& bt = tris[node];
+    const DrawRecord& dr = frame_.draws[bt.draw];
+    SetupInput in;
+    for (int k = 0; k < 3; ++k) in.v[k] = &frame_.vertices[bt.v[k]];
+    int32_t ymin = std::min({in.v[0]->y, in.v[1]->y, in.v[2]->y});
+    int32_t ymax = std::max({in.v[0]->y, in.v[1]->y, in.v[2]->y});
+    // Triangles carried over a skipped strip start at this strip's first row.
+    in.first_row = std::max<int32_t>({first_row_below(ymin), 0, strip * K});
+    in.last_row = std::min<int32_t>(last_row_at_or_above(ymax), frame_.height - 1);
+    in.colors = dr.texture ? ColorPlanes::kNone : dr.colors;
+    in.depth = dr.depth;
+    in.affine_colors_ok = dr.depth ? kAffineColors[1] : kAffineColors[0];
+    if (dr.phong) {
+      for (int k = 0; k < 3; ++k) in.phong.s[k] = &frame_.surfaces[bt.v[k]];
+      in.phong.position = dr.position;
+      in.phong.tangent = dr.normal_map != nullptr;
+      // A two-sided draw's back face gets the negated normal.
+      if (dr.two_sided) in.phong.negate = back_facing(signed_area2(*in.v[0], *in.v[1], *in.v[2]));
+      in.colors = ColorPlanes::kNone;
+      // Texture coordinates in the texture's texels, or in the normal map's without one.
+      const Texture* uv_tex = dr.texture ? dr.texture : dr.normal_map;
+      if (uv_tex) {
+        in.tex.texture = uv_tex;
+        in.tex.perspective = true;
+        in.tex.colors = false;
+        in.tex.wrap_s = dr.wrap_s;
+        in.tex.wrap_t = dr.wrap_t;
+      }
+    } else if (dr.texture) {
+      in.tex.texture = dr.texture;
+      in.tex.perspective = dr.persp != TexPersp::kAffine;
+      in.tex.colors = dr.env == TexEnv::kModulate;
+      in.tex.flat = dr.flat;
+      in.tex.flat_primary = from_rgb8(bt.flat);
+      in.tex.flat_secondary = from_rgb8(bt.flat_spec);
+      in.tex.wrap_s = dr.wrap_s;
+      in.tex.wrap_t = dr.wrap_t;
+    }
+    ActiveTriangle& t = storage_.active[slot];
+    setup_triangle(in, t);
+    ++stats_->triangles_set_up;
+    t.index = node;
+    t.draw = bt.draw;
+    t.flat = bt.flat;
+    order[out--] = slot;
+  }
+  active_count_ += fit;
+  if (active_count_ > stats_->max_active) stats_->max_active = static_cast<uint32_t>(active_count_);
+}
+
+template <class PF, int K, SpanSet kSpans>
+void StripLoop<PF, K, kSpans>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows) {
+  const DrawRecord& dr = frame_.draws[t.draw];
+  FrameStats& stats = *stats_;
+  const int width = frame_.width;
+  uint16_t* const depth = storage_.depth.data();
+  // The routines of kSpans' tables (nullptr outside the set, whose draws the front end refused).
+  const SpanFn<PF> fn = span_routine<PF, kSpans>(dr.depth, t.colors);
+  TexSpanFn<PF> tex_fn = nullptr;
+  PhongSpanFn<PF> phong_fn = nullptr;
+  if constexpr (detail::has(kSpans.families, SpanFamily::kPhong))
+    if (dr.phong) phong_fn = phong_span_routine<PF, kSpans>(dr);
+  if constexpr (detail::has(kSpans.families, SpanFamily::kTextured))
+    if (dr.texture && !dr.phong) tex_fn = tex_span_routine<PF, kSpans>(dr);
+  walk_rows(t, std::min<int>(t.last_row, y0 + rows - 1), [&](int r) {
+    int32_t a = t.long_edge.column(), b = t.short_edge.column();
+    int32_t left = t.long_is_left ? a : b, right = t.long_is_left ? b : a;
+    left = std::max<int32_t>(left, 0);
+    right = std::min<int32_t>(right, width);
+    if (left < right) {
+      size_t off =
+          static_cast<size_t>(r - y0) * static_cast<size_t>(width) + static_cast<size_t>(left);
+      int32_t n = right - left;
+      uint16_t* dp = depth + off;
+      stats.pixels_written += phong_fn ? phong_fn(t, dr, pixels + off, dp, left, r, n)
+                              : tex_fn ? tex_fn(t, dr, pixels + off, dp, left, r, n)
+                                       : fn(t, pixels + off, dp, left, r, n);
+      stats.pixels_tested += static_cast<uint32_t>(n);
+      ++stats.spans;
+    }
+  });
+}
+
+template <class PF, int K, SpanSet kSpans>
+void StripLoop<PF, K, kSpans>::retire(int next_row) {
+  uint16_t* order = storage_.active_index.data();
+  uint16_t* free_slots = order + storage_.active.size();
+  size_t kept = 0;
+  for (size_t i = 0; i < active_count_; ++i) {
+    uint16_t slot = order[i];
+    if (storage_.active[slot].last_row < next_row)
+      free_slots[free_count_++] = slot;
+    else
+      order[kept++] = slot;
+  }
+  active_count_ = kept;
+}
+
+}  // namespace lr

@@ -1,0 +1,26 @@
+// Which span state a draw selects (its family and dimensions, span_state.hpp), and whether a
+// renderer's SpanSet admits it and its textures: the front end refuses a draw that is not
+// admitted (Renderer<PF, K, kSpans> hands it admits<kSpans> as its AdmitFn), so a restricted
+// renderer never reaches a routine it did not link.
+#pragma once
+
+#include "core/binning/draw_record.hpp"
+#include "core/scene/draw_state.hpp"
+#include "core/span/span_state.hpp"
+
+namespace lr {
+
+// The span state of a draw (draw(): kind as the front end decides it; draw_screen(): not
+// Phong).
+SpanState span_state_of(const DrawState& state, const DrawKind& kind);
+
+// Whether `set` admits the draw's span state and the formats and wraps of its textures.
+bool draw_admitted(const SpanSet& set, const DrawState& state, const DrawKind& kind);
+
+// The AdmitFn of a renderer restricted to kSet.
+template <SpanSet kSet>
+bool admits(const DrawState& state, const DrawKind& kind) {
+  return draw_admitted(kSet, state, kind);
+}
+
+}  // namespace lr

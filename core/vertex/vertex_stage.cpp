@@ -1,0 +1,117 @@
+#include "core/vertex/vertex_stage.hpp"
+
+#include "core/math/divide.hpp"
+
+namespace lr {
+namespace {
+
+// A model-space tangent (Q1.14) to world space (the model's upper 3x3), unit Q1.14.
+void transform_tangent(const Mat4& model, const Tangent16& t, int16_t out[3]) {
+  int64_t r[3];
+  for (int i = 0; i < 3; ++i)
+    r[i] = int64_t{model.m[i][0].raw} * t.x + int64_t{model.m[i][1].raw} * t.y +
+           int64_t{model.m[i][2].raw} * t.z;
+  Unit30 u{1 << 30, 0, 0};
+  normalize_unit30(r[0], r[1], r[2], u);
+  out[0] = static_cast<int16_t>(round_shift(u.x, 16));
+  out[1] = static_cast<int16_t>(round_shift(u.y, 16));
+  out[2] = static_cast<int16_t>(round_shift(u.z, 16));
+}
+
+}  // namespace
+
+Unit30 transform_normal_call(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
+  return transform_normal(nm, x, y, z);
+}
+
+VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width,
+                         int height)
+    : model_(model),
+      mvp_(camera.projection * camera.view * model),
+      nm_(normal_matrix(model)),
+      guard_(guard),
+      width_(width),
+      height_(height) {}
+
+void VertexStage::transform(const Mesh& mesh, const VertexColors& draw_colors, ScreenVertex* out,
+                            SurfaceVertex* surfaces) const {
+  const VertexColors colors = draw_colors;  // a copy: kept in registers across the calls below
+  const size_t n = mesh.positions.size();
+  for (size_t i = 0; i < n; ++i) {
+    ScreenVertex& sv = out[i];
+    sv.color_pending = colors.pending ? 1 : 0;
+    const ClipCoord c = clip(mesh.positions[i]);
+    sv.outcode = outcode(c, guard_);
+    if (sv.outcode == 0) project(c, sv);
+    sv.u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
+    sv.v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
+    sv.spec = Color15{};
+    if (surfaces != nullptr) {
+      sv.color = Color15{};
+      SurfaceVertex& su = surfaces[i];
+      const Normal16& nn = mesh.normals[i];
+      su.normal = transform_normal_call(nm_, nn.x, nn.y, nn.z);
+      su.position = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
+      if (colors.tangents) {
+        transform_tangent(model_, mesh.tangents[i], su.tangent);
+        su.handedness = mesh.tangents[i].w < 0 ? -16384 : 16384;
+      } else {
+        su.tangent[0] = su.tangent[1] = su.tangent[2] = 0;
+        su.handedness = 16384;
+      }
+    } else if (!colors.lit) {
+      sv.color = mesh.colors.empty() ? colors.material : from_rgb8(mesh.colors[i]);
+    } else {
+      sv.color = Color15{};  // lit Gouraud: lit on first use (light()); flat: per triangle
+    }
+  }
+}
+
+bool VertexStage::project(const ClipCoord& c, ScreenVertex& v) const {
+  // Inside every plane: w >= 2^-16, |x| <= gx w, |y| <= gy w, |z| <= w. Normalise so w < 2^31.
+  int64_t x = c.x, y = c.y, z = c.z, w = c.w;
+  if (w <= 0) return false;
+  while (w >= (int64_t{1} << 31)) {
+    x >>= 1;
+    y >>= 1;
+    z >>= 1;
+    w >>= 1;
+  }
+  // Three quotients by the same w: one reciprocal (core/math/divide.hpp), exact, the values of
+  // round_div(n, w) (half away from zero; n is negative left of and below the viewport).
+  const Divider by_w(static_cast<uint64_t>(w));
+  auto rounded = [&](int64_t n) {
+    const auto half = static_cast<uint64_t>(w / 2);
+    return n >= 0 ? static_cast<int64_t>(by_w.quotient(static_cast<uint64_t>(n) + half))
+                  : -static_cast<int64_t>(by_w.quotient(static_cast<uint64_t>(-n) + half));
+  };
+  // (x + w) <= (gx + 1) w and (gx + 1) * width <= 8192 + width: product < 1.5 * 2^51.
+  v.x = static_cast<int32_t>(rounded((x + w) * (int64_t{width_} * kHalfPixel)));
+  v.y = static_cast<int32_t>(rounded((w - y) * (int64_t{height_} * kHalfPixel)));
+  // (z + w) <= 2w < 2^32 and 65535 * 2^15 < 2^31: product < 2^63.
+  int64_t zz = rounded((z + w) * (int64_t{65535} << 15));
+  v.z = static_cast<uint32_t>(zz < 0 ? 0 : zz > kDepthMax ? kDepthMax : zz);
+  int64_t wq = c.w >> (ClipCoord::kFracBits - 16);
+  v.w = static_cast<uint32_t>(wq < 1 ? 1 : wq > 0xFFFFFFFF ? 0xFFFFFFFF : wq);
+  v.outcode = 0;
+  return true;
+}
+
+bool front_facing_clip(const ClipCoord (&c)[3]) {
+  // Coordinates are brought below 2^20 first so the products of three stay inside int64.
+  uint64_t m = 0;
+  for (const ClipCoord& p : c) m |= abs64(p.x) | abs64(p.y) | abs64(p.w);
+  const int s = m == 0 ? 0 : (63 - clz64(m)) - 19;
+  auto sh = [s](int64_t v) { return s > 0 ? v >> s : v; };
+  int64_t x[3], y[3], w[3];
+  for (int i = 0; i < 3; ++i) {
+    x[i] = sh(c[i].x);
+    y[i] = sh(c[i].y);
+    w[i] = sh(c[i].w);
+  }
+  const int64_t det = x[0] * (y[1] * w[2] - y[2] * w[1]) - x[1] * (y[0] * w[2] - y[2] * w[0]) +
+                      x[2] * (y[0] * w[1] - y[1] * w[0]);
+  return det > 0;  // counter-clockwise in NDC
+}
+
+}  // namespace lr

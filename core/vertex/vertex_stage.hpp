@@ -1,0 +1,143 @@
+// The vertex stage of one draw: model space to clip space, lighting in world space, projection
+// and snapping to the subpixel lattice of the display.
+//
+// A VertexStage holds the draw's matrices (model-view-projection, normal matrix) and the
+// viewport it projects into. transform() fills the vertex store entries of a mesh; the front end
+// then lights lit Gouraud vertices on first use by a drawn triangle (light()), and clips the
+// triangles that cross a plane from the clip coordinates (clip()), recomputed from the mesh.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/lighting/lighting.hpp"
+#include "core/math/fixed.hpp"
+#include "core/math/mat4.hpp"
+#include "core/math/vec.hpp"
+#include "core/scene/camera.hpp"
+#include "core/scene/mesh.hpp"
+#include "core/vertex/clip.hpp"
+#include "core/vertex/screen_vertex.hpp"
+#include "core/vertex/surface_vertex.hpp"
+
+namespace lr {
+
+// Model-space vector times a normal matrix (Q16.16 entries) as int64, then normalised. Inline:
+// where the vector is a Normal16 the compiler multiplies 32 x 32 bits instead of 64 x 64.
+inline Unit30 transform_normal(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
+  int64_t r[3];
+  for (int i = 0; i < 3; ++i)
+    r[i] = int64_t{nm.m[i][0].raw} * x + int64_t{nm.m[i][1].raw} * y + int64_t{nm.m[i][2].raw} * z;
+  Unit30 u{0, 0, 1 << 30};
+  normalize_unit30(r[0], r[1], r[2], u);
+  return u;
+}
+// The same out of line, for the paths that are not per lit vertex (Phong surfaces, face
+// normals): one copy of the code.
+Unit30 transform_normal_call(const Mat4& nm, int64_t x, int64_t y, int64_t z);
+
+// Face normal of a model-space triangle as a Q1.30 unit vector (counter-clockwise winding).
+inline Unit30 face_normal_model(Vec3 p0, Vec3 p1, Vec3 p2) {
+  int64_t e1[3] = {int64_t{p1.x.raw} - p0.x.raw, int64_t{p1.y.raw} - p0.y.raw,
+                   int64_t{p1.z.raw} - p0.z.raw};
+  int64_t e2[3] = {int64_t{p2.x.raw} - p0.x.raw, int64_t{p2.y.raw} - p0.y.raw,
+                   int64_t{p2.z.raw} - p0.z.raw};
+  // Edges are < 2^32; bring them below 2^30 so the cross products stay below 2^61.
+  uint64_t m = 0;
+  for (int i = 0; i < 3; ++i) m |= abs64(e1[i]) | abs64(e2[i]);
+  if (m >= (uint64_t{1} << 30)) {
+    int s = (63 - clz64(m)) - 29;
+    for (int i = 0; i < 3; ++i) {
+      e1[i] >>= s;
+      e2[i] >>= s;
+    }
+  }
+  Unit30 u{0, 0, 1 << 30};
+  normalize_unit30(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                   e1[0] * e2[1] - e1[1] * e2[0], u);
+  return u;
+}
+
+constexpr Unit30 negate(Unit30 u) {
+  return {-u.x, -u.y, -u.z};
+}
+
+// How a draw's vertices get their colour (the front end decides it from the draw state).
+struct VertexColors {
+  bool lit = false;            // lit by the light set (else the mesh's colours or the material's)
+  bool pending = false;        // lit Gouraud: lit on first use by a drawn triangle (light())
+  bool split = false;          // primary and secondary colours apart (textured, modulated)
+  bool surfaces = false;       // Phong: world normal, position, tangent into the surface store
+  bool need_position = false;  // the lighting reads the world position
+  bool tangents = false;       // Phong with a normal map
+  Color15 material{};          // unlit meshes without vertex colours
+  const PreparedLighting* lighting = nullptr;  // lit draws
+};
+
+class VertexStage {
+ public:
+  VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width, int height);
+
+  // The mesh's vertices into out[0, n) (and surfaces[0, n) for Phong; else nullptr):
+  // transformed, clip-tested (outcode), projected and snapped when inside every plane.
+  void transform(const Mesh& mesh, const VertexColors& colors, ScreenVertex* out,
+                 SurfaceVertex* surfaces) const;
+
+  // Lit colour(s) of mesh vertex i, with the normal negated or not (two-sided back faces).
+  // (colors by value here and in light_face: the caller's copy stays in registers.)
+  void light(const Mesh& mesh, const VertexColors colors, size_t i, bool back,
+             ScreenVertex& sv) const {
+    Unit30 nw = world_normal(mesh.normals[i]);
+    if (back) nw = negate(nw);
+    const Vec3 pw = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
+    if (colors.split) {
+      const LitColor lc = light_point_split(*colors.lighting, nw, pw);
+      sv.color = lc.primary;
+      sv.spec = lc.secondary;
+    } else {
+      sv.color = light_point(*colors.lighting, nw, pw);
+    }
+  }
+
+  // The lit colour of a flat-shaded triangle (face normal, centroid) of model-space corners.
+  LitColor light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                      bool back) const;
+
+  ClipCoord clip(const Vec3& model_position) const { return transform_point(mvp_, model_position); }
+  // Projects and snaps a clip-space point inside every plane; false when w <= 0.
+  bool project(const ClipCoord& c, ScreenVertex& out) const;
+  Unit30 world_normal(const Normal16& n) const { return transform_normal(nm_, n.x, n.y, n.z); }
+  GuardBand guard() const { return guard_; }
+
+ private:
+  const Mat4& model_;
+  Mat4 mvp_;
+  Mat4 nm_;
+  GuardBand guard_;
+  int32_t width_, height_;
+};
+
+inline LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1,
+                                        const Vec3& p2, bool back) const {
+  const Unit30 fm = face_normal_model(p0, p1, p2);
+  Unit30 fw = transform_normal_call(nm_, fm.x, fm.y, fm.z);
+  if (back) fw = negate(fw);
+  Vec3 centroid{};
+  if (colors.need_position) {
+    const Vec3 w0 = transform_affine(model_, p0), w1 = transform_affine(model_, p1),
+               w2 = transform_affine(model_, p2);
+    centroid = {
+        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.x.raw} + w1.x.raw + w2.x.raw) / 3)),
+        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.y.raw} + w1.y.raw + w2.y.raw) / 3)),
+        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.z.raw} + w1.z.raw + w2.z.raw) / 3))};
+  }
+  if (colors.split) return light_point_split(*colors.lighting, fw, centroid);
+  return {light_point(*colors.lighting, fw, centroid), Color15{}};
+}
+
+// Facing of a clip-space triangle from the sign of det[x y w] (homogeneous: valid for the part
+// in front of the eye even when a vertex is behind it): true when front-facing, i.e.
+// counter-clockwise in NDC (front_facing() in screen_vertex.hpp is the same rule on the display).
+bool front_facing_clip(const ClipCoord (&c)[3]);
+
+}  // namespace lr
