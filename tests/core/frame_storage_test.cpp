@@ -12,7 +12,7 @@
 
 #include "core/raster/renderer.hpp"
 #include "core/scene/camera.hpp"
-#include "host_sim/capture_display.hpp"
+#include "host_sim/emulator/capture_display.hpp"
 
 namespace lr {
 namespace {
