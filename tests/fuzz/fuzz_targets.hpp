@@ -26,7 +26,7 @@ int obj_target(const uint8_t* data, size_t size);
 int png_target(const uint8_t* data, size_t size);
 
 // The pipeline: a header (viewport, strip height, pixel format, draw state, texture, camera,
-// capacities) followed by vertices and triangles for FrameBuilder::draw and draw_screen,
+// capacities) followed by vertices and triangles for Renderer::draw and draw_screen,
 // rendered into a CaptureDisplay; checks the frame statistics add up. Layout in
 // pipeline_target.cpp.
 int pipeline_target(const uint8_t* data, size_t size);

@@ -8,7 +8,7 @@
 // without a missing one elsewhere), every input triangle is accounted for in exactly one
 // FrameStats reason, and every binned triangle's pixels lie in its bounding box.
 //
-// 3D (FrameBuilder::draw with a perspective camera): random triangles in front, crossing the
+// 3D (Renderer::draw with a perspective camera): random triangles in front, crossing the
 // near plane, through the eye plane (w ~ 0, also with a near plane of 2^-12), behind, huge
 // (|coordinate| up to 32767, far outside the guard band). Per frame: the core's coverage equals
 // the reference's on the core's own snapped, clipped pieces; stats conservation; every snapped
