@@ -9,7 +9,7 @@
 Prints, per entry, the deepest stack its calls can reach and the call path that reaches it
 ("(*)" marks a call through a pointer):
 
-    main: 3,904 B via main -> (anonymous namespace)::render_frame -> lr::FrameBuilder::draw -> ...
+    main: 3,904 B via main -> (anonymous namespace)::render_frame -> lr::FrontEnd::draw -> ...
 
 and exits 1, naming the function, when no sound bound exists: recursion, an unbounded
 (dynamic) frame, an unknown function, an unresolved indirect call. Python's standard library
