@@ -22,11 +22,11 @@
 
 #include <cstdint>
 
-#include "core/output/color.hpp"
 #include "core/math/fixed.hpp"
 #include "core/math/hash.hpp"
 #include "core/math/mat4.hpp"
 #include "core/math/vec.hpp"
+#include "core/output/color.hpp"
 
 namespace lr {
 
@@ -66,7 +66,7 @@ class InputHash {
   void add(const SurfaceVertex& s);
   void add(const Texture& t);
   void add(const Material& m);
-  void add(const LightSet& l);
+  void add(const LightSet& s);
   void add(const Camera& c);
   void add(const DrawRecord& d);
   constexpr uint32_t value() const { return h_; }

@@ -13,10 +13,10 @@
 #include <array>
 #include <cstdint>
 
-#include "core/output/color.hpp"
-#include "core/scene/material.hpp"
 #include "core/math/pow_table.hpp"
 #include "core/math/vec.hpp"
+#include "core/output/color.hpp"
+#include "core/scene/material.hpp"
 
 namespace lr {
 
@@ -82,8 +82,8 @@ struct PreparedLighting {
   int32_t base[3] = {0, 0, 0};  // emission + global ambient * Ka + sum of directional La * Ka
   uint16_t shininess_q8 = 0;
   bool local_viewer = false;
-  Vec3 eye{};           // world-space eye position (local viewer)
-  Unit30 view{};        // world-space direction towards the viewer (infinite viewer)
+  Vec3 eye{};     // world-space eye position (local viewer)
+  Unit30 view{};  // world-space direction towards the viewer (infinite viewer)
   // What it was prepared for: draws of equal materials share it. Zero by default (not GL's
   // default material), so that a static store of prepared lighting stays in .bss.
   Material material{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, 0};
@@ -92,8 +92,7 @@ struct PreparedLighting {
 };
 
 // view_dir: world-space direction from the scene towards the eye (the view's +Z axis).
-PreparedLighting prepare_lighting(const LightSet& lights, const Material& material, Vec3 view_dir,
-                                  Vec3 eye);
+PreparedLighting prepare_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec3 eye);
 
 // Lit colour of a surface point with unit normal n (world) at world position p (read only for
 // point lights and the local viewer).

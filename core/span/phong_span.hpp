@@ -27,15 +27,15 @@
 #include <cstdint>
 #include <utility>
 
-#include "core/output/color.hpp"
 #include "core/binning/draw_record.hpp"
-#include "core/math/inv_sqrt.hpp"
 #include "core/lighting/lighting.hpp"
 #include "core/lighting/lighting_table.hpp"
+#include "core/math/inv_sqrt.hpp"
+#include "core/output/color.hpp"
+#include "core/setup/active_triangle.hpp"
 #include "core/span/sampler.hpp"
 #include "core/span/span.hpp"
 #include "core/span/tex_span.hpp"
-#include "core/setup/active_triangle.hpp"
 
 namespace lr {
 
@@ -97,7 +97,7 @@ template <class PF, bool kDepth, PixelLighting kMethod, bool kPositionOrBilinear
 uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typename PF::Storage* px,
                          uint16_t* depth, int32_t col, int32_t row, int32_t count) {
   constexpr bool kExact = kMethod == PixelLighting::kExact;
-  constexpr bool kPosition = kExact && kPositionOrBilinear;    // exact: position planes
+  constexpr bool kPosition = kExact && kPositionOrBilinear;   // exact: position planes
   constexpr bool kBilinear = !kExact && kPositionOrBilinear;  // table: bilinear lookup
   constexpr bool kUv = kTexture || kNormalMap;
   constexpr bool kSplit = kTexture || kEnv;

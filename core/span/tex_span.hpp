@@ -23,12 +23,12 @@
 #include <cstdint>
 #include <utility>
 
-#include "core/output/color.hpp"
 #include "core/binning/draw_record.hpp"
 #include "core/math/pow_table.hpp"
+#include "core/output/color.hpp"
+#include "core/setup/active_triangle.hpp"
 #include "core/span/sampler.hpp"
 #include "core/span/span.hpp"
-#include "core/setup/active_triangle.hpp"
 
 namespace lr {
 

@@ -38,8 +38,8 @@ constexpr int mip_level_count(uint16_t w, uint16_t h) {
 }
 
 // Elements of storage levels 1.. need (uint16 values for kRgb565, bytes for the other formats),
-// from texture.levels[0]'s size and texture.format. 0 for a 1 x 1 level 0 or an invalid size.
-size_t mip_chain_size(const Texture& level0_only);
+// from t.levels[0]'s size and t.format. 0 for a 1 x 1 level 0 or an invalid size.
+size_t mip_chain_size(const Texture& t);
 
 // Builds levels 1.. of `texture` (down to 1 x 1) from texture.levels[0] into the caller's
 // storage: rgb565_storage for kRgb565, byte_storage for the others (the other span may be empty),

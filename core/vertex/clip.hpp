@@ -10,8 +10,8 @@
 
 #include <cstdint>
 
-#include "core/output/color.hpp"
 #include "core/math/mat4.hpp"
+#include "core/output/color.hpp"
 #include "core/vertex/surface_vertex.hpp"
 
 namespace lr {

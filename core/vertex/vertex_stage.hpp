@@ -100,12 +100,12 @@ class VertexStage {
   }
 
   // The lit colour of a flat-shaded triangle (face normal, centroid) of model-space corners.
-  LitColor light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+  LitColor light_face(VertexColors colors, const Vec3& p0, const Vec3& p1, const Vec3& p2,
                       bool back) const;
 
   ClipCoord clip(const Vec3& model_position) const { return transform_point(mvp_, model_position); }
   // Projects and snaps a clip-space point inside every plane; false when w <= 0.
-  bool project(const ClipCoord& c, ScreenVertex& out) const;
+  bool project(const ClipCoord& c, ScreenVertex& v) const;
   Unit30 world_normal(const Normal16& n) const { return transform_normal(nm_, n.x, n.y, n.z); }
   GuardBand guard() const { return guard_; }
 

@@ -13,9 +13,9 @@
 #include "core/math/hash.hpp"
 #include "core/output/pixel_format.hpp"
 #include "core/output/status.hpp"
+#include "core/output/strip_sink.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/semihost.hpp"
-#include "core/output/strip_sink.hpp"
 
 namespace lr::fw {
 

@@ -9,8 +9,8 @@
 
 #include "core/scene/mesh.hpp"
 #include "core/span/span_state.hpp"
-#include "firmware/demo/scene.hpp"
 #include "cube_asset.hpp"  // generated at build time: lineraster-asset --obj cube.obj --fit
+#include "firmware/demo/scene.hpp"
 
 namespace lr::fw::demo::cube {
 
@@ -29,16 +29,18 @@ inline constexpr size_t kClipMargin = 0;
 inline constexpr size_t kActiveCapacity = 10;
 #else
 inline constexpr int kStripRows = 8;
-inline constexpr size_t kClipMargin = 16;   // vertices and triangles clipping may add
+inline constexpr size_t kClipMargin = 16;      // vertices and triangles clipping may add
 inline constexpr size_t kActiveCapacity = 12;  // every triangle of the cube
 #endif
-inline constexpr SceneView kView{kSimDefaultView.fovy, kSimDefaultView.near, kSimDefaultView.far,
-                                 vec(2, 1.6, 2.6), kSimDefaultView.target, kSimDefaultView.up};
+inline constexpr SceneView kView{kSimDefaultView.fovy, kSimDefaultView.near,   kSimDefaultView.far,
+                                 vec(2, 1.6, 2.6),     kSimDefaultView.target, kSimDefaultView.up};
 inline constexpr LightSet kLights = sim_default_lights();
 inline constexpr Rgb8 kBackground{0, 0, 0};
 
 // The mesh's own materials (cube.mtl), as the CLI uses them.
-inline Material material(size_t draw) { return asset::materials[draw]; }
+inline Material material(size_t draw) {
+  return asset::materials[draw];
+}
 
 inline DrawState state(size_t draw) {
   DrawState s;  // Gouraud, lit, depth test, no culling, perspective-exact: the CLI's defaults

@@ -38,7 +38,6 @@ inline DrawState state(size_t) {
 }
 
 // The span state of state(): Gouraud, lit, depth test, perspective-exact colours.
-inline constexpr SpanSet kSpans =
-    kUntexturedSpans.only_depth(true).only(ColorPlanes::kPerspective);
+inline constexpr SpanSet kSpans = kUntexturedSpans.only_depth(true).only(ColorPlanes::kPerspective);
 
 }  // namespace lr::fw::demo::knot

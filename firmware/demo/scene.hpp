@@ -4,16 +4,16 @@
 //
 // Every Fixed here comes from a consteval conversion of the number the CLI parses: the CLI
 // rounds v * 65536 to the nearest integer at run time (host_sim/scene/scene.cpp to_fixed), and
-// so does Fixed::from_double at compile time. The doubles exist only in the compiler: nothing in the
-// firmware image computes with floating point.
+// so does Fixed::from_double at compile time. The doubles exist only in the compiler: nothing in
+// the firmware image computes with floating point.
 #pragma once
 
 #include <cstdint>
 
-#include "core/scene/camera.hpp"
-#include "core/math/fixed.hpp"
 #include "core/lighting/lighting.hpp"
+#include "core/math/fixed.hpp"
 #include "core/math/vec.hpp"
+#include "core/scene/camera.hpp"
 
 namespace lr::fw::demo {
 
@@ -28,8 +28,11 @@ consteval Vec3 vec(double x, double y, double z) {
 }
 
 // lineraster-sim's defaults: --fovy 60 --near 0.1 --far 100 --eye 0,0,3 --target 0,0,0 --up 0,1,0.
-inline constexpr SceneView kSimDefaultView{Fixed::from_double(60.0), Fixed::from_double(0.1),
-                                           Fixed::from_double(100.0), vec(0, 0, 3), vec(0, 0, 0),
+inline constexpr SceneView kSimDefaultView{Fixed::from_double(60.0),
+                                           Fixed::from_double(0.1),
+                                           Fixed::from_double(100.0),
+                                           vec(0, 0, 3),
+                                           vec(0, 0, 0),
                                            vec(0, 1, 0)};
 
 // sqrt by Newton's method for compile-time normalisation (std::sqrt is not constexpr in C++20).

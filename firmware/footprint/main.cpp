@@ -22,12 +22,12 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "core/raster/renderer.hpp"
 #include "core/scene/camera.hpp"
 #include "core/scene/material.hpp"
-#include "core/raster/renderer.hpp"
-#include "firmware/common/semihost.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/report.hpp"
+#include "firmware/common/semihost.hpp"
 #include "firmware/footprint/scene.hpp"
 #include "firmware/footprint/stack_probe.hpp"
 
@@ -187,7 +187,7 @@ bool render_frame() {
 
   lr::LightSet lights;
   lights.lights[0].position = {Fixed::from_double(0.4), Fixed::from_double(0.8),
-                                Fixed::from_double(0.6)};
+                               Fixed::from_double(0.6)};
   lights.count = 1;
   constexpr uint16_t kAmbient = 6554;  // 0.2 in Q1.15, GL's default global ambient
   lights.global_ambient = {kAmbient, kAmbient, kAmbient};
@@ -234,9 +234,9 @@ int main() {
   // triangles, buckets, active, active_index, depth, strip_buffers, draws, surfaces,
   // pixel_lights.
   static constexpr uint32_t kStoreBytes[] = {
-      sizeof(g_store.vertices),     sizeof(g_store.triangles), sizeof(g_store.buckets),
-      sizeof(g_store.active),       sizeof(g_store.active_index), sizeof(g_store.depth),
-      sizeof(g_store_strip_buffers), sizeof(g_store.draws),    sizeof(g_store.surfaces),
+      sizeof(g_store.vertices),      sizeof(g_store.triangles),    sizeof(g_store.buckets),
+      sizeof(g_store.active),        sizeof(g_store.active_index), sizeof(g_store.depth),
+      sizeof(g_store_strip_buffers), sizeof(g_store.draws),        sizeof(g_store.surfaces),
       sizeof(g_store.pixel_lights)};
   sh::write("footprint: stores");
   for (const uint32_t bytes : kStoreBytes) {

@@ -9,10 +9,10 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "core/math/vec.hpp"
 #include "core/output/color.hpp"
 #include "core/scene/mesh.hpp"
 #include "core/texture/texture.hpp"
-#include "core/math/vec.hpp"
 
 namespace lr::fw::footprint {
 
@@ -37,14 +37,18 @@ consteval double sine(double x) {
   }
   return sum;
 }
-consteval double cosine(double x) { return sine(x + kPi / 2); }
+consteval double cosine(double x) {
+  return sine(x + kPi / 2);
+}
 
 consteval int16_t q14(double v) {
   return static_cast<int16_t>(v * 16384 + (v >= 0 ? 0.5 : -0.5));
 }
 
 // Vertex (i, j): i around the axis, j around the tube; both run to their count inclusive.
-constexpr size_t vertex(int i, int j) { return static_cast<size_t>(i * (kTube + 1) + j); }
+constexpr size_t vertex(int i, int j) {
+  return static_cast<size_t>(i * (kTube + 1) + j);
+}
 constexpr double kMajorRadius = 1.0, kMinorRadius = 0.42;
 
 struct Frame {
@@ -105,7 +109,8 @@ consteval std::array<std::array<uint16_t, 3>, kTriangleCount> make_triangles() {
   size_t n = 0;
   for (int i = 0; i < kRing; ++i)
     for (int j = 0; j < kTube; ++j) {
-      const auto a = static_cast<uint16_t>(vertex(i, j)), b = static_cast<uint16_t>(vertex(i + 1, j)),
+      const auto a = static_cast<uint16_t>(vertex(i, j)),
+                 b = static_cast<uint16_t>(vertex(i + 1, j)),
                  c = static_cast<uint16_t>(vertex(i + 1, j + 1)),
                  d = static_cast<uint16_t>(vertex(i, j + 1));
       out[n++] = {a, d, c};
@@ -120,7 +125,8 @@ consteval bool outward_winding() {
   for (const auto& t : tris) {
     Frame f[3];
     for (int k = 0; k < 3; ++k) {
-      const int i = t[static_cast<size_t>(k)] / (kTube + 1), j = t[static_cast<size_t>(k)] % (kTube + 1);
+      const int i = t[static_cast<size_t>(k)] / (kTube + 1),
+                j = t[static_cast<size_t>(k)] % (kTube + 1);
       f[k] = frame(i, j);
     }
     const double ux = f[1].px - f[0].px, uy = f[1].py - f[0].py, uz = f[1].pz - f[0].pz;

@@ -15,10 +15,10 @@ namespace lr::app {
 extern const char* const kUsage;
 
 struct AppOptions {
-  SpidevConfig bus;      // device, hz, D/C, reset and backlight lines (syntax checked)
-  PanelConfig panel{};   // controller, module size, rotation
-  uint32_t frames = 0;   // 0: until SIGINT or SIGTERM
-  std::string display;   // the --display value as given, for messages
+  SpidevConfig bus;     // device, hz, D/C, reset and backlight lines (syntax checked)
+  PanelConfig panel{};  // controller, module size, rotation
+  uint32_t frames = 0;  // 0: until SIGINT or SIGTERM
+  std::string display;  // the --display value as given, for messages
 };
 
 enum class ParseResult : uint8_t { kRun, kHelp, kError };

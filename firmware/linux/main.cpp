@@ -68,10 +68,10 @@ int main(int argc, char** argv) {
   if (!bus) return fail(error, 1);
   lr::app::PanelApp app(*bus, o.panel);
   if (app.start(error) != lr::Status::kOk) return fail(error + bus_detail(*bus), 1);
-  std::printf("lr_panel_app: %s on %s at %u Hz (%zu-byte transfers), %zu triangles, strips of %d rows\n",
-              lr::host::describe_panel(o.panel).c_str(), o.bus.device.c_str(), bus->hz(),
-              bus->chunk_bytes(), lr::app::DemoScene::triangle_count(),
-              lr::app::DemoScene::kStripRows);
+  std::printf(
+      "lr_panel_app: %s on %s at %u Hz (%zu-byte transfers), %zu triangles, strips of %d rows\n",
+      lr::host::describe_panel(o.panel).c_str(), o.bus.device.c_str(), bus->hz(),
+      bus->chunk_bytes(), lr::app::DemoScene::triangle_count(), lr::app::DemoScene::kStripRows);
   std::fflush(stdout);
 
   using Clock = std::chrono::steady_clock;

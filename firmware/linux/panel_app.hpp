@@ -17,9 +17,9 @@ namespace lr::app {
 
 struct FrameReport {
   uint32_t index = 0;
-  int degrees = 0;             // the model's rotation about y
-  PanelSinkStats sink;         // what went to the panel (bytes, strips sent / skipped ...)
-  FrameStats render;           // what the renderer did
+  int degrees = 0;      // the model's rotation about y
+  PanelSinkStats sink;  // what went to the panel (bytes, strips sent / skipped ...)
+  FrameStats render;    // what the renderer did
 };
 
 class PanelApp {

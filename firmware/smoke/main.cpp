@@ -21,9 +21,9 @@
 #include <cstdint>
 #include <span>
 
+#include "core/raster/renderer.hpp"
 #include "core/scene/camera.hpp"
 #include "core/scene/material.hpp"
-#include "core/raster/renderer.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
@@ -136,7 +136,6 @@ lr::fw::ChecksumConsumer<PF> g_checksum;
 lr::fw::OrderedStripSink<PF, lr::fw::ChecksumConsumer<PF>> g_sink(g_strip_buffers[0],
                                                                   g_strip_buffers[1], g_checksum);
 
-
 namespace sh = lr::fw::semihost;
 
 bool check(lr::Status st, const char* what) {
@@ -162,7 +161,7 @@ bool render_frame() {
   // GL's default global ambient of 0.2.
   lr::LightSet lights;
   lights.lights[0].position = {Fixed::from_double(0.4), Fixed::from_double(0.8),
-                                Fixed::from_double(0.6)};
+                               Fixed::from_double(0.6)};
   lights.count = 1;
   constexpr uint16_t kAmbient = 6554;  // 0.2 in Q1.15
   lights.global_ambient = {kAmbient, kAmbient, kAmbient};

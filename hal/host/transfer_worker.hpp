@@ -11,7 +11,8 @@
 // bounded too.
 //
 // Host-side only (std::thread, std::mutex): used by hal/host/linux/spidev_bus and
-// hal/host/usb/ft232h_bus. Header-only and free of libgpiod and libusb, so both libraries (and the tests) can use it.
+// hal/host/usb/ft232h_bus. Header-only and free of libgpiod and libusb, so both libraries (and the
+// tests) can use it.
 #pragma once
 
 #include <chrono>

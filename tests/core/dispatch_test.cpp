@@ -1,5 +1,5 @@
-// Span dispatch: the state space (core/span/span_state.hpp), the routine tables generated from it, and
-// renderers restricted to part of it.
+// Span dispatch: the state space (core/span/span_state.hpp), the routine tables generated from it,
+// and renderers restricted to part of it.
 //   - every state of the full set selects a non-null routine (and fetcher), distinct per state;
 //     outside a restricted set every entry is nullptr;
 //   - for every state of the enumeration: a renderer restricted to the smallest set holding it
@@ -202,7 +202,8 @@ class Rig final : public RigBase {
 
 // ---- The scene of a state --------------------------------------------------------------------
 
-// The draw state, lights and material that select `s` (the inverse of span_state_of, core/span/admission.hpp).
+// The draw state, lights and material that select `s` (the inverse of span_state_of,
+// core/span/admission.hpp).
 struct DrawSetup {
   DrawState state;
   LightSet lights;

@@ -5,16 +5,16 @@
 #include <cmath>
 #include <vector>
 
-#include "core/scene/camera.hpp"
-#include "core/output/color.hpp"
 #include "core/math/divide.hpp"
-#include "core/setup/edge.hpp"
-#include "core/scene/material.hpp"
-#include "core/output/pixel_format.hpp"
 #include "core/math/pow_table.hpp"
-#include "core/raster/strip_fill.hpp"
 #include "core/math/trig.hpp"
 #include "core/math/vec.hpp"
+#include "core/output/color.hpp"
+#include "core/output/pixel_format.hpp"
+#include "core/raster/strip_fill.hpp"
+#include "core/scene/camera.hpp"
+#include "core/scene/material.hpp"
+#include "core/setup/edge.hpp"
 
 namespace lr {
 namespace {

@@ -9,8 +9,8 @@
 #include <random>
 
 #include "core/math/fixed.hpp"
-#include "core/vertex/screen_vertex.hpp"
 #include "core/setup/triangle_setup.hpp"
+#include "core/vertex/screen_vertex.hpp"
 
 namespace lr {
 namespace {
@@ -75,7 +75,9 @@ TEST(PlaneGradient, OneDivisionEqualsTheTwoDivisionFormula) {
     // Extent: 2^2 .. 2^22 subpixels (1/64 pixel .. the guard band), so |n| spans 2^3 .. 2^57.
     const int bits = 2 + static_cast<int>(rng() % 21);
     const int32_t span = int32_t{1} << bits;
-    auto coord = [&] { return static_cast<int32_t>(rng() % static_cast<uint64_t>(2 * span)) - span; };
+    auto coord = [&] {
+      return static_cast<int32_t>(rng() % static_cast<uint64_t>(2 * span)) - span;
+    };
     ScreenVertex s[3];
     for (auto& sv : s) {
       sv.x = coord();

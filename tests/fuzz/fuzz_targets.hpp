@@ -39,7 +39,7 @@ int pipeline_target(const uint8_t* data, size_t size);
 
 }  // namespace lr::fuzz
 
-#define LR_FUZZ_CHECK(cond)                                                      \
-  do {                                                                           \
-    if (!(cond)) ::lr::fuzz::check_failed(__FILE__, __LINE__, #cond);            \
+#define LR_FUZZ_CHECK(cond)                                           \
+  do {                                                                \
+    if (!(cond)) ::lr::fuzz::check_failed(__FILE__, __LINE__, #cond); \
   } while (0)

@@ -24,9 +24,8 @@ void check_texture(const host::HostTexture& t, const host::ImageRgb8& img, Texel
   LR_FUZZ_CHECK(validate(t.texture) == Status::kOk);
   LR_FUZZ_CHECK(t.texture.format == format);
   LR_FUZZ_CHECK(t.texture.levels[0].width == img.width && t.texture.levels[0].height == img.height);
-  const int levels = mipmaps ? mip_level_count(t.texture.levels[0].width,
-                                               t.texture.levels[0].height)
-                             : 1;
+  const int levels =
+      mipmaps ? mip_level_count(t.texture.levels[0].width, t.texture.levels[0].height) : 1;
   LR_FUZZ_CHECK(t.texture.level_count == levels);
   const size_t bottom_left = size_t(img.height - 1) * size_t(img.width) * 3;
   const Rgb8 expect{img.rgb[bottom_left], img.rgb[bottom_left + 1], img.rgb[bottom_left + 2]};
@@ -65,8 +64,8 @@ int png_target(const uint8_t* data, size_t size) {
     LR_FUZZ_CHECK(tex.texture.level_count == 0);
   }
   if (!fits || size_t(src.width) * size_t(src.height) > (size_t{1} << 16)) return 0;
-  for (TexelFormat f : {TexelFormat::kRgb565, TexelFormat::kRgb888, TexelFormat::kL8,
-                        TexelFormat::kPalette8}) {
+  for (TexelFormat f :
+       {TexelFormat::kRgb565, TexelFormat::kRgb888, TexelFormat::kL8, TexelFormat::kPalette8}) {
     for (bool mipmaps : {false, true}) {
       host::HostTexture tex;
       error.clear();

@@ -50,8 +50,14 @@ void replay_target(const std::string& name, Target target) {
   replay("regressions/" + name, target);
 }
 
-TEST(FuzzRegression, Obj) { replay_target("obj", lr::fuzz::obj_target); }
-TEST(FuzzRegression, Png) { replay_target("png", lr::fuzz::png_target); }
-TEST(FuzzRegression, Pipeline) { replay_target("pipeline", lr::fuzz::pipeline_target); }
+TEST(FuzzRegression, Obj) {
+  replay_target("obj", lr::fuzz::obj_target);
+}
+TEST(FuzzRegression, Png) {
+  replay_target("png", lr::fuzz::png_target);
+}
+TEST(FuzzRegression, Pipeline) {
+  replay_target("pipeline", lr::fuzz::pipeline_target);
+}
 
 }  // namespace

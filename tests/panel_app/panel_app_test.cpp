@@ -91,7 +91,8 @@ TEST(PanelAppOptions, EveryBadCommandLineIsOneLine) {
       {{"--display", kDisplay}, "--panel CONTROLLER:WxH[:ROT] is required (see --help)"},
       {{"--panel", panel},
        "--display spidev:DEVICE,dc=CHIP:LINE,rst=CHIP:LINE[,...] is required (see --help)"},
-      {{"--display", kDisplay, "--panel", panel, "--bogus"}, "unknown option '--bogus' (see --help)"},
+      {{"--display", kDisplay, "--panel", panel, "--bogus"},
+       "unknown option '--bogus' (see --help)"},
       {{"--display", kDisplay, "--panel"}, "--panel: missing value"},
       {{"--display", "--panel", panel}, "--display: missing value"},
       {{"--display", kDisplay, "--panel", panel, "--frames", "x"},
@@ -102,7 +103,8 @@ TEST(PanelAppOptions, EveryBadCommandLineIsOneLine) {
       {{"--display", "emulator:st7789:240x240", "--panel", panel},
        "--display: bad value 'emulator:st7789:240x240' (lr_panel_app drives spidev panels: "
        "spidev:DEVICE,dc=CHIP:LINE,...)"},
-      {{"--display", "ft232h", "--panel", panel}, "--display: bad value 'ft232h' (lr_panel_app ..."},
+      {{"--display", "ft232h", "--panel", panel},
+       "--display: bad value 'ft232h' (lr_panel_app ..."},
       {{"--display", "spidev:/dev/spidev0.0", "--panel", panel},
        "--display: bad value 'spidev:/dev/spidev0.0' (/dev/spidev0.0: dc= missing ..."},
       {{"--display", "spidev:/dev/spidev0.0,dc=24", "--panel", panel},
@@ -137,8 +139,8 @@ std::vector<uint16_t> sim_frame(int width, int height, int degrees) {
   static host::HostMesh mesh;
   std::string error;
   if (mesh.positions.empty()) {
-    EXPECT_TRUE(host::load_obj(std::string(LR_SOURCE_DIR) + "/tests/host/data/torus_knot.obj",
-                               mesh, error))
+    EXPECT_TRUE(
+        host::load_obj(std::string(LR_SOURCE_DIR) + "/tests/host/data/torus_knot.obj", mesh, error))
         << error;
   }
   host::SceneOptions o;
@@ -190,10 +192,11 @@ TEST(PanelAppFrames, TheModuleShowsTheSimulatorsFramesAndTheGuestsByteCounts) {
     EXPECT_EQ(r.sink.status, Status::kOk);
     EXPECT_GT(r.render.pixels_written, 240u * 240u / 10) << "frame " << f;
     sent_pixel_bytes += r.sink.pixel_bytes;
-    std::printf("frame %u: %u bytes (%u pixel, %u command), %u strips sent, %u narrowed, %u "
-                "skipped\n",
-                f, r.sink.bytes(), r.sink.pixel_bytes, r.sink.command_bytes, r.sink.strips_sent,
-                r.sink.strips_narrowed, r.sink.strips_skipped);
+    std::printf(
+        "frame %u: %u bytes (%u pixel, %u command), %u strips sent, %u narrowed, %u "
+        "skipped\n",
+        f, r.sink.bytes(), r.sink.pixel_bytes, r.sink.command_bytes, r.sink.strips_sent,
+        r.sink.strips_narrowed, r.sink.strips_skipped);
     if (f == 0) {
       EXPECT_EQ(r.sink.pixel_bytes, 240u * 240u * 2);
       EXPECT_EQ(r.sink.bytes(), kFrame0Bytes);
@@ -256,8 +259,9 @@ TEST(PanelAppProgram, ExitStatusAndOneLineErrors) {
 
   const Outcome bad = run("--panel st7789:240x240 --frames two");
   EXPECT_EQ(bad.status, 2);
-  EXPECT_EQ(bad.err, "lr_panel_app: --frames: bad value 'two' (a whole number, 0 = until "
-                     "interrupted)\n");
+  EXPECT_EQ(bad.err,
+            "lr_panel_app: --frames: bad value 'two' (a whole number, 0 = until "
+            "interrupted)\n");
   EXPECT_EQ(bad.out, "");
 
   const Outcome no_device =

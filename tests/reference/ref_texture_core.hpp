@@ -1,8 +1,8 @@
 // Bridges from the core's texture types to the reference renderer's (tests and benchmarks only).
 //
-// Header-only and using only header-only parts of core/texture/texture.hpp, so that lr_reference and its
-// users need no link dependency on lr_core. The reference samples exactly the texel values the
-// core stores, including the core's own mip levels (the reference never rebuilds a mip chain).
+// Header-only and using only header-only parts of core/texture/texture.hpp, so that lr_reference
+// and its users need no link dependency on lr_core. The reference samples exactly the texel values
+// the core stores, including the core's own mip levels (the reference never rebuilds a mip chain).
 #pragma once
 
 #include <cstddef>
