@@ -1,8 +1,8 @@
 // Filling a strip buffer with one value (the background, the cleared depth): the cheapest way the
 // C library offers, since an empty strip costs nothing else. memset when every byte of the value
 // is the same (black, white, a cleared 16-bit depth of 0xFFFF), else copies that double what is
-// already filled (memcpy moves a word or more per instruction; a loop of 16-bit stores costs
-// about 1.6 instructions per pixel on Cortex-M4).
+// already filled (memcpy moves a word or more per instruction, a loop of 16-bit stores one
+// pixel).
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,5 @@
 // The camera of a frame, and its matrices with the meaning of gluPerspective and gluLookAt
-// (DESIGN.md §4).
+// (docs/conventions.md#coordinates).
 #pragma once
 
 #include "core/math/mat4.hpp"

@@ -2,14 +2,10 @@
 //
 // For an edge from (xa, ya) to (xb, yb), ya < yb, in subpixels (y down), and the pixel row r
 // (centre yc = 256 r + 128), the walker holds X = ceil(x(yc) - 128): the smallest subpixel
-// position whose pixel-centre test passes. The first pixel column on or right of the edge is
-// then ceil(X / 256) = (X + 255) >> 8. That one formula gives both ends of a span: a left edge
-// includes a centre exactly on it (col >= bound) and a right edge excludes it (col < bound),
-// which is the left half of the fill rule (DESIGN.md §4).
-//
-// Invariant: X * dy - N = e with 0 <= e < dy, where N = (xa - 128) dy + dx (yc - ya). Moving
-// one row adds 256 dx to N = step_q * dy + step_r (0 <= step_r < dy). Values: |X| < 2^22,
-// 0 < dy < 2^23, so X, e, step_q, step_r and dy are int32; setup uses int64.
+// position whose pixel-centre test passes. column() = ceil(X / 256) gives both ends of a span:
+// a left edge includes a centre exactly on it, a right edge excludes it (the fill rule:
+// docs/raster-rules.md). |X| < 2^22 and 0 < dy < 2^23, so the walker is int32; setup uses
+// int64. Invariant, proof and bounds: docs/numerics.md#edge-stepping-the-dda.
 #pragma once
 
 #include <cstdint>
@@ -27,9 +23,8 @@ struct EdgeWalker {
   int32_t dy;
 
   // Positions the walker on row `row` (any row; the edge line is extended beyond its ends).
-  // N / dy = (xa - 128) + m / dy with m = dx (yc - ya): only m is divided, in 32 bits when it
-  // fits (one instruction on Cortex-M3 and up, a short library call on M0+, against a 64-bit
-  // division's ~100 instructions), which small triangles always do; 256 dx always fits.
+  // Only m = dx (yc - ya) is divided, in 32 bits when it fits (every small triangle), else in
+  // 64 bits; 256 dx always fits (docs/numerics.md#edge-stepping-the-dda).
   void init(int32_t xa, int32_t ya, int32_t xb, int32_t yb, int32_t row) {
     const int32_t ddy = yb - ya;  // (0, 2^23)
     const int32_t ddx = xb - xa;  // |ddx| < 2^23

@@ -1,12 +1,9 @@
 // Triangle setup: what a binned triangle becomes when its first strip is reached — edge walkers
 // for its rows and the planes of its attributes.
 //
-// Attribute planes live on the pixel lattice: A(c, r) = base + gx * c + gy * r for the pixel
-// in column c of row r, evaluated in uint32 arithmetic modulo 2^32. The gradients are rounded
-// to integers once; modular arithmetic then makes every evaluation (direct, or stepped along a
-// span) give exactly the value of that rounded plane, with no drift and no overflow trap,
-// wherever the true value lies in the attribute's range. Error against the exact plane: half a
-// unit per pixel of distance from the top vertex (< 2^13 units anywhere in the guard band).
+// Attribute planes live on the pixel lattice: A(c, r) = base + gx c + gy r in uint32, modulo
+// 2^32, with gradients rounded once: every evaluation, direct or stepped, is exact. Error and
+// bounds: docs/numerics.md#attribute-plane-equations.
 //
 // Attributes (all unsigned, ranges at vertices):
 //   z    window depth x 65535 x 2^16, [0, 65535 x 2^16]        (screen-linear)
@@ -18,8 +15,7 @@
 //   position_i world position component i relative to org (Q16.16, clamped to int32) times q,
 //        shifted right by m_p (the bit length of the largest relative value): |value| < 2^30
 //   tan_i tangent component i (Q1.14 << 16) times q: |value| <= 2^30
-// Gradient numerators are < 2^57; gradients beyond 2^38 per pixel only occur for needles
-// thinner than 1/256 pixel: such a triangle gets constant attributes (the vertex mean).
+// Needles thinner than 1/256 pixel get constant attributes (the vertex mean).
 #pragma once
 
 #include <cstdint>
@@ -66,9 +62,8 @@ struct SetupInput {
 void setup_triangle(const SetupInput& in, ActiveTriangle& out);
 
 // What every plane of one triangle shares: its edges from vertex 0 (subpixels), twice its area
-// (|area| < 2^47 inside the guard band) and a reciprocal of the area, so that each of the
-// triangle's gradients costs multiplications instead of 64-bit divisions (one division per
-// triangle: on Cortex-M a 64-bit division is a libgcc call of about 100 instructions).
+// (|area| < 2^47 inside the guard band) and a reciprocal of the area, so that each gradient
+// costs multiplications, not a 64-bit division (docs/numerics.md#one-division-many-quotients).
 struct PlaneBasis {
   int64_t x0 = 0, y0 = 0, ex1 = 0, ey1 = 0, ex2 = 0, ey2 = 0;
   int64_t area = 0;   // |twice the signed area|, subpixels^2

@@ -9,7 +9,7 @@
 
 namespace lr {
 
-inline constexpr int kSubpixelBits = 8;                   // DESIGN.md §3 default
+inline constexpr int kSubpixelBits = 8;                   // docs/conventions.md#coordinates
 inline constexpr int32_t kSubpixel = 1 << kSubpixelBits;  // subpixels per pixel
 inline constexpr int32_t kHalfPixel = kSubpixel / 2;
 

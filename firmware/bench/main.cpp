@@ -65,8 +65,7 @@ constexpr size_t kSurfaceCapacity =
     32;
 constexpr size_t kTriangleCapacity = triangles(bench_knot64k_asset::meshes) + 32;
 static_assert(kVertexCapacity <= lr::kMaxStoreEntries && kTriangleCapacity < lr::kMaxStoreEntries);
-// The knot: 565 at most at 2.4 units, 958 at 12 units; its subdivided twin: 4,468
-// (ActiveTriangle: 260 bytes).
+// The knot: 565 at most at 2.4 units, 958 at 12 units; its subdivided twin: 4,468.
 // Every other case gets the first kActiveSmall entries: render() makes a free list of the whole
 // active store each frame (a few instructions per entry), so the store's size is part of the
 // frame's count.

@@ -20,9 +20,8 @@ inline constexpr int kWidth = 320, kHeight = 240;
 // LR_DEMO_SMALL_RAM: the 16 KB of a micro:bit. Strips of 2 rows (two RGB888 strip buffers of
 // 1,920 B, a depth strip of 1,280 B), stores exactly as large as the cube (24 vertices, 12
 // triangles; this view clips nothing, and a store that ran out would fail the run loudly), 10
-// active triangles (the most this view has on one strip). With the renderer and the sink that is
-// about 10 KB of .data + .bss, leaving 6 KB for the stack (the static worst case is about 5.4 KB,
-// scripts/footprint.sh).
+// active triangles (the most this view has on one strip). The stack gets the rest
+// (scripts/footprint.sh checks the static worst case against it).
 #if LR_DEMO_SMALL_RAM
 inline constexpr int kStripRows = 2;
 inline constexpr size_t kClipMargin = 0;

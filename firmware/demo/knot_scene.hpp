@@ -20,7 +20,7 @@ inline constexpr int kWidth = 320, kHeight = 240;
 inline constexpr int kStripRows = 8;
 inline constexpr size_t kClipMargin = 16;  // vertices and triangles clipping may add
 // Triangles on one strip at once: 565 at most for this view (lineraster-sim --stats:
-// max_active), plus room for a slightly different view. 640 x 264 B = 165 KB.
+// max_active), plus room for a slightly different view.
 inline constexpr size_t kActiveCapacity = 640;
 inline constexpr SceneView kView = kSimDefaultView;
 inline constexpr LightSet kLights = sim_default_lights();

@@ -37,7 +37,7 @@ LightSet default_lights() {
 // Headroom over the mesh's own counts for the vertices and triangles near/far clipping makes
 // (the knot stays inside the frustum, so none in practice).
 constexpr size_t kClipHeadroom = 256;
-// Triangles on one strip at once; the knot at 320x240 needs about 220.
+// Triangles on one strip at once (FrameStats::max_active says how many a view needs).
 constexpr size_t kActive = 1024;
 
 }  // namespace

@@ -48,7 +48,7 @@ constexpr int kHeight = 240;
 // Board-dependent sizes. The small profile (16 KB of RAM, of which the stack takes 6 KB) holds
 // this scene with little to spare: 6 vertices and 8 triangles (nothing is clipped: the
 // octahedron lies well inside the near plane), at most 7 triangles active at once ("max active"
-// in the report). Stores, strips and renderer take 7.3 KB at K = 2 (.data + .bss).
+// in the report); docs/measurements/footprint.md has the RAM they take.
 #if defined(LR_BOARD_RAM_SIZE) && LR_BOARD_RAM_SIZE < 64 * 1024
 constexpr bool kSmallRam = true;
 #else
