@@ -49,8 +49,10 @@ typedef struct qemu_info_t {
   };
 } qemu_info_t;
 
-/* Opaque handle of a translation block, valid during the translation callback only. */
+/* Opaque handles of a translation block and of one of its instructions, valid during the
+ * translation callback only. */
 struct qemu_plugin_tb;
+struct qemu_plugin_insn;
 
 /* Whether an execution callback reads or writes guest registers (this plugin: never). */
 enum qemu_plugin_cb_flags {
@@ -81,6 +83,9 @@ void qemu_plugin_register_vcpu_tb_exec_inline(struct qemu_plugin_tb* tb, enum qe
                                               void* ptr, uint64_t imm);
 size_t qemu_plugin_tb_n_insns(const struct qemu_plugin_tb* tb);
 uint64_t qemu_plugin_tb_vaddr(const struct qemu_plugin_tb* tb);
+/* The TB's instruction number idx (0-based, < qemu_plugin_tb_n_insns) and its guest address. */
+struct qemu_plugin_insn* qemu_plugin_tb_get_insn(const struct qemu_plugin_tb* tb, size_t idx);
+uint64_t qemu_plugin_insn_vaddr(const struct qemu_plugin_insn* insn);
 void qemu_plugin_register_atexit_cb(qemu_plugin_id_t id, qemu_plugin_udata_cb_t cb, void* userdata);
 void qemu_plugin_outs(const char* string);
 
