@@ -100,4 +100,24 @@ Status Renderer<PF, K, kSpans>::render(StripSink<PF>& sink, DepthSink* depth_sin
   return strip_.render(front_.frame(), front_.mutable_stats(), sink, depth_sink);
 }
 
+#ifdef LR_EXTERN_RENDERERS
+// Hosted builds (core/CMakeLists.txt) link the renderers with every span routine, for both
+// pixel formats and every strip height lineraster-sim offers, from lr_core
+// (raster/renderer_instances_*.cpp) instead of compiling the strip loop and all span routines
+// again in each program. Bare-metal builds instantiate where they are used, so that render()
+// can be inlined into its caller and the sink's calls made direct.
+extern template class Renderer<Rgb565Be, 1>;
+extern template class Renderer<Rgb565Be, 2>;
+extern template class Renderer<Rgb565Be, 4>;
+extern template class Renderer<Rgb565Be, 8>;
+extern template class Renderer<Rgb565Be, 16>;
+extern template class Renderer<Rgb565Be, 32>;
+extern template class Renderer<Rgb888, 1>;
+extern template class Renderer<Rgb888, 2>;
+extern template class Renderer<Rgb888, 4>;
+extern template class Renderer<Rgb888, 8>;
+extern template class Renderer<Rgb888, 16>;
+extern template class Renderer<Rgb888, 32>;
+#endif
+
 }  // namespace lr

@@ -170,7 +170,7 @@ inline constexpr std::array kCases = {
     BenchCase{"ground_trilinear", LR_GROUND " --filter bilinear --mipmap linear", Mesh3::kGround,
               kGroundView, demo::sim_default_lights(), 0, false,
               textured(Filter::kBilinear, MipMode::kLinear, false, Cull::kNone), Tex::kGround},
-    // Issue 8's large mesh: the knot subdivided twice.
+    // The large mesh: the knot subdivided twice.
     // A closed mesh: back faces culled, as in the budget case of the 4,000-triangle knot
     // (knot_gouraud_cullback).
     BenchCase{"knot64k_gouraud", LR_KNOT " --subdivide 2 --cull back", Mesh3::kKnot64k, kKnotView,

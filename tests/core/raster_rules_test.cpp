@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "core/vertex/vertex_stage.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr {
@@ -191,6 +192,60 @@ TEST(Culling, FrontFacesAreCounterClockwiseInNdc) {
     EXPECT_EQ(core.renderer().stats().culled_backface, front ? 0u : 1u);
     EXPECT_EQ(core.renderer().stats().pixels_written > 0, front == 1);
   }
+}
+
+TEST(Snapping, RoundsToTheNearestSubpixelHalfAwayFromZero) {
+  // With w = 2 * width * 128 (resp. height), the subpixel x is (x + w) / 2 and y is (w - y) / 2:
+  // odd numerators land exactly on a half subpixel, negative ones left of and below the viewport
+  // (inside the guard band).
+  const Camera camera;
+  const Mat4 model = Mat4::identity();
+  const VertexStage stage(camera, model, GuardBand{8, 8}, 320, 240);
+  struct Case {
+    int64_t n;
+    int32_t expected;
+  };
+  const Case cases[] = {{1, 1}, {3, 2}, {2, 1}, {-1, -1}, {-3, -2}, {-2, -1}, {0, 0}, {5, 3}};
+  for (const Case& c : cases) {
+    const int64_t wx = 2 * 320 * kHalfPixel, wy = 2 * 240 * kHalfPixel;
+    ScreenVertex vx{}, vy{};
+    ASSERT_TRUE(stage.project(ClipCoord{c.n - wx, 0, 0, wx}, vx));
+    ASSERT_TRUE(stage.project(ClipCoord{0, wy - c.n, 0, wy}, vy));
+    EXPECT_EQ(vx.x, c.expected) << "x numerator " << c.n << " / 2";
+    EXPECT_EQ(vy.y, c.expected) << "y numerator " << c.n << " / 2";
+  }
+}
+
+TEST(FillRule, DegenerateTrianglesDrawNothingAndAreCountedAsZeroArea) {
+  ScreenScene s;
+  s.add(10 * S, 10 * S, 20 * S, 20 * S, 30 * S, 30 * S);                    // collinear, diagonal
+  s.add(10 * S + H, 5 * S + H, 30 * S + H, 5 * S + H, 50 * S, 5 * S + H);   // on a row of centres
+  s.add(40 * S, 12 * S, 40 * S, 12 * S, 55 * S + 3, 30 * S);                // two corners equal
+  s.add(7 * S + 1, 7 * S + 1, 7 * S + 1, 7 * S + 1, 7 * S + 1, 7 * S + 1);  // one point
+  s.add(2 * S, 2 * S, 12 * S, 9 * S, 2 * S, 30 * S);  // a real one, for contrast
+  FrameStats st;
+  const Compare c = run(s, 64, 40, &st);
+  EXPECT_EQ(c.mismatches, 0u);
+  EXPECT_EQ(st.culled_zero_area, 4u);
+  EXPECT_EQ(st.binned_inputs, 1u);
+  EXPECT_EQ(st.triangles_binned, 1u);
+  EXPECT_GT(st.pixels_written, 100u);
+}
+
+TEST(FillRule, TrianglesWhoseBoundsHoldNoCentreAreDroppedBeforeSetup) {
+  // Inside one pixel, away from its centre; between two rows of centres; between two columns;
+  // and, for contrast, a tiny one around a centre (binned, one pixel).
+  ScreenScene s;
+  s.add(20 * S + 10, 10 * S + 10, 20 * S + 100, 10 * S + 20, 20 * S + 30, 10 * S + 90);
+  s.add(5 * S, 20 * S + H + 4, 60 * S, 20 * S + H + 40, 30 * S, 21 * S + H - 1);
+  s.add(40 * S + H + 1, 2 * S, 41 * S + H - 1, 3 * S, 40 * S + H + 50, 35 * S);
+  s.add(30 * S + H - 8, 30 * S + H - 8, 30 * S + H + 8, 30 * S + H - 8, 30 * S + H, 30 * S + H + 8);
+  FrameStats st;
+  const Compare c = run(s, 64, 40, &st);
+  EXPECT_EQ(c.mismatches, 0u);
+  EXPECT_EQ(st.culled_offscreen, 3u);
+  EXPECT_EQ(st.triangles_binned, 1u);
+  EXPECT_EQ(st.pixels_written, 1u);
 }
 
 }  // namespace
