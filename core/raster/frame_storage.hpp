@@ -89,7 +89,8 @@ struct StaticFrameStorage {
   std::array<uint32_t, kCaps.strip_inputs()> strip_inputs{};
   std::array<uint16_t, kCaps.buckets()> buckets{};
   std::array<uint16_t, kCaps.active_index()> active_index{};
-  std::array<uint16_t, kCaps.depth()> depth{};
+  // Word-aligned whatever precedes it: the strip's depth is cleared with word stores.
+  alignas(4) std::array<uint16_t, kCaps.depth()> depth{};
 
   FrameStorage storage() {
     return {vertices, triangles, draws,           buckets,      active,      active_index,

@@ -3,8 +3,6 @@
 #include "core/math/divide.hpp"
 
 namespace lr {
-namespace {
-
 // A model-space tangent (Q1.14) to world space (the model's upper 3x3), unit Q1.14.
 void transform_tangent(const Mat4& model, const Tangent16& t, int16_t out[3]) {
   int64_t r[3];
@@ -18,8 +16,6 @@ void transform_tangent(const Mat4& model, const Tangent16& t, int16_t out[3]) {
   out[2] = static_cast<int16_t>(round_shift(u.z, 16));
 }
 
-}  // namespace
-
 Unit30 transform_normal_call(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
   return transform_normal(nm, x, y, z);
 }
@@ -32,40 +28,6 @@ VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guar
       guard_(guard),
       width_(width),
       height_(height) {}
-
-void VertexStage::transform(const Mesh& mesh, const VertexColors& draw_colors, ScreenVertex* out,
-                            SurfaceVertex* surfaces) const {
-  const VertexColors colors = draw_colors;  // a copy: kept in registers across the calls below
-  const size_t n = mesh.positions.size();
-  for (size_t i = 0; i < n; ++i) {
-    ScreenVertex& sv = out[i];
-    sv.color_pending = colors.pending ? 1 : 0;
-    const ClipCoord c = clip(mesh.positions[i]);
-    sv.outcode = outcode(c, guard_);
-    if (sv.outcode == 0) project(c, sv);
-    sv.u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
-    sv.v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
-    sv.spec = Color15{};
-    if (surfaces != nullptr) {
-      sv.color = Color15{};
-      SurfaceVertex& su = surfaces[i];
-      const Normal16& nn = mesh.normals[i];
-      su.normal = transform_normal_call(nm_, nn.x, nn.y, nn.z);
-      su.position = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
-      if (colors.tangents) {
-        transform_tangent(model_, mesh.tangents[i], su.tangent);
-        su.handedness = mesh.tangents[i].w < 0 ? -16384 : 16384;
-      } else {
-        su.tangent[0] = su.tangent[1] = su.tangent[2] = 0;
-        su.handedness = 16384;
-      }
-    } else if (!colors.lit) {
-      sv.color = mesh.colors.empty() ? colors.material : from_rgb8(mesh.colors[i]);
-    } else {
-      sv.color = Color15{};  // lit Gouraud: lit on first use (light()); flat: per triangle
-    }
-  }
-}
 
 bool VertexStage::project(const ClipCoord& c, ScreenVertex& v) const {
   // Inside every plane: w >= 2^-16, |x| <= gx w, |y| <= gy w, |z| <= w. Normalise so w < 2^31.

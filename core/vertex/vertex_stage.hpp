@@ -74,14 +74,17 @@ struct VertexColors {
   const PreparedLighting* lighting = nullptr;  // lit draws
 };
 
+// A model-space tangent (Q1.14) to world space (the model's upper 3x3), unit Q1.14.
+void transform_tangent(const Mat4& model, const Tangent16& t, int16_t out[3]);
+
 class VertexStage {
  public:
   VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width, int height);
 
   // The mesh's vertices into out[0, n) (and surfaces[0, n) for Phong; else nullptr):
   // transformed, clip-tested (outcode), projected and snapped when inside every plane.
-  void transform(const Mesh& mesh, const VertexColors& colors, ScreenVertex* out,
-                 SurfaceVertex* surfaces) const;
+  [[gnu::always_inline]] void transform(const Mesh& mesh, const VertexColors& colors,
+                                        ScreenVertex* out, SurfaceVertex* surfaces) const;
 
   // Lit colour(s) of mesh vertex i, with the normal negated or not (two-sided back faces).
   // (colors by value here and in light_face: the caller's copy stays in registers.)
@@ -139,5 +142,40 @@ inline LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p
 // in front of the eye even when a vertex is behind it): true when front-facing, i.e.
 // counter-clockwise in NDC (front_facing() in screen_vertex.hpp is the same rule on the display).
 bool front_facing_clip(const ClipCoord (&c)[3]);
+
+// Inline: draw() is its one caller, and the loop keeps more in registers inside it.
+inline void VertexStage::transform(const Mesh& mesh, const VertexColors& draw_colors,
+                                   ScreenVertex* out, SurfaceVertex* surfaces) const {
+  const VertexColors colors = draw_colors;  // a copy: kept in registers across the calls below
+  const size_t n = mesh.positions.size();
+  for (size_t i = 0; i < n; ++i) {
+    ScreenVertex& sv = out[i];
+    sv.color_pending = colors.pending ? 1 : 0;
+    const ClipCoord c = clip(mesh.positions[i]);
+    sv.outcode = outcode(c, guard_);
+    if (sv.outcode == 0) project(c, sv);
+    sv.u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
+    sv.v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
+    sv.spec = Color15{};
+    if (surfaces != nullptr) {
+      sv.color = Color15{};
+      SurfaceVertex& su = surfaces[i];
+      const Normal16& nn = mesh.normals[i];
+      su.normal = transform_normal_call(nm_, nn.x, nn.y, nn.z);
+      su.position = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
+      if (colors.tangents) {
+        transform_tangent(model_, mesh.tangents[i], su.tangent);
+        su.handedness = mesh.tangents[i].w < 0 ? -16384 : 16384;
+      } else {
+        su.tangent[0] = su.tangent[1] = su.tangent[2] = 0;
+        su.handedness = 16384;
+      }
+    } else if (!colors.lit) {
+      sv.color = mesh.colors.empty() ? colors.material : from_rgb8(mesh.colors[i]);
+    } else {
+      sv.color = Color15{};  // lit Gouraud: lit on first use (light()); flat: per triangle
+    }
+  }
+}
 
 }  // namespace lr

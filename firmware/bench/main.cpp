@@ -86,7 +86,8 @@ constexpr lr::FrameCapacities kCapacities{
     .lighting_table_words = 2 * lr::lighting_table_words(kTableSize, false),
     .pixel_lights = 2};
 lr::StaticFrameStorage<kCapacities> g_store;
-std::array<std::array<Pixel, kStripPixels>, 2> g_strips{};
+// Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
+alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_strips{};
 
 lr::Renderer<PF, kStripRows> g_renderer;
 

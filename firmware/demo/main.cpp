@@ -55,7 +55,8 @@ constexpr lr::FrameCapacities kCapacities{.width = kWidth,
                                           .draws = scene::asset::draw_count,
                                           .active = kActive};
 lr::StaticFrameStorage<kCapacities> g_store;
-std::array<std::array<PF::Storage, kStripPixels>, 2> g_strips{};
+// Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
+alignas(4) std::array<std::array<PF::Storage, kStripPixels>, 2> g_strips{};
 
 // Only the span routines of the scene's draw states are linked (scene::kSpans, an lr::SpanSet:
 // core/span/span_state.hpp); a draw outside them would be refused.

@@ -110,7 +110,8 @@ constexpr lr::FrameCapacities kCapacities{.width = kWidth,
 
 // Constant-initialised, zero-filled in .bss, no constructor at startup.
 lr::StaticFrameStorage<kCapacities> g_store;
-std::array<std::array<Pixel, kStripPixels>, 2> g_store_strip_buffers{};
+// Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
+alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_store_strip_buffers{};
 
 lr::Renderer<PF, kStripRows, kSpans> g_renderer;
 // The display: every strip folded into FNV-1a (the smoke test's checksum, so that frames compare

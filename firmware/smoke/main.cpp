@@ -124,7 +124,8 @@ constexpr lr::FrameCapacities kCapacities{.width = kWidth,
                                           .draws = kSmallRam ? 1u : 4u,  // one draw in this scene
                                           .active = kMaxActive};
 lr::StaticFrameStorage<kCapacities> g_store;
-std::array<std::array<Pixel, kStripPixels>, 2> g_strip_buffers{};
+// Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
+alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_strip_buffers{};
 
 // Gouraud only: no textured or Phong span routines linked (lr::SpanSet, core/span/span_state.hpp).
 lr::Renderer<PF, kStripRows, lr::kUntexturedSpans> g_renderer;
