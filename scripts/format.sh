@@ -25,10 +25,18 @@ command -v "$tool" >/dev/null 2>&1 ||
 if [[ $# -gt 0 ]]; then
   files=("$@")
 else
-  mapfile -t files < <(git ls-files -- '*.c' '*.cc' '*.cpp' '*.h' '*.hpp' '*.inc' '*.ipp' |
-                         grep -vE '(^|/)(third_party|vendor)/' || true)
+  # The files git knows of; without git (or outside a checkout) every such file outside build/
+  # and out/, so that a fresh machine checks the same sources.
+  if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+    list=(git ls-files -- '*.c' '*.cc' '*.cpp' '*.h' '*.hpp' '*.inc' '*.ipp')
+  else
+    list=(find . \( -path ./build -o -path ./out -o -path ./.git \) -prune -o -type f
+          \( -name '*.c' -o -name '*.cc' -o -name '*.cpp' -o -name '*.h' -o -name '*.hpp'
+          -o -name '*.inc' -o -name '*.ipp' \) -printf '%P\n')
+  fi
+  mapfile -t files < <("${list[@]}" | sort | grep -vE '(^|/)(third_party|vendor)/' || true)
 fi
-[[ ${#files[@]} -gt 0 ]] || { echo "format: no C/C++ files"; exit 0; }
+[[ ${#files[@]} -gt 0 ]] || { echo "format: no C/C++ files found" >&2; exit 1; }
 
 if [[ $check == 0 ]]; then
   printf '%s\0' "${files[@]}" | xargs -0 -n 50 "$tool" -i --style=file

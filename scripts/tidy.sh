@@ -37,8 +37,13 @@ fi
 if [[ $# -gt 0 ]]; then
   files=("$@")
 else
-  mapfile -t files < <(git ls-files -- 'core/*.cpp' 'hal/*.cpp' |
-                         grep -vE '^hal/(host|linux|usb)/' || true)
+  # As format.sh: git's list, or without git every such file.
+  if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+    list=(git ls-files -- 'core/*.cpp' 'hal/*.cpp')
+  else
+    list=(find core hal -type f -name '*.cpp')
+  fi
+  mapfile -t files < <("${list[@]}" | sort | grep -vE '^hal/(host|linux|usb)/' || true)
 fi
 [[ ${#files[@]} -gt 0 ]] || { echo "tidy: no sources" >&2; exit 1; }
 
