@@ -7,6 +7,7 @@
 
 #include "core/math/divide.hpp"
 #include "core/math/pow_table.hpp"
+#include "core/math/reciprocal.hpp"
 #include "core/math/trig.hpp"
 #include "core/math/vec.hpp"
 #include "core/output/color.hpp"
@@ -220,6 +221,44 @@ TEST(Divide, QuotientEqualsDivisionForEveryRange) {
     }
   }
   EXPECT_GT(checked, 900000u);
+}
+
+// The normalised reciprocals equal the divisions they stand for, on the table path that cores
+// without a divider take (every 16-bit divisor) as on the path this host takes.
+TEST(Reciprocal, Recip16EqualsTheDivisionForEveryDivisor) {
+  for (uint32_t d = 1u << 15; d < (1u << 16); ++d) {
+    ASSERT_EQ(detail::recip16_table(d), 0xFFFFFFFFu / d) << d;
+    ASSERT_EQ(recip16(d), 0xFFFFFFFFu / d) << d;
+  }
+}
+
+TEST(Reciprocal, Recip32AndTheTwoByOneDivisionEqualTheDivisions) {
+  uint64_t s = 0x2545F4914F6CDD1Du;
+  auto next = [&s]() {
+    s ^= s << 13;
+    s ^= s >> 7;
+    s ^= s << 17;
+    return s;
+  };
+  auto check = [&](uint32_t d) {
+    const uint32_t v = static_cast<uint32_t>(~uint64_t{0} / d - (uint64_t{1} << 32));
+    ASSERT_EQ(detail::recip32_newton(d), v) << d;
+    ASSERT_EQ(recip32(d), v) << d;
+    const uint64_t n[] = {
+        next() % (uint64_t{d} << 32),          (uint64_t{d} << 32) - 1, 0, d - 1u, d,
+        (next() % (uint64_t{d} << 32)) / d * d};
+    for (uint64_t x : n) {
+      const Quotient32 qr = divide_2by1(x, d, v);
+      ASSERT_EQ(qr.q, x / d) << x << " / " << d;
+      ASSERT_EQ(qr.r, x % d) << x << " % " << d;
+    }
+  };
+  for (uint32_t k = 0; k < 70000; ++k) {
+    check((1u << 31) + k);   // the smallest divisors
+    check(0xFFFFFFFFu - k);  // the largest
+    check(static_cast<uint32_t>(next()) | (1u << 31));
+    check(((0x8000u + (k % 0x8000u)) << 16) | (k & 1 ? 0xFFFFu : 0u));  // top-half boundaries
+  }
 }
 
 // The edge walker's 32-bit path and the 64-bit one (long edges far outside the viewport) both

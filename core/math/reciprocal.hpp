@@ -1,0 +1,122 @@
+// Reciprocals of normalised divisors, exact and therefore identical on every core: where the
+// core divides in hardware (or on a host) they are one division; on cores without a 32-bit
+// divider (Armv6-M) they come from a 256-entry seed table, one Newton step and an exact
+// remainder correction. Derivation and bounds: docs/numerics.md#normalised-reciprocals.
+//
+//   recip16(d)  d in [2^15, 2^16): floor((2^32 - 1) / d), in (2^16, 2^17]
+//   recip32(d)  d in [2^31, 2^32): floor((2^64 - 1) / d) - 2^32, in [0, 2^32) (the "inverse
+//               limb" of a 2-by-1 division)
+//   divide_2by1(n, d, recip32(d))  floor(n / d) and its remainder for n < d 2^32: two multiplies
+//               and at most two corrections instead of a 64-bit division
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace lr {
+
+constexpr uint32_t recip16(uint32_t d);
+constexpr uint32_t recip32(uint32_t d);
+
+struct Quotient32 {
+  uint32_t q;  // floor(n / d)
+  uint32_t r;  // n - q d, in [0, d)
+};
+constexpr Quotient32 divide_2by1(uint64_t n, uint32_t d, uint32_t v);
+
+// ---- Implementation --------------------------------------------------------------------------
+
+namespace detail {
+
+// Seed i: 2^32 / (the middle of the divisors with top bits 256 + i), relative error < 2^-9.
+consteval std::array<uint32_t, 256> make_recip_seeds() {
+  std::array<uint32_t, 256> s{};
+  for (uint32_t i = 0; i < 256; ++i) {
+    const uint64_t mid = (uint64_t{256 + i} << 7) + 64;
+    s[i] = static_cast<uint32_t>((uint64_t{1} << 32) / mid);
+  }
+  return s;
+}
+inline constexpr std::array<uint32_t, 256> kRecipSeeds = make_recip_seeds();
+
+// The table path of recip16, on every core (tests compare it with the division for every d).
+constexpr uint32_t recip16_table(uint32_t d) {
+  uint32_t x = kRecipSeeds[(d >> 7) - 256];
+  // e = 2^32 - d x in (-2^23, 2^23): wrapping arithmetic gives it exactly. The Newton step
+  // x + x e / 2^32 in 32-bit products of shortened factors (|x / 4 * e / 512| < 2^30).
+  const auto e = static_cast<int32_t>(0u - d * x);
+  x = static_cast<uint32_t>(static_cast<int32_t>(x) +
+                            ((static_cast<int32_t>(x >> 2) * (e >> 9)) >> 21));
+  // x is now within a few units of the quotient: the remainder (2^32 - 1) - d x is small, and
+  // exact in wrapping 32-bit arithmetic.
+  auto rem = static_cast<int32_t>(0xFFFFFFFFu - d * x);
+  while (rem < 0) {
+    --x;
+    rem += static_cast<int32_t>(d);
+  }
+  while (rem >= static_cast<int32_t>(d)) {
+    ++x;
+    rem -= static_cast<int32_t>(d);
+  }
+  return x;
+}
+
+// recip32 from recip16 of the divisor's top half: one Newton step in 64-bit products, then an
+// exact correction (tests compare it with the 64-bit division).
+constexpr uint32_t recip32_newton(uint32_t d) {
+  // X0 = 2^48 / (d >> 16) within 2^-15 of 2^64 / d (relative), below 2^33 + 2^16.
+  uint64_t x = uint64_t{recip16(d >> 16)} << 16;
+  // E = 2^64 - d X0, |E| < 2^50, exact in wrapping 64-bit arithmetic; X0 / 2 * E / 2^19 < 2^63.
+  const auto e = static_cast<int64_t>(uint64_t{0} - uint64_t{d} * x);
+  x = static_cast<uint64_t>(static_cast<int64_t>(x) +
+                            ((static_cast<int64_t>(x >> 1) * (e >> 19)) >> 44));
+  auto rem = static_cast<int64_t>(~uint64_t{0} - uint64_t{d} * x);
+  while (rem < 0) {
+    --x;
+    rem += d;
+  }
+  while (rem >= static_cast<int64_t>(d)) {
+    ++x;
+    rem -= d;
+  }
+  return static_cast<uint32_t>(x - (uint64_t{1} << 32));
+}
+
+}  // namespace detail
+
+constexpr uint32_t recip16(uint32_t d) {
+#if defined(__arm__) && !defined(__ARM_FEATURE_IDIV)
+  return detail::recip16_table(d);
+#else
+  return 0xFFFFFFFFu / d;
+#endif
+}
+
+constexpr uint32_t recip32(uint32_t d) {
+#if defined(__arm__)
+  return detail::recip32_newton(d);
+#else
+  return static_cast<uint32_t>(~uint64_t{0} / d - (uint64_t{1} << 32));
+#endif
+}
+
+constexpr Quotient32 divide_2by1(uint64_t n, uint32_t d, uint32_t v) {
+  const auto n1 = static_cast<uint32_t>(n >> 32), n0 = static_cast<uint32_t>(n);
+  // q = v n1 + (n1 + 1) 2^32 + n0, its high word the candidate quotient (at most one too
+  // large or one too small; Moeller and Granlund 2011, the 2-by-1 division).
+  const uint64_t p = uint64_t{v} * n1 + ((uint64_t{n1} + 1) << 32) + n0;
+  auto q1 = static_cast<uint32_t>(p >> 32);
+  const auto q0 = static_cast<uint32_t>(p);
+  uint32_t r = n0 - q1 * d;
+  if (r > q0) {
+    --q1;
+    r += d;
+  }
+  if (r >= d) {
+    ++q1;
+    r -= d;
+  }
+  return {q1, r};
+}
+
+}  // namespace lr
