@@ -9,7 +9,10 @@ instructions per frame and mean error (lower is better for both; equal on both: 
 table order stays). Strip height changes RAM and time, not the image: its rows share their
 error, so the front keeps the cheapest strip height; RAM is in the table.
 
-Usage: scripts/plot_quality.py QUALITY_BENCH.csv OUT.png
+With BEFORE.csv (an earlier run's table), each scene's earlier Pareto front is drawn dashed in
+grey beside the current one, and the table lists it.
+
+Usage: scripts/plot_quality.py QUALITY_BENCH.csv OUT.png [BEFORE.csv]
 """
 import csv
 import json
@@ -87,8 +90,9 @@ def markdown(rows, fronts):
             f"| {'*' if on else ''} |")
     out += [
         "",
-        "320x240. Instructions: callgrind Ir inside quality_bench_frame (begin_frame + draws + "
-        "render into RGB565 strips and a null sink), x86-64. Host time: median of 21 frames. RAM: "
+        "320x240. Instructions: exact Cortex-M4F instructions of the frame (begin_frame + draws + "
+        "render into RGB565 strips and a sink that does no per-pixel work), lr_quality under "
+        "QEMU mps2-an386 with the counting plugin; its frames equal the host's. Host time: median of 21 frames. RAM: "
         "vertices, binned and peak active triangles, two colour strips, one depth strip, buckets "
         "and draw records (texture B: the texels the setting reads). Errors per channel (0..255) "
         "against the double reference over the pixels both cover (the reference samples the 8-bit "
@@ -100,7 +104,7 @@ def markdown(rows, fronts):
     return "\n".join(out) + "\n"
 
 
-def plot(rows, fronts, png):
+def plot(rows, fronts, png, before=None):
     fig, axes = plt.subplots(2, 3, figsize=(16, 10), dpi=100)
     for ax, (scene, (label, color, marker)) in zip(axes.flat, SCENES.items()):
         pts = [r for r in rows if r["scene"] == scene]
@@ -113,6 +117,12 @@ def plot(rows, fronts, png):
         xs = [r["instructions_per_frame"] for r in f]
         ys = [r["mean_err"] for r in f]
         ax.step(xs, ys, where="post", color=color, linewidth=1.2, alpha=0.8)
+        if before and before.get(scene):
+            bx = [r["instructions_per_frame"] for r in before[scene]]
+            by = [r["mean_err"] for r in before[scene]]
+            ax.step(bx, by, where="post", color="0.45", linestyle="--", linewidth=1.0)
+            ax.scatter(bx, by, s=22, marker=marker, color="0.6", zorder=2,
+                       label="earlier Pareto front")
         ax.scatter(xs, ys, s=60, marker=marker, color=color, edgecolors="black", linewidths=0.6,
                    zorder=3, label="Pareto front")
         for i, r in enumerate(f, 1):
@@ -126,7 +136,7 @@ def plot(rows, fronts, png):
         top = max(r["mean_err"] for r in pts)
         ax.set_ylim(-0.001, max(top * 4, 0.05))
         ax.set_title(f"{scene}: {label}", fontsize=10)
-        ax.set_xlabel("instructions per frame (callgrind, x86-64, log)", fontsize=8)
+        ax.set_xlabel("instructions per frame (Cortex-M4F, QEMU, log)", fontsize=8)
         ax.set_ylabel("mean abs. error vs double reference (0..255, symlog)", fontsize=8)
         ax.tick_params(labelsize=7)
         ax.grid(True, which="both", alpha=0.25)
@@ -147,7 +157,7 @@ def plot(rows, fronts, png):
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_title("strip height K: RAM against instructions (same image)", fontsize=10)
-    ax.set_xlabel("instructions per frame (callgrind, x86-64, log)", fontsize=8)
+    ax.set_xlabel("instructions per frame (Cortex-M4F, QEMU, log)", fontsize=8)
     ax.set_ylabel("RAM (bytes, log)", fontsize=8)
     ax.tick_params(labelsize=7)
     ax.grid(True, which="both", alpha=0.25)
@@ -159,8 +169,8 @@ def plot(rows, fronts, png):
     fig.savefig(png)
 
 
-def pareto_table(fronts):
-    out = ["Pareto front per scene (instructions per frame vs mean error):", "",
+def pareto_table(fronts, title="Pareto front per scene (instructions per frame vs mean error):"):
+    out = [title, "",
            "| scene | setting | instr./frame | instr./pixel | host µs | RAM B | max err "
            "| mean err | PSNR dB | >4 % | coverage | depth order |",
            "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
@@ -176,19 +186,25 @@ def pareto_table(fronts):
 
 
 def main():
-    if len(sys.argv) != 3:
-        sys.exit("usage: plot_quality.py QUALITY_BENCH.csv OUT.png")
+    if len(sys.argv) not in (3, 4):
+        sys.exit("usage: plot_quality.py QUALITY_BENCH.csv OUT.png [BEFORE.csv]")
     path, png = sys.argv[1], sys.argv[2]
     rows = load(path)
     fronts = {s: pareto([r for r in rows if r["scene"] == s]) for s in SCENES}
+    before = None
     stem = os.path.splitext(path)[0]
     front_table = pareto_table(fronts)
+    if len(sys.argv) == 4:
+        old = load(sys.argv[3])
+        before = {s: pareto([r for r in old if r["scene"] == s]) for s in SCENES}
+        front_table += "\n" + pareto_table(
+            before, f"Earlier Pareto front per scene ({os.path.basename(sys.argv[3])}):")
     with open(stem + ".md", "w") as f:
         f.write(markdown(rows, fronts) + "\n" + front_table)
     with open(stem + ".json", "w") as f:
         json.dump([dict(r, pareto=any(r is x for x in fronts[r["scene"]])) for r in rows], f,
                   indent=1)
-    plot(rows, fronts, png)
+    plot(rows, fronts, png, before)
     print(f"wrote {stem}.md, {stem}.json, {png}")
     print(front_table)
 
