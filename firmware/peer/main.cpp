@@ -6,6 +6,8 @@
 //   2. into a sink that does no per-pixel work, between two calls of lr_bench_marker(): the
 //      counting QEMU plugin (scripts/icount.sh, scripts/icount_profile.py, scripts/peer_bench.sh)
 //      counts the whole frame, begin_frame, the draw and render.
+// A case fails when it drops work or when its covered pixels differ from Mesa's count by more
+// than a few (scenes.hpp): a frame that is not the scene's definition.
 // Each case's line is in lr_bench's format ("lr_bench: case NAME ..." after the case's two
 // markers), the protocol scripts/icount_profile.py reads, followed by the frame statistics by
 // name. Nothing between the markers calls semihosting or takes an exception.
@@ -156,7 +158,16 @@ bool run_case(const peer::PeerCase& c) {
     sh::write_dec(n.value);
   }
   sh::write("\n");
-  return dropped == 0 && st.pixels_written > 0;
+  const uint32_t off = covered.count > c.mesa_covered ? covered.count - c.mesa_covered
+                                                      : c.mesa_covered - covered.count;
+  if (off > peer::kCoverageSlack) {
+    sh::write("lr_peer: ");
+    sh::write(c.name);
+    sh::write(" covers a different frame than Mesa's (");
+    sh::write_dec(c.mesa_covered);
+    sh::write(" pixels)\n");
+  }
+  return dropped == 0 && st.pixels_written > 0 && off <= peer::kCoverageSlack;
 }
 
 }  // namespace

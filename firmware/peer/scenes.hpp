@@ -34,6 +34,7 @@ struct PeerScene {
   double translate_z, rotate_x_deg, rotate_y_deg;
   bool lit;       // Gouraud with kLightTowards and the bunny's material; else unlit, replace
   Filter filter;  // the textured scenes' filter
+  uint32_t mesa_covered;  // pixels Mesa's OpenGL covers (the definition's count)
 };
 
 inline constexpr int kWidth = 320, kHeight = 240;
@@ -46,18 +47,23 @@ inline constexpr double kMaterialColor[3] = {0.95, 0.78, 0.55};
 inline constexpr double kAmbient = 0.2, kDiffuse = 0.8;
 
 inline constexpr std::array<PeerScene, 6> kScenes = {{
-    {"S1", Geometry::kBunny, 1.0, 10.0, -2.45, 0.0, 20.0, true, Filter::kNearest},
-    {"S1x", Geometry::kBunnyX, 1.0, 10.0, -2.45, 0.0, 20.0, true, Filter::kNearest},
-    {"S2n", Geometry::kCube, 1.0, 10.0, -2.75, 30.0, 30.0, false, Filter::kNearest},
-    {"S2b", Geometry::kCube, 1.0, 10.0, -2.75, 30.0, 30.0, false, Filter::kBilinear},
-    {"S3n", Geometry::kGround, 0.5, 300.0, 0.0, 0.0, 0.0, false, Filter::kNearest},
-    {"S3b", Geometry::kGround, 0.5, 300.0, 0.0, 0.0, 0.0, false, Filter::kBilinear},
+    {"S1", Geometry::kBunny, 1.0, 10.0, -2.45, 0.0, 20.0, true, Filter::kNearest, 21756},
+    {"S1x", Geometry::kBunnyX, 1.0, 10.0, -2.45, 0.0, 20.0, true, Filter::kNearest, 21756},
+    {"S2n", Geometry::kCube, 1.0, 10.0, -2.75, 30.0, 30.0, false, Filter::kNearest, 39889},
+    {"S2b", Geometry::kCube, 1.0, 10.0, -2.75, 30.0, 30.0, false, Filter::kBilinear, 39889},
+    {"S3n", Geometry::kGround, 0.5, 300.0, 0.0, 0.0, 0.0, false, Filter::kNearest, 38080},
+    {"S3b", Geometry::kGround, 0.5, 300.0, 0.0, 0.0, 0.0, false, Filter::kBilinear, 38080},
 }};
+
+// How far the covered pixels may be from Mesa's count: the scene is the definition's if its
+// frame covers the same pixels but for a few along the silhouette.
+inline constexpr uint32_t kCoverageSlack = 4;
 
 // A scene in the core's formats (the texture pointer is filled in by the program).
 struct PeerCase {
   const char* name = nullptr;
   Geometry geometry = Geometry::kBunny;
+  uint32_t mesa_covered = 0;
   Fixed near, far, translate_z, rotate_x, rotate_y;
   LightSet lights;
   Material material;
@@ -77,6 +83,7 @@ consteval PeerCase to_case(const PeerScene& s) {
   PeerCase c;
   c.name = s.name;
   c.geometry = s.geometry;
+  c.mesa_covered = s.mesa_covered;
   c.near = Fixed::from_double(s.near);
   c.far = Fixed::from_double(s.far);
   c.translate_z = Fixed::from_double(s.translate_z);
