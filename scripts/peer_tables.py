@@ -148,7 +148,7 @@ def main(argv):
         sg = stages.get(name)
         if sg is None:
             cells += ["-"] * 6
-        elif sg["other"] * 2 > ins:
+        elif sum(n for k, n in rows[name].items() if k.startswith("other: ")) * 2 > ins:
             no_lines.append(name)
             cells += ["n/a (no line tables)"] * 5 + [commas(sg["other"])]
         else:
