@@ -17,18 +17,12 @@
 
 #include "core/output/depth_sink.hpp"
 #include "core/raster/renderer.hpp"
+#include "firmware/common/bench_case.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
 #include "firmware/peer/assets.hpp"
 #include "firmware/peer/scenes.hpp"
-
-extern "C" {
-// Entered right before and right after each measured frame; one instruction (bx lr).
-[[gnu::noinline, gnu::used]] void lr_bench_marker() {
-  __asm__ volatile("" ::: "memory");
-}
-}
 
 namespace {
 
@@ -95,16 +89,11 @@ bool prepare(const peer::PeerCase& c, Prepared& p) {
   storage.active = storage.active.first(active);
   storage.active_index = storage.active_index.first(2 * active);
   if (!check(g_renderer.configure(storage, peer::kWidth, peer::kHeight), "configure")) return false;
-  // Identity view (eye at the origin looking down -z), the scene's near and far planes.
-  p.camera = lr::Camera{};
-  if (!lr::perspective(lr::Fixed::from_double(peer::kFovyDeg),
-                       lr::Fixed::ratio(peer::kWidth, peer::kHeight), c.near, c.far,
-                       p.camera.projection)) {
+  if (!peer::make_camera(c, p.camera)) {
     sh::write("lr_peer: projection rejected\n");
     return false;
   }
-  p.model = lr::translate({lr::Fixed{}, lr::Fixed{}, c.translate_z}) * lr::rotate_x(c.rotate_x) *
-            lr::rotate_y(c.rotate_y);
+  p.model = peer::model(c);
   p.state = c.state;
   p.state.texture = peer::texture(c.geometry);
   p.meshes = peer::meshes(c.geometry);
@@ -141,22 +130,15 @@ bool run_case(const peer::PeerCase& c) {
   sh::write(c.name);
   sh::write(" checksum ");
   sh::write_hex(sum);
-  const struct {
-    const char* name;
-    uint32_t value;
-  } counts[] = {{"covered", covered.count},           {"pixels_written", st.pixels_written},
-                {"pixels_tested", st.pixels_tested},  {"vertices", st.vertices_transformed},
-                {"triangles_in", st.triangles_in},    {"culled_back", st.culled_backface},
-                {"culled_zero", st.culled_zero_area}, {"culled_off", st.culled_offscreen},
-                {"clipped_away", st.clipped_away},    {"binned", st.triangles_binned},
-                {"set_up", st.triangles_set_up},      {"spans", st.spans},
-                {"max_active", st.max_active},        {"dropped", dropped}};
-  for (const auto& n : counts) {
-    sh::write(" ");
-    sh::write(n.name);
-    sh::write(" ");
-    sh::write_dec(n.value);
-  }
+  const lr::fw::NamedCount counts[] = {
+      {"covered", covered.count},           {"pixels_written", st.pixels_written},
+      {"pixels_tested", st.pixels_tested},  {"vertices", st.vertices_transformed},
+      {"triangles_in", st.triangles_in},    {"culled_back", st.culled_backface},
+      {"culled_zero", st.culled_zero_area}, {"culled_off", st.culled_offscreen},
+      {"clipped_away", st.clipped_away},    {"binned", st.triangles_binned},
+      {"set_up", st.triangles_set_up},      {"spans", st.spans},
+      {"max_active", st.max_active},        {"dropped", dropped}};
+  lr::fw::write_counts(counts);
   sh::write("\n");
   const uint32_t off = covered.count > c.mesa_covered ? covered.count - c.mesa_covered
                                                       : c.mesa_covered - covered.count;

@@ -16,8 +16,10 @@
 
 #include "core/lighting/lighting.hpp"
 #include "core/math/fixed.hpp"
+#include "core/math/mat4.hpp"
 #include "core/math/vec.hpp"
 #include "core/output/color.hpp"
+#include "core/scene/camera.hpp"
 #include "core/scene/draw_state.hpp"
 #include "core/scene/material.hpp"
 #include "firmware/demo/scene.hpp"
@@ -117,5 +119,18 @@ consteval std::array<PeerCase, kScenes.size()> to_cases() {
 }
 
 inline constexpr std::array<PeerCase, kScenes.size()> kCases = to_cases();
+
+// The camera of every scene: identity view (eye at the origin looking down -z), fovy 60, the
+// scene's near and far planes. False if perspective() rejects them.
+inline bool make_camera(const PeerCase& c, Camera& out) {
+  out = Camera{};
+  return perspective(Fixed::from_double(kFovyDeg), Fixed::ratio(kWidth, kHeight), c.near, c.far,
+                     out.projection);
+}
+
+// The model matrix T(0, 0, translate_z) Rx(rotate_x) Ry(rotate_y).
+inline Mat4 model(const PeerCase& c) {
+  return translate({Fixed{}, Fixed{}, c.translate_z}) * rotate_x(c.rotate_x) * rotate_y(c.rotate_y);
+}
 
 }  // namespace lr::fw::peer

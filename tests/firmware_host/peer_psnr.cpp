@@ -56,12 +56,8 @@ void render_core(const peer::PeerCase& c, lr::host::RenderResult& out) {
   if (renderer->configure(store->storage(), peer::kWidth, peer::kHeight) != lr::Status::kOk)
     die("configure failed");
   lr::Camera camera;
-  if (!lr::perspective(lr::Fixed::from_double(peer::kFovyDeg),
-                       lr::Fixed::ratio(peer::kWidth, peer::kHeight), c.near, c.far,
-                       camera.projection))
-    die("projection rejected");
-  const lr::Mat4 model = lr::translate({lr::Fixed{}, lr::Fixed{}, c.translate_z}) *
-                         lr::rotate_x(c.rotate_x) * lr::rotate_y(c.rotate_y);
+  if (!peer::make_camera(c, camera)) die("projection rejected");
+  const lr::Mat4 model = peer::model(c);
   lr::DrawState state = c.state;
   state.texture = peer::texture(c.geometry);
   lr::Status s = renderer->begin_frame(camera, c.lights, peer::kBackground);
