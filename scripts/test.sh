@@ -84,6 +84,9 @@ bash scripts/texture_bench.sh
 bash scripts/quality_bench.sh
 bash scripts/lighting_bench.sh
 LR_BENCH_HOST=$host/tests/firmware_host/lr_bench_host bash scripts/bench_cortex_m.sh
+# The peer scenes: the M4F frames against the host's only (one QEMU run, a few seconds); the
+# counts per stage need a tree with line tables: scripts/peer_bench.sh's header.
+LR_PEER_HOST=$host/tests/firmware_host/lr_peer_host bash scripts/peer_bench.sh --check-only build/cortex-m4f
 
 step ""
 if [[ ${#source_failures[@]} -gt 0 ]]; then

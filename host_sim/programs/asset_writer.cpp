@@ -97,7 +97,7 @@ void write_preamble(std::string& s, const AssetOptions& o, const AssetData& d) {
   s += "//   mesh:    " + comment_safe(o.obj_path) +
        " (with its MTL files): " + std::to_string(d.draws.size()) + " draw(s), " +
        std::to_string(vertices) + " vertices, " + std::to_string(triangles) + " triangles" +
-       (o.fit ? ", fitted (--fit)" : "") +
+       (o.fit ? ", fitted (--fit)" : "") + (o.fit_box ? ", fitted to its box (--fit-box)" : "") +
        (o.subdivide > 0 ? ", subdivided " + std::to_string(o.subdivide) + "x (--subdivide)" : "") +
        "\n";
   if (d.has_texture) {
@@ -266,6 +266,8 @@ bool load_asset(const AssetOptions& o, AssetData& out, std::string& error) {
   if (!load_obj(o.obj_path, mesh, error)) return false;
   if (o.subdivide < 0 || o.subdivide > 4) return fail(error, "--subdivide needs 0..4");
   if (o.subdivide > 0) mesh = subdivide(mesh, o.subdivide);
+  if (o.fit && o.fit_box) return fail(error, "--fit and --fit-box exclude each other");
+  if (o.fit_box) apply_fit(mesh, fit_box_transform(mesh));
   SceneOptions so;
   so.fit = o.fit;
   so.use_mesh_materials = true;

@@ -35,7 +35,8 @@ struct AssetOptions {
   std::string texture_path;  // "" = the first material's map_Kd, if any
   TexelFormat format = TexelFormat::kRgb565;
   bool mipmaps = false;
-  bool fit = false;
+  bool fit = false;          // fit_transform: farthest vertex at distance 1
+  bool fit_box = false;      // fit_box_transform: largest half extent 1 (not with fit)
   int subdivide = 0;         // midpoint subdivision levels (mesh_prep.hpp: subdivide), 0..4
   std::string name;          // a C++ identifier: the header's namespace
   std::string command_line;  // recorded in the header's comment ("" = none)

@@ -95,6 +95,20 @@ FitTransform fit_transform(const HostMesh& mesh) {
   return {center, scale};
 }
 
+FitTransform fit_box_transform(const HostMesh& mesh) {
+  const Bounds b = bounds(mesh);
+  Vec3d center{};
+  double half = 0.0;
+  for (size_t i = 0; i < 3; ++i) {
+    // Halves first: the sum and the difference of two huge coordinates cannot overflow.
+    center[i] = 0.5 * b.min[i] + 0.5 * b.max[i];
+    half = std::max(half, 0.5 * b.max[i] - 0.5 * b.min[i]);
+  }
+  const double scale = 1.0 / half;
+  if (!(half > 0.0) || !std::isfinite(scale) || !(scale > 0.0)) return {center, 1.0};
+  return {center, scale};
+}
+
 void apply_fit(HostMesh& mesh, const FitTransform& fit) {
   for (Vec3d& p : mesh.positions) {
     for (size_t c = 0; c < 3; ++c) p[c] = (p[c] - fit.center[c]) * fit.scale;

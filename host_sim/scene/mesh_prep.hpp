@@ -29,6 +29,10 @@ struct FitTransform {
   double scale;
 };
 FitTransform fit_transform(const HostMesh& mesh);
+// --fit-box: centre the mesh on its bounding-box centre and scale uniformly so that its largest
+// half extent is 1, i.e. the box's longest side spans [-1, 1] and the mesh lies in [-1, 1]^3.
+// A mesh without extent gets scale 1.
+FitTransform fit_box_transform(const HostMesh& mesh);
 // Applies p' = (p - center) * scale to every position (normals are unchanged: uniform scale).
 void apply_fit(HostMesh& mesh, const FitTransform& fit);
 

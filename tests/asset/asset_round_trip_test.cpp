@@ -331,6 +331,33 @@ TEST(AssetTool, ErrorsAreOneLineExitTwoAndNoOutput) {
   EXPECT_TRUE(dir.entries().empty());
 }
 
+TEST(AssetTool, FitBoxPutsTheLargestHalfExtentAtOne) {
+  TmpDir dir("lr_asset_test");
+  // Box [0, 4] x [0, 2] x [0, 1]: centre (2, 1, 0.5), largest half extent 2.
+  { std::ofstream(dir.file("box.obj")) << "v 0 0 0\nv 4 0 1\nv 0 2 0\nf 1 2 3\n"; }
+  AssetOptions o;
+  o.obj_path = dir.file("box.obj");
+  o.name = "box";
+  o.fit_box = true;
+  AssetData d;
+  std::string error;
+  ASSERT_TRUE(load_asset(o, d, error)) << error;
+  ASSERT_EQ(d.draws.size(), 1u);
+  const std::vector<Vec3>& p = d.draws[0].positions;
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p[0], (Vec3{Fixed::from_int(-1), Fixed::from_double(-0.5), Fixed::from_double(-0.25)}));
+  EXPECT_EQ(p[1], (Vec3{Fixed::from_int(1), Fixed::from_double(-0.5), Fixed::from_double(0.25)}));
+  EXPECT_EQ(p[2], (Vec3{Fixed::from_int(-1), Fixed::from_double(0.5), Fixed::from_double(-0.25)}));
+  EXPECT_NE(asset_header_text(o, d).find("fitted to its box (--fit-box)"), std::string::npos);
+  o.fit = true;
+  EXPECT_FALSE(load_asset(o, d, error));
+  EXPECT_EQ(error, "--fit and --fit-box exclude each other");
+  const ToolRun r = run_tool(
+      "--obj " + dir.file("box.obj") + " --fit --fit-box --name a --out " + dir.file("a.hpp"), dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "lineraster-asset: --fit and --fit-box exclude each other\n");
+}
+
 TEST(AssetTool, WritesAHeaderAndReplacesAnOldOneWhole) {
   TmpDir dir("lr_asset_test");
   const std::string out = dir.file("cube.hpp");

@@ -208,6 +208,28 @@ TEST(MeshPrep, FitUsesTheBoxCentreNotTheCentroid) {
   EXPECT_EQ(fit.scale, 0.5);
 }
 
+TEST(MeshPrep, FitBoxScalesByTheLargestHalfExtent) {
+  // Box [2, 8] x [-5, -3] x [0, 1]: centre (5, -4, 0.5), half extents 3, 1, 0.5.
+  HostMesh m;
+  m.positions = {{2, -5, 0}, {8, -3, 1}, {4, -4, 0.5}};
+  const FitTransform fit = fit_box_transform(m);
+  EXPECT_EQ(fit.center, (Vec3d{5, -4, 0.5}));
+  EXPECT_EQ(fit.scale, 1.0 / 3.0);
+  apply_fit(m, fit);
+  EXPECT_EQ(bounds(m).min, (Vec3d{-1, -1.0 / 3.0, -0.5 / 3.0}));
+  EXPECT_EQ(bounds(m).max, (Vec3d{1, 1.0 / 3.0, 0.5 / 3.0}));
+  // Not --fit's farthest vertex: the cube's corners end at (+-1, +-1, +-1).
+  HostMesh c = make_cube();
+  EXPECT_EQ(fit_box_transform(c).scale, 1.0);
+  EXPECT_LT(fit_transform(c).scale, 0.6);
+  HostMesh point;
+  point.positions = {{3, 4, 5}};
+  EXPECT_EQ(fit_box_transform(point).scale, 1.0);
+  HostMesh huge;
+  huge.positions = {{-1e308, 0, 0}, {1e308, 1, 1}};
+  EXPECT_EQ(fit_box_transform(huge).scale, 1e-308);
+}
+
 TEST(MeshPrep, FitOfDegenerateAndExtremeMeshes) {
   HostMesh empty;
   EXPECT_EQ(fit_transform(empty).scale, 1.0);

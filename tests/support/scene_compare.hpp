@@ -91,6 +91,42 @@ inline host::SceneOptions gold_options(host::SceneOptions o = {}) {
   return o;
 }
 
+// Fills c's figures from c.core and c.reference (frames of the same size). Coverage: the core's
+// depth was written (with depth_test off, a pixel not black), the reference's owner is set.
+inline void measure(bool depth_test, Comparison& c) {
+  const size_t n = c.core.depth.size();
+  double sum = 0, sq = 0;
+  for (size_t p = 0; p < n; ++p) {
+    bool core_cov = c.core.depth[p] != 0xFFFF || !depth_test;
+    bool ref_cov = c.reference.owner[p] >= 0;
+    if (!depth_test) {
+      const uint8_t* a = &c.core.image.rgb[3 * p];
+      core_cov = !(a[0] == 0 && a[1] == 0 && a[2] == 0);
+    }
+    if (core_cov != ref_cov) {
+      ++c.coverage_diff;
+      continue;
+    }
+    if (!core_cov) continue;
+    ++c.both;
+    int worst = 0;
+    for (int k = 0; k < 3; ++k) {
+      int e = std::abs(int(c.core.image.rgb[3 * p + size_t(k)]) -
+                       int(c.reference.rgb8[3 * p + size_t(k)]));
+      worst = std::max(worst, e);
+      sum += e;
+      sq += double(e) * e;
+    }
+    c.max_error = std::max(c.max_error, worst);
+    if (worst <= 1) ++c.within1;
+  }
+  if (c.both) {
+    c.mean_error = sum / (3.0 * double(c.both));
+    double mse = sq / (3.0 * double(c.both));
+    c.psnr = mse > 0 ? 10 * std::log10(255.0 * 255.0 / mse) : 99.0;
+  }
+}
+
 inline bool compare_scene(const host::HostMesh& mesh, const host::SceneOptions& o, Comparison& c,
                           std::string& error) {
   if (!host::render_scene(mesh, o, c.core, error)) return false;
@@ -127,37 +163,7 @@ inline bool compare_scene(const host::HostMesh& mesh, const host::SceneOptions& 
   } else {
     ref::render(mesh, rp, c.reference);
   }
-  const size_t n = size_t(o.width) * size_t(o.height);
-  double sum = 0, sq = 0;
-  for (size_t p = 0; p < n; ++p) {
-    bool core_cov = c.core.depth[p] != 0xFFFF || !o.depth_test;
-    bool ref_cov = c.reference.owner[p] >= 0;
-    if (!o.depth_test) {
-      const uint8_t* a = &c.core.image.rgb[3 * p];
-      core_cov = !(a[0] == 0 && a[1] == 0 && a[2] == 0);
-    }
-    if (core_cov != ref_cov) {
-      ++c.coverage_diff;
-      continue;
-    }
-    if (!core_cov) continue;
-    ++c.both;
-    int worst = 0;
-    for (int k = 0; k < 3; ++k) {
-      int e = std::abs(int(c.core.image.rgb[3 * p + size_t(k)]) -
-                       int(c.reference.rgb8[3 * p + size_t(k)]));
-      worst = std::max(worst, e);
-      sum += e;
-      sq += double(e) * e;
-    }
-    c.max_error = std::max(c.max_error, worst);
-    if (worst <= 1) ++c.within1;
-  }
-  if (c.both) {
-    c.mean_error = sum / (3.0 * double(c.both));
-    double mse = sq / (3.0 * double(c.both));
-    c.psnr = mse > 0 ? 10 * std::log10(255.0 * 255.0 / mse) : 99.0;
-  }
+  measure(o.depth_test, c);
   return true;
 }
 
