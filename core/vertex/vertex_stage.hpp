@@ -93,6 +93,16 @@ class VertexStage {
              ScreenVertex& sv) const {
     Unit30 nw = world_normal(mesh.normals[i]);
     if (back) nw = negate(nw);
+    if (!colors.need_position) {
+      if (colors.split) {
+        const LitColor lc = light_directional_split(*colors.lighting, nw);
+        sv.color = lc.primary;
+        sv.spec = lc.secondary;
+      } else {
+        sv.color = light_directional(*colors.lighting, nw);
+      }
+      return;
+    }
     const Vec3 pw = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
     if (colors.split) {
       const LitColor lc = light_point_split(*colors.lighting, nw, pw);
