@@ -105,4 +105,47 @@ struct LitColor {
 };
 LitColor light_point_split(const PreparedLighting& pl, const Unit30& n, Vec3 p);
 
+// light_point_split for directional lights and the infinite viewer only (!pl.needs_position()),
+// bit for bit: the per-vertex path of most lit draws, inline and without the general case's
+// branches. Products as in light_point_split (docs/numerics.md#lighting-arithmetic).
+inline LitColor light_directional_split(const PreparedLighting& pl, const Unit30& n) {
+  uint32_t prim[3] = {static_cast<uint32_t>(pl.base[0]), static_cast<uint32_t>(pl.base[1]),
+                      static_cast<uint32_t>(pl.base[2])};
+  uint32_t spec[3] = {0, 0, 0};
+  auto dot = [&n](const Unit30& u) {
+    return (int64_t{n.x} * u.x + int64_t{n.y} * u.y + int64_t{n.z} * u.z) >> 30;
+  };
+  for (int i = 0; i < pl.count; ++i) {
+    const PreparedLighting::Light& li = pl.lights[static_cast<size_t>(i)];
+    const int64_t ndl = dot(li.l);
+    if (ndl <= 0) continue;  // no diffuse, and GL gives no specular where N.L <= 0
+    // 0 < ndl <= 2^30 + a few units: times a Q1.15 colour below 2^47, a term below 2^16.
+    const auto ndl_u = static_cast<uint64_t>(ndl);
+    for (int c = 0; c < 3; ++c)
+      prim[c] += static_cast<uint32_t>((ndl_u * li.kd[c] + (1u << 29)) >> 30);
+    int64_t ndh = dot(li.h);
+    if (ndh <= 0) continue;
+    if (ndh > (int64_t{1} << 30)) ndh = int64_t{1} << 30;
+    const uint32_t sp = DefaultPowTable::pow_q15(static_cast<uint32_t>(ndh), pl.shininess_q8);
+    for (int c = 0; c < 3; ++c) spec[c] += (sp * uint32_t{li.ks[c]} + (1u << 14)) >> 15;
+  }
+  // Every term is non-negative (base too: sums of products of Q1.15 colours).
+  auto clamp = [](uint32_t x) {
+    return static_cast<uint16_t>(x > Color15::kOne ? Color15::kOne : x);
+  };
+  return {{clamp(prim[0]), clamp(prim[1]), clamp(prim[2])},
+          {clamp(spec[0]), clamp(spec[1]), clamp(spec[2])}};
+}
+
+// The same summed into one colour (light_point for directional lights and the infinite viewer).
+inline Color15 light_directional(const PreparedLighting& pl, const Unit30& n) {
+  const LitColor c = light_directional_split(pl, n);
+  auto sum = [](uint16_t a, uint16_t b) {
+    const uint32_t v = uint32_t{a} + b;
+    return static_cast<uint16_t>(v > Color15::kOne ? Color15::kOne : v);
+  };
+  return {sum(c.primary.r, c.secondary.r), sum(c.primary.g, c.secondary.g),
+          sum(c.primary.b, c.secondary.b)};
+}
+
 }  // namespace lr

@@ -1,6 +1,6 @@
 #include "core/vertex/vertex_stage.hpp"
 
-#include "core/math/divide.hpp"
+#include "core/math/reciprocal.hpp"
 
 namespace lr {
 // A model-space tangent (Q1.14) to world space (the model's upper 3x3), unit Q1.14.
@@ -27,32 +27,44 @@ VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guar
       nm_(normal_matrix(model)),
       guard_(guard),
       width_(width),
-      height_(height) {}
+      height_(height) {
+  rigid_ = rigid_normal_rows(nm_, rot_);
+}
 
 bool VertexStage::project(const ClipCoord& c, ScreenVertex& v) const {
-  // Inside every plane: w >= 2^-16, |x| <= gx w, |y| <= gy w, |z| <= w. Normalise so w < 2^31.
+  // Inside every plane: w >= 2^-16, |x| <= gx w, |y| <= gy w, |z| <= w. Normalise so w < 2^31
+  // (one shift: the same floor as halving repeatedly).
   int64_t x = c.x, y = c.y, z = c.z, w = c.w;
   if (w <= 0) return false;
-  while (w >= (int64_t{1} << 31)) {
-    x >>= 1;
-    y >>= 1;
-    z >>= 1;
-    w >>= 1;
+  if (w >= (int64_t{1} << 31)) {
+    const int s = 33 - clz64(static_cast<uint64_t>(w));
+    x >>= s;
+    y >>= s;
+    z >>= s;
+    w >>= s;
   }
-  // Three quotients by the same w: one reciprocal (core/math/divide.hpp), exact, the values of
-  // round_div(n, w) (half away from zero; n is negative left of and below the viewport).
-  const Divider by_w(static_cast<uint64_t>(w));
+  // Three quotients by the same w: one inverse limb of w normalised into [2^31, 2^32), then a
+  // 2-by-1 division each (core/math/reciprocal.hpp), exact: the values of round_div(n, w), half
+  // away from zero (n is negative left of and below the viewport). Every quotient is below
+  // 2^32 (docs/numerics.md#projection-and-snapping), so n + w / 2 < 2^32 w and its shifted
+  // value fits the division.
+  const int sh = clz32(static_cast<uint32_t>(w));
+  const uint32_t d = static_cast<uint32_t>(w) << sh;
+  const uint32_t inv = recip32(d);
+  const auto half = static_cast<uint64_t>(w / 2);
+  auto quotient = [&](uint64_t n) { return divide_2by1((n + half) << sh, d, inv).q; };
   auto rounded = [&](int64_t n) {
-    const auto half = static_cast<uint64_t>(w / 2);
-    return n >= 0 ? static_cast<int64_t>(by_w.quotient(static_cast<uint64_t>(n) + half))
-                  : -static_cast<int64_t>(by_w.quotient(static_cast<uint64_t>(-n) + half));
+    return n >= 0 ? static_cast<int64_t>(quotient(static_cast<uint64_t>(n)))
+                  : -static_cast<int64_t>(quotient(static_cast<uint64_t>(-n)));
   };
   // (x + w) <= (gx + 1) w and (gx + 1) * width <= 8192 + width: product < 1.5 * 2^51.
   v.x = static_cast<int32_t>(rounded((x + w) * (int64_t{width_} * kHalfPixel)));
   v.y = static_cast<int32_t>(rounded((w - y) * (int64_t{height_} * kHalfPixel)));
-  // (z + w) <= 2w < 2^32 and 65535 * 2^15 < 2^31: product < 2^63.
-  int64_t zz = rounded((z + w) * (int64_t{65535} << 15));
-  v.z = static_cast<uint32_t>(zz < 0 ? 0 : zz > kDepthMax ? kDepthMax : zz);
+  // z + w <= 2w < 2^32 and 65535 * 2^15 < 2^31: product < 2^63, quotient about kDepthMax at
+  // most. (A clipped vertex may lie a rounding step outside the near or far plane: clamped.)
+  const uint32_t zz =
+      z + w <= 0 ? 0 : quotient(static_cast<uint64_t>(z + w) * (uint64_t{65535} << 15));
+  v.z = zz > kDepthMax ? kDepthMax : zz;
   int64_t wq = c.w >> (ClipCoord::kFracBits - 16);
   v.w = static_cast<uint32_t>(wq < 1 ? 1 : wq > 0xFFFFFFFF ? 0xFFFFFFFF : wq);
   v.outcode = 0;

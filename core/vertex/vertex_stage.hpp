@@ -13,6 +13,7 @@
 #include "core/lighting/lighting.hpp"
 #include "core/math/fixed.hpp"
 #include "core/math/mat4.hpp"
+#include "core/math/rigid.hpp"
 #include "core/math/vec.hpp"
 #include "core/scene/camera.hpp"
 #include "core/scene/mesh.hpp"
@@ -92,6 +93,16 @@ class VertexStage {
              ScreenVertex& sv) const {
     Unit30 nw = world_normal(mesh.normals[i]);
     if (back) nw = negate(nw);
+    if (!colors.need_position) {
+      if (colors.split) {
+        const LitColor lc = light_directional_split(*colors.lighting, nw);
+        sv.color = lc.primary;
+        sv.spec = lc.secondary;
+      } else {
+        sv.color = light_directional(*colors.lighting, nw);
+      }
+      return;
+    }
     const Vec3 pw = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
     if (colors.split) {
       const LitColor lc = light_point_split(*colors.lighting, nw, pw);
@@ -109,13 +120,21 @@ class VertexStage {
   ClipCoord clip(const Vec3& model_position) const { return transform_point(mvp_, model_position); }
   // Projects and snaps a clip-space point inside every plane; false when w <= 0.
   bool project(const ClipCoord& c, ScreenVertex& v) const;
-  Unit30 world_normal(const Normal16& n) const { return transform_normal(nm_, n.x, n.y, n.z); }
+  // A mesh normal in world space, unit Q1.30. Under a rigid model matrix a rotation and one
+  // Newton step (core/math/rigid.hpp), else (or for a normal that is not unit) exactly.
+  Unit30 world_normal(const Normal16& n) const {
+    Unit30 u;
+    if (rigid_ && rotate_unit_normal(rot_, n, u)) return u;
+    return transform_normal(nm_, n.x, n.y, n.z);
+  }
   GuardBand guard() const { return guard_; }
 
  private:
   const Mat4& model_;
   Mat4 mvp_;
   Mat4 nm_;
+  NormalRotation rot_;  // nm_'s rows normalised, when rigid_
+  bool rigid_ = false;
   GuardBand guard_;
   int32_t width_, height_;
 };
