@@ -1,6 +1,7 @@
 #include "core/setup/triangle_setup.hpp"
 
 #include "core/math/divide.hpp"
+#include "core/math/reciprocal.hpp"
 
 #include <utility>
 
@@ -87,28 +88,86 @@ void texture_axis(const int32_t uv[3], uint32_t size, Wrap wrap, bool perspectiv
 
 }  // namespace
 
+// round(w_min 2^30 / w) as floor(n / w), n = w_min 2^30 + floor(w / 2) < 2^62: both scaled by
+// 2^s so that the divisor is normalised (n 2^s < 2^63, the quotient <= 2^30), one 2-by-1 division
+// by recip32 of it: the quotient of the 64-bit division exactly.
+uint32_t perspective_factor(uint32_t wmin, uint32_t w) {
+  const int s = clz32(w);
+  const uint32_t d = w << s;
+  const uint64_t n = ((uint64_t{wmin} << 30) + (w >> 1)) << s;
+  const uint32_t q = divide_2by1(n, d, recip32(d)).q;
+  return q == 0 ? 1u : q;
+}
+
 PlaneBasis::PlaneBasis(const ScreenVertex* const v[3]) {
   x0 = v[0]->x;
   y0 = v[0]->y;
-  ex1 = v[1]->x - x0;
-  ey1 = v[1]->y - y0;
-  ex2 = v[2]->x - x0;
-  ey2 = v[2]->y - y0;
-  const int64_t signed_area = signed_area2(*v[0], *v[1], *v[2]);
+  // |edge| < 2^23 (the coordinate budget): int32, and the products below int64.
+  const int32_t e1x = v[1]->x - x0, e1y = v[1]->y - y0, e2x = v[2]->x - x0, e2y = v[2]->y - y0;
+  const int64_t signed_area = int64_t{e1x} * e2y - int64_t{e2x} * e1y;
+  const uint64_t d = abs64(signed_area);
+  if (d != 0 && d < (uint64_t{1} << 32)) {
+    // bm: the bit length of the largest edge component; sh: the shift normalising |D|.
+    auto mag = [](int32_t e) { return static_cast<uint32_t>(e < 0 ? -e : e); };
+    const int bm = 32 - clz32(mag(e1x) | mag(e1y) | mag(e2x) | mag(e2y));
+    const int sh = clz32(static_cast<uint32_t>(d));
+    if (2 * bm + sh <= kFastPlaneLimit) {
+      fast = true;
+      f = static_cast<uint8_t>(52 - bm - sh);
+      // R = floor((2^64 - 1) / (|D| 2^sh)) < 2^33: K = round(e R / 2^(bm + 4)), |e R| < 2^56.
+      const int64_t r = (int64_t{1} << 32) + recip32(static_cast<uint32_t>(d) << sh);
+      const int s = bm + 4;
+      const bool neg = signed_area < 0;
+      auto k = [&](int32_t e) {
+        return static_cast<int32_t>((int64_t{neg ? -e : e} * r + (int64_t{1} << (s - 1))) >> s);
+      };
+      kx1 = k(e2y);
+      kx2 = k(-e1y);
+      ky1 = k(-e2x);
+      ky2 = k(e1x);
+      fx = kHalfPixel - (x0 & (kSubpixel - 1));
+      fy = kHalfPixel - (y0 & (kSubpixel - 1));
+      c0 = static_cast<uint32_t>(x0 >> kSubpixelBits);
+      r0 = static_cast<uint32_t>(y0 >> kSubpixelBits);
+      return;
+    }
+  }
+  ex1 = e1x;
+  ey1 = e1y;
+  ex2 = e2x;
+  ey2 = e2y;
   flip = signed_area < 0;
-  area = flip ? -signed_area : signed_area;
-  inv = area > 0 ? ~uint64_t{0} / static_cast<uint64_t>(area) : 0;
+  area = static_cast<int64_t>(d);
+  inv = d > 0 ? ~uint64_t{0} / d : 0;
 }
 
 Plane make_plane(const PlaneBasis& pb, const uint32_t a[3]) {
   const int64_t da1 = int64_t{a[1]} - a[0], da2 = int64_t{a[2]} - a[0];
+  Plane p;
+  if (pb.fast) {
+    // |da| < 2^32 and |K| <= 2^29: each sum below 2^62; |g| < 2^(62 - f) <= 2^46.
+    const int f = pb.f;
+    const int64_t half = int64_t{1} << (f - 1);
+    const int64_t gx = (da1 * pb.kx1 + da2 * pb.kx2 + half) >> f;
+    const int64_t gy = (da1 * pb.ky1 + da2 * pb.ky2 + half) >> f;
+    // The value at the centre of vertex 0's pixel, |g f| < 2^53, then back to pixel (0, 0)
+    // modulo 2^32.
+    const int64_t off = gx * pb.fx + gy * pb.fy;
+    const auto ugx = static_cast<uint32_t>(static_cast<uint64_t>(gx));
+    const auto ugy = static_cast<uint32_t>(static_cast<uint64_t>(gy));
+    p.base = a[0] +
+             static_cast<uint32_t>(static_cast<uint64_t>((off + kHalfPixel) >> kSubpixelBits)) -
+             ugx * pb.c0 - ugy * pb.r0;
+    p.gx = ugx;
+    p.gy = ugy;
+    return p;
+  }
   int64_t nx = da1 * pb.ey2 - da2 * pb.ey1;
   int64_t ny = da2 * pb.ex1 - da1 * pb.ex2;
   if (pb.flip) {
     nx = -nx;
     ny = -ny;
   }
-  Plane p;
   int64_t gx = 0, gy = 0;
   if (pb.area == 0 || !gradient(nx, pb, gx) || !gradient(ny, pb, gy)) {
     p.base = static_cast<uint32_t>((int64_t{a[0]} + a[1] + a[2]) / 3);
@@ -205,11 +264,7 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
   if (t.colors == ColorPlanes::kPerspective || (tex && in.tex.perspective) || phong) {
     uint32_t wmin = v[0]->w;
     for (int i = 1; i < 3; ++i) wmin = v[i]->w < wmin ? v[i]->w : wmin;
-    for (int i = 0; i < 3; ++i) {
-      // wmin <= w: the ratio is in (0, 1], Q1.30, at least 1.
-      uint64_t r = ((uint64_t{wmin} << 30) + v[i]->w / 2) / v[i]->w;
-      q[i] = r == 0 ? 1u : static_cast<uint32_t>(r);
-    }
+    for (int i = 0; i < 3; ++i) q[i] = perspective_factor(wmin, v[i]->w);
     t.q = make_plane(pb, q);
   }
   if (t.colors == ColorPlanes::kPerspective) {

@@ -61,14 +61,33 @@ struct SetupInput {
 // Fills `out` (except index/draw/flat). The triangle must have non-zero area.
 void setup_triangle(const SetupInput& in, ActiveTriangle& out);
 
-// What every plane of one triangle shares: its edges from vertex 0 (subpixels), twice its area
-// (|area| < 2^47 inside the guard band) and a reciprocal of the area, so that each gradient
-// costs multiplications, not a 64-bit division (docs/numerics.md#one-division-many-quotients).
+// What every plane of one triangle shares (docs/numerics.md#attribute-plane-equations). Most
+// triangles take the short path: one normalised reciprocal of twice the area and four edge
+// coefficients k = 256 e / |D| in a shared fixed-point format, so that a gradient is two 64-bit
+// products and a shift. The rest (|D| >= 2^32, or long needles whose error bound that format
+// does not meet) take the exact path: a 64-bit reciprocal and round(256 n / |D|) exactly.
+// The short path's limit on 2 bm + sh (bm the bit length of the largest edge component, sh the
+// leading zeros of |D| < 2^32): its error is below 9 x 2^(2 bm + sh - 30) units, 1,152 at the
+// limit.
+inline constexpr int kFastPlaneLimit = 37;
+
 struct PlaneBasis {
-  int64_t x0 = 0, y0 = 0, ex1 = 0, ey1 = 0, ex2 = 0, ey2 = 0;
-  int64_t area = 0;   // |twice the signed area|, subpixels^2
-  bool flip = false;  // the signed area was negative
-  uint64_t inv = 0;   // floor((2^64 - 1) / area); 0 when area == 0
+  int32_t x0 = 0, y0 = 0;  // vertex 0, subpixels (|x0|, |y0| < 2^22)
+  bool fast = false;       // the short path
+  // Short path: K = round(256 e 2^f / |D|) for e = ey2, -ey1 (x) and -ex2, ex1 (y), signs flipped
+  // when the signed area is negative; |K| <= 2^29 by the choice of f, in [16, 51].
+  int32_t kx1 = 0, kx2 = 0, ky1 = 0, ky2 = 0;
+  uint8_t f = 0;
+  // Vertex 0 split into its pixel (c0, r0) and the offset of that pixel's centre from it,
+  // (fx, fy) in (-128, 128] subpixels.
+  int32_t fx = 0, fy = 0;
+  uint32_t c0 = 0, r0 = 0;
+  // Exact path: edges from vertex 0, |twice the area| (< 2^47), its sign, and
+  // floor((2^64 - 1) / area) (0 when the area is 0).
+  int64_t ex1 = 0, ey1 = 0, ex2 = 0, ey2 = 0;
+  int64_t area = 0;
+  bool flip = false;
+  uint64_t inv = 0;
   explicit PlaneBasis(const ScreenVertex* const v[3]);
 };
 
@@ -76,6 +95,10 @@ struct PlaneBasis {
 // perspective factors (used when ts.perspective).
 void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const PlaneBasis& pb,
                    const uint32_t q[3], ActiveTriangle& t);
+
+// q = round(w_min 2^30 / w) in Q1.30 for w_min <= w, at least 1 (exposed for tests): a 2-by-1
+// division by a normalised reciprocal instead of a 64-bit division, the same value.
+uint32_t perspective_factor(uint32_t wmin, uint32_t w);
 
 // The plane through three vertex values (exposed for tests; the second form builds the basis).
 Plane make_plane(const PlaneBasis& pb, const uint32_t a[3]);

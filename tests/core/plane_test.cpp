@@ -1,10 +1,16 @@
-// make_plane's gradients against the two-division formula they replaced: 256 q + round(256 r /
-// area) with q, r the truncated quotient and remainder of n / area, which never forms 256 n.
-// The one-division path (|n| < 2^55) must give the same value bit for bit, and the needle limit
-// (|q| >= 2^30: constant attributes) must fall at the same place, over random triangles from
-// tiny to guard-band size and attribute differences up to the full 32 bits.
+// make_plane against the exact plane through the three vertex values.
+//
+// Short path (PlaneBasis::fast): every pixel centre of the triangle's bounding box is within
+// 9 x 2^(2 bm + sh - 30) + 0.5 (|Dx| + |Dy| + 1) units of the exact value (modulo 2^32), Dx, Dy
+// the pixel's distance from vertex 0 (docs/numerics.md#attribute-plane-equations). Exact path:
+// bit for bit the two-division formula 256 q + round(256 r / area) with q, r the truncated
+// quotient and remainder of n / area, including the needle limit (|q| >= 2^30: constant
+// attributes). Random triangles from tiny to guard-band size, attribute differences up to 32
+// bits. Also the perspective factors q = w_min / w against the rounded 64-bit quotient.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <random>
 
@@ -15,7 +21,9 @@
 namespace lr {
 namespace {
 
-// The previous implementation, kept as the reference.
+using i128 = __int128;
+
+// The previous implementation, kept as the reference of the exact path.
 bool reference_gradient(int64_t n, int64_t area, int64_t& g) {
   const int64_t q = n / area, r = n % area;
   if (q >= (int64_t{1} << 30) || q <= -(int64_t{1} << 30)) return false;
@@ -47,31 +55,85 @@ Plane reference_plane(const ScreenVertex* const v[3], const uint32_t a[3]) {
   return p;
 }
 
-// True when a numerator of the plane's gradients is 2^55 or more in magnitude: the general path.
-bool takes_general_path(const ScreenVertex s[3], const uint32_t a[3]) {
-  const int64_t ex1 = int64_t{s[1].x} - s[0].x, ey1 = int64_t{s[1].y} - s[0].y;
-  const int64_t ex2 = int64_t{s[2].x} - s[0].x, ey2 = int64_t{s[2].y} - s[0].y;
-  const int64_t da1 = int64_t{a[1]} - a[0], da2 = int64_t{a[2]} - a[0];
-  const int64_t nx = da1 * ey2 - da2 * ey1, ny = da2 * ex1 - da1 * ex2;
-  auto big = [](int64_t n) { return n >= (int64_t{1} << 55) || n <= -(int64_t{1} << 55); };
-  return big(nx) || big(ny);
+// The short path's documented error term 9 x 2^(2 bm + sh - 30) for this triangle.
+double fast_term(const ScreenVertex* const v[3]) {
+  auto mag = [](int64_t e) { return static_cast<uint32_t>(e < 0 ? -e : e); };
+  const int64_t e1x = v[1]->x - v[0]->x, e1y = v[1]->y - v[0]->y;
+  const int64_t e2x = v[2]->x - v[0]->x, e2y = v[2]->y - v[0]->y;
+  const int bm = 32 - clz32(mag(e1x) | mag(e1y) | mag(e2x) | mag(e2y));
+  const auto d = static_cast<uint32_t>(abs64(e1x * e2y - e2x * e1y));
+  return 9.0 * std::ldexp(1.0, 2 * bm + clz32(d) - 30);
 }
 
-// make_plane against the reference for one triangle; the reference plane.
-Plane expect_same_plane(const ScreenVertex s[3], const uint32_t a[3], int i) {
-  const ScreenVertex* v[3] = {&s[0], &s[1], &s[2]};
-  const Plane want = reference_plane(v, a);
-  const Plane got = make_plane(v, a);
-  EXPECT_EQ(got.base, want.base) << i;
-  EXPECT_EQ(got.gx, want.gx) << i;
-  EXPECT_EQ(got.gy, want.gy) << i;
-  return want;
+struct Errors {
+  long long samples = 0, over = 0;
+  double max_ratio = 0;  // largest error / bound
+  double max_abs = 0;
+};
+
+// The plane's error at pixel (c, r) against the exact value, modulo 2^32, in units.
+double plane_error(const ScreenVertex* const v[3], const uint32_t a[3], const Plane& p, int32_t c,
+                   int32_t r) {
+  const int64_t x0 = v[0]->x, y0 = v[0]->y;
+  const int64_t ex1 = v[1]->x - x0, ey1 = v[1]->y - y0, ex2 = v[2]->x - x0, ey2 = v[2]->y - y0;
+  const i128 d = i128{ex1} * ey2 - i128{ex2} * ey1;
+  const i128 da1 = i128{a[1]} - a[0], da2 = i128{a[2]} - a[0];
+  const i128 px = i128{c} * kSubpixel + kHalfPixel - x0, py = i128{r} * kSubpixel + kHalfPixel - y0;
+  i128 n = px * (da1 * ey2 - da2 * ey1) + py * (da2 * ex1 - da1 * ex2);
+  i128 dd = d;
+  if (dd < 0) {
+    n = -n;
+    dd = -dd;
+  }
+  i128 t = n / dd, rem = n % dd;  // n = t dd + rem, rem in [0, dd)
+  if (rem < 0) {
+    --t;
+    rem += dd;
+  }
+  // got - (a0 + t + rem / dd), the integer part taken modulo 2^32.
+  const auto diff =
+      static_cast<int32_t>(p.at(c, r) - a[0] - static_cast<uint32_t>(static_cast<uint64_t>(t)));
+  return diff - static_cast<double>(rem) / static_cast<double>(dd);
 }
 
-TEST(PlaneGradient, OneDivisionEqualsTheTwoDivisionFormula) {
+// Checks the plane at the corners and a few random pixel centres of the triangle's bounding box.
+void check_bound(const ScreenVertex* const v[3], const uint32_t a[3], bool fast,
+                 std::mt19937_64& rng, Errors& e) {
+  const Plane p = make_plane(v, a);
+  const int32_t xl = std::min({v[0]->x, v[1]->x, v[2]->x}),
+                xh = std::max({v[0]->x, v[1]->x, v[2]->x});
+  const int32_t yl = std::min({v[0]->y, v[1]->y, v[2]->y}),
+                yh = std::max({v[0]->y, v[1]->y, v[2]->y});
+  // Pixel centres inside [xl, xh] x [yl, yh].
+  const int32_t c0 = first_row_below(xl - 1), c1 = last_row_at_or_above(xh);
+  const int32_t r0 = first_row_below(yl - 1), r1 = last_row_at_or_above(yh);
+  if (c0 > c1 || r0 > r1) return;
+  const double term = fast ? fast_term(v) : 0.0;
+  auto sample = [&](int32_t c, int32_t r) {
+    const double err = std::fabs(plane_error(v, a, p, c, r));
+    const double dx = std::fabs((c * 256.0 + 128 - v[0]->x) / 256);
+    const double dy = std::fabs((r * 256.0 + 128 - v[0]->y) / 256);
+    const double bound = term + 0.5 * (dx + dy + 1) + 1e-6;
+    ++e.samples;
+    e.max_abs = std::max(e.max_abs, err);
+    e.max_ratio = std::max(e.max_ratio, err / bound);
+    if (err > bound && e.over++ < 5)
+      ADD_FAILURE() << "error " << err << " > bound " << bound << " at (" << c << "," << r << ")";
+  };
+  sample(c0, r0);
+  sample(c1, r0);
+  sample(c0, r1);
+  sample(c1, r1);
+  for (int k = 0; k < 4; ++k)
+    sample(c0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(c1 - c0 + 1)),
+           r0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(r1 - r0 + 1)));
+}
+
+TEST(PlaneGradient, WithinTheDocumentedBoundOnBothPathsAndExactOnTheExactPath) {
   std::mt19937_64 rng(20261122);
-  int fast = 0, general = 0, needles = 0;
-  for (int i = 0; i < 400000; ++i) {
+  int fast = 0, exact = 0, needles = 0;
+  Errors ef, ee;
+  for (int i = 0; i < 300000; ++i) {
     // Extent: 2^2 .. 2^22 subpixels (1/64 pixel .. the guard band), so |n| spans 2^3 .. 2^57.
     const int bits = 2 + static_cast<int>(rng() % 21);
     const int32_t span = int32_t{1} << bits;
@@ -79,40 +141,92 @@ TEST(PlaneGradient, OneDivisionEqualsTheTwoDivisionFormula) {
       return static_cast<int32_t>(rng() % static_cast<uint64_t>(2 * span)) - span;
     };
     ScreenVertex s[3];
+    // Half of them near a random place on the screen (the base's pixel split).
+    const int32_t ox = i % 2 ? static_cast<int32_t>(rng() % (1u << 20)) - (1 << 19) : 0;
+    const int32_t oy = i % 2 ? static_cast<int32_t>(rng() % (1u << 20)) - (1 << 19) : 0;
     for (auto& sv : s) {
-      sv.x = coord();
-      sv.y = coord();
+      sv.x = ox + coord();
+      sv.y = oy + coord();
     }
     uint32_t a[3];
     const int abits = 1 + static_cast<int>(rng() % 32);
     for (auto& x : a) x = static_cast<uint32_t>(rng() >> (64 - abits));
-    const Plane want = expect_same_plane(s, a, i);
-    takes_general_path(s, a) ? ++general : ++fast;
-    if (want.gx == 0 && want.gy == 0 && a[0] != a[1]) ++needles;
+    const ScreenVertex* v[3] = {&s[0], &s[1], &s[2]};
+    const PlaneBasis pb(v);
+    if (signed_area2(s[0], s[1], s[2]) == 0) continue;
+    if (pb.fast) {
+      ++fast;
+      check_bound(v, a, true, rng, ef);
+    } else {
+      ++exact;
+      const Plane want = reference_plane(v, a), got = make_plane(pb, a);
+      EXPECT_EQ(got.base, want.base) << i;
+      EXPECT_EQ(got.gx, want.gx) << i;
+      EXPECT_EQ(got.gy, want.gy) << i;
+      if (want.gx == 0 && want.gy == 0 && a[0] != a[1]) {
+        ++needles;
+      } else {
+        check_bound(v, a, false, rng, ee);
+      }
+    }
   }
-  // Inside the guard band (|x|, |y| < 2^22) with 32-bit attributes |n| stays below 2^55, so
-  // the one-division path always applies in the renderer; the general path is a fallback. It is
-  // reached here with coordinates twice the guard band's and attributes from 0 to 2^32 - 1.
-  for (int i = 0; i < 20000; ++i) {
-    constexpr int32_t kEdge = int32_t{1} << 23;
-    auto jitter = [&] { return static_cast<int32_t>(rng() % 4096); };
-    ScreenVertex s[3];
-    s[0].x = -kEdge + jitter();
-    s[0].y = jitter();
-    s[1].x = jitter();
-    s[1].y = kEdge - 1 - jitter();
-    s[2].x = jitter();
-    s[2].y = -kEdge + jitter();
-    const uint32_t a[3] = {static_cast<uint32_t>(rng() % 65536),
-                           0xFFFFFFFFu - static_cast<uint32_t>(rng() % 65536),
-                           static_cast<uint32_t>(rng())};
-    expect_same_plane(s, a, i);
-    if (takes_general_path(s, a)) ++general;
-  }
-  // Both paths and the needle fallback were exercised.
-  EXPECT_GT(fast, 100000);
-  EXPECT_GT(general, 1000);  // from the second loop
+  std::printf(
+      "[ plane ] short path: %d triangles, %lld samples, max error %.1f units, %.3f of the bound; "
+      "exact path: %d (%d needles), max error %.1f, %.3f of the bound\n",
+      fast, ef.samples, ef.max_abs, ef.max_ratio, exact, needles, ee.max_abs, ee.max_ratio);
+  EXPECT_EQ(ef.over, 0);
+  EXPECT_EQ(ee.over, 0);
+  // Both paths and the needle fallback were exercised, and the bound is not loose by orders of
+  // magnitude.
+  EXPECT_GT(fast, 50000);
+  EXPECT_GT(exact, 20000);
   EXPECT_GT(needles, 100);
+  EXPECT_GT(ef.max_ratio, 0.1);
+}
+
+// Typical mesh triangles (a few pixels, aspect below 16) all take the short path, and depth
+// differs from the exact plane by far less than one 16-bit depth step (2^16 units).
+TEST(PlaneGradient, SmallWellShapedTrianglesTakeTheShortPath) {
+  std::mt19937_64 rng(7);
+  Errors e;
+  for (int i = 0; i < 100000; ++i) {
+    const int32_t size = 64 + static_cast<int32_t>(rng() % (16 * 256));  // 1/4 .. 16 pixels
+    ScreenVertex s[3];
+    s[0].x = static_cast<int32_t>(rng() % (320 * 256));
+    s[0].y = static_cast<int32_t>(rng() % (240 * 256));
+    const double ang = static_cast<double>(rng() % 6283) / 1000;
+    const double ang2 = ang + 0.4 + static_cast<double>(rng() % 2300) / 1000;  // 23 .. 155 deg
+    s[1].x = s[0].x + static_cast<int32_t>(size * std::cos(ang));
+    s[1].y = s[0].y + static_cast<int32_t>(size * std::sin(ang));
+    const double len2 = size * (0.5 + static_cast<double>(rng() % 1000) / 1000);
+    s[2].x = s[0].x + static_cast<int32_t>(len2 * std::cos(ang2));
+    s[2].y = s[0].y + static_cast<int32_t>(len2 * std::sin(ang2));
+    const ScreenVertex* v[3] = {&s[0], &s[1], &s[2]};
+    if (signed_area2(s[0], s[1], s[2]) == 0) continue;
+    ASSERT_TRUE(PlaneBasis(v).fast) << i;
+    const uint32_t z[3] = {static_cast<uint32_t>(rng() % (uint64_t{65535} << 16)),
+                           static_cast<uint32_t>(rng() % (uint64_t{65535} << 16)),
+                           static_cast<uint32_t>(rng() % (uint64_t{65535} << 16))};
+    check_bound(v, z, true, rng, e);
+  }
+  EXPECT_EQ(e.over, 0);
+  EXPECT_LT(e.max_abs, 1024.0);  // 1/64 of a depth step
+}
+
+TEST(PerspectiveFactor, EqualsTheRoundedQuotient) {
+  std::mt19937_64 rng(11);
+  for (int i = 0; i < 300000; ++i) {
+    const int wb = 1 + static_cast<int>(rng() % 32);
+    auto w = static_cast<uint32_t>(rng() >> (64 - wb));
+    w = w == 0 ? 1 : w;
+    const uint32_t wmin = i % 4 == 0 ? w : 1 + static_cast<uint32_t>(rng() % w);
+    const uint64_t want = ((uint64_t{wmin} << 30) + w / 2) / w;
+    ASSERT_EQ(perspective_factor(wmin, w), want == 0 ? 1u : want) << wmin << " / " << w;
+  }
+  EXPECT_EQ(perspective_factor(0xFFFFFFFFu, 0xFFFFFFFFu), 1u << 30);
+  EXPECT_EQ(perspective_factor(1, 0xFFFFFFFFu), 1u);
+  EXPECT_EQ(perspective_factor(1u << 15, 1u << 16), 1u << 29);
+  EXPECT_EQ(perspective_factor(1, 3), 357913941u);  // 2^30 / 3 = 357913941.33
 }
 
 }  // namespace
