@@ -29,6 +29,7 @@
 #include "core/setup/active_triangle.hpp"
 #include "core/span/sampler.hpp"
 #include "core/span/span.hpp"
+#include "core/span/tex_exact_span.hpp"
 
 namespace lr {
 
@@ -376,6 +377,41 @@ uint32_t fill_tex_span_body(const ActiveTriangle& tri, const DrawRecord& d,
   }
   return written;
 }
+
+// Exact perspective without mipmaps on an RGB565 texture (replaced, or modulated by constant
+// colours) takes the routine of tex_exact_span.hpp, its fetch inlined per filter and wrap.
+template <class PF, bool kDepth, TexEnv kEnv, bool kConstColors>
+uint32_t fill_exact_565(const ActiveTriangle& tri, const DrawRecord& d, typename PF::Storage* px,
+                        uint16_t* depth, int32_t col, int32_t row, int32_t count) {
+  uint32_t prim[3] = {0, 0, 0}, sec[3] = {0, 0, 0};
+  if constexpr (kConstColors)
+    for (int k = 0; k < 3; ++k) {
+      prim[k] = clamp_c15(static_cast<int32_t>(tri.c[k].base));
+      sec[k] = clamp_c15(static_cast<int32_t>(tri.extra.spec[k].base));
+    }
+  auto slow = [&](typename PF::Storage* p, uint16_t* dp, int32_t c, int32_t r) {
+    return fill_tex_span_body<PF, kDepth, TexPersp::kExact, kEnv, MipMode::kNone, kConstColors>(
+        tri, d, p, dp, c, r, 1);
+  };
+  const Texture& tex = *d.texture;
+  const bool repeat = d.wrap_s == Wrap::kRepeat && d.wrap_t == Wrap::kRepeat;
+  const bool clamp = d.wrap_s == Wrap::kClampToEdge && d.wrap_t == Wrap::kClampToEdge;
+  auto run = [&]<Filter kF, Wrap kW>() {
+    return exact_span_565<PF, kDepth, kEnv, kF, kW, kW>(tri, tex, px, depth, col, row, count, prim,
+                                                        sec, slow);
+  };
+  if (repeat && tex.power_of_two())
+    return d.filter == Filter::kNearest
+               ? run.template operator()<Filter::kNearest, Wrap::kRepeat>()
+               : run.template operator()<Filter::kBilinear, Wrap::kRepeat>();
+  if (clamp)
+    return d.filter == Filter::kNearest
+               ? run.template operator()<Filter::kNearest, Wrap::kClampToEdge>()
+               : run.template operator()<Filter::kBilinear, Wrap::kClampToEdge>();
+  return fill_tex_span_body<PF, kDepth, TexPersp::kExact, kEnv, MipMode::kNone, kConstColors>(
+      tri, d, px, depth, col, row, count);
+}
+
 }  // namespace detail
 
 // One routine per (depth, perspective mode, environment, mip mode); a modulated one picks its
@@ -383,6 +419,14 @@ uint32_t fill_tex_span_body(const ActiveTriangle& tri, const DrawRecord& d,
 template <class PF, bool kDepth, TexPersp kPersp, TexEnv kEnv, MipMode kMip>
 uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename PF::Storage* px,
                        uint16_t* depth, int32_t col, int32_t row, int32_t count) {
+  if constexpr (kPersp == TexPersp::kExact && kMip == MipMode::kNone) {
+    if (d.texture->format == TexelFormat::kRgb565) {
+      if constexpr (kEnv == TexEnv::kReplace)
+        return detail::fill_exact_565<PF, kDepth, kEnv, false>(tri, d, px, depth, col, row, count);
+      else if (tri.const_colors)
+        return detail::fill_exact_565<PF, kDepth, kEnv, true>(tri, d, px, depth, col, row, count);
+    }
+  }
   if constexpr (kEnv == TexEnv::kModulate)
     if (tri.const_colors)
       return detail::fill_tex_span_body<PF, kDepth, kPersp, kEnv, kMip, true>(tri, d, px, depth,

@@ -419,5 +419,43 @@ TEST(TextureMipmaps, NonPowerOfTwoChainAgainstTheReference) {
   EXPECT_GE(c.psnr, 38.0);
 }
 
+// The exact-perspective routine of RGB565 textures (tex_exact_span.hpp: one division per pixel
+// in chunks) against the general routine's precise reciprocal (the same image as RGB888): a quad
+// whose w grows 12-fold from left to right, so that chunks are foreshortened and texture
+// coordinates reach -3 and 5 periods (repeat) or the clamped edges.
+TEST(TextureExactPerspective, Rgb565ChunksPickTheTexelsOfThePreciseReciprocal) {
+  host::ImageRgb8 img = pattern(64, 64);
+  for (uint8_t& c : img.rgb) c = static_cast<uint8_t>((c & 0xF8u) | (c >> 5));  // 5-bit exact
+  for (size_t i = 1; i < img.rgb.size(); i += 3)  // green: 6-bit exact
+    img.rgb[i] = static_cast<uint8_t>((img.rgb[i] & 0xFCu) | (img.rgb[i] >> 6));
+  host::HostTexture t565 = make_texture(img, TexelFormat::kRgb565, false);
+  host::HostTexture t888 = make_texture(img, TexelFormat::kRgb888, false);
+  const uint32_t ws[4] = {1u << 16, 1u << 16, 12u << 16, 12u << 16};
+  for (Wrap wrap : {Wrap::kRepeat, Wrap::kClampToEdge}) {
+    std::vector<ScreenVertex> v;
+    std::vector<std::array<uint16_t, 3>> t;
+    screen_quad(v, t, 2, 3, 318, 197, -3.0, 5.0, -2.0, 4.0);
+    for (size_t k = 0; k < 4; ++k) v[k].w = ws[k];
+    Sampler smp;
+    smp.filter = Filter::kNearest;
+    smp.env = TexEnv::kReplace;
+    smp.wrap_s = smp.wrap_t = wrap;
+    const host::ImageRgb8 fast =
+        render_screen(v, t, t565.texture, smp, Perspective::kExact, 320, 200);
+    const host::ImageRgb8 precise =
+        render_screen(v, t, t888.texture, smp, Perspective::kExact, 320, 200);
+    int covered = 0, same = 0;
+    for (int y = 3; y < 197; ++y)
+      for (int x = 2; x < 318; ++x) {
+        ++covered;
+        same += pixel(fast, x, y) == pixel(precise, x, y);
+      }
+    EXPECT_EQ(covered, 316 * 194);
+    EXPECT_GE(same, covered - covered / 1000) << "wrap " << int(wrap);  // >= 99.9 %
+    std::printf("exact perspective rgb565 vs precise, wrap %d: %d of %d pixels equal\n", int(wrap),
+                same, covered);
+  }
+}
+
 }  // namespace
 }  // namespace lr
