@@ -17,11 +17,16 @@
 #include "core/math/fixed.hpp"
 #include "core/setup/triangle_setup.hpp"
 #include "core/vertex/screen_vertex.hpp"
+#include "tests/reference/int128.hpp"
 
 namespace lr {
 namespace {
 
-using i128 = __int128;
+#if defined(__SIZEOF_INT128__)
+__extension__ typedef __int128 i128;
+#else
+using i128 = ref::Int128;  // 32-bit targets (the armhf test build): the same exact values
+#endif
 
 // The previous implementation, kept as the reference of the exact path.
 bool reference_gradient(int64_t n, int64_t area, int64_t& g) {
@@ -71,6 +76,14 @@ struct Errors {
   double max_abs = 0;
 };
 
+uint32_t low_word(const i128& v) {
+#if defined(__SIZEOF_INT128__)
+  return static_cast<uint32_t>(static_cast<uint64_t>(v));
+#else
+  return static_cast<uint32_t>(v.lo());
+#endif
+}
+
 // The plane's error at pixel (c, r) against the exact value, modulo 2^32, in units.
 double plane_error(const ScreenVertex* const v[3], const uint32_t a[3], const Plane& p, int32_t c,
                    int32_t r) {
@@ -87,12 +100,12 @@ double plane_error(const ScreenVertex* const v[3], const uint32_t a[3], const Pl
   }
   i128 t = n / dd, rem = n % dd;  // n = t dd + rem, rem in [0, dd)
   if (rem < 0) {
-    --t;
-    rem += dd;
+    t = t - 1;
+    rem = rem + dd;
   }
   // got - (a0 + t + rem / dd), the integer part taken modulo 2^32.
   const auto diff =
-      static_cast<int32_t>(p.at(c, r) - a[0] - static_cast<uint32_t>(static_cast<uint64_t>(t)));
+      static_cast<int32_t>(p.at(c, r) - a[0] - low_word(t));
   return diff - static_cast<double>(rem) / static_cast<double>(dd);
 }
 

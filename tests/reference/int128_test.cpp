@@ -62,6 +62,11 @@ TEST(Int128, MatchesTheBuiltInType) {
     ASSERT_EQ(x == 0, y == 0);
     ASSERT_EQ(x < Int128{c} * a, y < static_cast<builtin>(c) * a);
     ASSERT_EQ(static_cast<double>(x), static_cast<double>(y)) << a << " " << b;
+    const Int128 div = b != 0 ? Int128{b} : Int128{1};
+    const builtin bdiv = b != 0 ? b : 1;
+    ASSERT_EQ(to_builtin(x / div), y / bdiv) << a << " " << b << " " << c << " " << d;
+    ASSERT_EQ(to_builtin(x % div), y % bdiv) << a << " " << b << " " << c << " " << d;
+    if (y != 0) ASSERT_EQ(to_builtin(Int128{a} / x), a / y);
   }
 }
 #endif
