@@ -66,7 +66,9 @@ TEST(Int128, MatchesTheBuiltInType) {
     const builtin bdiv = b != 0 ? b : 1;
     ASSERT_EQ(to_builtin(x / div), y / bdiv) << a << " " << b << " " << c << " " << d;
     ASSERT_EQ(to_builtin(x % div), y % bdiv) << a << " " << b << " " << c << " " << d;
-    if (y != 0) ASSERT_EQ(to_builtin(Int128{a} / x), a / y);
+    if (y != 0) {
+      ASSERT_EQ(to_builtin(Int128{a} / x), a / y);
+    }
   }
 }
 #endif
