@@ -8,6 +8,9 @@
 //               limb" of a 2-by-1 division)
 //   divide_2by1(n, d, recip32(d))  floor(n / d) and its remainder for n < d 2^32: two multiplies
 //               and at most two corrections instead of a 64-bit division
+//   divide_small(n, small_divisor(d))  floor(n / d) for d in [2^14, 2^16] and n < 2^15 d (the
+//               textured span's per-pixel division): one recip16 shared by the divisions of a
+//               pixel, then a 32-bit multiply and at most three corrections each
 #pragma once
 
 #include <array>
@@ -23,6 +26,15 @@ struct Quotient32 {
   uint32_t r;  // n - q d, in [0, d)
 };
 constexpr Quotient32 divide_2by1(uint64_t n, uint32_t d, uint32_t v);
+
+// A divisor in [2^14, 2^16] prepared for divide_small: on cores with a divider just d.
+struct SmallDivisor {
+  uint32_t dn;  // d 2^k, in [2^15, 2^16]
+  uint32_t v;   // floor((2^32 - 1) / dn), in [2^16 - 1, 2^17)
+  int k;        // 0 or 1
+};
+constexpr SmallDivisor small_divisor(uint32_t d);
+constexpr uint32_t divide_small(uint32_t n, const SmallDivisor& s);
 
 // ---- Implementation --------------------------------------------------------------------------
 
@@ -82,7 +94,42 @@ constexpr uint32_t recip32_newton(uint32_t d) {
   return static_cast<uint32_t>(x - (uint64_t{1} << 32));
 }
 
+constexpr SmallDivisor small_divisor_table(uint32_t d) {
+  if (d == (1u << 16)) return {d, 0xFFFFu, 0};
+  const int k = d < (1u << 15) ? 1 : 0;
+  return {d << k, recip16_table(d << k), k};
+}
+
+// With n' = n 2^k < 2^31 and a = n' / 2^16 < 2^15: a v < 2^32, and the estimate a v / 2^16 is
+// at most 3 below floor(n' / dn) and never above it (docs/numerics.md#normalised-reciprocals).
+constexpr uint32_t divide_small_table(uint32_t n, const SmallDivisor& s) {
+  const uint32_t nn = n << s.k;
+  uint32_t q = ((nn >> 16) * s.v) >> 16;
+  uint32_t r = nn - q * s.dn;
+  while (r >= s.dn) {
+    ++q;
+    r -= s.dn;
+  }
+  return q;
+}
+
 }  // namespace detail
+
+constexpr SmallDivisor small_divisor(uint32_t d) {
+#if defined(__arm__) && !defined(__ARM_FEATURE_IDIV)
+  return detail::small_divisor_table(d);
+#else
+  return {d, 0, 0};
+#endif
+}
+
+constexpr uint32_t divide_small(uint32_t n, const SmallDivisor& s) {
+#if defined(__arm__) && !defined(__ARM_FEATURE_IDIV)
+  return detail::divide_small_table(n, s);
+#else
+  return n / s.dn;
+#endif
+}
 
 constexpr uint32_t recip16(uint32_t d) {
 #if defined(__arm__) && !defined(__ARM_FEATURE_IDIV)

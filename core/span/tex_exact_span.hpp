@@ -1,5 +1,6 @@
 // The exact-perspective textured span without mipmaps: one 32-bit division per coordinate and
-// pixel, the texel fetch inlined.
+// pixel (on cores without a divider one table reciprocal per pixel, shared by both), the texel
+// fetch inlined.
 //
 // A span is cut into chunks of up to 32 pixels. Per chunk, each coordinate s (and t) gets a base
 // b (an integer in the output unit: texels for nearest, Q.8 texels for bilinear) a little below
@@ -15,6 +16,7 @@
 #include <cstdint>
 
 #include "core/math/fixed.hpp"
+#include "core/math/reciprocal.hpp"
 #include "core/output/pixel_format.hpp"
 #include "core/setup/active_triangle.hpp"
 #include "core/span/sampler.hpp"
@@ -25,11 +27,6 @@ namespace lr {
 
 namespace detail {
 
-// floor(n / d) for d in [2^14, 2^16]: the per-pixel division (exact on every core).
-[[gnu::always_inline]] inline uint32_t div_pixel(uint32_t n, uint32_t d) {
-  return n / d;
-}
-
 // v / 2^k rounded down, for k of either sign (|k| < 63, no overflow for the callers' ranges).
 constexpr int64_t shift_down(int64_t v, int k) {
   return k >= 0 ? v >> k : static_cast<int64_t>(static_cast<uint64_t>(v) << -k);
@@ -37,9 +34,11 @@ constexpr int64_t shift_down(int64_t v, int k) {
 
 // One coordinate's remainder plane over a chunk (see the file comment). d, gd: D at the chunk's
 // first pixel and its step, both in [0, 2^32) at every pixel of the chunk; base: b.
+// No member initialisers: the chunk is made per 32 pixels and zeroing it cost a memset call;
+// chunk_coord() writes every member before it returns true, and nothing reads it otherwise.
 struct ChunkCoord {
-  uint32_t d = 0, gd = 0;
-  int32_t base = 0;
+  uint32_t d, gd;
+  int32_t base;
 };
 
 // The largest remainder of a chunk, in Q.8 texels: u < 2^kMaxRemainderBits bounds the error
@@ -86,9 +85,9 @@ inline bool chunk_coord(uint32_t s0_plane, uint32_t gs_plane, int m, int32_t off
 
 // The chunk of an exact span: q (biased by half of 2^sh, so that >> sh rounds), its step, sh,
 // and the planes of s and t.
-struct ExactChunk {
-  uint32_t q = 0, gq = 0;
-  int sh = 0;
+struct ExactChunk {  // no member initialisers, as ChunkCoord; setup() writes what it returns
+  uint32_t q, gq;
+  int sh;
   ChunkCoord s, t;
 
   // From the plane values (q, s, t) at the chunk's first pixel; false when a bound fails.
@@ -226,9 +225,10 @@ uint32_t exact_span_565(const ActiveTriangle& tri, const Texture& tex, typename 
           z += dz;
         }
         if (pass) {
-          const uint32_t qn = q >> sh;
-          const auto u = static_cast<int32_t>(div_pixel(ds, qn));
-          const auto v = static_cast<int32_t>(div_pixel(dt, qn));
+          // The pixel's two divisions (exact on every core; a table reciprocal without UDIV).
+          const SmallDivisor qn = small_divisor(q >> sh);
+          const auto u = static_cast<int32_t>(divide_small(ds, qn));
+          const auto v = static_cast<int32_t>(divide_small(dt, qn));
           uint32_t raw;
           if constexpr (kFilter == Filter::kNearest)
             raw = tx.at(bs + u, bt + v);

@@ -261,6 +261,36 @@ TEST(Reciprocal, Recip32AndTheTwoByOneDivisionEqualTheDivisions) {
   }
 }
 
+// The textured span's per-pixel division on the table path: every quotient of the range it is
+// used on (d in [2^14, 2^16], n < 2^15 d), the ends of each divisor's range and random dividends.
+TEST(Reciprocal, SmallDivisionEqualsTheDivision) {
+  uint64_t s = 0x9E3779B97F4A7C15u;
+  auto next = [&s]() {
+    s ^= s << 13;
+    s ^= s >> 7;
+    s ^= s << 17;
+    return s;
+  };
+  for (uint32_t d = 1u << 14; d <= (1u << 16); ++d) {
+    const SmallDivisor table = detail::small_divisor_table(d), here = small_divisor(d);
+    const uint32_t top = (d << 15) - 1;  // the largest dividend
+    const uint32_t n[] = {0,
+                          1,
+                          d - 1,
+                          d,
+                          top,
+                          top - d + 1,
+                          top - d,
+                          static_cast<uint32_t>(next() % (uint64_t{top} + 1)),
+                          static_cast<uint32_t>(next() % (uint64_t{top} + 1)) / d * d,
+                          static_cast<uint32_t>(next() % top) / d * d + d - 1};
+    for (uint32_t x : n) {
+      ASSERT_EQ(detail::divide_small_table(x, table), x / d) << x << " / " << d;
+      ASSERT_EQ(divide_small(x, here), x / d) << x << " / " << d;
+    }
+  }
+}
+
 // The edge walker's 32-bit path and the 64-bit one (long edges far outside the viewport) both
 // hold X = ceil((N) / dy) with the error term of the header: checked against a direct 64-bit
 // evaluation for short and guard-band-long edges.
