@@ -104,8 +104,7 @@ double plane_error(const ScreenVertex* const v[3], const uint32_t a[3], const Pl
     rem = rem + dd;
   }
   // got - (a0 + t + rem / dd), the integer part taken modulo 2^32.
-  const auto diff =
-      static_cast<int32_t>(p.at(c, r) - a[0] - low_word(t));
+  const auto diff = static_cast<int32_t>(p.at(c, r) - a[0] - low_word(t));
   return diff - static_cast<double>(rem) / static_cast<double>(dd);
 }
 

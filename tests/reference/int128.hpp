@@ -43,7 +43,9 @@ class Int128 {
     const uint64_t lo = mul_64x64(a.lo_, b.lo_, hi);
     return from_words(hi + a.hi_ * b.lo_ + a.lo_ * b.hi_, lo);
   }
-  friend constexpr Int128 operator/(const Int128& a, const Int128& b) { return divmod(a, b, nullptr); }
+  friend constexpr Int128 operator/(const Int128& a, const Int128& b) {
+    return divmod(a, b, nullptr);
+  }
   friend constexpr Int128 operator%(const Int128& a, const Int128& b) {
     Int128 r;
     divmod(a, b, &r);
@@ -86,8 +88,10 @@ class Int128 {
       r = from_words((r.hi_ << 1) | (r.lo_ >> 63), (r.lo_ << 1) | (bit(n, i) ? 1 : 0));
       if (!less_unsigned(r, d)) {
         r = r - d;
-        if (i >= 64) q.hi_ |= uint64_t{1} << (i - 64);
-        else q.lo_ |= uint64_t{1} << i;
+        if (i >= 64)
+          q.hi_ |= uint64_t{1} << (i - 64);
+        else
+          q.lo_ |= uint64_t{1} << i;
       }
     }
     if (rem != nullptr) *rem = a.negative() ? -r : r;
