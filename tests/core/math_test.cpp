@@ -189,16 +189,21 @@ TEST(Color, ByteRoundingAndRgb565) {
 namespace lr {
 namespace {
 
-// The reciprocal divider gives the quotient of a division, bit for bit: divisors of every bit
-// length, numerators near 0, near multiples of d and up to 2^63 - 1.
-TEST(Divide, QuotientEqualsDivisionForEveryRange) {
-  uint64_t s = 0x9E3779B97F4A7C15u;
-  auto next = [&s]() {
+// Marsaglia's xorshift64: reproducible operands for the division tests.
+struct XorShift64 {
+  uint64_t s;
+  uint64_t operator()() {
     s ^= s << 13;
     s ^= s >> 7;
     s ^= s << 17;
     return s;
-  };
+  }
+};
+
+// The reciprocal divider gives the quotient of a division, bit for bit: divisors of every bit
+// length, numerators near 0, near multiples of d and up to 2^63 - 1.
+TEST(Divide, QuotientEqualsDivisionForEveryRange) {
+  XorShift64 next{0x9E3779B97F4A7C15u};
   uint64_t checked = 0;
   for (int bits = 1; bits <= 63; ++bits) {
     for (int k = 0; k < 2000; ++k) {
@@ -233,13 +238,7 @@ TEST(Reciprocal, Recip16EqualsTheDivisionForEveryDivisor) {
 }
 
 TEST(Reciprocal, Recip32AndTheTwoByOneDivisionEqualTheDivisions) {
-  uint64_t s = 0x2545F4914F6CDD1Du;
-  auto next = [&s]() {
-    s ^= s << 13;
-    s ^= s >> 7;
-    s ^= s << 17;
-    return s;
-  };
+  XorShift64 next{0x2545F4914F6CDD1Du};
   auto check = [&](uint32_t d) {
     const uint32_t v = static_cast<uint32_t>(~uint64_t{0} / d - (uint64_t{1} << 32));
     ASSERT_EQ(detail::recip32_newton(d), v) << d;
@@ -264,13 +263,7 @@ TEST(Reciprocal, Recip32AndTheTwoByOneDivisionEqualTheDivisions) {
 // The textured span's per-pixel division on the table path: every quotient of the range it is
 // used on (d in [2^14, 2^16], n < 2^15 d), the ends of each divisor's range and random dividends.
 TEST(Reciprocal, SmallDivisionEqualsTheDivision) {
-  uint64_t s = 0x9E3779B97F4A7C15u;
-  auto next = [&s]() {
-    s ^= s << 13;
-    s ^= s >> 7;
-    s ^= s << 17;
-    return s;
-  };
+  XorShift64 next{0x9E3779B97F4A7C15u};
   for (uint32_t d = 1u << 14; d <= (1u << 16); ++d) {
     const SmallDivisor table = detail::small_divisor_table(d), here = small_divisor(d);
     const uint32_t top = (d << 15) - 1;  // the largest dividend
