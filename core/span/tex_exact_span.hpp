@@ -157,15 +157,24 @@ struct Texels565 {
 };
 
 // Whether a PF stores an RGB565 value v as PF::encode(expand565(v)) would: then a replaced
-// texel is stored as it is.
+// texel is stored as it is. Checked for every value of each field with the other two fields all
+// zeros and all ones (256 values: every field and every pair's interaction; a loop over all
+// 65,536 values exceeds clang's constant-evaluation step limit).
 template <class PF>
 consteval bool stores_565() {
   if constexpr (requires { PF::from_value(0u); } && sizeof(typename PF::Storage) == 2) {
-    for (uint32_t v = 0; v < 65536; v += 1)
-      if (PF::encode(Rgb8{static_cast<uint8_t>(expand565(v) >> 16),
-                          static_cast<uint8_t>(expand565(v) >> 8),
-                          static_cast<uint8_t>(expand565(v))}) != PF::from_value(v))
-        return false;
+    constexpr uint32_t kFields[3][2] = {{11, 31}, {5, 63}, {0, 31}};  // shift, largest value
+    for (int f = 0; f < 3; ++f)
+      for (uint32_t others : {0u, 0xFFFFu}) {
+        const uint32_t rest = others & ~(kFields[f][1] << kFields[f][0]);
+        for (uint32_t x = 0; x <= kFields[f][1]; ++x) {
+          const uint32_t v = rest | (x << kFields[f][0]);
+          if (PF::encode(Rgb8{static_cast<uint8_t>(expand565(v) >> 16),
+                              static_cast<uint8_t>(expand565(v) >> 8),
+                              static_cast<uint8_t>(expand565(v))}) != PF::from_value(v))
+            return false;
+        }
+      }
     return true;
   } else {
     return false;

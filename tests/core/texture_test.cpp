@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 
+#include "core/span/tex_exact_span.hpp"
 #include "host_sim/formats/texture_load.hpp"
 #include "tests/support/core_harness.hpp"
 #include "tests/support/scene_compare.hpp"
@@ -418,6 +419,11 @@ TEST(TextureMipmaps, NonPowerOfTwoChainAgainstTheReference) {
   EXPECT_GE(psnr_where(c, 0.0), 38.0);
   EXPECT_GE(c.psnr, 38.0);
 }
+
+// Replaced RGB565 texels are stored as they are only where the display format packs them so
+// (RGB565, byte-swapped or not); an RGB888 strip goes through encode().
+static_assert(detail::stores_565<Rgb565Be>());
+static_assert(!detail::stores_565<Rgb888>());
 
 // The exact-perspective routine of RGB565 textures (tex_exact_span.hpp: one division per pixel
 // in chunks) against the general routine's precise reciprocal (the same image as RGB888): a quad
