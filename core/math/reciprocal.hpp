@@ -8,9 +8,9 @@
 //               limb" of a 2-by-1 division)
 //   divide_2by1(n, d, recip32(d))  floor(n / d) and its remainder for n < d 2^32: two multiplies
 //               and at most two corrections instead of a 64-bit division
-//   divide_small(n, small_divisor(d))  floor(n / d) for d in [2^14, 2^16] and n < 2^15 d (the
-//               textured span's per-pixel division): one recip16 shared by the divisions of a
-//               pixel, then a 32-bit multiply and at most three corrections each
+//   divide_small(n, small_divisor(d, j))  floor(n / d) for d in [2^14, 2^24], n <= 2^31 and
+//               n < 2^15 d (the textured span's per-pixel division): one recip16 shared by the
+//               divisions of a pixel, then a 32-bit multiply and a few corrections each
 #pragma once
 
 #include <array>
@@ -27,13 +27,16 @@ struct Quotient32 {
 };
 constexpr Quotient32 divide_2by1(uint64_t n, uint32_t d, uint32_t v);
 
-// A divisor in [2^14, 2^16] prepared for divide_small: on cores with a divider just d.
+// A divisor in [2^14, 2^24] prepared for divide_small: on cores with a divider just d.
 struct SmallDivisor {
-  uint32_t dn;  // d 2^k, in [2^15, 2^16]
-  uint32_t v;   // floor((2^32 - 1) / dn), in [2^16 - 1, 2^17)
-  int k;        // 0 or 1
+  uint32_t d;  // the divisor
+  uint32_t v;  // floor((2^32 - 1) / dn), dn = floor(d / 2^j) 2^k in [2^15, 2^16]
+  int j;       // the caller's shift: floor(d / 2^j) in [2^14, 2^16]
+  int k;       // 1 when floor(d / 2^j) < 2^15, else 0
 };
-constexpr SmallDivisor small_divisor(uint32_t d);
+// j: a shift with floor(d / 2^j) in [2^14, 2^16], known to the caller for a run of divisors
+// (the span's chunk).
+constexpr SmallDivisor small_divisor(uint32_t d, int j);
 constexpr uint32_t divide_small(uint32_t n, const SmallDivisor& s);
 
 // ---- Implementation --------------------------------------------------------------------------
@@ -94,32 +97,38 @@ constexpr uint32_t recip32_newton(uint32_t d) {
   return static_cast<uint32_t>(x - (uint64_t{1} << 32));
 }
 
-constexpr SmallDivisor small_divisor_table(uint32_t d) {
-  if (d == (1u << 16)) return {d, 0xFFFFu, 0};
-  const int k = d < (1u << 15) ? 1 : 0;
-  return {d << k, recip16_table(d << k), k};
+constexpr SmallDivisor small_divisor_table(uint32_t d, int j) {
+  const uint32_t dh = d >> j;
+  if (dh == (1u << 16)) return {d, 0xFFFFu, j, 0};
+  const int k = dh < (1u << 15) ? 1 : 0;
+  return {d, recip16_table(dh << k), j, k};
 }
 
-// With n' = n 2^k < 2^31 and a = n' / 2^16 < 2^15: a v < 2^32, and the estimate a v / 2^16 is
-// at most 3 below floor(n' / dn) and never above it (docs/numerics.md#normalised-reciprocals).
+// With n' = floor(n / 2^j) 2^k < 2^31 and a = n' / 2^16 < 2^15: a v < 2^32, and the estimate
+// a v / 2^16 is within a few units of floor(n / d) (docs/numerics.md#normalised-reciprocals);
+// the exact remainder n - q d, signed (|n - q d| < 2^31), corrects it.
 constexpr uint32_t divide_small_table(uint32_t n, const SmallDivisor& s) {
-  const uint32_t nn = n << s.k;
+  const uint32_t nn = (n >> s.j) << s.k;
   uint32_t q = ((nn >> 16) * s.v) >> 16;
-  uint32_t r = nn - q * s.dn;
-  while (r >= s.dn) {
+  uint32_t r = n - q * s.d;
+  while (static_cast<int32_t>(r) < 0) {
+    --q;
+    r += s.d;
+  }
+  while (r >= s.d) {
     ++q;
-    r -= s.dn;
+    r -= s.d;
   }
   return q;
 }
 
 }  // namespace detail
 
-constexpr SmallDivisor small_divisor(uint32_t d) {
+constexpr SmallDivisor small_divisor(uint32_t d, [[maybe_unused]] int j) {
 #if defined(__arm__) && !defined(__ARM_FEATURE_IDIV)
-  return detail::small_divisor_table(d);
+  return detail::small_divisor_table(d, j);
 #else
-  return {d, 0, 0};
+  return {d, 0, 0, 0};
 #endif
 }
 
@@ -127,7 +136,7 @@ constexpr uint32_t divide_small(uint32_t n, const SmallDivisor& s) {
 #if defined(__arm__) && !defined(__ARM_FEATURE_IDIV)
   return detail::divide_small_table(n, s);
 #else
-  return n / s.dn;
+  return n / s.d;
 #endif
 }
 

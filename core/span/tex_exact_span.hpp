@@ -6,11 +6,11 @@
 // b (an integer in the output unit: texels for nearest, Q.8 texels for bilinear) a little below
 // its smallest value in the chunk, and the plane D = (S 2^m - (b - off) q) / 2^(sh + fb) of the
 // remainder u = s - b, which is >= 0 and fits in 32 bits over the chunk; per pixel
-// u = D / qn with qn = round(q / 2^sh), the 16 top bits of q. So a pixel costs two divisions and
-// no 64-bit arithmetic, and the division is exact: the only errors are qn's rounding and D's
-// rounded step (docs/numerics.md#exact-perspective-chunks). A chunk where a bound fails (a huge
-// minification, a degenerate q) is halved, down to one pixel, and then drawn with the precise
-// reciprocal of the general routine.
+// u = D / qn with qn = round(q / 2^sh), the 24 top bits of q for nearest and 16 for bilinear.
+// So a pixel costs two divisions and no 64-bit arithmetic, and the division is exact: the only
+// errors are qn's rounding and D's rounded step (docs/numerics.md#exact-perspective-chunks). A
+// chunk where a bound fails (a huge minification, a degenerate q) is halved, down to one pixel, and
+// then drawn with the precise reciprocal of the general routine.
 #pragma once
 
 #include <cstdint>
@@ -45,18 +45,26 @@ struct ChunkCoord {
 // of qn's rounding (relative 2^-15 at most) to one Q.8 unit.
 inline constexpr int kMaxRemainderBits = 15;
 
+// The bits of the per-pixel divisor qn = round(q / 2^sh): D = u qn < 2^32 with u below
+// 2^(kMaxRemainderBits - fb) output units leaves 24 bits for nearest (whole texels) and 16 for
+// bilinear (Q.8 texels); the more bits, the smaller qn's rounding.
+constexpr int divisor_bits(int fb) {
+  return fb == 8 ? 24 : 16;
+}
+
 // The chunk plane of one coordinate from its plane value S0 at the first pixel, its step gs,
-// m (S = s q / 2^m), the origin off (Q.8), q at both ends (q0, q1 >= 1), the chunk length, sh
-// and fb (output unit 2^fb Q.8), and r0, r1 ~ 2^32 / qn at both ends (estimates of s only).
+// m (S = s q / 2^m), the origin off (Q.8), q at both ends (q0, q1 >= 1), the chunk length,
+// se (r0, r1 ~ 2^(32 + se) / q at both ends: estimates of s only), sh (qn = q / 2^sh) and fb
+// (output unit 2^fb Q.8).
 inline bool chunk_coord(uint32_t s0_plane, uint32_t gs_plane, int m, int32_t off, int32_t q0,
-                        int32_t q1, uint32_t gq, int len, int sh, int fb, uint32_t r0, uint32_t r1,
-                        ChunkCoord& out) {
+                        int32_t q1, uint32_t gq, int len, int se, int sh, int fb, uint32_t r0,
+                        uint32_t r1, ChunkCoord& out) {
   const auto s0 = static_cast<int32_t>(s0_plane);
   const auto s1 = static_cast<int32_t>(s0_plane + gs_plane * static_cast<uint32_t>(len - 1));
   // s (Q.8, relative to off) at both ends to about 2^-13 relative: s is monotonic in a chunk
   // (a ratio of two linear functions, q > 0), so the ends bound it.
-  const int64_t e0 = shift_down(int64_t{s0} * r0, 32 + sh - m);
-  const int64_t e1 = shift_down(int64_t{s1} * r1, 32 + sh - m);
+  const int64_t e0 = shift_down(int64_t{s0} * r0, 32 + se - m);
+  const int64_t e1 = shift_down(int64_t{s1} * r1, 32 + se - m);
   const int64_t lo = e0 < e1 ? e0 : e1;
   const int64_t mag =
       (e0 < 0 ? -e0 : e0) > (e1 < 0 ? -e1 : e1) ? (e0 < 0 ? -e0 : e0) : (e1 < 0 ? -e1 : e1);
@@ -72,7 +80,7 @@ inline bool chunk_coord(uint32_t s0_plane, uint32_t gs_plane, int m, int32_t off
   const int64_t gdn = k > 0 ? shift_down(gd + (int64_t{1} << (k - 1)), k) : gd;
   const int64_t dn1 = dn0 + gdn * (len - 1);
   // u = D / qn below 2^kMaxRemainderBits Q.8 units: D below that times the smallest qn
-  // (< 2^31: qn <= 2^16).
+  // (< 2^31: qn < 2^divisor_bits(fb)).
   const int32_t qmin = q0 < q1 ? q0 : q1;
   const int64_t limit = int64_t{qmin >> sh} << (kMaxRemainderBits - fb);
   if (dn0 < 0 || dn1 < 0 || dn0 > limit || dn1 > limit || dn0 > 0xFFFFFFFFll || dn1 > 0xFFFFFFFFll)
@@ -84,10 +92,10 @@ inline bool chunk_coord(uint32_t s0_plane, uint32_t gs_plane, int m, int32_t off
 }
 
 // The chunk of an exact span: q (biased by half of 2^sh, so that >> sh rounds), its step, sh,
-// and the planes of s and t.
+// j (qn / 2^j in [2^14, 2^16]: small_divisor's shift) and the planes of s and t.
 struct ExactChunk {  // no member initialisers, as ChunkCoord; setup() writes what it returns
   uint32_t q, gq;
-  int sh;
+  int sh, j;
   ChunkCoord s, t;
 
   // From the plane values (q, s, t) at the chunk's first pixel; false when a bound fails.
@@ -98,16 +106,22 @@ struct ExactChunk {  // no member initialisers, as ChunkCoord; setup() writes wh
     const auto q1 = static_cast<int32_t>(q_plane + gq * static_cast<uint32_t>(len - 1));
     if (q0 < (1 << 15) || q1 < (1 << 15)) return false;
     const int32_t qmax = q0 > q1 ? q0 : q1, qmin = q0 > q1 ? q1 : q0;
-    sh = 16 - clz32(static_cast<uint32_t>(qmax));  // qmax >> sh < 2^16
-    if (sh < 0) sh = 0;
+    const int bits = 32 - clz32(static_cast<uint32_t>(qmax));
+    const int se = bits > 16 ? bits - 16 : 0;  // q / 2^se < 2^16: the estimates' scale
+    const int extra = divisor_bits(fb) - 16;
+    sh = se > extra ? se - extra : 0;  // qmax / 2^sh < 2^divisor_bits(fb)
+    j = se - sh;
     const uint32_t half = sh > 0 ? 1u << (sh - 1) : 0u;
-    // qn in [2^14, 2^16] over the chunk: its rounding is below 2^-15 of it.
-    if (((static_cast<uint32_t>(qmin) + half) >> sh) < (1u << 14)) return false;
+    // qn / 2^j in [2^14, 2^16] over the chunk: qn's rounding is below 2^-15 of it.
+    if (((static_cast<uint32_t>(qmin) + half) >> se) < (1u << 14)) return false;
     q = static_cast<uint32_t>(q0) + half;
-    const uint32_t qn0 = q >> sh, qn1 = (static_cast<uint32_t>(q1) + half) >> sh;
-    const uint32_t r0 = 0xFFFFFFFFu / qn0, r1 = 0xFFFFFFFFu / qn1;
-    return chunk_coord(s_plane, tri.s.gx, tri.m_s, tri.off_s, q0, q1, gq, len, sh, fb, r0, r1, s) &&
-           chunk_coord(t_plane, tri.t.gx, tri.m_t, tri.off_t, q0, q1, gq, len, sh, fb, r0, r1, t);
+    const uint32_t half_e = se > 0 ? 1u << (se - 1) : 0u;
+    const uint32_t r0 = 0xFFFFFFFFu / ((static_cast<uint32_t>(q0) + half_e) >> se);
+    const uint32_t r1 = 0xFFFFFFFFu / ((static_cast<uint32_t>(q1) + half_e) >> se);
+    return chunk_coord(s_plane, tri.s.gx, tri.m_s, tri.off_s, q0, q1, gq, len, se, sh, fb, r0, r1,
+                       s) &&
+           chunk_coord(t_plane, tri.t.gx, tri.m_t, tri.off_t, q0, q1, gq, len, se, sh, fb, r0, r1,
+                       t);
   }
 };
 
@@ -224,7 +238,7 @@ uint32_t exact_span_565(const ActiveTriangle& tri, const Texture& tex, typename 
     uint16_t* dp = depth + done;
     if (ok) {
       uint32_t q = ch.q, ds = ch.s.d, dt = ch.t.d;
-      const int sh = ch.sh;
+      const int sh = ch.sh, j = ch.j;
       const int32_t bs = ch.s.base, bt = ch.t.base;
       const uint32_t gds = ch.s.gd, gdt = ch.t.gd;
       for (int i = 0; i < len; ++i) {
@@ -235,7 +249,7 @@ uint32_t exact_span_565(const ActiveTriangle& tri, const Texture& tex, typename 
         }
         if (pass) {
           // The pixel's two divisions (exact on every core; a table reciprocal without UDIV).
-          const SmallDivisor qn = small_divisor(q >> sh);
+          const SmallDivisor qn = small_divisor(q >> sh, j);
           const auto u = static_cast<int32_t>(divide_small(ds, qn));
           const auto v = static_cast<int32_t>(divide_small(dt, qn));
           uint32_t raw;

@@ -2,6 +2,7 @@
 // the material table as published, colour conversions.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -260,13 +261,15 @@ TEST(Reciprocal, Recip32AndTheTwoByOneDivisionEqualTheDivisions) {
   }
 }
 
-// The textured span's per-pixel division on the table path: every quotient of the range it is
-// used on (d in [2^14, 2^16], n < 2^15 d), the ends of each divisor's range and random dividends.
+// The textured span's per-pixel division on the table path, over the range it is used on
+// (d in [2^14, 2^24] with the chunk's shift j, n <= 2^31, n < 2^15 d): every divisor up to 2^17,
+// each power-of-two boundary, random ones, and for each the ends of its dividends and random ones.
 TEST(Reciprocal, SmallDivisionEqualsTheDivision) {
   XorShift64 next{0x9E3779B97F4A7C15u};
-  for (uint32_t d = 1u << 14; d <= (1u << 16); ++d) {
-    const SmallDivisor table = detail::small_divisor_table(d), here = small_divisor(d);
-    const uint32_t top = (d << 15) - 1;  // the largest dividend
+  auto check = [&](uint32_t d, int j) {
+    const SmallDivisor table = detail::small_divisor_table(d, j), here = small_divisor(d, j);
+    const uint64_t top64 = std::min<uint64_t>(uint64_t{1} << 31, (uint64_t{d} << 15) - 1);
+    const auto top = static_cast<uint32_t>(top64);  // the largest dividend
     const uint32_t n[] = {0,
                           1,
                           d - 1,
@@ -274,14 +277,29 @@ TEST(Reciprocal, SmallDivisionEqualsTheDivision) {
                           top,
                           top - d + 1,
                           top - d,
-                          static_cast<uint32_t>(next() % (uint64_t{top} + 1)),
-                          static_cast<uint32_t>(next() % (uint64_t{top} + 1)) / d * d,
-                          static_cast<uint32_t>(next() % top) / d * d + d - 1};
+                          static_cast<uint32_t>(next() % (top64 + 1)),
+                          static_cast<uint32_t>(next() % (top64 + 1)) / d * d,
+                          static_cast<uint32_t>(next() % top64) / d * d + d - 1};
     for (uint32_t x : n) {
-      ASSERT_EQ(detail::divide_small_table(x, table), x / d) << x << " / " << d;
-      ASSERT_EQ(divide_small(x, here), x / d) << x << " / " << d;
+      ASSERT_EQ(detail::divide_small_table(x, table), x / d) << x << " / " << d << ", j " << j;
+      ASSERT_EQ(divide_small(x, here), x / d) << x << " / " << d << ", j " << j;
     }
-  }
+  };
+  // Every shift the span can pass: floor(d / 2^j) in [2^14, 2^16].
+  auto check_all_shifts = [&](uint32_t d) {
+    for (int j = 0; j <= 10; ++j) {
+      const uint32_t dh = d >> j;
+      if (dh >= (1u << 14) && dh <= (1u << 16)) check(d, j);
+    }
+  };
+  for (uint32_t d = 1u << 14; d <= (1u << 17); ++d) check_all_shifts(d);
+  for (int b = 17; b <= 24; ++b)
+    for (uint32_t k = 0; k < 64; ++k) {
+      check_all_shifts((1u << b) - k);
+      check_all_shifts((1u << b) + k);
+    }
+  for (int i = 0; i < 200000; ++i)
+    check_all_shifts((1u << 14) + static_cast<uint32_t>(next() % ((1u << 24) - (1u << 14) + 1)));
 }
 
 // The edge walker's 32-bit path and the 64-bit one (long edges far outside the viewport) both
