@@ -108,7 +108,7 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
   const PreparedLighting& pl = *d.lighting;
 
   uint32_t z = 0;
-  if constexpr (kDepth) z = tri.z.at(col, row);
+  if constexpr (kDepth) z = detail::depth_start(tri.z, col, row);
   uint32_t q = tri.q.at(col, row), s = 0, t = 0;
   uint32_t n[3], p[3] = {0, 0, 0}, tg[3] = {0, 0, 0};
   for (int c = 0; c < 3; ++c) {

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "core/math/saturate.hpp"
 #include "core/output/color.hpp"
 #include "core/setup/active_triangle.hpp"
 #include "core/span/dispatch.hpp"
@@ -40,18 +41,27 @@ struct Reciprocal {
   }
 };
 
-// The depth test (LESS) and write of one pixel: z is the depth plane's value (kDepthMax scale).
+// The depth plane's value at a span's first pixel, plus the half that rounds it to 16 bits
+// (stepping the sum modulo 2^32 rounds every pixel's value: depth_pass).
+inline uint32_t depth_start(const Plane& z, int32_t col, int32_t row) {
+  return z.at(col, row) + (1u << 15);
+}
+
+// The depth test (LESS) and write of one pixel: z is the depth plane's value (kDepthMax scale)
+// plus 2^15 (depth_start).
 inline bool depth_pass(uint32_t z, uint16_t& stored) {
-  const auto d = static_cast<uint16_t>((z + (1u << 15)) >> 16);
+  const auto d = static_cast<uint16_t>(z >> 16);
   const bool pass = d < stored;
   if (pass) stored = d;
   return pass;
 }
 
+// An affine colour plane's value (Q2.30) as a Q1.15 channel, clamped to [0, 1 - 2^-15]: one
+// USAT on Armv7-M, and the same 8-bit level as clamping to [0, 1].
 constexpr uint32_t affine15(uint32_t plane_c) {
-  int32_t v = static_cast<int32_t>(plane_c);
-  return clamp_c15(v >> 15);
+  return usat_asr<Color15::kFracBits, 15>(static_cast<int32_t>(plane_c));
 }
+static_assert(to_byte(Color15::kOne - 1) == to_byte(Color15::kOne));
 
 }  // namespace detail
 
@@ -64,7 +74,7 @@ uint32_t fill_span(const ActiveTriangle& t, typename PF::Storage* px, uint16_t* 
                    int32_t row, int32_t count) {
   uint32_t z = 0, dz = 0;
   if constexpr (kDepth) {
-    z = t.z.at(col, row);
+    z = detail::depth_start(t.z, col, row);
     dz = t.z.gx;
   }
   uint32_t q = 0, dq = 0;
@@ -94,11 +104,10 @@ uint32_t fill_span(const ActiveTriangle& t, typename PF::Storage* px, uint16_t* 
         px[i] = flat;
       } else if constexpr (kColors == ColorPlanes::kPerspective) {
         detail::Reciprocal rc(q);
-        px[i] = PF::encode(
-            Rgb8{to_byte(rc.apply(c[0])), to_byte(rc.apply(c[1])), to_byte(rc.apply(c[2]))});
+        px[i] = PF::encode15(rc.apply(c[0]), rc.apply(c[1]), rc.apply(c[2]));
       } else {
-        px[i] = PF::encode(Rgb8{to_byte(detail::affine15(c[0])), to_byte(detail::affine15(c[1])),
-                                to_byte(detail::affine15(c[2]))});
+        px[i] = PF::encode15(detail::affine15(c[0]), detail::affine15(c[1]),
+                             detail::affine15(c[2]));
       }
       ++written;
     }

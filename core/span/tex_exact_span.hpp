@@ -222,7 +222,7 @@ uint32_t exact_span_565(const ActiveTriangle& tri, const Texture& tex, typename 
   const Texels565<kWs, kWt> tx(tex);
   uint32_t z = 0;
   const uint32_t dz = tri.z.gx;
-  if constexpr (kDepth) z = tri.z.at(col, row);
+  if constexpr (kDepth) z = depth_start(tri.z, col, row);
   uint32_t qp = tri.q.at(col, row), sp = tri.s.at(col, row), tp = tri.t.at(col, row);
   const uint32_t gq = tri.q.gx, gs = tri.s.gx, gt = tri.t.gx;
   uint32_t written = 0;

@@ -218,7 +218,7 @@ uint32_t fill_tex_span_body(const ActiveTriangle& tri, const DrawRecord& d,
 
   uint32_t z = 0;
   const uint32_t dz = tri.z.gx;
-  if constexpr (kDepth) z = tri.z.at(col, row);
+  if constexpr (kDepth) z = detail::depth_start(tri.z, col, row);
 
   // Plane values at the current pixel (exact, affine) or at the current chunk start (span).
   detail::PlaneValues pv{};
