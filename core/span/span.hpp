@@ -106,8 +106,8 @@ uint32_t fill_span(const ActiveTriangle& t, typename PF::Storage* px, uint16_t* 
         detail::Reciprocal rc(q);
         px[i] = PF::encode15(rc.apply(c[0]), rc.apply(c[1]), rc.apply(c[2]));
       } else {
-        px[i] = PF::encode15(detail::affine15(c[0]), detail::affine15(c[1]),
-                             detail::affine15(c[2]));
+        px[i] =
+            PF::encode15(detail::affine15(c[0]), detail::affine15(c[1]), detail::affine15(c[2]));
       }
       ++written;
     }

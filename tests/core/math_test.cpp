@@ -9,6 +9,7 @@
 #include "core/math/divide.hpp"
 #include "core/math/pow_table.hpp"
 #include "core/math/reciprocal.hpp"
+#include "core/math/saturate.hpp"
 #include "core/math/trig.hpp"
 #include "core/math/vec.hpp"
 #include "core/output/color.hpp"
@@ -182,6 +183,39 @@ TEST(Color, ByteRoundingAndRgb565) {
   EXPECT_EQ(to_byte(32768), 255);
   Rgb8 red = Rgb565Be::decode(Rgb565Be::encode({255, 0, 0}));
   EXPECT_EQ(red, (Rgb8{255, 0, 0}));
+}
+
+// encode15 (one table address, the green offset folded into the rounding) stores what encode
+// of the rounded bytes stores, for every Q1.15 value of each channel with the others at 0 and 1.
+TEST(Color, Encode15IsEncodeOfTheBytes) {
+  int mismatches = 0;
+  for (uint32_t v = 0; v <= Color15::kOne; ++v) {
+    const uint8_t b = to_byte(v);
+    for (uint32_t o : {0u, uint32_t{Color15::kOne}}) {
+      const uint8_t ob = to_byte(o);
+      mismatches += Rgb565Be::encode15(v, o, o) != Rgb565Be::encode({b, ob, ob});
+      mismatches += Rgb565Be::encode15(o, v, o) != Rgb565Be::encode({ob, b, ob});
+      mismatches += Rgb565Be::encode15(o, o, v) != Rgb565Be::encode({ob, ob, b});
+      mismatches += Rgb888::encode15(v, o, v) != (Rgb8{b, ob, b});
+    }
+  }
+  EXPECT_EQ(mismatches, 0);
+}
+
+// usat_asr against the clamp it stands for, at the bounds and on a sweep of int32.
+TEST(Saturate, UsatAsrIsTheClampOfTheShift) {
+  auto clamp = [](int32_t v) {
+    const int32_t x = v >> 15;
+    return static_cast<uint32_t>(std::clamp(x, 0, 32767));
+  };
+  const int32_t edges[] = {INT32_MIN,         -1,          0,        1, 32767 << 15,
+                           (32768 << 15) - 1, 32768 << 15, INT32_MAX};
+  for (int32_t v : edges) EXPECT_EQ((usat_asr<15, 15>(v)), clamp(v)) << v;
+  int mismatches = 0;
+  for (int64_t v = INT32_MIN; v <= INT32_MAX; v += 65521)
+    mismatches += usat_asr<15, 15>(static_cast<int32_t>(v)) != clamp(static_cast<int32_t>(v));
+  EXPECT_EQ(mismatches, 0);
+  static_assert(usat_asr<15, 15>(-5) == 0 && usat_asr<15, 15>(INT32_MAX) == 32767);
 }
 
 }  // namespace
