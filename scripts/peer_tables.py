@@ -172,15 +172,16 @@ def main(argv):
         print("| " + " | ".join(cells) + " |")
     print()
     print("| scene | covered pixels (Mesa: S1 21,756, S2 39,889, S3 38,080) | pixels written | "
-          "vertices | triangles in | back faces culled | other culled | drawn (set up) | spans | "
-          "checksum |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+          "vertices | triangles in | back faces culled | other culled | drawn (set up) | "
+          "binned, no pixel centre (edges only) | spans | checksum |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for name, _, st in cases:
         other_culled = sum(int(st[k]) for k in ("culled_zero", "culled_off", "clipped_away"))
         print(f"| {name} | {commas(int(st['covered']))} | {commas(int(st['pixels_written']))} | "
               f"{commas(int(st['vertices']))} | {commas(int(st['triangles_in']))} | "
               f"{commas(int(st['culled_back']))} | {commas(other_culled)} | "
-              f"{commas(int(st['set_up']))} | {commas(int(st['spans']))} | {st['checksum']} |")
+              f"{commas(int(st['set_up']))} | {commas(int(st['no_pixels']))} | "
+              f"{commas(int(st['spans']))} | {st['checksum']} |")
     if rows and not no_lines:
         print()
         folder_table(cases, rows)

@@ -27,6 +27,8 @@ struct FrameStats {
   uint32_t empty_strips = 0;      // strips with no active triangle (background fill only)
   uint32_t strips_skipped = 0;    // inputs unchanged since the last frame: not rendered at all
   uint32_t triangles_set_up = 0;  // binned triangles that reached triangle setup
+  // Binned triangles whose rows cover no pixel centre, found at their first strip (edges only).
+  uint32_t triangles_without_pixels = 0;
   uint32_t spans = 0;
   uint32_t pixels_tested = 0;   // pixels inside spans
   uint32_t pixels_written = 0;  // pixels that passed the depth test and were written

@@ -64,6 +64,7 @@ class StripLoop {
 
  private:
   void activate(int strip);
+  SetupInput setup_input(const BinnedTriangle& bt) const;
   void skip_strip(int strip, int y0, int rows);
   void resolve_fetchers();
   void raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows);
@@ -238,57 +239,80 @@ void StripLoop<PF, K, kSpans>::activate(int strip) {
   uint16_t* free_slots = order + storage_.active.size();
   ptrdiff_t i = static_cast<ptrdiff_t>(active_count_) - 1;
   ptrdiff_t out = static_cast<ptrdiff_t>(active_count_ + fit) - 1;
+  size_t added = 0;
   for (; node != kNoTriangle; node = tris[node].next) {
     while (i >= 0 && storage_.active[order[i]].index > node) order[out--] = order[i--];
     uint16_t slot = free_slots[--free_count_];
     const BinnedTriangle& bt = tris[node];
-    const DrawRecord& dr = frame_.draws[bt.draw];
-    SetupInput in;
-    for (int k = 0; k < 3; ++k) in.v[k] = &frame_.vertices[bt.v[k]];
-    int32_t ymin = std::min({in.v[0]->y, in.v[1]->y, in.v[2]->y});
-    int32_t ymax = std::max({in.v[0]->y, in.v[1]->y, in.v[2]->y});
+    const ScreenVertex* v[3];
+    for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
+    int32_t ymin = std::min({v[0]->y, v[1]->y, v[2]->y});
+    int32_t ymax = std::max({v[0]->y, v[1]->y, v[2]->y});
     // Triangles carried over a skipped strip start at this strip's first row.
-    in.first_row = std::max<int32_t>({first_row_below(ymin), 0, strip * K});
-    in.last_row = std::min<int32_t>(last_row_at_or_above(ymax), frame_.height - 1);
-    in.colors = dr.texture ? ColorPlanes::kNone : dr.colors;
-    in.depth = dr.depth;
-    in.affine_colors_ok = dr.depth ? kAffineColors[1] : kAffineColors[0];
-    if (dr.phong) {
-      for (int k = 0; k < 3; ++k) in.phong.s[k] = &frame_.surfaces[bt.v[k]];
-      in.phong.position = dr.position;
-      in.phong.tangent = dr.normal_map != nullptr;
-      // A two-sided draw's back face gets the negated normal.
-      if (dr.two_sided) in.phong.negate = back_facing(signed_area2(*in.v[0], *in.v[1], *in.v[2]));
-      in.colors = ColorPlanes::kNone;
-      // Texture coordinates in the texture's texels, or in the normal map's without one.
-      const Texture* uv_tex = dr.texture ? dr.texture : dr.normal_map;
-      if (uv_tex) {
-        in.tex.texture = uv_tex;
-        in.tex.perspective = true;
-        in.tex.colors = false;
-        in.tex.wrap_s = dr.wrap_s;
-        in.tex.wrap_t = dr.wrap_t;
-      }
-    } else if (dr.texture) {
-      in.tex.texture = dr.texture;
-      in.tex.perspective = dr.persp != TexPersp::kAffine;
-      in.tex.colors = dr.env == TexEnv::kModulate;
-      in.tex.flat = dr.flat;
-      in.tex.flat_primary = from_rgb8(bt.flat);
-      in.tex.flat_secondary = from_rgb8(bt.flat_spec);
-      in.tex.wrap_s = dr.wrap_s;
-      in.tex.wrap_t = dr.wrap_t;
-    }
+    const int32_t first = std::max<int32_t>({first_row_below(ymin), 0, strip * K});
+    const int32_t last = std::min<int32_t>(last_row_at_or_above(ymax), frame_.height - 1);
     ActiveTriangle& t = storage_.active[slot];
-    setup_triangle(in, t);
+    setup_edges(v, first, last, t);
+    if (!has_pixels(t, t.last_row, frame_.width)) {
+      // A sliver between pixel centres: no planes, no slot.
+      free_slots[free_count_++] = slot;
+      ++stats_->triangles_without_pixels;
+      continue;
+    }
+    setup_planes(setup_input(bt), t);
     ++stats_->triangles_set_up;
     t.index = node;
     t.draw = bt.draw;
     t.flat = bt.flat;
     order[out--] = slot;
+    ++added;
   }
-  active_count_ += fit;
+  // Without slivers the new and the old entries meet; else close the gap between them.
+  const ptrdiff_t gap = out - i;
+  for (ptrdiff_t k = i + 1; gap > 0 && k <= static_cast<ptrdiff_t>(active_count_ + added) - 1; ++k)
+    order[k] = order[k + gap];
+  active_count_ += added;
   if (active_count_ > stats_->max_active) stats_->max_active = static_cast<uint32_t>(active_count_);
+}
+
+// What setup_planes needs of a binned triangle and its draw (the rows are setup_edges').
+template <class PF, int K, SpanSet kSpans>
+SetupInput StripLoop<PF, K, kSpans>::setup_input(const BinnedTriangle& bt) const {
+  const DrawRecord& dr = frame_.draws[bt.draw];
+  SetupInput in;
+  for (int k = 0; k < 3; ++k) in.v[k] = &frame_.vertices[bt.v[k]];
+  in.first_row = 0;
+  in.last_row = 0;
+  in.colors = dr.texture ? ColorPlanes::kNone : dr.colors;
+  in.depth = dr.depth;
+  in.affine_colors_ok = dr.depth ? kAffineColors[1] : kAffineColors[0];
+  if (dr.phong) {
+    for (int k = 0; k < 3; ++k) in.phong.s[k] = &frame_.surfaces[bt.v[k]];
+    in.phong.position = dr.position;
+    in.phong.tangent = dr.normal_map != nullptr;
+    // A two-sided draw's back face gets the negated normal.
+    if (dr.two_sided) in.phong.negate = back_facing(signed_area2(*in.v[0], *in.v[1], *in.v[2]));
+    in.colors = ColorPlanes::kNone;
+    // Texture coordinates in the texture's texels, or in the normal map's without one.
+    const Texture* uv_tex = dr.texture ? dr.texture : dr.normal_map;
+    if (uv_tex) {
+      in.tex.texture = uv_tex;
+      in.tex.perspective = true;
+      in.tex.colors = false;
+      in.tex.wrap_s = dr.wrap_s;
+      in.tex.wrap_t = dr.wrap_t;
+    }
+  } else if (dr.texture) {
+    in.tex.texture = dr.texture;
+    in.tex.perspective = dr.persp != TexPersp::kAffine;
+    in.tex.colors = dr.env == TexEnv::kModulate;
+    in.tex.flat = dr.flat;
+    in.tex.flat_primary = from_rgb8(bt.flat);
+    in.tex.flat_secondary = from_rgb8(bt.flat_spec);
+    in.tex.wrap_s = dr.wrap_s;
+    in.tex.wrap_t = dr.wrap_t;
+  }
+  return in;
 }
 
 template <class PF, int K, SpanSet kSpans>

@@ -82,4 +82,27 @@ template <class RowFn>
   t.row = static_cast<int16_t>(r);
 }
 
+// Whether a row from t.row up to `end` (inclusive) has a pixel centre inside the triangle and
+// inside columns [0, width): walk_rows' stepping on copies of the edges, up to the first such row
+// (most triangles have one in their first row, which needs no copies).
+inline bool has_pixels(const ActiveTriangle& t, int end, int32_t width) {
+  const bool long_left = t.long_is_left;
+  auto inside = [long_left, width](const EdgeWalker& long_edge, const EdgeWalker& short_edge) {
+    const int32_t a = long_edge.column(), b = short_edge.column();
+    const int32_t left = long_left ? a : b, right = long_left ? b : a;
+    return left < width && right > 0 && left < right;
+  };
+  const int bottom = t.mid_row + 1;
+  int r = t.row;
+  if (r <= end && r != bottom && inside(t.long_edge, t.short_edge)) return true;
+  EdgeWalker long_edge = t.long_edge, short_edge = t.short_edge;
+  for (; r <= end; ++r) {
+    if (r == bottom) short_edge = t.bottom_edge;
+    if (inside(long_edge, short_edge)) return true;
+    long_edge.step();
+    short_edge.step();
+  }
+  return false;
+}
+
 }  // namespace lr

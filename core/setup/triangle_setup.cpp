@@ -217,29 +217,41 @@ bool affine_is_exact_enough(const ScreenVertex* const v[3]) {
 }
 }  // namespace
 
-void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
-  const ScreenVertex* v[3] = {in.v[0], in.v[1], in.v[2]};
-  const SurfaceVertex* sf[3] = {in.phong.s[0], in.phong.s[1], in.phong.s[2]};
-  // Sort by y (display rows, top first); a fixed network keeps ties deterministic.
-  auto order = [&](int a, int b) {
+namespace {
+// The vertices (and surfaces) sorted by y (display rows, top first); a fixed network keeps ties
+// deterministic, so that setup_edges and setup_planes sort alike.
+struct Sorted {
+  const ScreenVertex* v[3];
+  const SurfaceVertex* sf[3];
+  Sorted(const ScreenVertex* const vs[3], const SurfaceVertex* const ss[3])
+      : v{vs[0], vs[1], vs[2]}, sf{ss[0], ss[1], ss[2]} {
+    order(0, 1);
+    order(1, 2);
+    order(0, 1);
+  }
+  void order(int a, int b) {
     if (v[b]->y < v[a]->y) {
       std::swap(v[a], v[b]);
       std::swap(sf[a], sf[b]);
     }
-  };
-  order(0, 1);
-  order(1, 2);
-  order(0, 1);
+  }
+};
+}  // namespace
+
+void setup_edges(const ScreenVertex* const vertices[3], int32_t first, int32_t last,
+                 ActiveTriangle& t) {
+  constexpr const SurfaceVertex* kNone[3] = {nullptr, nullptr, nullptr};
+  const Sorted sorted(vertices, kNone);
+  const ScreenVertex* const* v = sorted.v;
   int32_t x0 = v[0]->x, y0 = v[0]->y, x1 = v[1]->x, y1 = v[1]->y, x2 = v[2]->x, y2 = v[2]->y;
   // Vertices sorted top to bottom: a positive area puts the middle vertex right of the long edge.
   t.long_is_left = signed_area2(*v[0], *v[1], *v[2]) > 0;
 
-  int32_t first = in.first_row;
   t.row = static_cast<int16_t>(first);
-  t.last_row = static_cast<int16_t>(in.last_row);
+  t.last_row = static_cast<int16_t>(last);
   int32_t mid = last_row_at_or_above(y1);
   if (mid < first - 1) mid = first - 1;
-  if (mid > in.last_row) mid = in.last_row;
+  if (mid > last) mid = last;
   t.mid_row = static_cast<int16_t>(mid);
   t.long_edge.init(x0, y0, x2, y2, first);
   if (y2 > y1) t.bottom_edge.init(x1, y1, x2, y2, mid + 1 > first ? mid + 1 : first);
@@ -248,7 +260,12 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
   } else {
     t.short_edge = t.bottom_edge;
   }
+}
 
+void setup_planes(const SetupInput& in, ActiveTriangle& t) {
+  const Sorted sorted(in.v, in.phong.s);
+  const ScreenVertex* const* v = sorted.v;
+  const SurfaceVertex* const* sf = sorted.sf;
   const PlaneBasis pb(v);  // after the sort: the planes' vertex 0 is the top vertex, as before
   if (in.depth) {
     uint32_t z[3] = {v[0]->z, v[1]->z, v[2]->z};
@@ -282,6 +299,11 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
   }
   if (tex) setup_texture(in.tex, v, pb, q, t);
   if (phong) setup_phong(in.phong, sf, pb, q, t);
+}
+
+void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
+  setup_edges(in.v, in.first_row, in.last_row, t);
+  setup_planes(in, t);
 }
 
 void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const PlaneBasis& pb,

@@ -60,6 +60,11 @@ struct SetupInput {
 
 // Fills `out` (except index/draw/flat). The triangle must have non-zero area.
 void setup_triangle(const SetupInput& in, ActiveTriangle& out);
+// The two halves of setup_triangle: the rows and edge walkers (rows first..last, inclusive), then
+// the attribute planes and the colour planes' kind (all of `in` but its rows): the strip loop
+// sets up no planes for a triangle whose rows cover no pixel centre.
+void setup_edges(const ScreenVertex* const v[3], int32_t first, int32_t last, ActiveTriangle& out);
+void setup_planes(const SetupInput& in, ActiveTriangle& out);
 
 // What every plane of one triangle shares (docs/numerics.md#attribute-plane-equations). Most
 // triangles take the short path: one normalised reciprocal of twice the area and four edge

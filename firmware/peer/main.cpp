@@ -130,14 +130,21 @@ bool run_case(const peer::PeerCase& c) {
   sh::write(c.name);
   sh::write(" checksum ");
   sh::write_hex(sum);
-  const lr::fw::NamedCount counts[] = {
-      {"covered", covered.count},           {"pixels_written", st.pixels_written},
-      {"pixels_tested", st.pixels_tested},  {"vertices", st.vertices_transformed},
-      {"triangles_in", st.triangles_in},    {"culled_back", st.culled_backface},
-      {"culled_zero", st.culled_zero_area}, {"culled_off", st.culled_offscreen},
-      {"clipped_away", st.clipped_away},    {"binned", st.triangles_binned},
-      {"set_up", st.triangles_set_up},      {"spans", st.spans},
-      {"max_active", st.max_active},        {"dropped", dropped}};
+  const lr::fw::NamedCount counts[] = {{"covered", covered.count},
+                                       {"pixels_written", st.pixels_written},
+                                       {"pixels_tested", st.pixels_tested},
+                                       {"vertices", st.vertices_transformed},
+                                       {"triangles_in", st.triangles_in},
+                                       {"culled_back", st.culled_backface},
+                                       {"culled_zero", st.culled_zero_area},
+                                       {"culled_off", st.culled_offscreen},
+                                       {"clipped_away", st.clipped_away},
+                                       {"binned", st.triangles_binned},
+                                       {"set_up", st.triangles_set_up},
+                                       {"no_pixels", st.triangles_without_pixels},
+                                       {"spans", st.spans},
+                                       {"max_active", st.max_active},
+                                       {"dropped", dropped}};
   lr::fw::write_counts(counts);
   sh::write("\n");
   const uint32_t off = covered.count > c.mesa_covered ? covered.count - c.mesa_covered

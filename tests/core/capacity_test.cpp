@@ -1,6 +1,9 @@
 // Full stores drop work and count it; the frame still renders what fit, unchanged.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <set>
+
 #include "host_sim/scene/mesh_prep.hpp"
 #include "host_sim/scene/scene.hpp"
 #include "tests/support/core_harness.hpp"
@@ -72,6 +75,47 @@ TEST(Capacity, ActiveListFullDropsTheLatestTrianglesOfAStrip) {
   ref.begin();
   ref.renderer().draw_screen(kept.vertices, kept.triangles, test::coverage_state());
   EXPECT_EQ(got.rgb, ref.render().rgb);
+}
+
+// Slivers between pixel centres get no planes and no active slot (setup_edges only): the frame
+// is the one with the slivers moved off the viewport (same submission order, same colours), in
+// strips where triangles already active and new ones interleave with them (no depth test: the
+// active order decides every overlap).
+TEST(Capacity, SliversBetweenPixelCentresTakeNoActiveSlot) {
+  auto scene = [](int64_t sliver_dx) {
+    ScreenScene s;
+    s.add(2 * S, 2 * S, 2 * S, 44 * S, 60 * S, 2 * S);  // rows 2..43, from strip 0
+    // Thin diagonal slivers whose boxes hold pixel centres (the binner keeps them) but which hold
+    // none: on row j the one from x = 10 covers x in [j + 1.10, j + 1.30].
+    auto sliver = [&](int64_t x) {
+      x += sliver_dx;
+      s.add(x + 154, 10 * S, x + 205, 10 * S, x + 20 * S + 179, 30 * S);
+    };
+    sliver(10 * S);
+    s.add(4 * S, 9 * S, 40 * S, 40 * S, 50 * S, 12 * S);  // from strip 1, over the first
+    sliver(20 * S);
+    s.add(10 * S, 11 * S, 30 * S, 46 * S, 56 * S, 20 * S);  // from strip 1, over both
+    s.add(30 * S, 17 * S, 33 * S, 47 * S, 62 * S, 30 * S);  // from strip 2
+    return s;
+  };
+  ScreenScene with = scene(0), without = scene(1000 * S);
+  CoreHarness<8> a(64, 48), b(64, 48);
+  a.begin();
+  a.renderer().draw_screen(with.vertices, with.triangles, test::coverage_state());
+  host::ImageRgb8 got = a.render();
+  EXPECT_EQ(a.renderer().stats().triangles_binned, 6u);
+  EXPECT_EQ(a.renderer().stats().triangles_without_pixels, 2u);
+  EXPECT_EQ(a.renderer().stats().triangles_set_up, 4u);
+  EXPECT_EQ(a.renderer().stats().max_active, 4u);
+  b.begin();
+  b.renderer().draw_screen(without.vertices, without.triangles, test::coverage_state());
+  EXPECT_EQ(b.renderer().stats().triangles_binned, 4u);
+  EXPECT_EQ(got.rgb, b.render().rgb);
+  // Every triangle shows somewhere: the last one drawn over the others.
+  std::set<std::array<uint8_t, 3>> colours;
+  for (size_t i = 0; i + 2 < got.rgb.size(); i += 3)
+    colours.insert({got.rgb[i], got.rgb[i + 1], got.rgb[i + 2]});
+  EXPECT_EQ(colours.size(), 5u);  // four triangles and the background
 }
 
 TEST(Capacity, DrawTableFullIsReported) {
