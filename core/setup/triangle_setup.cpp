@@ -59,11 +59,14 @@ void texture_axis(const int32_t uv[3], uint32_t size, Wrap wrap, bool perspectiv
   int64_t lo = c[0] < c[1] ? c[0] : c[1];
   lo = c[2] < lo ? c[2] : lo;
   const int64_t base = floor_div(lo, 256) * 256;
-  const int64_t period = int64_t{size} * 256;
   // Repeat: only the origin's place in the period matters. Clamp: the origin itself
-  // (|base| <= 2^30 since |u| < 2048 and size <= 2048).
-  off =
-      static_cast<int32_t>(wrap == Wrap::kRepeat ? base - floor_div(base, period) * period : base);
+  // (|base| <= 2^30 + 256 since |u| < 2048 and size <= 2048, the period <= 2^19: the remainder
+  // in 32 bits, no library call for a 64-bit division on cores without one).
+  const auto base32 = static_cast<int32_t>(base);
+  const auto period = static_cast<int32_t>(size * 256);
+  int32_t rem = base32 % period;
+  if (rem < 0) rem += period;
+  off = wrap == Wrap::kRepeat ? rem : base32;
   constexpr int64_t kMaxRel = (int64_t{1} << 30) - 1;
   uint32_t rel[3];
   uint32_t hi = 0;
