@@ -43,7 +43,9 @@ struct DrawRecord {
   FetchFn env_fetch = nullptr;
   const Texture* normal_map = nullptr;
   FetchFn nmap_fetch = nullptr;
-  Mat4 view{};  // the camera's view matrix (environment maps: world to eye directions)
+  // The frame's view matrix (the front end's camera, one per frame; environment maps: world to
+  // eye directions).
+  const Mat4* view = nullptr;
   // Signature of everything above that decides pixels (core/binning/strip_inputs.hpp), with the
   // material of per-pixel lighting; set once per draw when strip skipping is on.
   uint32_t inputs = 0;

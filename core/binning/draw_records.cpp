@@ -54,7 +54,7 @@ Status FrontEnd::add_phong_state(const DrawState& state, const PreparedLighting&
   r.two_sided = lights_.two_sided;
   r.position = pl.needs_position();
   r.lighting = shared;
-  r.view = camera_.view;
+  r.view = &camera_.view;
   r.flat = false;
   r.colors = ColorPlanes::kNone;
   r.envmap = state.envmap;

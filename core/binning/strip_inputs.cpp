@@ -97,7 +97,7 @@ void InputHash::add(const DrawRecord& d) {
       add(uint32_t{0});
   }
   add(uint32_t{d.table.size} | uint32_t{d.table.split} << 16);
-  add(d.view);
+  // The view matrix is the camera's, in every strip's seed (FrontEnd::begin_frame).
 }
 
 }  // namespace lr

@@ -281,7 +281,7 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
                                       int64_t{pl.eye.z.raw} - pos[j].z.raw, v);
         }
         const TextureLevel& e0 = d.envmap->levels[0];
-        detail::sphere_map_coords(nn, v, d.view, e0.width, e0.height, es[j], et[j]);
+        detail::sphere_map_coords(nn, v, *d.view, e0.width, e0.height, es[j], et[j]);
       }
     }
     if constexpr (kEnv) d.env_fetch(*d.envmap, 0, es, et, m, env);
