@@ -18,14 +18,16 @@ struct FrameStats {
   uint32_t dropped_triangle_capacity = 0;
   uint32_t binned_inputs = 0;  // inputs that reached the edge table (at least one piece)
   // Pieces: triangles made by clipping, and what reached the edge table.
-  uint32_t clipped = 0;                  // input triangles that crossed a clip plane and were cut
-  uint32_t triangles_binned = 0;         // records in the edge table (clipping can make several)
-  uint32_t dropped_active_capacity = 0;  // binned triangles not drawn: active list full
+  uint32_t clipped = 0;           // input triangles that crossed a clip plane and were cut
+  uint32_t triangles_binned = 0;  // records in the edge table (clipping can make several)
   // Raster work.
   uint32_t vertices_transformed = 0;
   uint32_t strips = 0;
-  uint32_t empty_strips = 0;      // strips with no active triangle (background fill only)
-  uint32_t strips_skipped = 0;    // inputs unchanged since the last frame: not rendered at all
+  uint32_t empty_strips = 0;    // strips with no active triangle (background fill only)
+  uint32_t strips_skipped = 0;  // inputs unchanged since the last frame: not rendered at all
+  // Extra passes over strips whose triangles outnumbered the active list (each pass draws as
+  // many as it holds, in submission order: the frame is the same, the work is more).
+  uint32_t strip_passes = 0;
   uint32_t triangles_set_up = 0;  // binned triangles that reached triangle setup
   // Binned triangles whose rows cover no pixel centre, found at their first strip (edges only).
   uint32_t triangles_without_pixels = 0;

@@ -5,8 +5,10 @@
 // first row falls in it join the active list (kept in submission order, so depth ties and
 // no-depth drawing resolve as in GL) and are set up (core/setup/triangle_setup.hpp); each active
 // triangle fills its rows of the strip with its span routine; finished triangles leave; the
-// strip goes to the sink. With strip signatures, a strip whose inputs did not change since the
-// last rendered frame is stepped over instead (skip_strip).
+// strip goes to the sink. A strip whose triangles do not fit the active list at once is drawn
+// in passes of as many as fit, in submission order (crowded_strip): the same pixels, only
+// slower. With strip signatures, a strip whose inputs did not change since the last rendered
+// frame is stepped over instead (skip_strip).
 #pragma once
 
 #include <algorithm>
@@ -46,7 +48,8 @@ class StripLoop {
   // Checks the stores against the viewport width; forgets the strip signatures.
   bool configure(const StripStorage& s, int width) {
     if (s.depth.size() < static_cast<size_t>(width) * static_cast<size_t>(K)) return false;
-    if (s.active_index.size() < 2 * s.active.size() || s.active.size() > kMaxStoreEntries)
+    if (s.active.empty() || s.active_index.size() < 2 * s.active.size() ||
+        s.active.size() > kMaxStoreEntries)
       return false;
     storage_ = s;
     inputs_known_ = false;
@@ -63,9 +66,12 @@ class StripLoop {
   void invalidate_strips() { inputs_known_ = false; }
 
  private:
-  void activate(int strip);
+  bool activate(int strip);
+  bool set_up(uint16_t node, int strip, uint16_t slot);
   SetupInput setup_input(const BinnedTriangle& bt) const;
+  void crowded_strip(int strip, Pixel* pixels, int y0, int rows);
   void skip_strip(int strip, int y0, int rows);
+  void carry_into(int strip, uint16_t carried);
   void resolve_fetchers();
   void raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows);
   void retire(int next_row);
@@ -132,9 +138,12 @@ inline Status StripLoop<PF, K, kSpans>::render(const BinnedFrame& frame, FrameSt
     std::span<Pixel> px = lease.pixels();
     if (px.size() < count) return Status::kInvalidArgument;
     fill_pixels(px.data(), count, bg);
-    activate(s);
+    const bool fits = activate(s);
     std::span<uint16_t> depth = storage_.depth.first(count);
-    if (active_count_ == 0) {
+    if (!fits) {
+      fill_pixels(depth.data(), count, uint16_t{0xFFFF});
+      crowded_strip(s, px.data(), y0, rows);
+    } else if (active_count_ == 0) {
       ++stats.empty_strips;
       if (depth_sink) fill_pixels(depth.data(), count, uint16_t{0xFFFF});
     } else {
@@ -150,9 +159,7 @@ inline Status StripLoop<PF, K, kSpans>::render(const BinnedFrame& frame, FrameSt
     if (st != Status::kOk) return st;
   }
   st = sink.end_frame();
-  // A frame that dropped triangles for lack of active slots dropped them by what else was
-  // active, which a strip's signature does not describe: the next frame renders everything.
-  inputs_known_ = st == Status::kOk && inputs != nullptr && stats.dropped_active_capacity == 0;
+  inputs_known_ = st == Status::kOk && inputs != nullptr;
   return st;
 }
 
@@ -187,9 +194,16 @@ void StripLoop<PF, K, kSpans>::skip_strip(int strip, int y0, int rows) {
   }
   *tail = kNoTriangle;
   head = kNoTriangle;
-  // Both lists run from the latest submission to the earliest: merge them.
-  uint16_t& next = buckets[static_cast<size_t>(strip + 1 < strips ? strip + 1 : strip)];
-  uint16_t a = carried, b = strip + 1 < strips ? next : kNoTriangle, merged = kNoTriangle;
+  if (strip + 1 < strips) carry_into(strip + 1, carried);
+}
+
+// Merges `carried` (a list from the latest submission to the earliest, like every bucket) into
+// the bucket of `strip`.
+template <class PF, int K, SpanSet kSpans>
+void StripLoop<PF, K, kSpans>::carry_into(int strip, uint16_t carried) {
+  const std::span<BinnedTriangle> tris = frame_.triangles;
+  uint16_t& next = frame_.buckets[static_cast<size_t>(strip)];
+  uint16_t a = carried, b = next, merged = kNoTriangle;
   uint16_t* out = &merged;
   while (a != kNoTriangle || b != kNoTriangle) {
     uint16_t& pick = (b == kNoTriangle || (a != kNoTriangle && a > b)) ? a : b;
@@ -198,7 +212,70 @@ void StripLoop<PF, K, kSpans>::skip_strip(int strip, int y0, int rows) {
     pick = tris[pick].next;
   }
   *out = kNoTriangle;
-  if (strip + 1 < strips) next = merged;
+  next = merged;
+}
+
+// A strip whose triangles (those active and those starting in it) outnumber the active slots.
+// All of them are drawn in passes of as many as the active list holds, from the earliest
+// submission to the latest, each set up at the strip's first row: every pixel sees the same
+// fragments in the same order as in one pass. Those that go on are handed to the next strip's
+// bucket, like skip_strip's.
+template <class PF, int K, SpanSet kSpans>
+void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, int rows) {
+  const std::span<BinnedTriangle> tris = frame_.triangles;
+  uint16_t* order = storage_.active_index.data();
+  uint16_t* free_slots = order + storage_.active.size();
+  // The bucket, reversed into submission order, merged with the active list (in that order).
+  uint16_t& head = frame_.buckets[static_cast<size_t>(strip)];
+  uint16_t bucket = kNoTriangle;
+  for (uint16_t i = head; i != kNoTriangle;) {
+    const uint16_t n = tris[i].next;
+    tris[i].next = bucket;
+    bucket = i;
+    i = n;
+  }
+  head = kNoTriangle;
+  uint16_t all = kNoTriangle, *tail = &all;
+  size_t k = 0;
+  while (k < active_count_ || bucket != kNoTriangle) {
+    const bool take_active =
+        k < active_count_ && (bucket == kNoTriangle || storage_.active[order[k]].index < bucket);
+    const uint16_t node = take_active ? storage_.active[order[k++]].index : bucket;
+    if (!take_active) bucket = tris[bucket].next;
+    *tail = node;
+    tail = &tris[node].next;
+  }
+  *tail = kNoTriangle;
+  for (size_t i = 0; i < active_count_; ++i) free_slots[free_count_++] = order[i];
+  active_count_ = 0;
+
+  const int next_row = y0 + rows;
+  uint16_t carried = kNoTriangle;  // from the latest submission to the earliest
+  for (uint16_t node = all; node != kNoTriangle;) {
+    size_t batch = 0;
+    while (node != kNoTriangle && free_count_ > 0) {
+      const uint16_t n = tris[node].next;
+      const uint16_t slot = free_slots[--free_count_];
+      if (set_up(node, strip, slot))
+        order[batch++] = slot;
+      else
+        free_slots[free_count_++] = slot;
+      node = n;
+    }
+    for (size_t i = 0; i < batch; ++i) raster_triangle(storage_.active[order[i]], pixels, y0, rows);
+    for (size_t i = 0; i < batch; ++i) {
+      const ActiveTriangle& t = storage_.active[order[i]];
+      if (t.last_row >= next_row) {
+        tris[t.index].next = carried;
+        carried = t.index;
+      }
+      free_slots[free_count_++] = order[i];
+    }
+    ++stats_->strip_passes;
+  }
+  --stats_->strip_passes;  // the first pass is the strip's own
+  stats_->max_active = static_cast<uint32_t>(storage_.active.size());
+  if (strip + 1 < frame_.strips) carry_into(strip + 1, carried);
 }
 
 // The texel fetchers of this frame's draws (DrawRecord): here, in the template, from the tables
@@ -218,19 +295,17 @@ void StripLoop<PF, K, kSpans>::resolve_fetchers() {
   }
 }
 
+// Moves the triangles of the strip's bucket into the active list; false (nothing moved) when
+// they do not all fit beside those already active (the strip is then crowded_strip's).
 template <class PF, int K, SpanSet kSpans>
-void StripLoop<PF, K, kSpans>::activate(int strip) {
+bool StripLoop<PF, K, kSpans>::activate(int strip) {
   const std::span<BinnedTriangle> tris = frame_.triangles;
   uint16_t& head = frame_.buckets[static_cast<size_t>(strip)];
   size_t m = 0;
   for (uint16_t i = head; i != kNoTriangle; i = tris[i].next) ++m;
-  if (m == 0) return;
-  // The list runs from the latest submission to the earliest: when the active list cannot take
-  // them all, the latest are the ones dropped.
-  size_t fit = std::min(m, free_count_);
-  stats_->dropped_active_capacity += static_cast<uint32_t>(m - fit);
+  if (m == 0) return true;
+  if (m > free_count_) return false;
   uint16_t node = head;
-  for (size_t skip = m - fit; skip > 0; --skip) node = tris[node].next;
   head = kNoTriangle;
 
   // Merge from the back: existing entries are in ascending submission order, the bucket gives
@@ -238,32 +313,15 @@ void StripLoop<PF, K, kSpans>::activate(int strip) {
   uint16_t* order = storage_.active_index.data();
   uint16_t* free_slots = order + storage_.active.size();
   ptrdiff_t i = static_cast<ptrdiff_t>(active_count_) - 1;
-  ptrdiff_t out = static_cast<ptrdiff_t>(active_count_ + fit) - 1;
+  ptrdiff_t out = static_cast<ptrdiff_t>(active_count_ + m) - 1;
   size_t added = 0;
   for (; node != kNoTriangle; node = tris[node].next) {
     while (i >= 0 && storage_.active[order[i]].index > node) order[out--] = order[i--];
-    uint16_t slot = free_slots[--free_count_];
-    const BinnedTriangle& bt = tris[node];
-    const ScreenVertex* v[3];
-    for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
-    int32_t ymin = std::min({v[0]->y, v[1]->y, v[2]->y});
-    int32_t ymax = std::max({v[0]->y, v[1]->y, v[2]->y});
-    // Triangles carried over a skipped strip start at this strip's first row.
-    const int32_t first = std::max<int32_t>({first_row_below(ymin), 0, strip * K});
-    const int32_t last = std::min<int32_t>(last_row_at_or_above(ymax), frame_.height - 1);
-    ActiveTriangle& t = storage_.active[slot];
-    setup_edges(v, first, last, t);
-    if (!has_pixels(t, t.last_row, frame_.width)) {
-      // A sliver between pixel centres: no planes, no slot.
+    const uint16_t slot = free_slots[--free_count_];
+    if (!set_up(node, strip, slot)) {
       free_slots[free_count_++] = slot;
-      ++stats_->triangles_without_pixels;
       continue;
     }
-    setup_planes(setup_input(bt), t);
-    ++stats_->triangles_set_up;
-    t.index = node;
-    t.draw = bt.draw;
-    t.flat = bt.flat;
     order[out--] = slot;
     ++added;
   }
@@ -273,6 +331,34 @@ void StripLoop<PF, K, kSpans>::activate(int strip) {
     order[k] = order[k + gap];
   active_count_ += added;
   if (active_count_ > stats_->max_active) stats_->max_active = static_cast<uint32_t>(active_count_);
+  return true;
+}
+
+// Sets binned triangle `node` up in active slot `slot`, from the later of its first row and the
+// strip's (triangles carried over a skipped or crowded strip, or binned into a band that starts
+// below their top). False for a sliver between pixel centres: no planes, the slot unused.
+template <class PF, int K, SpanSet kSpans>
+[[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node, int strip,
+                                                                    uint16_t slot) {
+  const BinnedTriangle& bt = frame_.triangles[node];
+  const ScreenVertex* v[3];
+  for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
+  int32_t ymin = std::min({v[0]->y, v[1]->y, v[2]->y});
+  int32_t ymax = std::max({v[0]->y, v[1]->y, v[2]->y});
+  const int32_t first = std::max<int32_t>({first_row_below(ymin), 0, strip * K});
+  const int32_t last = std::min<int32_t>(last_row_at_or_above(ymax), frame_.height - 1);
+  ActiveTriangle& t = storage_.active[slot];
+  setup_edges(v, first, last, t);
+  if (!has_pixels(t, t.last_row, frame_.width)) {
+    ++stats_->triangles_without_pixels;
+    return false;
+  }
+  setup_planes(setup_input(bt), t);
+  ++stats_->triangles_set_up;
+  t.index = node;
+  t.draw = bt.draw;
+  t.flat = bt.flat;
+  return true;
 }
 
 // What setup_planes needs of a binned triangle and its draw (the rows are setup_edges').

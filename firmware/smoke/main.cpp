@@ -207,8 +207,7 @@ int main() {
   report("pixels tested:", st.pixels_tested);
   report("pixels written:", st.pixels_written);
   report("max active:", st.max_active);
-  report("dropped (capacity):",
-         st.dropped_vertex_capacity + st.dropped_triangle_capacity + st.dropped_active_capacity);
+  report("dropped (capacity):", st.dropped_vertex_capacity + st.dropped_triangle_capacity);
 #ifdef LR_BOARD_RAM_SIZE
   report("stack used (bytes):", lr_stack_used_bytes());
 #endif
@@ -219,7 +218,7 @@ int main() {
     ok = false;
   }
   // A store too small for the scene drops triangles: the frame would be wrong, say why.
-  if (st.dropped_vertex_capacity + st.dropped_triangle_capacity + st.dropped_active_capacity != 0) {
+  if (st.dropped_vertex_capacity + st.dropped_triangle_capacity != 0) {
     sh::write("lr_smoke: a store is too small for the scene (dropped, capacity)\n");
     ok = false;
   }

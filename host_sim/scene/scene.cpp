@@ -261,10 +261,10 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
   caps.width = std::max(o.width, 0);
   caps.height = std::max(o.height, 0);
   caps.strip_height = K;
-  caps.vertices = 0xFFFF;
-  caps.triangles = 0xFFFE;
+  caps.vertices = o.stores.vertices;
+  caps.triangles = o.stores.triangles;
   caps.draws = 256;
-  caps.active = 4096;
+  caps.active = o.stores.active;
   caps.surfaces = phong ? caps.vertices : 0;
   caps.pixel_lights = materials;
   caps.lighting_table_words = o.pixel_lighting == PixelLighting::kTable

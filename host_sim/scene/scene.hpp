@@ -77,6 +77,10 @@ struct SceneOptions {
   Wrap wrap = Wrap::kRepeat;
   MipMode mipmap = MipMode::kNone;
   const Texture* texture_object = nullptr;  // for tests and tools: used instead of any file
+  // The renderer's store capacities (entries; the core's limits by default).
+  struct Stores {
+    size_t vertices = 0xFFFF, triangles = 0xFFFE, active = 4096;
+  } stores{};
 };
 
 struct RenderResult {

@@ -58,23 +58,29 @@ TEST(Capacity, VertexStoreFullDropsTheWholeDraw) {
   EXPECT_EQ(got.rgb, ref.render().rgb);
 }
 
-TEST(Capacity, ActiveListFullDropsTheLatestTrianglesOfAStrip) {
-  // Three triangles starting in the same strip; room for two at a time.
+// Overlapping triangles without a depth test (the submission order decides every overlap), more
+// of them crossing each strip than the active list holds: each crowded strip is drawn in passes
+// and the frame is the one-pass frame.
+TEST(Capacity, CrowdedStripsAreDrawnInPassesWithTheSameFrame) {
   ScreenScene s;
-  for (int i = 0; i < 3; ++i)
-    s.add((2 + 20 * i) * S, 2 * S, (2 + 20 * i) * S, 40 * S, (18 + 20 * i) * S, 2 * S);
-  ScreenScene kept;
-  for (int i = 0; i < 2; ++i)
-    kept.add((2 + 20 * i) * S, 2 * S, (2 + 20 * i) * S, 40 * S, (18 + 20 * i) * S, 2 * S);
-  CoreHarness<8> small(64, 48, 100, 100, /*max_active=*/2);
-  small.begin();
-  small.renderer().draw_screen(s.vertices, s.triangles, test::coverage_state());
-  host::ImageRgb8 got = small.render();
-  EXPECT_EQ(small.renderer().stats().dropped_active_capacity, 1u);
+  for (int i = 0; i < 5; ++i)
+    s.add((2 + 9 * i) * S, (2 + 3 * i) * S, (2 + 9 * i) * S, 44 * S, (24 + 9 * i) * S, 5 * S);
+  s.add(1 * S, 20 * S, 62 * S, 30 * S, 60 * S, 10 * S);
   CoreHarness<8> ref(64, 48);
   ref.begin();
-  ref.renderer().draw_screen(kept.vertices, kept.triangles, test::coverage_state());
-  EXPECT_EQ(got.rgb, ref.render().rgb);
+  ref.renderer().draw_screen(s.vertices, s.triangles, test::coverage_state());
+  const host::ImageRgb8 want = ref.render();
+  EXPECT_EQ(ref.renderer().stats().strip_passes, 0u);
+  EXPECT_EQ(ref.renderer().stats().max_active, 6u);
+  for (size_t active = 1; active <= 6; ++active) {
+    CoreHarness<8> small(64, 48, 100, 100, active);
+    small.begin();
+    small.renderer().draw_screen(s.vertices, s.triangles, test::coverage_state());
+    EXPECT_EQ(small.render().rgb, want.rgb) << active << " active slots";
+    const FrameStats& st = small.renderer().stats();
+    EXPECT_EQ(st.strip_passes > 0, active < 6) << active;
+    EXPECT_LE(st.max_active, active);
+  }
 }
 
 // Slivers between pixel centres get no planes and no active slot (setup_edges only): the frame
