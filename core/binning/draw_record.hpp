@@ -3,16 +3,46 @@
 // is added; the strip loop fills in the texel fetchers when it renders.
 #pragma once
 
+#include <array>
+#include <bit>
+#include <cstddef>
 #include <cstdint>
+#include <span>
 
 #include "core/lighting/lighting.hpp"
 #include "core/lighting/lighting_table.hpp"
 #include "core/math/mat4.hpp"
 #include "core/scene/draw_state.hpp"
+#include "core/scene/material.hpp"
+#include "core/scene/mesh.hpp"
 #include "core/texture/texel_fetch.hpp"
 #include "core/texture/texture.hpp"
+#include "core/vertex/screen_vertex.hpp"
 
 namespace lr {
+
+// A copy of a trivially copyable T kept as bytes, whose default is all zeros whatever T's
+// defaults are: a static store of records holding one stays in .bss.
+template <class T>
+class ZeroStored {
+ public:
+  void set(const T& v) { bytes_ = std::bit_cast<std::array<std::byte, sizeof(T)>>(v); }
+  T get() const { return std::bit_cast<T>(bytes_); }
+
+ private:
+  std::array<std::byte, sizeof(T)> bytes_{};
+};
+
+// What re-runs a draw when the frame is binned again band by band (FrontEnd::bin_band): the
+// arguments of draw() or draw_screen(). The caller's arrays are referred to, not copied.
+struct DrawCall {
+  Mesh mesh{};                             // draw(); draw_screen(): its triangles only
+  std::span<const ScreenVertex> screen{};  // draw_screen()'s vertices
+  Mat4 model{};
+  ZeroStored<Material> material{};
+  ZeroStored<DrawState> state{};
+  bool is_screen = false;  // draw_screen()
+};
 
 // Every default is zero bytes (false, nullptr, the enums' first value), so that a static store
 // of records stays in .bss; the front end sets every field a draw uses.
@@ -46,6 +76,7 @@ struct DrawRecord {
   // The frame's view matrix (the front end's camera, one per frame; environment maps: world to
   // eye directions).
   const Mat4* view = nullptr;
+  DrawCall call{};  // not in the signature: the call's results are (the binned triangles)
   // Signature of everything above that decides pixels (core/binning/strip_inputs.hpp), with the
   // material of per-pixel lighting; set once per draw when strip skipping is on.
   uint32_t inputs = 0;

@@ -4,15 +4,11 @@
 
 namespace lr {
 
-Status FrontEnd::add_draw_record(const DrawState& state, bool has_color_planes, size_t vertices,
-                                 uint32_t triangles, uint8_t& index) {
-  // Without a draw record or room for every vertex the whole draw is dropped, and counted.
+Status FrontEnd::add_draw_record(const DrawState& state, bool has_color_planes, uint32_t triangles,
+                                 uint8_t& index) {
+  // Without a draw record the whole draw is dropped, and counted.
   if (draw_count_ >= draws_.size()) {
-    stats_.dropped_triangle_capacity += triangles;
-    return Status::kCapacity;
-  }
-  if (!vertices_fit(vertices)) {
-    stats_.dropped_vertex_capacity += triangles;
+    refuse(triangles, false);
     return Status::kCapacity;
   }
   DrawRecord r;

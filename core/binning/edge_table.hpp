@@ -41,10 +41,15 @@ class EdgeTable {
 
   // Empties every bucket; with signatures, starts each strip's from the frame's.
   void begin_frame(uint32_t frame_signature) {
+    frame_signature_ = frame_signature;
+    begin_band(0, strips_);
+  }
+  // Empties the store and every bucket; with signatures, restarts those of strips [s0, s1).
+  void begin_band(int s0, int s1) {
     count_ = 0;
     for (int i = 0; i < strips_; ++i) buckets_[static_cast<size_t>(i)] = kNoTriangle;
     if (signing())
-      for (int i = 0; i < strips_; ++i) strip_inputs_[static_cast<size_t>(i)] = frame_signature;
+      for (int i = s0; i < s1; ++i) strip_inputs_[static_cast<size_t>(i)] = frame_signature_;
   }
 
   // The binner's tests: kBinned when the triangle would be binned (capacity aside), with its
@@ -54,6 +59,7 @@ class EdgeTable {
                    Cull cull, int32_t& r0, int32_t& r1) const;
 
   bool full() const { return count_ >= triangles_.size(); }
+  size_t capacity() const { return triangles_.size(); }
 
   // Appends a triangle to the bucket of the strip of row r0 and returns it for the caller to
   // fill in (its `next` is set here). Not full().
@@ -89,6 +95,7 @@ class EdgeTable {
   std::span<uint32_t> strip_inputs_{};
   int width_ = 0, height_ = 0, strip_height_ = 1, strips_ = 0;
   size_t count_ = 0;
+  uint32_t frame_signature_ = 0;
 };
 
 }  // namespace lr

@@ -4,12 +4,6 @@
 #include "core/vertex/vertex_stage.hpp"
 
 namespace lr {
-namespace {
-
-Rgb8 to_rgb8_sat(Color15 c) {
-  auto b = [](uint16_t v) { return to_byte(clamp_c15(v)); };
-  return {b(c.r), b(c.g), b(c.b)};
-}
 
 // What draw() decides about a draw from its state, its mesh and the lights.
 struct DrawPlan {
@@ -20,6 +14,16 @@ struct DrawPlan {
   bool split = false;      // textured, lit, modulated: primary and specular colours apart
   bool two_sided = false;  // Gouraud and flat: back faces lit with the negated normal
 };
+
+namespace {
+
+// ScreenVertex::color_pending of a vertex a band's triangle refers to (compact_vertices).
+constexpr uint8_t kKeptVertex = 2;
+
+Rgb8 to_rgb8_sat(Color15 c) {
+  auto b = [](uint16_t v) { return to_byte(clamp_c15(v)); };
+  return {b(c.r), b(c.g), b(c.b)};
+}
 
 // The checks of draw() (kInvalidArgument: nothing is added, nothing counted), and its plan.
 Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& lights, DrawPlan& p) {
@@ -96,6 +100,10 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
   lights_ = lights;
   background_ = background;
   vertex_count_ = draw_count_ = 0;
+  overflow_ = banding_ = false;
+  band_r0_ = 0;
+  band_r1_ = height_ - 1;
+  refused_triangles_ = refused_vertices_ = 0;
   pixel_light_count_ = table_words_used_ = 0;
   // What every strip depends on: the viewport, the background, the camera (per-pixel lighting
   // and environment maps read it) and the lights (per-pixel lighting).
@@ -111,6 +119,7 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
   }
   edges_.begin_frame(frame_signature);
   stats_ = FrameStats{};
+  stats_.bands = 1;
   stats_.bytes_per_vertex = sizeof(ScreenVertex);
   stats_.bytes_per_binned_triangle = sizeof(BinnedTriangle);
   return Status::kOk;
@@ -121,15 +130,28 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
   const ScreenVertex& v0 = vertices_[a];
   const ScreenVertex& v1 = vertices_[b];
   const ScreenVertex& v2 = vertices_[c];
-  int32_t r0 = 0, r1 = 0;
-  if (rows != nullptr) {
-    r0 = rows[0];
-    r1 = rows[1];
-  } else {
-    const Outcome result = edges_.classify(v0, v1, v2, cull, r0, r1);
+  int32_t classified[2] = {0, 0};
+  if (rows == nullptr) {
+    const Outcome result = edges_.classify(v0, v1, v2, cull, classified[0], classified[1]);
     if (result != Outcome::kBinned) return result;
+    rows = classified;
   }
-  if (edges_.full()) return Outcome::kCapacity;
+  // Locals, not classify()'s outputs: kept in registers.
+  int32_t r0 = rows[0], r1 = rows[1];
+  // Binning a band: another band's triangle is binned there; one from above starts here.
+  // (One pass: the band is the viewport, to which classify() clamped the rows already.)
+  if (banding_) [[unlikely]] {
+    if (r1 < band_r0_ || r0 > band_r1_) return Outcome::kBinned;
+    if (r0 < band_r0_) {
+      r0 = band_r0_;
+      ++band_carried_;  // binned in its own band already: not counted again
+    }
+    if (r1 > band_r1_) r1 = band_r1_;
+  }
+  if (edges_.full()) {
+    overflow_ = true;
+    return Outcome::kCapacity;
+  }
   if (edges_.signing()) {
     const DrawRecord& d = draws_[draw];
     InputHash h(d.inputs);
@@ -260,6 +282,7 @@ void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&
                           bool back_copies, Rgb8 flat, Rgb8 flat_spec, const int32_t* rows) {
   if (back_copies) {
     if (!vertices_fit(3)) {
+      overflow_ = true;
       count_outcome(stats_, false, Outcome::kVertexCapacity);
       return;
     }
@@ -300,6 +323,7 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
   }
   if (!vertices_fit(static_cast<size_t>(m)) ||
       (d.plan.kind.phong && !surfaces_fit(static_cast<size_t>(m)))) {
+    overflow_ = true;
     ++stats_.dropped_vertex_capacity;
     return;
   }
@@ -312,6 +336,7 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
     nv.u = poly[k].u;
     nv.v = poly[k].v;
     nv.outcode = 0;
+    nv.color_pending = 0;
     if (d.stage.project(poly[k].p, nv)) ++projected;
     if (d.plan.kind.phong) surfaces_[vertex_count_ + static_cast<size_t>(k)] = poly[k].surface;
   }
@@ -343,12 +368,13 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   const size_t n = mesh.positions.size();
   const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
   stats_.triangles_in += tri_count;
-  if (plan.kind.phong && !surfaces_fit(n)) {
-    stats_.dropped_vertex_capacity += tri_count;
+  // Every band transforms the whole mesh into the vertex store (docs/bands.md).
+  if (n > vertices_.size() || (plan.kind.phong && n > surfaces_.size())) {
+    refuse(tri_count, true);
     return Status::kCapacity;
   }
   uint8_t draw_index = 0;
-  if (add_draw_record(state, plan.kind.color_planes, n, tri_count, draw_index) != Status::kOk)
+  if (add_draw_record(state, plan.kind.color_planes, tri_count, draw_index) != Status::kOk)
     return Status::kCapacity;
 
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
@@ -356,12 +382,30 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   if (plan.lit) pl = prepare_lighting(lights_, material, view_dir, camera_.eye);
   if (plan.kind.phong && add_phong_state(state, pl, draws_[draw_index]) != Status::kOk) {
     --draw_count_;
-    stats_.dropped_triangle_capacity += tri_count;
+    refuse(tri_count, false);
     return Status::kCapacity;
   }
   if (edges_.signing()) sign_draw(draw_index, plan.kind.phong ? &material : nullptr);
-  const uint32_t dropped_before = dropped();
+  DrawCall& call = draws_[draw_index].call;
+  call.mesh = mesh;
+  call.screen = {};
+  call.model = model;
+  call.material.set(material);
+  call.state.set(state);
+  call.is_screen = false;
+  if (!overflow_) run_mesh(draw_index, mesh, model, material, state, plan, pl);
+  return Status::kOk;
+}
 
+void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
+                        const Material& material, const DrawState& state, const DrawPlan& plan,
+                        const PreparedLighting& pl) {
+  const size_t n = mesh.positions.size();
+  if (!vertices_fit(n) || (plan.kind.phong && !surfaces_fit(n))) {
+    overflow_ = true;
+    stats_.dropped_vertex_capacity += static_cast<uint32_t>(mesh.triangles.size());
+    return;
+  }
   VertexColors colors;
   colors.lit = plan.lit;
   colors.pending = plan.lit && plan.gouraud;
@@ -373,14 +417,16 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   colors.lighting = &pl;
   const VertexStage stage(camera_, model, guard_, width_, height_);
   const size_t base = vertex_count_;
+  const size_t first_triangle = edges_.size();
   vertex_count_ += n;
   stats_.vertices_transformed += static_cast<uint32_t>(n);
   stage.transform(mesh, colors, vertices_.data() + base,
                   plan.kind.phong ? surfaces_.data() + base : nullptr);
 
-  MeshDraw d{mesh, state, stage, plan, colors, base, draw_index};
+  MeshDraw d{mesh, state, stage, plan, colors, base, index};
+  const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
   for (uint32_t t = 0; t < tri_count; ++t) draw_triangle(d, mesh.triangles[t]);
-  return dropped() > dropped_before ? Status::kCapacity : Status::kOk;
+  if (banding_) compact_vertices(base, first_triangle, plan.kind.phong);
 }
 
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
@@ -389,21 +435,46 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   if (!configured_) return Status::kInvalidArgument;
   const bool gouraud = state.shading == Shading::kGouraud;
   if (!admitted(state, {false, gouraud, !lights_.normal_only()})) return Status::kInvalidArgument;
-  const size_t n = vertices.size();
   const auto tri_count = static_cast<uint32_t>(triangles.size());
   stats_.triangles_in += tri_count;
+  if (vertices.size() > vertices_.size()) {
+    refuse(tri_count, true);
+    return Status::kCapacity;
+  }
   uint8_t draw_index = 0;
-  if (add_draw_record(state, gouraud, n, tri_count, draw_index) != Status::kOk)
+  if (add_draw_record(state, gouraud, tri_count, draw_index) != Status::kOk)
     return Status::kCapacity;
   if (edges_.signing()) sign_draw(draw_index, nullptr);
-  const uint32_t dropped_before = dropped();
+  DrawCall& call = draws_[draw_index].call;
+  call.mesh = Mesh{};
+  call.mesh.triangles = triangles;
+  call.screen = vertices;
+  call.model = Mat4{};
+  call.material.set(Material{});
+  call.state.set(state);
+  call.is_screen = true;
+  if (!overflow_) run_screen(draw_index, vertices, triangles, state);
+  return Status::kOk;
+}
+
+void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
+                          std::span<const std::array<uint16_t, 3>> triangles,
+                          const DrawState& state) {
+  const size_t n = vertices.size();
+  if (!vertices_fit(n)) {
+    overflow_ = true;
+    stats_.dropped_vertex_capacity += static_cast<uint32_t>(triangles.size());
+    return;
+  }
   const size_t base = vertex_count_;
+  const size_t first_triangle = edges_.size();
   const int32_t limit = (kMaxViewport * 3) << kSubpixelBits;  // inside the coordinate budget
   for (size_t i = 0; i < n; ++i) {
     ScreenVertex v = vertices[i];
     if (v.w == 0) v.w = 1u << 16;
     bool ok = v.x > -limit && v.x < limit && v.y > -limit && v.y < limit && v.z <= kDepthMax;
     v.outcode = ok ? 0 : kClipOutOfRange;
+    v.color_pending = 0;
     vertices_[base + i] = v;
   }
   vertex_count_ += n;
@@ -421,10 +492,89 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
     }
     const Rgb8 flat = to_rgb8_sat(vertices_[vi[2]].color);
     const Rgb8 flat_spec = to_rgb8_sat(vertices_[vi[2]].spec);
-    const Outcome r = bin(vi[0], vi[1], vi[2], draw_index, flat, flat_spec, state.cull);
+    const Outcome r = bin(vi[0], vi[1], vi[2], index, flat, flat_spec, state.cull);
     count_outcome(stats_, r == Outcome::kBinned, r);
   }
-  return dropped() > dropped_before ? Status::kCapacity : Status::kOk;
+  if (banding_) compact_vertices(base, first_triangle, false);
+}
+
+void FrontEnd::begin_bands() {
+  FrameStats fresh;
+  fresh.triangles_in = stats_.triangles_in;
+  fresh.dropped_triangle_capacity = refused_triangles_;
+  fresh.dropped_vertex_capacity = refused_vertices_;
+  fresh.bytes_per_vertex = stats_.bytes_per_vertex;
+  fresh.bytes_per_binned_triangle = stats_.bytes_per_binned_triangle;
+  fresh.bytes_per_active_triangle = stats_.bytes_per_active_triangle;
+  stats_ = fresh;
+}
+
+Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
+  const FrameStats before = stats_;
+  banding_ = true;
+  overflow_ = false;
+  band_r0_ = s0 * strip_height_;
+  band_r1_ = (s1 * strip_height_ < height_ ? s1 * strip_height_ : height_) - 1;
+  vertex_count_ = 0;
+  band_carried_ = 0;
+  edges_.begin_band(s0, s1);
+  const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
+  for (size_t i = 0; i < draw_count_ && (keep_partial || !overflow_); ++i) {
+    const DrawCall& c = draws_[i].call;
+    const auto index = static_cast<uint8_t>(i);
+    const DrawState state = c.state.get();
+    if (c.is_screen) {
+      run_screen(index, c.screen, c.mesh.triangles, state);
+      continue;
+    }
+    const Material material = c.material.get();
+    DrawPlan plan;
+    plan_draw(c.mesh, state, lights_, plan);  // passed in draw()
+    PreparedLighting pl;
+    if (plan.lit) pl = prepare_lighting(lights_, material, view_dir, camera_.eye);
+    run_mesh(index, c.mesh, c.model, material, state, plan, pl);
+  }
+  const bool fit = !overflow_;
+  overflow_ = true;  // the frame still needs bands
+  stats_.triangles_binned -= band_carried_;
+  if (!fit && !keep_partial) {
+    stats_ = before;
+    ++stats_.band_retries;
+    return Status::kCapacity;
+  }
+  // What becomes of each input triangle is counted in the first band; the pieces binned and
+  // the vertices transformed in every band; what was dropped in the bands that dropped it.
+  if (s0 != 0) {
+    const FrameStats now = stats_;
+    stats_ = before;
+    stats_.triangles_binned = now.triangles_binned;
+    stats_.vertices_transformed = now.vertices_transformed;
+    stats_.dropped_triangle_capacity +=
+        now.dropped_triangle_capacity - before.dropped_triangle_capacity;
+    stats_.dropped_vertex_capacity += now.dropped_vertex_capacity - before.dropped_vertex_capacity;
+  }
+  ++stats_.bands;
+  return fit ? Status::kOk : Status::kCapacity;
+}
+
+void FrontEnd::compact_vertices(size_t first_vertex, size_t first_triangle, bool surfaces) {
+  const std::span<BinnedTriangle> tris = edges_.triangles().subspan(first_triangle);
+  for (const BinnedTriangle& t : tris)
+    for (uint16_t v : t.v) vertices_[v].color_pending = kKeptVertex;
+  auto kept = static_cast<uint16_t>(first_vertex);
+  for (size_t i = first_vertex; i < vertex_count_; ++i)
+    if (vertices_[i].color_pending == kKeptVertex) vertices_[i].link = kept++;
+  for (BinnedTriangle& t : tris)
+    for (uint16_t& v : t.v) v = vertices_[v].link;
+  size_t out = first_vertex;
+  for (size_t i = first_vertex; i < vertex_count_; ++i) {
+    if (vertices_[i].color_pending != kKeptVertex) continue;
+    vertices_[out] = vertices_[i];
+    vertices_[out].color_pending = 0;
+    if (surfaces) surfaces_[out] = surfaces_[i];
+    ++out;
+  }
+  vertex_count_ = out;
 }
 
 }  // namespace lr

@@ -30,6 +30,8 @@
 
 namespace lr {
 
+struct DrawPlan;  // what draw() decides about a draw (front_end.cpp)
+
 // The front end's stores (its part of FrameStorage, core/raster/frame_storage.hpp).
 struct FrontEndStorage {
   std::span<ScreenVertex> vertices;
@@ -78,6 +80,23 @@ class FrontEnd {
   Status draw_screen(std::span<const ScreenVertex> vertices,
                      std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
 
+  // Bands (docs/bands.md). When the frame's triangles or vertices overflow the stores, binning
+  // stops at the first that does not fit and the draws are only recorded; the renderer then
+  // bins the frame again for one band of strips at a time, each holding only what touches it.
+  bool needs_bands() const { return overflow_; }
+  // Restarts the statistics for binning in bands (the triangles given and those of refused
+  // draws are kept).
+  void begin_bands();
+  // Bins every draw again for strips [s0, s1) only: the triangles that touch them, those that
+  // start above in the band's first strip. kCapacity when they do not fit: with keep_partial
+  // what fit is kept and the rest counted as dropped, else the band is left unusable and the
+  // statistics as they were (the caller tries a smaller band).
+  Status bin_band(int s0, int s1, bool keep_partial);
+  // Whether the last band used at most half of the triangle store and of the vertex store.
+  bool band_half_empty() const {
+    return 2 * edges_.size() <= edges_.capacity() && 2 * vertex_count_ <= vertices_.size();
+  }
+
   const FrameStats& stats() const { return stats_; }
   // The strip loop counts its work into the same statistics.
   FrameStats& mutable_stats() { return stats_; }
@@ -115,6 +134,22 @@ class FrontEnd {
                                                   const ClipCoord (&clip)[3], uint8_t oc_or,
                                                   bool back_colored, Rgb8 flat, Rgb8 flat_spec);
 
+  // The vertex stage and binning of a recorded draw (draw() runs it unless the stores have
+  // overflowed; bin_band runs it for each band).
+  void run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model, const Material& material,
+                const DrawState& state, const DrawPlan& plan, const PreparedLighting& pl);
+  void run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
+                  std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
+  // Binning a band: keeps only the vertices from `first_vertex` on that the triangles binned
+  // from `first_triangle` on refer to, and renumbers those triangles.
+  void compact_vertices(size_t first_vertex, size_t first_triangle, bool surfaces);
+  // A draw that no band can take (draw records, per-pixel lighting pools, a mesh larger than
+  // the vertex store): counted as dropped, in this frame's statistics for good.
+  void refuse(uint32_t triangles, bool vertex_store) {
+    (vertex_store ? refused_vertices_ : refused_triangles_) += triangles;
+    (vertex_store ? stats_.dropped_vertex_capacity : stats_.dropped_triangle_capacity) += triangles;
+  }
+
   // rows: the triangle's first and last row when classify() already passed it (its tests are
   // not repeated), else nullptr.
   Outcome bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
@@ -125,17 +160,14 @@ class FrontEnd {
   }
   // Draw records (draw_records.cpp): a new record for a draw's state, its per-pixel lighting,
   // its signature once final.
-  Status add_draw_record(const DrawState& state, bool color_planes, size_t vertices,
-                         uint32_t triangles, uint8_t& index);
+  Status add_draw_record(const DrawState& state, bool color_planes, uint32_t triangles,
+                         uint8_t& index);
   Status add_phong_state(const DrawState& state, const PreparedLighting& pl, DrawRecord& r);
   void sign_draw(uint8_t index, const Material* per_pixel_material);
   bool surfaces_fit(size_t vertices) const {
     return surfaces_.size() >= vertex_count_ && vertices <= surfaces_.size() - vertex_count_;
   }
   bool vertices_fit(size_t vertices) const { return vertices <= vertices_.size() - vertex_count_; }
-  uint32_t dropped() const {
-    return stats_.dropped_triangle_capacity + stats_.dropped_vertex_capacity;
-  }
 
   std::span<ScreenVertex> vertices_{};
   std::span<DrawRecord> draws_{};
@@ -153,6 +185,12 @@ class FrontEnd {
   size_t pixel_light_count_ = 0, table_words_used_ = 0;
   bool configured_ = false;
   AdmitFn admit_ = nullptr;
+  // Bands: the stores overflowed (the rest of the frame is only recorded), binning a band
+  // (vertices are compacted per draw), the band's rows, and the refused draws' triangles.
+  bool overflow_ = false, banding_ = false;
+  int32_t band_r0_ = 0, band_r1_ = 0;
+  uint32_t band_carried_ = 0;  // the band's triangles from above it
+  uint32_t refused_triangles_ = 0, refused_vertices_ = 0;
 };
 
 }  // namespace lr

@@ -25,6 +25,10 @@ struct FrameStats {
   uint32_t strips = 0;
   uint32_t empty_strips = 0;    // strips with no active triangle (background fill only)
   uint32_t strips_skipped = 0;  // inputs unchanged since the last frame: not rendered at all
+  // Bands the frame was binned in (1: the stores held it whole), and bands binned again
+  // smaller because they did not fit (docs/bands.md).
+  uint32_t bands = 0;
+  uint32_t band_retries = 0;
   // Extra passes over strips whose triangles outnumbered the active list (each pass draws as
   // many as it holds, in submission order: the frame is the same, the work is more).
   uint32_t strip_passes = 0;

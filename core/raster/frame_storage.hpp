@@ -13,8 +13,10 @@
 
 namespace lr {
 
-// Capacities are the spans' sizes (at most 65535 vertices and triangles); running out drops
-// work and counts it in FrameStats. The order is that of the aggregate initialisers callers
+// Capacities are the spans' sizes (at most 65535 vertices and triangles). A frame larger than
+// the vertex, triangle or active stores is drawn in bands or passes, identically
+// (docs/bands.md, with the minimum capacities); below the minimum work is dropped, counted in
+// FrameStats and reported by render(). The order is that of the aggregate initialisers callers
 // write: FrameStorage{vertices, triangles, draws, buckets, active, active_index, depth, ...}.
 struct FrameStorage {
   std::span<ScreenVertex> vertices;
@@ -46,8 +48,8 @@ struct FrameStorage {
   StripStorage strip_loop() const { return {active, active_index, depth}; }
 };
 
-// How much one frame may hold. Every store's size follows from these (the accessors below);
-// running out of one drops work and counts it in FrameStats.
+// How much one frame may hold at once. Every store's size follows from these (the accessors
+// below); see FrameStorage for what happens when a frame needs more.
 struct FrameCapacities {
   int width = 0, height = 0;  // the viewport
   int strip_height = 8;       // the renderer's K

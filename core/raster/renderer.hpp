@@ -8,6 +8,7 @@
 // sink. RAM: the caller's FrameStorage; nothing is allocated, nothing holds a frame.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -49,25 +50,32 @@ class Renderer {
     return st;
   }
 
-  // Adds a mesh. On a full store the triangles that do not fit are dropped and counted, and
-  // kCapacity is returned; what fit is kept. kInvalidArgument (nothing added) when the mesh's
-  // arrays disagree in size, Gouraud lighting is asked of a mesh without normals, or the
-  // renderer's SpanSet does not admit the draw's span state or its textures (span_state.hpp).
+  // Adds a mesh. The mesh's arrays must stay valid until render() returns: a frame larger than
+  // the stores is drawn in bands, which read them again (docs/bands.md); the Mesh, the matrix,
+  // the material and the state are copied. kCapacity (the draw is dropped and counted) when no
+  // draw record is left, the mesh has more vertices than the vertex store, or a Phong draw's
+  // lighting pools are full. kInvalidArgument (nothing added) when the mesh's arrays disagree in
+  // size, Gouraud lighting is asked of a mesh without normals, or the renderer's SpanSet does
+  // not admit the draw's span state or its textures (span_state.hpp).
   Status draw(const Mesh& mesh, const Mat4& model, const Material& material,
               const DrawState& state) {
     return front_.draw(mesh, model, material, state);
   }
 
   // Adds triangles already in screen space (snapped subpixel positions, depth, colour):
-  // for 2D overlays and for tests of the raster rules. Lighting does not apply. kInvalidArgument
-  // (nothing added) when the renderer's SpanSet does not admit the draw's span state.
+  // for 2D overlays and for tests of the raster rules. Lighting does not apply. Both arrays
+  // must stay valid until render() returns. kCapacity as draw(); kInvalidArgument (nothing
+  // added) when the renderer's SpanSet does not admit the draw's span state.
   Status draw_screen(std::span<const ScreenVertex> vertices,
                      std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state) {
     return front_.draw_screen(vertices, triangles, state);
   }
 
-  // Rasterizes the frame built since begin_frame(). On a sink error the frame is abandoned and
-  // the sink's status returned; the renderer is ready for the next frame either way.
+  // Rasterizes the frame built since begin_frame(), in bands when it did not fit the stores
+  // (docs/bands.md). kCapacity when a single strip needed more binned triangles or vertices
+  // than the stores hold: that strip is drawn with what fit and the rest counted as dropped.
+  // On a sink error the frame is abandoned and the sink's status returned; the renderer is
+  // ready for the next frame either way.
   // With FrameStorage::strip_inputs, a sink that retains_frame() and no depth sink, strips whose
   // inputs equal the last rendered frame's are not rendered: the sink is told to keep() them.
   // The renderer assumes the sink shows its last frame: after rendering into another sink (or
@@ -94,10 +102,39 @@ class Renderer {
   StripLoop<PF, K, kSpans> strip_;
 };
 
+// A frame the stores hold whole is one band. One they do not is binned again and rasterized a
+// band of strips at a time (docs/bands.md): a band that does not fit is halved and binned
+// again; one that fits in less than half of the stores lets the next be twice as tall. Only a
+// single strip that does not fit drops work: what fit is drawn and kCapacity returned. One
+// call of the strip loop's strips() either way: it is inlined here once.
 template <class PF, int K, SpanSet kSpans>
 Status Renderer<PF, K, kSpans>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
   if (!front_.configured()) return Status::kInvalidArgument;
-  return strip_.render(front_.frame(), front_.mutable_stats(), sink, depth_sink);
+  FrameStats& stats = front_.mutable_stats();
+  const bool bands = front_.needs_bands();
+  if (bands) front_.begin_bands();
+  Status st = strip_.begin(front_.frame(), stats, sink, depth_sink);
+  if (st != Status::kOk) return st;
+  const int strips = front_.frame().strips;
+  int size = bands ? (strips + 1) / 2 : strips;
+  bool complete = true;
+  for (int s0 = 0; s0 < strips;) {
+    const int s1 = std::min(strips, s0 + size);
+    if (bands && front_.bin_band(s0, s1, s1 - s0 == 1) != Status::kOk) {
+      if (s1 - s0 > 1) {
+        size = (s1 - s0) / 2;
+        continue;
+      }
+      complete = false;
+    }
+    st = strip_.strips(front_.frame(), s0, s1, sink, depth_sink);
+    if (st != Status::kOk) return st;
+    if (bands && front_.band_half_empty()) size = std::min(strips, 2 * size);
+    s0 = s1;
+  }
+  st = strip_.end(sink, complete);
+  if (st != Status::kOk) return st;
+  return complete ? Status::kOk : Status::kCapacity;
 }
 
 #ifdef LR_EXTERN_RENDERERS

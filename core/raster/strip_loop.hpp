@@ -60,7 +60,23 @@ class StripLoop {
   // inlined into Renderer::render, its one caller: the renderer's render() is then the strip
   // loop itself, which the compiler inlines where the sink's type is known (direct calls).
   [[gnu::always_inline]] Status render(const BinnedFrame& frame, FrameStats& stats,
+                                       StripSink<PF>& sink, DepthSink* depth_sink) {
+    Status st = begin(frame, stats, sink, depth_sink);
+    if (st == Status::kOk) st = strips(frame, 0, frame.strips, sink, depth_sink);
+    return st == Status::kOk ? end(sink, true) : st;
+  }
+  // render() in its three steps: a frame binned in bands (Renderer::render) runs strips() once
+  // per band, with that band's binned frame. end(complete = false): the frame dropped work, so
+  // its strip signatures describe nothing to keep.
+  [[gnu::always_inline]] Status begin(const BinnedFrame& frame, FrameStats& stats,
+                                      StripSink<PF>& sink, DepthSink* depth_sink);
+  [[gnu::always_inline]] Status strips(const BinnedFrame& frame, int s0, int s1,
                                        StripSink<PF>& sink, DepthSink* depth_sink);
+  Status end(StripSink<PF>& sink, bool complete) {
+    const Status st = sink.end_frame();
+    inputs_known_ = st == Status::kOk && !frame_.strip_inputs.empty() && complete;
+    return st;
+  }
 
   // Forgets the strip signatures of the last frame (see Renderer::invalidate_strips).
   void invalidate_strips() { inputs_known_ = false; }
@@ -88,33 +104,46 @@ class StripLoop {
   size_t active_count_ = 0;
   size_t free_count_ = 0;
   bool inputs_known_ = false;  // strip_inputs' second half describes the last frame rendered
+  bool may_skip_ = false;      // this frame may leave out strips whose inputs did not change
 };
 
 template <class PF, int K, SpanSet kSpans>
-inline Status StripLoop<PF, K, kSpans>::render(const BinnedFrame& frame, FrameStats& stats,
-                                               StripSink<PF>& sink, DepthSink* depth_sink) {
+inline Status StripLoop<PF, K, kSpans>::begin(const BinnedFrame& frame, FrameStats& stats,
+                                              StripSink<PF>& sink, DepthSink* depth_sink) {
   frame_ = frame;
   stats_ = &stats;
   resolve_fetchers();
   const auto w = static_cast<size_t>(frame_.width);
   stats.bytes_per_strip = static_cast<uint32_t>(w * K * (sizeof(Pixel) + sizeof(uint16_t)));
+  // Until this frame has reached the display whole, the signatures describe nothing shown.
+  const bool had_inputs = inputs_known_;
+  inputs_known_ = false;
+  const Status st =
+      sink.begin_frame(static_cast<uint16_t>(frame_.width), static_cast<uint16_t>(frame_.height));
+  may_skip_ = had_inputs && depth_sink == nullptr && sink.retains_frame();
+  return st;
+}
+
+// Strips [s0, s1) of `frame` (the whole frame, or a band's binned frame: every triangle that
+// touches the band is in it, those from above in its first strip's bucket).
+template <class PF, int K, SpanSet kSpans>
+inline Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1,
+                                               StripSink<PF>& sink, DepthSink* depth_sink) {
+  frame_ = frame;
+  FrameStats& stats = *stats_;
+  const auto w = static_cast<size_t>(frame_.width);
   active_count_ = 0;
   free_count_ = storage_.active.size();
   uint16_t* free_slots = storage_.active_index.data() + storage_.active.size();
   for (size_t i = 0; i < free_count_; ++i)
     free_slots[i] = static_cast<uint16_t>(free_count_ - 1 - i);
 
-  // Until this frame has reached the display whole, the signatures describe nothing shown.
-  const bool had_inputs = inputs_known_;
-  inputs_known_ = false;
-  Status st =
-      sink.begin_frame(static_cast<uint16_t>(frame_.width), static_cast<uint16_t>(frame_.height));
-  if (st != Status::kOk) return st;
-  const bool may_skip = had_inputs && depth_sink == nullptr && sink.retains_frame();
+  Status st = Status::kOk;
+  const bool may_skip = may_skip_;
   uint32_t* inputs = frame_.strip_inputs.empty() ? nullptr : frame_.strip_inputs.data();
   const auto last = static_cast<size_t>(frame_.strips);  // the last frame's half
   const Pixel bg = PF::encode(frame_.background);
-  for (int s = 0; s < frame_.strips; ++s) {
+  for (int s = s0; s < s1; ++s) {
     const int y0 = s * K;
     const int rows = std::min(K, frame_.height - y0);
     const size_t count = w * static_cast<size_t>(rows);
@@ -158,9 +187,7 @@ inline Status StripLoop<PF, K, kSpans>::render(const BinnedFrame& frame, FrameSt
     st = sink.submit(rect, std::move(lease));
     if (st != Status::kOk) return st;
   }
-  st = sink.end_frame();
-  inputs_known_ = st == Status::kOk && inputs != nullptr;
-  return st;
+  return Status::kOk;
 }
 
 // A strip whose inputs did not change: the triangles active in it are stepped over its rows

@@ -43,6 +43,7 @@ struct ScreenVertex {
   uint8_t outcode = 0;   // clip planes this vertex is outside of (0: projected fields valid)
   uint8_t color_pending = 0;  // vertex stage: 1 while its colour waits for the first triangle
                               // that is drawn with it (lit Gouraud: vertices are lit lazily)
+  uint16_t link = 0;          // front end scratch (a band's vertex compaction); in the padding
 };
 static_assert(sizeof(ScreenVertex) == 40);
 

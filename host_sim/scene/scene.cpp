@@ -340,8 +340,10 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
   CaptureDisplay<PF> display(static_cast<size_t>(caps.width) * K);  // one strip
   DepthCapture depth_capture;
   depth_capture.resize(o.width, o.height);
+  // kCapacity: a strip held more than the stores (the frame is what fit; the statistics count
+  // what was dropped).
   Status s = renderer->render(display, &depth_capture);
-  if (s != Status::kOk) {
+  if (s != Status::kOk && s != Status::kCapacity) {
     error = std::string("render: ") + to_string(s) + " " + display.error();
     return false;
   }

@@ -26,16 +26,48 @@ ScreenScene squares(int count) {
   return s;
 }
 
-TEST(Capacity, TriangleStoreFullDropsTheRestAndKeepsWhatFit) {
-  ScreenScene all = squares(4), first = squares(2);
+// A frame with more triangles than the store holds is drawn in bands (docs/bands.md): the
+// frame of one pass, and the statistics of one pass but for the bands.
+TEST(Capacity, TriangleStoreFullDrawsTheFrameInBands) {
+  ScreenScene all = squares(4);
+  CoreHarness<8> ref(64, 64);
+  ref.begin();
+  ref.renderer().draw_screen(all.vertices, all.triangles, test::coverage_state());
+  const host::ImageRgb8 want = ref.render();
+  EXPECT_EQ(ref.renderer().stats().bands, 1u);
   CoreHarness<8> small(64, 64, 100, /*max_triangles=*/4);
   small.begin();
   EXPECT_EQ(small.renderer().draw_screen(all.vertices, all.triangles, test::coverage_state()),
-            Status::kCapacity);
-  host::ImageRgb8 got = small.render();
-  EXPECT_EQ(small.renderer().stats().dropped_triangle_capacity, 4u);
-  EXPECT_EQ(small.renderer().stats().binned_inputs, 4u);
-  CoreHarness<8> ref(64, 64);
+            Status::kOk);
+  Status st = Status::kInvalidArgument;
+  EXPECT_EQ(small.render(&st).rgb, want.rgb);
+  EXPECT_EQ(st, Status::kOk);
+  const FrameStats& s = small.renderer().stats();
+  EXPECT_GE(s.bands, 2u);
+  EXPECT_EQ(s.dropped_triangle_capacity, 0u);
+  EXPECT_EQ(s.binned_inputs, 8u);
+  EXPECT_EQ(s.triangles_binned, 8u);
+  EXPECT_EQ(s.triangles_in, 8u);
+}
+
+// Below the minimum (the triangles that touch one strip) the frame is what fit, the drop is
+// counted and render() says kCapacity.
+TEST(Capacity, AStripThatDoesNotFitTheStoreIsReported) {
+  ScreenScene s;
+  for (int i = 0; i < 3; ++i)
+    s.add((2 + 20 * i) * S, 2 * S, (2 + 20 * i) * S, 6 * S, (18 + 20 * i) * S, 2 * S);
+  CoreHarness<8> small(64, 16, 100, /*max_triangles=*/2);
+  small.begin();
+  EXPECT_EQ(small.renderer().draw_screen(s.vertices, s.triangles, test::coverage_state()),
+            Status::kOk);
+  Status st = Status::kOk;
+  const host::ImageRgb8 got = small.render(&st);
+  EXPECT_EQ(st, Status::kCapacity);
+  EXPECT_EQ(small.renderer().stats().dropped_triangle_capacity, 1u);
+  ScreenScene first;
+  for (int i = 0; i < 2; ++i)
+    first.add((2 + 20 * i) * S, 2 * S, (2 + 20 * i) * S, 6 * S, (18 + 20 * i) * S, 2 * S);
+  CoreHarness<8> ref(64, 16);
   ref.begin();
   ref.renderer().draw_screen(first.vertices, first.triangles, test::coverage_state());
   EXPECT_EQ(got.rgb, ref.render().rgb);
