@@ -181,6 +181,39 @@ def features(k):
     return "\n".join(out)
 
 
+# Frames drawn in bands (docs/bands.md) against the same frame in one pass: every band and
+# every retried band runs the vertex stage and binning of the whole frame again.
+BANDS = [("knot_gouraud_cullback", ("knot_bands_1024", "knot_bands_512", "knot_bands_256")),
+         ("knot64k_gouraud", ("knot64k_bands_4096",))]
+
+
+def bands(k):
+    out = ["| case | triangle store | bands | retried | strips drawn in passes | instructions |"
+           " over one pass | per extra band or retry |", "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    missing = []
+    for base, banded in BANDS:
+        if base not in k:
+            missing.append(base)
+            continue
+        b = k[base]
+        out.append(f"| {base} | whole frame | {b['bands']} | {b['band_retries']} |"
+                   f" {b['strip_passes']} | {commas(b['ins'])} | - | - |")
+        for name in banded:
+            if name not in k:
+                missing.append(name)
+                continue
+            c = k[name]
+            store = name.rsplit("_", 1)[1]
+            extra = c["ins"] - b["ins"]
+            passes = c["bands"] + c["band_retries"] - 1
+            per = commas(extra / passes) if passes > 0 else "-"
+            out.append(f"| {name} | {store} | {c['bands']} | {c['band_retries']} |"
+                       f" {c['strip_passes']} | {commas(c['ins'])} | {commas(extra)} | {per} |")
+    if missing:
+        out.append(f"\n(missing cases: {', '.join(sorted(set(missing)))})")
+    return "\n".join(out)
+
+
 def main():
     k = parse(sys.stdin.read())
     print("Early outs: instructions of what an early out drops, against what the same item costs"
@@ -200,6 +233,11 @@ def main():
           " the frame differences of one pair on the knot and one on the cube" + scenes + ".")
     print()
     print(features(k))
+    print()
+    print("Bands: the same frames with a triangle store too small for them, drawn band by band"
+          " (identical frames; the checksums above agree).")
+    print()
+    print(bands(k))
 
 
 if __name__ == "__main__":

@@ -60,6 +60,42 @@ class EdgeTable {
 
   bool full() const { return count_ >= triangles_.size(); }
   size_t capacity() const { return triangles_.size(); }
+  size_t bucket_size(int strip) const {
+    size_t n = 0;
+    for (uint16_t i = buckets_[static_cast<size_t>(strip)]; i != kNoTriangle;
+         i = triangles_[i].next)
+      ++n;
+    return n;
+  }
+
+  // Removes the triangles of the buckets of strips >= cut (evicted(t) is called for each) and
+  // closes the gaps, keeping the others in submission order: strip_of(t) gives the strip of a
+  // kept triangle, whose bucket is rebuilt. `mark` (an index into the store, or size()) becomes
+  // the new index of the first kept triangle at or after it.
+  template <class StripOf, class Evicted>
+  void evict_from(int cut, size_t& mark, StripOf&& strip_of, Evicted&& evicted) {
+    for (int s = cut; s < strips_; ++s) {
+      uint16_t& head = buckets_[static_cast<size_t>(s)];
+      for (uint16_t i = head; i != kNoTriangle; i = triangles_[i].next) triangles_[i].reserved = 1;
+      head = kNoTriangle;
+    }
+    for (int s = 0; s < cut; ++s) buckets_[static_cast<size_t>(s)] = kNoTriangle;
+    size_t out = 0, new_mark = 0;
+    for (size_t i = 0; i < count_; ++i) {
+      if (i == mark) new_mark = out;
+      BinnedTriangle t = triangles_[i];
+      if (t.reserved != 0) {
+        evicted(t);
+        continue;
+      }
+      uint16_t& head = buckets_[static_cast<size_t>(strip_of(t))];
+      t.next = head;
+      head = static_cast<uint16_t>(out);
+      triangles_[out++] = t;
+    }
+    mark = mark >= count_ ? out : new_mark;
+    count_ = out;
+  }
 
   // Appends a triangle to the bucket of the strip of row r0 and returns it for the caller to
   // fill in (its `next` is set here). Not full().

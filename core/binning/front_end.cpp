@@ -100,9 +100,10 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
   lights_ = lights;
   background_ = background;
   vertex_count_ = draw_count_ = 0;
-  overflow_ = banding_ = false;
+  overflow_ = banding_ = band_dropped_ = false;
   band_r0_ = 0;
   band_r1_ = height_ - 1;
+  band_carried_ = 0;
   refused_triangles_ = refused_vertices_ = 0;
   pixel_light_count_ = table_words_used_ = 0;
   // What every strip depends on: the viewport, the background, the camera (per-pixel lighting
@@ -148,9 +149,17 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
     }
     if (r1 > band_r1_) r1 = band_r1_;
   }
-  if (edges_.full()) {
-    overflow_ = true;
-    return Outcome::kCapacity;
+  while (edges_.full()) {
+    // The band (the first one: the whole frame, until now) ends higher up, until it is one
+    // strip (below the minimum: the triangle is dropped, and counted). From now on each draw
+    // keeps only the vertices its binned triangles use.
+    banding_ = true;
+    if (!shrink_band()) {
+      band_dropped_ = true;
+      return Outcome::kCapacity;
+    }
+    if (r0 > band_r1_) return Outcome::kBinned;
+    if (r1 > band_r1_) r1 = band_r1_;
   }
   if (edges_.signing()) {
     const DrawRecord& d = draws_[draw];
@@ -245,6 +254,11 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
       classified = true;
       if (r != Outcome::kBinned) {
         count_outcome(stats_, false, r);
+        return;
+      }
+      // Another band's triangle: binned there, not lit here.
+      if (banding_ && (rows[1] < band_r0_ || rows[0] > band_r1_)) {
+        count_outcome(stats_, true, Outcome::kBinned);
         return;
       }
     }
@@ -417,7 +431,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   colors.lighting = &pl;
   const VertexStage stage(camera_, model, guard_, width_, height_);
   const size_t base = vertex_count_;
-  const size_t first_triangle = edges_.size();
+  draw_first_triangle_ = edges_.size();
   vertex_count_ += n;
   stats_.vertices_transformed += static_cast<uint32_t>(n);
   stage.transform(mesh, colors, vertices_.data() + base,
@@ -426,7 +440,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   MeshDraw d{mesh, state, stage, plan, colors, base, index};
   const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
   for (uint32_t t = 0; t < tri_count; ++t) draw_triangle(d, mesh.triangles[t]);
-  if (banding_) compact_vertices(base, first_triangle, plan.kind.phong);
+  if (banding_) compact_vertices(base, plan.kind.phong);
 }
 
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
@@ -467,7 +481,7 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
     return;
   }
   const size_t base = vertex_count_;
-  const size_t first_triangle = edges_.size();
+  draw_first_triangle_ = edges_.size();
   const int32_t limit = (kMaxViewport * 3) << kSubpixelBits;  // inside the coordinate budget
   for (size_t i = 0; i < n; ++i) {
     ScreenVertex v = vertices[i];
@@ -495,7 +509,7 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
     const Outcome r = bin(vi[0], vi[1], vi[2], index, flat, flat_spec, state.cull);
     count_outcome(stats_, r == Outcome::kBinned, r);
   }
-  if (banding_) compact_vertices(base, first_triangle, false);
+  if (banding_) compact_vertices(base, false);
 }
 
 void FrontEnd::begin_bands() {
@@ -517,6 +531,7 @@ Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
   band_r1_ = (s1 * strip_height_ < height_ ? s1 * strip_height_ : height_) - 1;
   vertex_count_ = 0;
   band_carried_ = 0;
+  band_dropped_ = false;
   edges_.begin_band(s0, s1);
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   for (size_t i = 0; i < draw_count_ && (keep_partial || !overflow_); ++i) {
@@ -557,8 +572,42 @@ Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
   return fit ? Status::kOk : Status::kCapacity;
 }
 
-void FrontEnd::compact_vertices(size_t first_vertex, size_t first_triangle, bool surfaces) {
-  const std::span<BinnedTriangle> tris = edges_.triangles().subspan(first_triangle);
+bool FrontEnd::shrink_band() {
+  const int s0 = band_r0_ / strip_height_, s1 = band_r1_ / strip_height_ + 1;
+  if (s1 - s0 < 2) return false;
+  // Keep the strips whose triangles fill up to 3/4 of the store (at least the first).
+  const size_t keep = edges_.capacity() - edges_.capacity() / 4;
+  size_t kept = 0;
+  int cut = s0 + 1;
+  for (int s = s0; s < s1 - 1; ++s) {
+    kept += edges_.bucket_size(s);
+    if (kept > keep) break;
+    cut = s + 1;
+  }
+  const auto first_row = [this](const BinnedTriangle& t) {
+    int32_t ymin = vertices_[t.v[0]].y;
+    if (vertices_[t.v[1]].y < ymin) ymin = vertices_[t.v[1]].y;
+    if (vertices_[t.v[2]].y < ymin) ymin = vertices_[t.v[2]].y;
+    return first_row_below(ymin);
+  };
+  edges_.evict_from(
+      cut, draw_first_triangle_,
+      [&](const BinnedTriangle& t) {
+        const int32_t r = first_row(t);
+        return (r > band_r0_ ? r : band_r0_) / strip_height_;
+      },
+      [&](const BinnedTriangle& t) {
+        if (first_row(t) >= band_r0_)
+          --stats_.triangles_binned;
+        else
+          --band_carried_;
+      });
+  band_r1_ = cut * strip_height_ - 1;
+  return true;
+}
+
+void FrontEnd::compact_vertices(size_t first_vertex, bool surfaces) {
+  const std::span<BinnedTriangle> tris = edges_.triangles().subspan(draw_first_triangle_);
   for (const BinnedTriangle& t : tris)
     for (uint16_t v : t.v) vertices_[v].color_pending = kKeptVertex;
   auto kept = static_cast<uint16_t>(first_vertex);

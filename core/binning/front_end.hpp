@@ -80,22 +80,25 @@ class FrontEnd {
   Status draw_screen(std::span<const ScreenVertex> vertices,
                      std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
 
-  // Bands (docs/bands.md). When the frame's triangles or vertices overflow the stores, binning
-  // stops at the first that does not fit and the draws are only recorded; the renderer then
-  // bins the frame again for one band of strips at a time, each holding only what touches it.
-  bool needs_bands() const { return overflow_; }
+  // Bands (docs/bands.md). When the frame's triangles overflow their store, the frame becomes
+  // its first band, which ends where the store is full (band_end()); when its vertices do not
+  // fit, binning stops and the draws are only recorded. The renderer then bins the frame again
+  // for one band of strips at a time (bin_band), each holding only what touches it.
+  bool needs_bands() const { return overflow_ || banding_; }
+  // Whether the first band is binned already (the triangle store overflowed, not the vertices).
+  bool first_band_binned() const { return banding_ && !overflow_; }
   // Restarts the statistics for binning in bands (the triangles given and those of refused
   // draws are kept).
   void begin_bands();
-  // Bins every draw again for strips [s0, s1) only: the triangles that touch them, those that
-  // start above in the band's first strip. kCapacity when they do not fit: with keep_partial
-  // what fit is kept and the rest counted as dropped, else the band is left unusable and the
-  // statistics as they were (the caller tries a smaller band).
+  // Bins every draw again for strips [s0, s1) at most: the triangles that touch them, those
+  // that start above in the band's first strip. When the triangle store fills up the band ends
+  // higher up (band_end()); when it is one strip the triangles that do not fit are dropped and
+  // counted (band_dropped()). kCapacity when the vertices do not fit: the band is left
+  // unusable and the statistics as they were (the caller tries a smaller band), unless
+  // keep_partial (what fit is kept and the rest counted as dropped).
   Status bin_band(int s0, int s1, bool keep_partial);
-  // Whether the last band used at most half of the triangle store and of the vertex store.
-  bool band_half_empty() const {
-    return 2 * edges_.size() <= edges_.capacity() && 2 * vertex_count_ <= vertices_.size();
-  }
+  int band_end() const { return band_r1_ / strip_height_ + 1; }
+  bool band_dropped() const { return band_dropped_; }
 
   const FrameStats& stats() const { return stats_; }
   // The strip loop counts its work into the same statistics.
@@ -140,9 +143,12 @@ class FrontEnd {
                 const DrawState& state, const DrawPlan& plan, const PreparedLighting& pl);
   void run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
                   std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
-  // Binning a band: keeps only the vertices from `first_vertex` on that the triangles binned
-  // from `first_triangle` on refer to, and renumbers those triangles.
-  void compact_vertices(size_t first_vertex, size_t first_triangle, bool surfaces);
+  // Binning a band whose triangle store is full: ends the band at a strip boundary above,
+  // evicting the triangles that start below it. False when the band is one strip.
+  bool shrink_band();
+  // Binning a band: keeps only the vertices from `first_vertex` on that the draw's triangles
+  // (from draw_first_triangle_ on) refer to, and renumbers those triangles.
+  void compact_vertices(size_t first_vertex, bool surfaces);
   // A draw that no band can take (draw records, per-pixel lighting pools, a mesh larger than
   // the vertex store): counted as dropped, in this frame's statistics for good.
   void refuse(uint32_t triangles, bool vertex_store) {
@@ -189,7 +195,9 @@ class FrontEnd {
   // (vertices are compacted per draw), the band's rows, and the refused draws' triangles.
   bool overflow_ = false, banding_ = false;
   int32_t band_r0_ = 0, band_r1_ = 0;
-  uint32_t band_carried_ = 0;  // the band's triangles from above it
+  uint32_t band_carried_ = 0;       // the band's triangles from above it
+  bool band_dropped_ = false;       // the band is one strip and dropped triangles
+  size_t draw_first_triangle_ = 0;  // the running draw's first binned triangle
   uint32_t refused_triangles_ = 0, refused_vertices_ = 0;
 };
 

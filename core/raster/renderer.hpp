@@ -103,33 +103,41 @@ class Renderer {
 };
 
 // A frame the stores hold whole is one band. One they do not is binned again and rasterized a
-// band of strips at a time (docs/bands.md): a band that does not fit is halved and binned
-// again; one that fits in less than half of the stores lets the next be twice as tall. Only a
-// single strip that does not fit drops work: what fit is drawn and kCapacity returned. One
-// call of the strip loop's strips() either way: it is inlined here once.
+// band of strips at a time (docs/bands.md): each band is asked for the rest of the frame and
+// ends where the triangle store fills up; a band whose vertices do not fit is binned again at
+// half the height (the next may be twice as tall again). Only a single strip that does not fit
+// drops work: what fit is drawn and kCapacity returned. One call of the strip loop's strips()
+// either way: it is inlined here once.
 template <class PF, int K, SpanSet kSpans>
 Status Renderer<PF, K, kSpans>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
   if (!front_.configured()) return Status::kInvalidArgument;
   FrameStats& stats = front_.mutable_stats();
   const bool bands = front_.needs_bands();
-  if (bands) front_.begin_bands();
+  const bool first_binned = front_.first_band_binned();
+  if (bands && !first_binned) front_.begin_bands();
   Status st = strip_.begin(front_.frame(), stats, sink, depth_sink);
   if (st != Status::kOk) return st;
   const int strips = front_.frame().strips;
-  int size = bands ? (strips + 1) / 2 : strips;
+  int size = strips;
   bool complete = true;
   for (int s0 = 0; s0 < strips;) {
-    const int s1 = std::min(strips, s0 + size);
-    if (bands && front_.bin_band(s0, s1, s1 - s0 == 1) != Status::kOk) {
-      if (s1 - s0 > 1) {
-        size = (s1 - s0) / 2;
-        continue;
+    int s1 = std::min(strips, s0 + size);
+    if (bands && (s0 != 0 || !first_binned)) {
+      if (front_.bin_band(s0, s1, s1 - s0 == 1) != Status::kOk) {
+        if (s1 - s0 > 1) {
+          size = (s1 - s0) / 2;
+          continue;
+        }
+        complete = false;
       }
-      complete = false;
+      size = std::min(strips, 2 * size);
+    }
+    if (bands) {
+      if (front_.band_dropped()) complete = false;
+      s1 = front_.band_end();
     }
     st = strip_.strips(front_.frame(), s0, s1, sink, depth_sink);
     if (st != Status::kOk) return st;
-    if (bands && front_.band_half_empty()) size = std::min(strips, 2 * size);
     s0 = s1;
   }
   st = strip_.end(sink, complete);

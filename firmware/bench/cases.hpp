@@ -61,6 +61,7 @@ struct BenchCase {
   bool gold;         // --material gold instead of the mesh's materials
   DrawState state;   // texture pointers are filled in by texture() below
   Tex tex = Tex::kNone;
+  uint16_t triangle_store = 0;  // binned-triangle store of the case (0: the benchmark's whole)
 };
 
 consteval LightSet one_light(double x, double y, double z) {
@@ -215,6 +216,16 @@ inline constexpr std::array kCases = {
     BenchCase{"quads_far_then_near", "", Mesh3::kQuadFarThenNear, kKnotView,
               demo::sim_default_lights(), 0, false,
               textured(Filter::kBilinear, MipMode::kNone, false, Cull::kNone), Tex::kTiles},
+    //   bands (docs/bands.md): the closed knot with triangle stores too small for its 1,900
+    //   binned triangles, and the subdivided knot in a store of 4,096
+    BenchCase{"knot_bands_1024", "", Mesh3::kKnot, kKnotView, demo::sim_default_lights(), 0, true,
+              with_cull(shading(Shading::kGouraud), Cull::kBack), Tex::kNone, 1024},
+    BenchCase{"knot_bands_512", "", Mesh3::kKnot, kKnotView, demo::sim_default_lights(), 0, true,
+              with_cull(shading(Shading::kGouraud), Cull::kBack), Tex::kNone, 512},
+    BenchCase{"knot_bands_256", "", Mesh3::kKnot, kKnotView, demo::sim_default_lights(), 0, true,
+              with_cull(shading(Shading::kGouraud), Cull::kBack), Tex::kNone, 256},
+    BenchCase{"knot64k_bands_4096", "", Mesh3::kKnot64k, kKnotView, demo::sim_default_lights(), 0,
+              true, with_cull(shading(Shading::kGouraud), Cull::kBack), Tex::kNone, 4096},
     //   empty strips: no draw at all
     BenchCase{"empty", "", Mesh3::kNothing, kKnotView, demo::sim_default_lights(), 0, false,
               shading(Shading::kGouraud)},

@@ -115,6 +115,7 @@ bool prepare(const bench::BenchCase& c, Prepared& p) {
   lr::FrameStorage storage = g_store.storage();
   storage.active = storage.active.first(active);
   storage.active_index = storage.active_index.first(2 * active);
+  if (c.triangle_store != 0) storage.triangles = storage.triangles.first(c.triangle_store);
   if (!check(g_renderer.configure(storage, kWidth, kHeight), "configure")) return false;
   if (!lr::fw::demo::make_camera(c.view, kWidth, kHeight, p.camera)) {
     sh::write("lr_bench: camera rejected\n");
@@ -175,7 +176,8 @@ bool run_case(const bench::BenchCase& c) {
                 {"culled_zero", st.culled_zero_area}, {"culled_off", st.culled_offscreen},
                 {"clipped_away", st.clipped_away},    {"strips", st.strips},
                 {"empty_strips", st.empty_strips},    {"vertices", st.vertices_transformed},
-                {"max_active", st.max_active}};
+                {"max_active", st.max_active},        {"bands", st.bands},
+                {"band_retries", st.band_retries},    {"strip_passes", st.strip_passes}};
   for (const auto& n : counts) {
     sh::write(" ");
     sh::write(n.name);

@@ -149,8 +149,7 @@ TEST(Bands, EachBandTransformsTheVerticesAgain) {
   ASSERT_EQ(dropped(banded.stats), 0u);
   EXPECT_EQ(banded.image.rgb, one.image.rgb);
   EXPECT_GE(banded.stats.bands, 3u);
-  EXPECT_EQ(banded.stats.vertices_transformed,
-            banded.stats.bands * one.stats.vertices_transformed);
+  EXPECT_EQ(banded.stats.vertices_transformed, banded.stats.bands * one.stats.vertices_transformed);
 }
 
 }  // namespace
