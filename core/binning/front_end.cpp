@@ -100,6 +100,8 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
   lights_ = lights;
   background_ = background;
   vertex_count_ = draw_count_ = 0;
+  vertex_limit_ = vertices_.size();
+  cache_first_ = kNoCache;
   overflow_ = banding_ = band_dropped_ = false;
   band_r0_ = 0;
   band_r1_ = height_ - 1;
@@ -126,6 +128,7 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
   return Status::kOk;
 }
 
+template <bool kCached>
 Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
                       Cull cull, const int32_t* rows) {
   const ScreenVertex& v0 = vertices_[a];
@@ -176,6 +179,13 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
     h.add(flat_spec);
     edges_.sign(r0, r1, h.value());
   }
+  // Through the vertex cache: the triangle's vertices are copied out of it on first use.
+  if constexpr (kCached) {
+    if (!persist(a) || !persist(b) || !persist(c)) {
+      overflow_ = true;
+      return Outcome::kVertexCapacity;
+    }
+  }
   BinnedTriangle& t = edges_.add(r0);
   t.v[0] = a;
   t.v[1] = b;
@@ -198,6 +208,7 @@ struct FrontEnd::MeshDraw {
   const VertexColors colors;
   const size_t base;  // the mesh's first vertex store entry
   const uint8_t draw;
+  const bool cached;  // the mesh goes through the vertex cache (FrontEnd::cache_corners)
   // Back faces' colours (two-sided Gouraud): written before use on each back face; one set per
   // draw, because a value-initialised local per triangle cost a 120-byte memset each.
   ScreenVertex back_colors[3] = {};
@@ -225,6 +236,7 @@ struct FrontEnd::MeshDraw {
 // One triangle of a draw: culled, lit (lit Gouraud: its vertices on first use; flat: its face),
 // clipped when it crosses a plane, and binned. This and the two ends below are always inlined
 // into draw(): one loop body, whose locals share one stack frame.
+template <bool kCached>
 void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   const size_t n = d.mesh.positions.size();
   if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
@@ -233,6 +245,12 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   }
   uint16_t vi[3] = {static_cast<uint16_t>(d.base + tri[0]), static_cast<uint16_t>(d.base + tri[1]),
                     static_cast<uint16_t>(d.base + tri[2])};
+  if constexpr (kCached) {
+    const std::array<uint16_t, 3> c = cache_corners(d, tri);  // by value: vi stays in registers
+    vi[0] = c[0];
+    vi[1] = c[1];
+    vi[2] = c[2];
+  }
   ScreenVertex* const sv[3] = {&vertices_[vi[0]], &vertices_[vi[1]], &vertices_[vi[2]]};
   const uint8_t oc_or = sv[0]->outcode | sv[1]->outcode | sv[2]->outcode;
   const uint8_t oc_and = sv[0]->outcode & sv[1]->outcode & sv[2]->outcode;
@@ -284,7 +302,8 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   Rgb8 flat{}, flat_spec{};
   d.flat_colors(tri, *sv[2], back, flat, flat_spec);
   if (oc_or == 0) {
-    bin_inside(d, vi, sv, back && d.plan.gouraud, flat, flat_spec, classified ? rows : nullptr);
+    bin_inside(d, vi, sv, back && d.plan.gouraud, flat, flat_spec, classified ? rows : nullptr,
+               kCached);
     return;
   }
   clip_and_bin(d, vi, sv, clip, oc_or, back && d.plan.gouraud, flat, flat_spec);
@@ -293,7 +312,8 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
 // A triangle inside every plane. A two-sided Gouraud back face gets its own copies of its
 // vertices, with the back colours.
 void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&sv)[3],
-                          bool back_copies, Rgb8 flat, Rgb8 flat_spec, const int32_t* rows) {
+                          bool back_copies, Rgb8 flat, Rgb8 flat_spec, const int32_t* rows,
+                          bool cached) {
   if (back_copies) {
     if (!vertices_fit(3)) {
       overflow_ = true;
@@ -309,7 +329,11 @@ void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&
     }
     vertex_count_ += 3;
   }
-  const Outcome r = bin(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows);
+  // Corners in the vertex cache (back-face copies are in the store already).
+  const Outcome r =
+      cached && !back_copies
+          ? bin<true>(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows)
+          : bin<false>(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows);
   count_outcome(stats_, r == Outcome::kBinned, r);
 }
 
@@ -363,8 +387,8 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
   Outcome last = Outcome::kClippedAway;
   for (int k = 1; k + 1 < m; ++k) {
     const Outcome r =
-        bin(first, static_cast<uint16_t>(first + k), static_cast<uint16_t>(first + k + 1), d.draw,
-            flat, flat_spec, d.state.cull);
+        bin<false>(first, static_cast<uint16_t>(first + k), static_cast<uint16_t>(first + k + 1),
+                   d.draw, flat, flat_spec, d.state.cull);
     if (r == Outcome::kBinned)
       binned = true;
     else
@@ -382,8 +406,9 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   const size_t n = mesh.positions.size();
   const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
   stats_.triangles_in += tri_count;
-  // Every band transforms the whole mesh into the vertex store (docs/bands.md).
-  if (n > vertices_.size() || (plan.kind.phong && n > surfaces_.size())) {
+  // A mesh larger than the stores needs room for the vertex cache (docs/bands.md).
+  if ((n > vertices_.size() && vertices_.size() < kMinCachedStore) ||
+      (plan.kind.phong && n > surfaces_.size() && surfaces_.size() < kMinCachedStore)) {
     refuse(tri_count, true);
     return Status::kCapacity;
   }
@@ -415,32 +440,104 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
                         const Material& material, const DrawState& state, const DrawPlan& plan,
                         const PreparedLighting& pl) {
   const size_t n = mesh.positions.size();
-  if (!vertices_fit(n) || (plan.kind.phong && !surfaces_fit(n))) {
-    overflow_ = true;
-    stats_.dropped_vertex_capacity += static_cast<uint32_t>(mesh.triangles.size());
-    return;
+  const bool phong = plan.kind.phong;
+  // A mesh larger than the free store goes through the vertex cache at the top of the stores.
+  const bool cached = !vertices_fit(n) || (phong && !surfaces_fit(n));
+  if (cached) {
+    const size_t top =
+        phong && surfaces_.size() < vertices_.size() ? surfaces_.size() : vertices_.size();
+    if (top < vertex_count_ + kMinCachedStore) {
+      overflow_ = true;
+      stats_.dropped_vertex_capacity += static_cast<uint32_t>(mesh.triangles.size());
+      return;
+    }
+    cache_first_ = top - kCacheSlots;
+    vertex_limit_ = cache_first_;
+    cache_surfaces_ = phong;
+    cache_.fill(kNoCacheEntry);
+    cache_lru_ = 0;
   }
   VertexColors colors;
   colors.lit = plan.lit;
   colors.pending = plan.lit && plan.gouraud;
   colors.split = plan.split;
-  colors.surfaces = plan.kind.phong;
+  colors.surfaces = phong;
   colors.need_position = pl.needs_position();
-  colors.tangents = plan.kind.phong && state.normal_map != nullptr;
+  colors.tangents = phong && state.normal_map != nullptr;
   colors.material = material.diffuse;
   colors.lighting = &pl;
   const VertexStage stage(camera_, model, guard_, width_, height_);
   const size_t base = vertex_count_;
   draw_first_triangle_ = edges_.size();
-  vertex_count_ += n;
-  stats_.vertices_transformed += static_cast<uint32_t>(n);
-  stage.transform(mesh, colors, vertices_.data() + base,
-                  plan.kind.phong ? surfaces_.data() + base : nullptr);
+  if (!cached) {
+    vertex_count_ += n;
+    stats_.vertices_transformed += static_cast<uint32_t>(n);
+    stage.transform(mesh, colors, vertices_.data() + base,
+                    phong ? surfaces_.data() + base : nullptr);
+  }
 
-  MeshDraw d{mesh, state, stage, plan, colors, base, index};
+  MeshDraw d{mesh, state, stage, plan, colors, base, index, cached};
   const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
-  for (uint32_t t = 0; t < tri_count; ++t) draw_triangle(d, mesh.triangles[t]);
-  if (banding_) compact_vertices(base, plan.kind.phong);
+  if (cached)
+    for (uint32_t t = 0; t < tri_count; ++t) draw_triangle<true>(d, mesh.triangles[t]);
+  else
+    for (uint32_t t = 0; t < tri_count; ++t) draw_triangle<false>(d, mesh.triangles[t]);
+  if (cached) {
+    cache_first_ = kNoCache;
+    vertex_limit_ = vertices_.size();
+  }
+  if (banding_) compact_vertices(base, phong);
+}
+
+// A triangle's corners through the vertex cache: vi gets their cache slots in the store. Two
+// ways per set of mesh indices (index modulo the sets): a vertex and the one a grid row below
+// it share a set and both stay. A miss replaces the way used least recently, unless an earlier
+// corner of this triangle holds it; a third corner in one set takes its spare.
+std::array<uint16_t, 3> FrontEnd::cache_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
+  std::array<uint16_t, 3> vi{};
+  for (size_t k = 0; k < 3; ++k) {
+    const uint16_t i = tri[k];
+    const size_t set = i & (kCacheSets - 1);
+    size_t slot = 2 * set;
+    if ((cache_[slot] & 0xFFFF) != i) ++slot;
+    if ((cache_[slot] & 0xFFFF) != i) {
+      const auto taken = [&](size_t s) {
+        for (size_t j = 0; j < k; ++j)
+          if (vi[j] == cache_first_ + s) return true;
+        return false;
+      };
+      slot = 2 * set + ((cache_lru_ >> set) & 1);
+      if (taken(slot)) slot ^= 1;
+      if (taken(slot)) slot = 2 * kCacheSets + k;
+      const size_t at = cache_first_ + slot;
+      d.stage.transform_one(d.mesh, d.colors, i, vertices_[at],
+                            cache_surfaces_ ? &surfaces_[at] : nullptr);
+      cache_[slot] = i | kNoCacheEntry << 16;
+      ++stats_.vertices_transformed;
+    }
+    // The other way of the set is replaced next.
+    if (slot < 2 * kCacheSets)
+      cache_lru_ = (cache_lru_ & ~(uint32_t{1} << set)) | uint32_t((slot & 1) ^ 1) << set;
+    vi[k] = static_cast<uint16_t>(cache_first_ + slot);
+  }
+  return vi;
+}
+
+// A cache slot's vertex (and surface) copied into the store below the cache, once per slot
+// fill; index becomes the copy's.
+bool FrontEnd::persist(uint16_t& index) {
+  if (index < cache_first_) return true;  // already in the store (clipping, back faces)
+  uint32_t& e = cache_[index - cache_first_];
+  auto p = static_cast<uint16_t>(e >> 16);
+  if (p == kNoCacheEntry) {
+    if (vertex_count_ >= vertex_limit_) return false;
+    p = static_cast<uint16_t>(vertex_count_++);
+    vertices_[p] = vertices_[index];
+    if (cache_surfaces_) surfaces_[p] = surfaces_[index];
+    e = (e & 0xFFFF) | uint32_t{p} << 16;
+  }
+  index = p;
+  return true;
 }
 
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
@@ -506,7 +603,7 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
     }
     const Rgb8 flat = to_rgb8_sat(vertices_[vi[2]].color);
     const Rgb8 flat_spec = to_rgb8_sat(vertices_[vi[2]].spec);
-    const Outcome r = bin(vi[0], vi[1], vi[2], index, flat, flat_spec, state.cull);
+    const Outcome r = bin<false>(vi[0], vi[1], vi[2], index, flat, flat_spec, state.cull);
     count_outcome(stats_, r == Outcome::kBinned, r);
   }
   if (banding_) compact_vertices(base, false);

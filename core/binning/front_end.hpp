@@ -128,10 +128,12 @@ class FrontEnd {
  private:
   struct MeshDraw;  // one draw()'s context (front_end.cpp)
   // draw()'s loop body and its two ends (front_end.cpp, always inlined into draw()).
+  template <bool kCached>
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
                                                 ScreenVertex* const (&sv)[3], bool back_copies,
-                                                Rgb8 flat, Rgb8 flat_spec, const int32_t* rows);
+                                                Rgb8 flat, Rgb8 flat_spec, const int32_t* rows,
+                                                bool cached);
   [[gnu::always_inline]] inline void clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3],
                                                   ScreenVertex* const (&sv)[3],
                                                   const ClipCoord (&clip)[3], uint8_t oc_or,
@@ -158,6 +160,8 @@ class FrontEnd {
 
   // rows: the triangle's first and last row when classify() already passed it (its tests are
   // not repeated), else nullptr.
+  // kCached: a, b, c are vertex cache slots, copied into the store when the triangle is binned.
+  template <bool kCached>
   Outcome bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
               Cull cull, const int32_t* rows = nullptr);
   // Refuses a draw the renderer links no routine for.
@@ -173,7 +177,12 @@ class FrontEnd {
   bool surfaces_fit(size_t vertices) const {
     return surfaces_.size() >= vertex_count_ && vertices <= surfaces_.size() - vertex_count_;
   }
-  bool vertices_fit(size_t vertices) const { return vertices <= vertices_.size() - vertex_count_; }
+  bool vertices_fit(size_t vertices) const { return vertices <= vertex_limit_ - vertex_count_; }
+  // The vertex cache (docs/bands.md): the corners of a triangle of a mesh larger than the free
+  // store, transformed into the cache on a miss; bin() copies a binned triangle's vertices out
+  // of it (persist: false when the store is full).
+  std::array<uint16_t, 3> cache_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri);
+  bool persist(uint16_t& index);
 
   std::span<ScreenVertex> vertices_{};
   std::span<DrawRecord> draws_{};
@@ -198,6 +207,24 @@ class FrontEnd {
   uint32_t band_carried_ = 0;       // the band's triangles from above it
   bool band_dropped_ = false;       // the band is one strip and dropped triangles
   size_t draw_first_triangle_ = 0;  // the running draw's first binned triangle
+  // The vertex cache: kCacheSets sets of two slots by mesh index, and a spare per corner for a
+  // triangle with three corners in one set. Each entry: the mesh index (low half) and the store
+  // index of its copy (high half; kNoCacheEntry: none yet); cache_lru_: per set, the way to
+  // replace next. It takes the top kCacheSlots entries of the vertex store (and of the
+  // surfaces, for Phong) while a cached mesh is binned; the store below them ends at
+  // vertex_limit_.
+  static constexpr size_t kCacheSets = 32;
+  static constexpr size_t kCacheSlots = 2 * kCacheSets + 3;
+  // Smallest store a mesh larger than it can be drawn through: the cache, a clipped polygon and
+  // a triangle's copies.
+  static constexpr size_t kMinCachedStore = kCacheSlots + kMaxClipVertices + 3;
+  static constexpr uint32_t kNoCacheEntry = 0xFFFF;
+  static constexpr size_t kNoCache = SIZE_MAX;
+  std::array<uint32_t, kCacheSlots> cache_{};
+  size_t cache_first_ = kNoCache;
+  size_t vertex_limit_ = 0;
+  bool cache_surfaces_ = false;
+  uint32_t cache_lru_ = 0;
   uint32_t refused_triangles_ = 0, refused_vertices_ = 0;
 };
 

@@ -31,6 +31,11 @@ VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guar
   rigid_ = rigid_normal_rows(nm_, rot_);
 }
 
+void VertexStage::transform_one(const Mesh& mesh, const VertexColors& colors, size_t i,
+                                ScreenVertex& sv, SurfaceVertex* surface) const {
+  transform_vertex(mesh, colors, i, sv, surface);
+}
+
 bool VertexStage::project(const ClipCoord& c, ScreenVertex& v) const {
   // Inside every plane: w >= 2^-16, |x| <= gx w, |y| <= gy w, |z| <= w. Normalise so w < 2^31
   // (one shift: the same floor as halving repeatedly).

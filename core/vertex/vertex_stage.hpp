@@ -86,6 +86,13 @@ class VertexStage {
   // transformed, clip-tested (outcode), projected and snapped when inside every plane.
   [[gnu::always_inline]] void transform(const Mesh& mesh, const VertexColors& colors,
                                         ScreenVertex* out, SurfaceVertex* surfaces) const;
+  // One vertex: mesh vertex i into sv (and *surface for Phong; else nullptr), as transform().
+  [[gnu::always_inline]] void transform_vertex(const Mesh& mesh, const VertexColors& colors,
+                                               size_t i, ScreenVertex& sv,
+                                               SurfaceVertex* surface) const;
+  // The same out of line: the vertex cache of meshes larger than the vertex store.
+  void transform_one(const Mesh& mesh, const VertexColors& colors, size_t i, ScreenVertex& sv,
+                     SurfaceVertex* surface) const;
 
   // Lit colour(s) of mesh vertex i, with the normal negated or not (two-sided back faces).
   // (colors by value here and in light_face: the caller's copy stays in registers.)
@@ -167,33 +174,36 @@ inline void VertexStage::transform(const Mesh& mesh, const VertexColors& draw_co
                                    ScreenVertex* out, SurfaceVertex* surfaces) const {
   const VertexColors colors = draw_colors;  // a copy: kept in registers across the calls below
   const size_t n = mesh.positions.size();
-  for (size_t i = 0; i < n; ++i) {
-    ScreenVertex& sv = out[i];
-    sv.color_pending = colors.pending ? 1 : 0;
-    const ClipCoord c = clip(mesh.positions[i]);
-    sv.outcode = outcode(c, guard_);
-    if (sv.outcode == 0) project(c, sv);
-    sv.u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
-    sv.v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
-    sv.spec = Color15{};
-    if (surfaces != nullptr) {
-      sv.color = Color15{};
-      SurfaceVertex& su = surfaces[i];
-      const Normal16& nn = mesh.normals[i];
-      su.normal = transform_normal_call(nm_, nn.x, nn.y, nn.z);
-      su.position = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
-      if (colors.tangents) {
-        transform_tangent(model_, mesh.tangents[i], su.tangent);
-        su.handedness = mesh.tangents[i].w < 0 ? -16384 : 16384;
-      } else {
-        su.tangent[0] = su.tangent[1] = su.tangent[2] = 0;
-        su.handedness = 16384;
-      }
-    } else if (!colors.lit) {
-      sv.color = mesh.colors.empty() ? colors.material : from_rgb8(mesh.colors[i]);
+  for (size_t i = 0; i < n; ++i)
+    transform_vertex(mesh, colors, i, out[i], surfaces != nullptr ? &surfaces[i] : nullptr);
+}
+
+inline void VertexStage::transform_vertex(const Mesh& mesh, const VertexColors& colors, size_t i,
+                                          ScreenVertex& sv, SurfaceVertex* surface) const {
+  sv.color_pending = colors.pending ? 1 : 0;
+  const ClipCoord c = clip(mesh.positions[i]);
+  sv.outcode = outcode(c, guard_);
+  if (sv.outcode == 0) project(c, sv);
+  sv.u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
+  sv.v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
+  sv.spec = Color15{};
+  if (surface != nullptr) {
+    sv.color = Color15{};
+    SurfaceVertex& su = *surface;
+    const Normal16& nn = mesh.normals[i];
+    su.normal = transform_normal_call(nm_, nn.x, nn.y, nn.z);
+    su.position = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
+    if (colors.tangents) {
+      transform_tangent(model_, mesh.tangents[i], su.tangent);
+      su.handedness = mesh.tangents[i].w < 0 ? -16384 : 16384;
     } else {
-      sv.color = Color15{};  // lit Gouraud: lit on first use (light()); flat: per triangle
+      su.tangent[0] = su.tangent[1] = su.tangent[2] = 0;
+      su.handedness = 16384;
     }
+  } else if (!colors.lit) {
+    sv.color = mesh.colors.empty() ? colors.material : from_rgb8(mesh.colors[i]);
+  } else {
+    sv.color = Color15{};  // lit Gouraud: lit on first use (light()); flat: per triangle
   }
 }
 

@@ -12,6 +12,7 @@
 #include "host_sim/formats/texture_load.hpp"
 #include "host_sim/scene/mesh_prep.hpp"
 #include "host_sim/scene/scene.hpp"
+#include "tests/support/core_harness.hpp"
 #include "tests/support/scenes.hpp"
 
 namespace lr {
@@ -59,7 +60,7 @@ std::vector<Case> cases() {
     out.push_back(c);
   }
   {
-    Case c{"ground_clipped", ground_grid(10), test::ground_view()};
+    Case c{"ground_clipped", ground_grid(24), test::ground_view()};
     c.options.width = 96;
     c.options.height = 80;
     c.options.strip_height = 1;
@@ -75,13 +76,25 @@ std::vector<Case> cases() {
     out.push_back(c);
   }
   {
-    Case c{"sphere_two_sided_flat", host::make_uv_sphere(10, 14), test::sphere_four_lights()};
+    Case c{"sphere_two_sided_flat", host::make_uv_sphere(20, 28), test::sphere_four_lights()};
     c.options.width = 100;
     c.options.height = 100;
     c.options.two_sided = true;
     c.options.shading = Shading::kFlat;
     c.options.eye = {0.1, 0.2, 0.8};  // inside: back faces, and the near plane cuts
     c.options.strip_height = 32;
+    out.push_back(c);
+  }
+  {
+    // Rows of 64 vertices: a cell's corners in one row and the next are 64 indices apart, the
+    // vertex cache's slot count (corners sharing a slot take the spares).
+    host::HostMesh grid = host::make_grid(63, 6);
+    for (const auto& p : grid.positions) grid.colors.push_back({(p[0] + 1) / 2, (p[1] + 1) / 2, 1});
+    Case c{"grid_rows_of_64", grid, {}};
+    c.options.width = 128;
+    c.options.height = 64;
+    c.options.unlit = true;
+    c.options.eye = {0, 0, 1.8};
     out.push_back(c);
   }
   return out;
@@ -109,14 +122,14 @@ TEST(Bands, AnyStoreCapacitiesFromTheMinimumGiveTheOnePassFrame) {
     ASSERT_EQ(s1.bands, 1u);
     ASSERT_EQ(dropped(s1), 0u);
     ASSERT_GT(s1.triangles_binned, 20u);
-    // The minimum: the mesh's vertices and the pieces clipping makes; the triangles that touch
-    // the fullest strip (below it, the frame must say so).
-    const size_t min_vertices = c.mesh.positions.size() + 3 * s1.clipped * 10;
+    // The minimum: the vertex cache and what the fullest strip's triangles refer to; the
+    // triangles that touch the fullest strip (below it, the frame must say so).
+    const size_t min_vertices = 96;
     int banded = 0;
     for (int trial = 0; trial < 30; ++trial) {
       host::SceneOptions::Stores st;
       st.triangles = 1 + rng() % s1.triangles_binned;
-      st.vertices = min_vertices + rng() % (c.mesh.positions.size() + 1);
+      st.vertices = min_vertices + rng() % (2 * c.mesh.positions.size());
       st.active = 1 + rng() % (s1.max_active + 1);
       const host::RenderResult got = render(c, st);
       const FrameStats& s = got.stats;
@@ -139,6 +152,67 @@ TEST(Bands, AnyStoreCapacitiesFromTheMinimumGiveTheOnePassFrame) {
     }
     EXPECT_GT(banded, 3);
   }
+}
+
+// A vertex store smaller than the mesh: the mesh goes through the vertex cache, and the frame
+// is the one-pass frame. The smallest stores hold less than the fullest strip refers to: they
+// must say so.
+TEST(Bands, MeshesLargerThanTheVertexStoreGoThroughTheCache) {
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.name);
+    const host::RenderResult one = render(c, {});
+    const size_t n = c.mesh.positions.size();
+    for (size_t vertices : {size_t{96}, size_t{200}, size_t{400}, size_t{800}, n - 1}) {
+      if (vertices >= n) continue;
+      const host::RenderResult got = render(c, {.vertices = vertices});
+      // Below the minimum: reported. One vertex short of the mesh is far above it.
+      if (vertices < n - 1 && dropped(got.stats) != 0) continue;
+      ASSERT_EQ(dropped(got.stats), 0u) << vertices;
+      EXPECT_EQ(got.image.rgb, one.image.rgb) << vertices;
+      EXPECT_EQ(got.depth, one.depth) << vertices;
+      EXPECT_EQ(got.stats.triangles_binned, one.stats.triangles_binned);
+      EXPECT_GT(got.stats.vertices_transformed, one.stats.vertices_transformed / 2);
+    }
+  }
+}
+
+// Triangles whose three corners fall into one set of the vertex cache (mesh indices k, k + 32,
+// k + 64; FrontEnd::cache_corners): the third corner takes its spare. The mesh is given to the
+// core as it is (the host tools number vertices by first use, which never does this).
+TEST(Bands, ThreeCornersInOneCacheSetTakeTheSpare) {
+  std::vector<Vec3> pos(160);  // 64 unused: the mesh is larger than the store
+  std::vector<Rgb8> col(160);
+  std::vector<std::array<uint16_t, 3>> tri;
+  const auto fx = [](double v) { return Fixed::from_raw(static_cast<int32_t>(v * 65536)); };
+  for (uint16_t k = 0; k < 32; ++k) {
+    const double x = -0.95 + 0.24 * (k % 8), y = -0.95 + 0.48 * (k / 8);
+    pos[k] = {fx(x), fx(y), fx(0.5)};
+    pos[k + 32u] = {fx(x + 0.2), fx(y), fx(0.5)};
+    pos[k + 64u] = {fx(x), fx(y + 0.4), fx(0.5)};
+    for (int m = 0; m < 3; ++m)
+      col[k + 32u * static_cast<unsigned>(m)] = {static_cast<uint8_t>(8 * k),
+                                                 static_cast<uint8_t>(80 * m), 200};
+    tri.push_back({k, static_cast<uint16_t>(k + 32), static_cast<uint16_t>(k + 64)});
+  }
+  const Mesh mesh{pos, {}, col, {}, tri};
+  DrawState st;
+  st.lighting = false;
+  auto frame = [&](size_t vertices, FrameStats& stats) {
+    test::CoreHarness<8> h(64, 64, vertices);
+    h.begin();
+    EXPECT_EQ(h.renderer().draw(mesh, Mat4::identity(), Material{}, st), Status::kOk);
+    const host::ImageRgb8 img = h.render();
+    stats = h.renderer().stats();
+    return img;
+  };
+  FrameStats one{}, cached{};
+  const host::ImageRgb8 want = frame(0xFFFF, one);
+  const host::ImageRgb8 got = frame(110, cached);
+  EXPECT_EQ(one.triangles_binned, 32u);
+  EXPECT_EQ(dropped(cached), 0u);
+  EXPECT_EQ(cached.triangles_binned, 32u);
+  EXPECT_EQ(cached.vertices_transformed, 96u * cached.bands);  // no corner missed twice
+  EXPECT_EQ(got.rgb, want.rgb);
 }
 
 // The cost of bands in the statistics: every band transforms every vertex again.
