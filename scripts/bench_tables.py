@@ -184,7 +184,7 @@ def features(k):
 # Frames drawn in bands (docs/bands.md) against the same frame in one pass: every band and
 # every retried band runs the vertex stage and binning of the whole frame again.
 BANDS = [("knot_gouraud_cullback", ("knot_bands_1024", "knot_bands_512", "knot_bands_256")),
-         ("knot64k_gouraud", ("knot64k_bands_4096",))]
+         ("knot64k_gouraud", ("knot64k_bands_4096", "knot64k_small_stores"))]
 
 
 def bands(k):
@@ -203,7 +203,7 @@ def bands(k):
                 missing.append(name)
                 continue
             c = k[name]
-            store = name.rsplit("_", 1)[1]
+            store = name.rsplit("_", 1)[1] if name[-1].isdigit() else "3072 (vertices 3072, active 64)"
             extra = c["ins"] - b["ins"]
             passes = c["bands"] + c["band_retries"] - 1
             per = commas(extra / passes) if passes > 0 else "-"

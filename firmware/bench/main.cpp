@@ -111,11 +111,14 @@ struct Prepared {
 };
 
 bool prepare(const bench::BenchCase& c, Prepared& p) {
-  const size_t active = c.mesh == bench::Mesh3::kKnot64k ? kActive : kActiveSmall;
+  const size_t active = c.active_store != 0                ? c.active_store
+                        : c.mesh == bench::Mesh3::kKnot64k ? kActive
+                                                           : kActiveSmall;
   lr::FrameStorage storage = g_store.storage();
   storage.active = storage.active.first(active);
   storage.active_index = storage.active_index.first(2 * active);
   if (c.triangle_store != 0) storage.triangles = storage.triangles.first(c.triangle_store);
+  if (c.vertex_store != 0) storage.vertices = storage.vertices.first(c.vertex_store);
   if (!check(g_renderer.configure(storage, kWidth, kHeight), "configure")) return false;
   if (!lr::fw::demo::make_camera(c.view, kWidth, kHeight, p.camera)) {
     sh::write("lr_bench: camera rejected\n");
