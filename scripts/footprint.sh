@@ -54,7 +54,7 @@ done
 # fetchers; the front end calls the renderer's admission test; Reset_Handler calls the static
 # constructors (none: the images constant-initialise).
 indirect_rules=(
-  --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|raster_triangle)\('
+  --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|strips|raster_triangle)\('
   'OrderedStripSink<.*>::|lr::StripSink<.*>::(retains_frame|keep)\(|lr::fill_span<|lr::fill_tex_span<|lr::fill_phong_span<'
   --indirect-from 'lr::(detail::)?fill_(tex_span_body|tex_span|phong_span)<' 'lr::fetch_batch<'
   --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'

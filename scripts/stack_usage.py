@@ -411,9 +411,11 @@ def parse_disassembly(text, functions):
 
     def flush_table(t):
         fn_, text_, words_ = t
+        # The table is the run of words that point into the function; a literal pool may
+        # follow it in the same run of .word lines (its length is not in the code).
         if not words_:
             facts[fn_].jumps.append(text_)
-        elif any(containing(w & ~1) != fn_ for w in words_):
+        elif containing(words_[0] & ~1) != fn_:
             facts[fn_].indirect.append(text_)
 
     for line in text.splitlines():

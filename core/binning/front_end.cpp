@@ -479,14 +479,20 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   MeshDraw d{mesh, state, stage, plan, colors, base, index, cached};
   const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
   if (cached)
-    for (uint32_t t = 0; t < tri_count; ++t) draw_triangle<true>(d, mesh.triangles[t]);
+    triangle_loop<true>(d, tri_count);
   else
-    for (uint32_t t = 0; t < tri_count; ++t) draw_triangle<false>(d, mesh.triangles[t]);
+    triangle_loop<false>(d, tri_count);
   if (cached) {
     cache_first_ = kNoCache;
     vertex_limit_ = vertices_.size();
   }
   if (banding_) compact_vertices(base, phong);
+}
+
+// The triangle loop, out of line: one loop body in each stack frame, not both in run_mesh's.
+template <bool kCached>
+void FrontEnd::triangle_loop(MeshDraw& d, uint32_t triangles) {
+  for (uint32_t t = 0; t < triangles; ++t) draw_triangle<kCached>(d, d.mesh.triangles[t]);
 }
 
 // A triangle's corners through the vertex cache: vi gets their cache slots in the store. Two
@@ -620,8 +626,27 @@ void FrontEnd::begin_bands() {
   stats_ = fresh;
 }
 
+// One recorded draw run again for the band. Out of line: its locals (the prepared lighting
+// above all) are on the stack only while it runs.
+void FrontEnd::replay(uint8_t index) {
+  const DrawCall& c = draws_[index].call;
+  const DrawState state = c.state.get();
+  if (c.is_screen) {
+    run_screen(index, c.screen, c.mesh.triangles, state);
+    return;
+  }
+  const Material material = c.material.get();
+  DrawPlan plan;
+  plan_draw(c.mesh, state, lights_, plan);  // passed in draw()
+  PreparedLighting pl;
+  const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
+  if (plan.lit) pl = prepare_lighting(lights_, material, view_dir, camera_.eye);
+  run_mesh(index, c.mesh, c.model, material, state, plan, pl);
+}
+
 Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
-  const FrameStats before = stats_;
+  FrameStats& before = band_before_;
+  before = stats_;
   banding_ = true;
   overflow_ = false;
   band_r0_ = s0 * strip_height_;
@@ -630,22 +655,8 @@ Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
   band_carried_ = 0;
   band_dropped_ = false;
   edges_.begin_band(s0, s1);
-  const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
-  for (size_t i = 0; i < draw_count_ && (keep_partial || !overflow_); ++i) {
-    const DrawCall& c = draws_[i].call;
-    const auto index = static_cast<uint8_t>(i);
-    const DrawState state = c.state.get();
-    if (c.is_screen) {
-      run_screen(index, c.screen, c.mesh.triangles, state);
-      continue;
-    }
-    const Material material = c.material.get();
-    DrawPlan plan;
-    plan_draw(c.mesh, state, lights_, plan);  // passed in draw()
-    PreparedLighting pl;
-    if (plan.lit) pl = prepare_lighting(lights_, material, view_dir, camera_.eye);
-    run_mesh(index, c.mesh, c.model, material, state, plan, pl);
-  }
+  for (size_t i = 0; i < draw_count_ && (keep_partial || !overflow_); ++i)
+    replay(static_cast<uint8_t>(i));
   const bool fit = !overflow_;
   overflow_ = true;  // the frame still needs bands
   stats_.triangles_binned -= band_carried_;
@@ -657,13 +668,14 @@ Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
   // What becomes of each input triangle is counted in the first band; the pieces binned and
   // the vertices transformed in every band; what was dropped in the bands that dropped it.
   if (s0 != 0) {
-    const FrameStats now = stats_;
+    const uint32_t binned = stats_.triangles_binned, transformed = stats_.vertices_transformed;
+    const uint32_t dropped_triangles = stats_.dropped_triangle_capacity;
+    const uint32_t dropped_vertices = stats_.dropped_vertex_capacity;
     stats_ = before;
-    stats_.triangles_binned = now.triangles_binned;
-    stats_.vertices_transformed = now.vertices_transformed;
-    stats_.dropped_triangle_capacity +=
-        now.dropped_triangle_capacity - before.dropped_triangle_capacity;
-    stats_.dropped_vertex_capacity += now.dropped_vertex_capacity - before.dropped_vertex_capacity;
+    stats_.triangles_binned = binned;
+    stats_.vertices_transformed = transformed;
+    stats_.dropped_triangle_capacity = dropped_triangles;
+    stats_.dropped_vertex_capacity = dropped_vertices;
   }
   ++stats_.bands;
   return fit ? Status::kOk : Status::kCapacity;

@@ -129,6 +129,8 @@ class FrontEnd {
   struct MeshDraw;  // one draw()'s context (front_end.cpp)
   // draw()'s loop body and its two ends (front_end.cpp, always inlined into draw()).
   template <bool kCached>
+  [[gnu::noinline]] void triangle_loop(MeshDraw& d, uint32_t triangles);
+  template <bool kCached>
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
                                                 ScreenVertex* const (&sv)[3], bool back_copies,
@@ -145,6 +147,7 @@ class FrontEnd {
                 const DrawState& state, const DrawPlan& plan, const PreparedLighting& pl);
   void run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
                   std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
+  [[gnu::noinline]] void replay(uint8_t index);
   // Binning a band whose triangle store is full: ends the band at a strip boundary above,
   // evicting the triangles that start below it. False when the band is one strip.
   bool shrink_band();
@@ -206,6 +209,7 @@ class FrontEnd {
   int32_t band_r0_ = 0, band_r1_ = 0;
   uint32_t band_carried_ = 0;       // the band's triangles from above it
   bool band_dropped_ = false;       // the band is one strip and dropped triangles
+  FrameStats band_before_{};        // the statistics before the band (here, not on the stack)
   size_t draw_first_triangle_ = 0;  // the running draw's first binned triangle
   // The vertex cache: kCacheSets sets of two slots by mesh index, and a spare per corner for a
   // triangle with three corners in one set. Each entry: the mesh index (low half) and the store

@@ -70,8 +70,8 @@ class StripLoop {
   // its strip signatures describe nothing to keep.
   [[gnu::always_inline]] Status begin(const BinnedFrame& frame, FrameStats& stats,
                                       StripSink<PF>& sink, DepthSink* depth_sink);
-  [[gnu::always_inline]] Status strips(const BinnedFrame& frame, int s0, int s1,
-                                       StripSink<PF>& sink, DepthSink* depth_sink);
+  [[gnu::noinline]] Status strips(const BinnedFrame& frame, int s0, int s1, StripSink<PF>& sink,
+                                  DepthSink* depth_sink);
   Status end(StripSink<PF>& sink, bool complete) {
     const Status st = sink.end_frame();
     inputs_known_ = st == Status::kOk && !frame_.strip_inputs.empty() && complete;
@@ -127,8 +127,8 @@ inline Status StripLoop<PF, K, kSpans>::begin(const BinnedFrame& frame, FrameSta
 // Strips [s0, s1) of `frame` (the whole frame, or a band's binned frame: every triangle that
 // touches the band is in it, those from above in its first strip's bucket).
 template <class PF, int K, SpanSet kSpans>
-inline Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1,
-                                               StripSink<PF>& sink, DepthSink* depth_sink) {
+Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1,
+                                        StripSink<PF>& sink, DepthSink* depth_sink) {
   frame_ = frame;
   FrameStats& stats = *stats_;
   const auto w = static_cast<size_t>(frame_.width);

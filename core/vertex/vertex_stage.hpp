@@ -90,7 +90,7 @@ class VertexStage {
   [[gnu::always_inline]] void transform_vertex(const Mesh& mesh, const VertexColors& colors,
                                                size_t i, ScreenVertex& sv,
                                                SurfaceVertex* surface) const;
-  // The same out of line: the vertex cache of meshes larger than the vertex store.
+  // The same out of line: transform() and the vertex cache (FrontEnd::cache_corners) call it.
   void transform_one(const Mesh& mesh, const VertexColors& colors, size_t i, ScreenVertex& sv,
                      SurfaceVertex* surface) const;
 
@@ -169,13 +169,13 @@ inline LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p
 // counter-clockwise in NDC (front_facing() in screen_vertex.hpp is the same rule on the display).
 bool front_facing_clip(const ClipCoord (&c)[3]);
 
-// Inline: draw() is its one caller, and the loop keeps more in registers inside it.
+// One copy of the per-vertex code (transform_one), shared with the vertex cache's misses.
 inline void VertexStage::transform(const Mesh& mesh, const VertexColors& draw_colors,
                                    ScreenVertex* out, SurfaceVertex* surfaces) const {
   const VertexColors colors = draw_colors;  // a copy: kept in registers across the calls below
   const size_t n = mesh.positions.size();
   for (size_t i = 0; i < n; ++i)
-    transform_vertex(mesh, colors, i, out[i], surfaces != nullptr ? &surfaces[i] : nullptr);
+    transform_one(mesh, colors, i, out[i], surfaces != nullptr ? &surfaces[i] : nullptr);
 }
 
 inline void VertexStage::transform_vertex(const Mesh& mesh, const VertexColors& colors, size_t i,

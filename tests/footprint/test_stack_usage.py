@@ -234,6 +234,38 @@ class StackUsageTest(unittest.TestCase):
         self.assertEqual(rc, 1)
         self.assertIn("dispatch: unresolved indirect branch", err)
 
+    def test_switch_table_followed_by_a_literal_pool_is_a_switch(self):
+        # The table's words point into the function; the literal after it (0x80808081) does not
+        # and is not an entry.
+        ci = {"a.ci": graph("/src/a.cpp", node("main", 8), node("dispatch", 16),
+                            edge("main", "dispatch"))}
+        dis = """\
+            00000200 <dispatch>:
+                 200:	ldr.w	pc, [r3, r0, lsl #2]
+                 204:	.word	0x0000020d
+                 208:	.word	0x0000020f
+                 20c:	.word	0x80808081
+                 210:	bx	lr
+            """
+        rc, out, err = self.run_tool(ci, "100 10 T main\n200 18 T dispatch\n", dis,
+                                     args=["--entry", "main"])
+        self.assertEqual(rc, 0, err)
+        self.assertIn("main: 24 B via main -> dispatch\n", out)
+
+    def test_table_of_words_outside_the_function_is_indirect(self):
+        ci = {"a.ci": graph("/src/a.cpp", node("main", 8), edge("main", "dispatch"))}
+        dis = """\
+            00000200 <dispatch>:
+                 200:	ldr.w	pc, [r3, r0, lsl #2]
+                 204:	.word	0x00000101
+                 208:	.word	0x0000020f
+                 20c:	bx	lr
+            """
+        rc, _, err = self.run_tool(ci, "100 10 T main\n200 14 T dispatch\n", dis,
+                                   args=["--entry", "main"])
+        self.assertEqual(rc, 1)
+        self.assertIn("dispatch: unresolved indirect branch", err)
+
     def test_popped_register_branch_is_a_return(self):
         ci = {"a.ci": graph("/src/a.cpp", node("main", 8), edge("main", "__aeabi_idivmod"))}
         dis = """\
