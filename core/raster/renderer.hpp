@@ -54,9 +54,10 @@ class Renderer {
   // the stores is drawn in bands, which read them again (docs/bands.md); the Mesh, the matrix,
   // the material and the state are copied. kCapacity (the draw is dropped and counted) when no
   // draw record is left, the mesh is larger than a vertex store too small for the vertex cache
-  // (docs/bands.md), or a Phong draw's lighting pools are full. kInvalidArgument (nothing added) when the mesh's arrays disagree in
-  // size, Gouraud lighting is asked of a mesh without normals, or the renderer's SpanSet does
-  // not admit the draw's span state or its textures (span_state.hpp).
+  // (docs/bands.md), or a Phong draw's lighting pools are full. kInvalidArgument (nothing added)
+  // when the mesh's arrays disagree in size, Gouraud lighting is asked of a mesh without normals,
+  // or the renderer's SpanSet does not admit the draw's span state or its textures
+  // (span_state.hpp).
   Status draw(const Mesh& mesh, const Mat4& model, const Material& material,
               const DrawState& state) {
     return front_.draw(mesh, model, material, state);
