@@ -19,13 +19,14 @@ inline constexpr const char* kName = "cube";
 inline constexpr int kWidth = 320, kHeight = 240;
 // LR_DEMO_SMALL_RAM: the 16 KB of a micro:bit. Strips of 2 rows (two RGB888 strip buffers of
 // 1,920 B, a depth strip of 1,280 B), stores exactly as large as the cube (24 vertices, 12
-// triangles; this view clips nothing, and a store that ran out would fail the run loudly), 10
-// active triangles (the most this view has on one strip). The stack gets the rest
-// (scripts/footprint.sh checks the static worst case against it).
+// triangles; this view clips nothing, and a store that ran out would fail the run loudly), 4
+// active triangles (this view has up to 10 on one strip: those strips are drawn in passes,
+// docs/bands.md). The stack gets the rest (scripts/footprint.sh checks the static worst case
+// against it).
 #if LR_DEMO_SMALL_RAM
 inline constexpr int kStripRows = 2;
 inline constexpr size_t kClipMargin = 0;
-inline constexpr size_t kActiveCapacity = 10;
+inline constexpr size_t kActiveCapacity = 4;
 #else
 inline constexpr int kStripRows = 8;
 inline constexpr size_t kClipMargin = 16;      // vertices and triangles clipping may add
