@@ -60,7 +60,7 @@ for tree in "${trees[@]}"; do
     reserved="$(arm-none-eabi-nm "$elf" | awk '$NF == "__stack_size" { print $1 }')"
     [[ -n "$reserved" ]] && reserved=$((16#$reserved))
     worst="$(python3 scripts/stack_usage.py "$elf" "$tree" --vector-table .isr_vector --entry main \
-      --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|raster_triangle)\(' 'OrderedStripSink<.*>::|lr::StripSink<.*>::(retains_frame|keep)\(|lr::fill_span<|lr::fill_tex_span<|lr::fill_phong_span<' \
+      --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|strips|raster_triangle)\(' 'OrderedStripSink<.*>::|lr::StripSink<.*>::(retains_frame|keep)\(|lr::fill_span<|lr::fill_tex_span<|lr::fill_phong_span<' \
       --indirect-from 'lr::(detail::)?fill_(tex_span_body|tex_span|phong_span)<' 'lr::fetch_batch<' \
       --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_' \
       --indirect-from 'lr::FrontEnd::draw(_screen)?\(' 'lr::admits<' --tool-prefix arm-none-eabi- --machine 2>&1)" \
