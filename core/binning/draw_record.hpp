@@ -36,8 +36,9 @@ class ZeroStored {
 // What re-runs a draw when the frame is binned again band by band (FrontEnd::bin_band): the
 // arguments of draw() or draw_screen(). The caller's arrays are referred to, not copied.
 struct DrawCall {
-  Mesh mesh{};                             // draw(); draw_screen(): its triangles only
-  std::span<const ScreenVertex> screen{};  // draw_screen()'s vertices
+  Mesh mesh{};                              // draw(); draw_screen(): its triangles only
+  std::span<const ScreenVertex> screen{};   // draw_screen()'s vertices
+  std::span<const TexVertex> screen_tex{};  // and their texture coordinates
   Mat4 model{};
   ZeroStored<Material> material{};
   ZeroStored<DrawState> state{};
@@ -51,6 +52,7 @@ struct DrawRecord {
   bool depth = false;                       // the depth test (DrawState::depth_test)
   bool flat = false;
   const Texture* texture = nullptr;  // textured draws
+  bool uv = false;  // the vertices have TexVertex entries (textured, or Phong with a normal map)
   // The texel fetchers (fetch, env_fetch, nmap_fetch) are chosen by the strip loop when it
   // renders (StripLoop::resolve_fetchers), from the texture's format, the filter and the wraps,
   // in the tables of its SpanSet: firmware links only the fetchers of the states its set admits.

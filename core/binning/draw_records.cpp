@@ -20,6 +20,7 @@ Status FrontEnd::add_draw_record(const DrawState& state, bool has_color_planes, 
   if (state.texture != nullptr) {
     const Texture& tex = *state.texture;
     r.texture = &tex;
+    r.uv = true;
     r.env = state.sampler.env;
     r.mip = state.sampler.mip;
     r.persp = tex_persp_of(state.perspective);
@@ -55,6 +56,7 @@ Status FrontEnd::add_phong_state(const DrawState& state, const PreparedLighting&
   r.colors = ColorPlanes::kNone;
   r.envmap = state.envmap;
   r.normal_map = state.normal_map;
+  if (state.normal_map != nullptr) r.uv = true;
   if (state.pixel_lighting != PixelLighting::kTable) return Status::kOk;
   const bool split = state.texture != nullptr || state.envmap != nullptr;
   const uint16_t size = state.table.size;

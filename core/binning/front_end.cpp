@@ -11,14 +11,17 @@ struct DrawPlan {
   bool lit = false;
   bool gouraud = false;  // per-vertex colours: lit Gouraud, or unlit and interpolated
   bool textured = false;
+  bool uv = false;         // the vertices have TexVertex entries (DrawRecord::uv)
   bool split = false;      // textured, lit, modulated: primary and specular colours apart
   bool two_sided = false;  // Gouraud and flat: back faces lit with the negated normal
 };
 
 namespace {
 
-// ScreenVertex::color_pending of a vertex a band's triangle refers to (compact_vertices).
+// ScreenVertex::color_pending of a vertex a band's triangle refers to (compact_vertices), and
+// the link of one no triangle refers to.
 constexpr uint8_t kKeptVertex = 2;
+constexpr uint16_t kNoLink = 0xFFFF;
 
 Rgb8 to_rgb8_sat(Color15 c) {
   auto b = [](uint16_t v) { return to_byte(clamp_c15(v)); };
@@ -62,6 +65,7 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
   // Textured, lit and modulated: primary and specular colours kept apart (GL's separate
   // specular colour), so that the texel modulates the primary only.
   p.split = p.textured && p.lit && state.sampler.env == TexEnv::kModulate;
+  p.uv = p.textured || (p.kind.phong && state.normal_map != nullptr);
   p.two_sided = p.lit && lights.two_sided && !p.kind.phong;  // Phong flips at setup
   return Status::kOk;
 }
@@ -81,6 +85,8 @@ Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int 
       s.vertices.size() > kMaxStoreEntries ? s.vertices.first(kMaxStoreEntries) : s.vertices;
   draws_ = s.draws;
   surfaces_ = s.surfaces;
+  tex_ = s.tex_vertices.size() > kMaxStoreEntries ? s.tex_vertices.first(kMaxStoreEntries)
+                                                  : s.tex_vertices;
   lighting_tables_ = s.lighting_tables;
   pixel_lights_ = s.pixel_lights;
   width_ = width;
@@ -175,6 +181,11 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
       h.add(surfaces_[b]);
       h.add(surfaces_[c]);
     }
+    if (d.uv) {
+      h.add(tex_[a]);
+      h.add(tex_[b]);
+      h.add(tex_[c]);
+    }
     h.add(flat);
     h.add(flat_spec);
     edges_.sign(r0, r1, h.value());
@@ -211,7 +222,7 @@ struct FrontEnd::MeshDraw {
   const bool cached;  // the mesh goes through the vertex cache (FrontEnd::cache_corners)
   // Back faces' colours (two-sided Gouraud): written before use on each back face; one set per
   // draw, because a value-initialised local per triangle cost a 120-byte memset each.
-  ScreenVertex back_colors[3] = {};
+  LitColor back_colors[3] = {};
 
   // The colours of a triangle without colour planes: flat shading (lit by its face normal, or
   // the last vertex's colour), or an unlit mesh's one colour.
@@ -282,7 +293,9 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
     }
     for (int k = 0; k < 3; ++k) {
       if (sv[k]->color_pending) {
-        d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], false, *sv[k]);
+        const LitColor lc = d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], false);
+        sv[k]->color = lc.primary;
+        if (d.colors.split) tex_[vi[k]].spec = lc.secondary;
         sv[k]->color_pending = 0;
       }
     }
@@ -298,7 +311,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
         oc_or == 0 ? back_facing(signed_area2(*sv[0], *sv[1], *sv[2])) : !front_facing_clip(clip);
   if (back && d.plan.gouraud)
     for (int k = 0; k < 3; ++k)
-      d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], true, d.back_colors[k]);
+      d.back_colors[k] = d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], true);
   Rgb8 flat{}, flat_spec{};
   d.flat_colors(tri, *sv[2], back, flat, flat_spec);
   if (oc_or == 0) {
@@ -315,17 +328,37 @@ void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&
                           bool back_copies, Rgb8 flat, Rgb8 flat_spec, const int32_t* rows,
                           bool cached) {
   if (back_copies) {
-    if (!vertices_fit(3)) {
+    // Binning a band: a triangle of another band gets no copies (they would fill the store with
+    // vertices no triangle of the band uses). Its tests are bin()'s, done once here.
+    int32_t classified[2] = {0, 0};
+    if (banding_ && rows == nullptr) [[unlikely]] {
+      const Outcome r =
+          edges_.classify(*sv[0], *sv[1], *sv[2], d.state.cull, classified[0], classified[1]);
+      if (r != Outcome::kBinned) {
+        count_outcome(stats_, false, r);
+        return;
+      }
+      rows = classified;
+    }
+    if (banding_ && (rows[1] < band_r0_ || rows[0] > band_r1_)) [[unlikely]] {
+      count_outcome(stats_, true, Outcome::kBinned);
+      return;
+    }
+    if (!vertices_fit(3) || (d.plan.uv && !tex_fit(3))) {
       overflow_ = true;
       count_outcome(stats_, false, Outcome::kVertexCapacity);
       return;
     }
     for (int k = 0; k < 3; ++k) {
-      ScreenVertex& nv = vertices_[vertex_count_ + static_cast<size_t>(k)];
+      const size_t at = vertex_count_ + static_cast<size_t>(k);
+      ScreenVertex& nv = vertices_[at];
       nv = *sv[k];
-      nv.color = d.back_colors[k].color;
-      nv.spec = d.back_colors[k].spec;
-      vi[k] = static_cast<uint16_t>(vertex_count_ + static_cast<size_t>(k));
+      nv.color = d.back_colors[k].primary;
+      if (d.plan.uv) {
+        tex_[at] = tex_[vi[k]];
+        tex_[at].spec = d.back_colors[k].secondary;
+      }
+      vi[k] = static_cast<uint16_t>(at);
     }
     vertex_count_ += 3;
   }
@@ -346,12 +379,17 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
   ++stats_.clipped;
   ClipVertex poly[kMaxClipVertices];
   for (int k = 0; k < 3; ++k) {
-    const ScreenVertex& src = back_colored ? d.back_colors[k] : *sv[k];
     poly[k].p = clip[k];
-    poly[k].color = src.color;
-    poly[k].spec = src.spec;
-    poly[k].u = sv[k]->u;
-    poly[k].v = sv[k]->v;
+    poly[k].color = back_colored ? d.back_colors[k].primary : sv[k]->color;
+    if (d.plan.uv) {
+      const TexVertex& tv = tex_[vi[k]];
+      poly[k].spec = back_colored ? d.back_colors[k].secondary : tv.spec;
+      poly[k].u = tv.u;
+      poly[k].v = tv.v;
+    } else {
+      poly[k].spec = Color15{};
+      poly[k].u = poly[k].v = 0;
+    }
     if (d.plan.kind.phong) poly[k].surface = surfaces_[vi[k]];
   }
   const int m = clip_polygon(poly, 3, oc_or, d.stage.guard());
@@ -360,7 +398,8 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
     return;
   }
   if (!vertices_fit(static_cast<size_t>(m)) ||
-      (d.plan.kind.phong && !surfaces_fit(static_cast<size_t>(m)))) {
+      (d.plan.kind.phong && !surfaces_fit(static_cast<size_t>(m))) ||
+      (d.plan.uv && !tex_fit(static_cast<size_t>(m)))) {
     overflow_ = true;
     ++stats_.dropped_vertex_capacity;
     return;
@@ -368,19 +407,44 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
   const auto first = static_cast<uint16_t>(vertex_count_);
   int projected = 0;
   for (int k = 0; k < m; ++k) {
-    ScreenVertex& nv = vertices_[vertex_count_ + static_cast<size_t>(k)];
+    const size_t at = vertex_count_ + static_cast<size_t>(k);
+    ScreenVertex& nv = vertices_[at];
     nv.color = poly[k].color;
-    nv.spec = poly[k].spec;
-    nv.u = poly[k].u;
-    nv.v = poly[k].v;
     nv.outcode = 0;
     nv.color_pending = 0;
     if (d.stage.project(poly[k].p, nv)) ++projected;
-    if (d.plan.kind.phong) surfaces_[vertex_count_ + static_cast<size_t>(k)] = poly[k].surface;
+    if (d.plan.kind.phong) surfaces_[at] = poly[k].surface;
+    if (d.plan.uv) tex_[at] = TexVertex{poly[k].u, poly[k].v, poly[k].spec, 0};
   }
   if (projected != m) {
     ++stats_.clipped_away;
     return;
+  }
+  // Binning a band: a polygon wholly outside it is not kept (its vertices would fill the store);
+  // its pieces are counted as bin() would count them.
+  if (banding_) [[unlikely]] {
+    int32_t ymin = vertices_[first].y, ymax = ymin;
+    for (int k = 1; k < m; ++k) {
+      const int32_t y = vertices_[first + static_cast<size_t>(k)].y;
+      ymin = y < ymin ? y : ymin;
+      ymax = y > ymax ? y : ymax;
+    }
+    if (last_row_at_or_above(ymax) < band_r0_ || first_row_below(ymin) > band_r1_) {
+      bool binned = false;
+      Outcome last = Outcome::kClippedAway;
+      for (int k = 1; k + 1 < m; ++k) {
+        int32_t r0 = 0, r1 = 0;
+        const auto at = static_cast<size_t>(first) + static_cast<size_t>(k);
+        const Outcome r = edges_.classify(vertices_[first], vertices_[at], vertices_[at + 1],
+                                          d.state.cull, r0, r1);
+        if (r == Outcome::kBinned)
+          binned = true;
+        else
+          last = r;
+      }
+      count_outcome(stats_, binned, last);
+      return;
+    }
   }
   vertex_count_ += static_cast<size_t>(m);
   bool binned = false;
@@ -408,7 +472,8 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   stats_.triangles_in += tri_count;
   // A mesh larger than the stores needs room for the vertex cache (docs/bands.md).
   if ((n > vertices_.size() && vertices_.size() < kMinCachedStore) ||
-      (plan.kind.phong && n > surfaces_.size() && surfaces_.size() < kMinCachedStore)) {
+      (plan.kind.phong && n > surfaces_.size() && surfaces_.size() < kMinCachedStore) ||
+      (plan.uv && n > tex_.size() && tex_.size() < kMinCachedStore)) {
     refuse(tri_count, true);
     return Status::kCapacity;
   }
@@ -440,12 +505,13 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
                         const Material& material, const DrawState& state, const DrawPlan& plan,
                         const PreparedLighting& pl) {
   const size_t n = mesh.positions.size();
-  const bool phong = plan.kind.phong;
+  const bool phong = plan.kind.phong, uv = plan.uv;
   // A mesh larger than the free store goes through the vertex cache at the top of the stores.
-  const bool cached = !vertices_fit(n) || (phong && !surfaces_fit(n));
+  const bool cached = !vertices_fit(n) || (phong && !surfaces_fit(n)) || (uv && !tex_fit(n));
   if (cached) {
-    const size_t top =
-        phong && surfaces_.size() < vertices_.size() ? surfaces_.size() : vertices_.size();
+    size_t top = vertices_.size();
+    if (phong && surfaces_.size() < top) top = surfaces_.size();
+    if (uv && tex_.size() < top) top = tex_.size();
     if (top < vertex_count_ + kMinCachedStore) {
       overflow_ = true;
       stats_.dropped_vertex_capacity += static_cast<uint32_t>(mesh.triangles.size());
@@ -454,6 +520,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
     cache_first_ = top - kCacheSlots;
     vertex_limit_ = cache_first_;
     cache_surfaces_ = phong;
+    cache_tex_ = uv;
     cache_.fill(kNoCacheEntry);
     cache_lru_ = 0;
   }
@@ -473,7 +540,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
     vertex_count_ += n;
     stats_.vertices_transformed += static_cast<uint32_t>(n);
     stage.transform(mesh, colors, vertices_.data() + base,
-                    phong ? surfaces_.data() + base : nullptr);
+                    phong ? surfaces_.data() + base : nullptr, uv ? tex_.data() + base : nullptr);
   }
 
   MeshDraw d{mesh, state, stage, plan, colors, base, index, cached};
@@ -486,7 +553,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
     cache_first_ = kNoCache;
     vertex_limit_ = vertices_.size();
   }
-  if (banding_) compact_vertices(base, phong);
+  if (banding_) compact_vertices(base, phong, uv);
 }
 
 // The triangle loop, out of line: one loop body in each stack frame, not both in run_mesh's.
@@ -517,7 +584,8 @@ std::array<uint16_t, 3> FrontEnd::cache_corners(MeshDraw& d, const std::array<ui
       if (taken(slot)) slot = 2 * kCacheSets + k;
       const size_t at = cache_first_ + slot;
       d.stage.transform_one(d.mesh, d.colors, i, vertices_[at],
-                            cache_surfaces_ ? &surfaces_[at] : nullptr);
+                            cache_surfaces_ ? &surfaces_[at] : nullptr,
+                            cache_tex_ ? &tex_[at] : nullptr);
       cache_[slot] = i | kNoCacheEntry << 16;
       ++stats_.vertices_transformed;
     }
@@ -540,6 +608,7 @@ bool FrontEnd::persist(uint16_t& index) {
     p = static_cast<uint16_t>(vertex_count_++);
     vertices_[p] = vertices_[index];
     if (cache_surfaces_) surfaces_[p] = surfaces_[index];
+    if (cache_tex_) tex_[p] = tex_[index];
     e = (e & 0xFFFF) | uint32_t{p} << 16;
   }
   index = p;
@@ -548,13 +617,16 @@ bool FrontEnd::persist(uint16_t& index) {
 
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
                              std::span<const std::array<uint16_t, 3>> triangles,
-                             const DrawState& state) {
+                             const DrawState& state, std::span<const TexVertex> tex) {
   if (!configured_) return Status::kInvalidArgument;
+  const bool uv = state.texture != nullptr;
+  if (uv && tex.size() != vertices.size()) return Status::kInvalidArgument;
+  if (!uv) tex = {};
   const bool gouraud = state.shading == Shading::kGouraud;
   if (!admitted(state, {false, gouraud, !lights_.normal_only()})) return Status::kInvalidArgument;
   const auto tri_count = static_cast<uint32_t>(triangles.size());
   stats_.triangles_in += tri_count;
-  if (vertices.size() > vertices_.size()) {
+  if (vertices.size() > vertices_.size() || (uv && vertices.size() > tex_.size())) {
     refuse(tri_count, true);
     return Status::kCapacity;
   }
@@ -566,19 +638,22 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   call.mesh = Mesh{};
   call.mesh.triangles = triangles;
   call.screen = vertices;
+  call.screen_tex = tex;
   call.model = Mat4{};
   call.material.set(Material{});
   call.state.set(state);
   call.is_screen = true;
-  if (!overflow_) run_screen(draw_index, vertices, triangles, state);
+  if (!overflow_) run_screen(draw_index, vertices, tex, triangles, state);
   return Status::kOk;
 }
 
 void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
+                          std::span<const TexVertex> tex,
                           std::span<const std::array<uint16_t, 3>> triangles,
                           const DrawState& state) {
   const size_t n = vertices.size();
-  if (!vertices_fit(n)) {
+  const bool uv = !tex.empty();
+  if (!vertices_fit(n) || (uv && !tex_fit(n))) {
     overflow_ = true;
     stats_.dropped_vertex_capacity += static_cast<uint32_t>(triangles.size());
     return;
@@ -593,6 +668,7 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
     v.outcode = ok ? 0 : kClipOutOfRange;
     v.color_pending = 0;
     vertices_[base + i] = v;
+    if (uv) tex_[base + i] = tex[i];
   }
   vertex_count_ += n;
   for (const std::array<uint16_t, 3>& tri : triangles) {
@@ -608,11 +684,11 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
       continue;
     }
     const Rgb8 flat = to_rgb8_sat(vertices_[vi[2]].color);
-    const Rgb8 flat_spec = to_rgb8_sat(vertices_[vi[2]].spec);
+    const Rgb8 flat_spec = uv ? to_rgb8_sat(tex_[vi[2]].spec) : Rgb8{};
     const Outcome r = bin<false>(vi[0], vi[1], vi[2], index, flat, flat_spec, state.cull);
     count_outcome(stats_, r == Outcome::kBinned, r);
   }
-  if (banding_) compact_vertices(base, false);
+  if (banding_) compact_vertices(base, false, uv);
 }
 
 void FrontEnd::begin_bands() {
@@ -632,7 +708,7 @@ void FrontEnd::replay(uint8_t index) {
   const DrawCall& c = draws_[index].call;
   const DrawState state = c.state.get();
   if (c.is_screen) {
-    run_screen(index, c.screen, c.mesh.triangles, state);
+    run_screen(index, c.screen, c.screen_tex, c.mesh.triangles, state);
     return;
   }
   const Material material = c.material.get();
@@ -715,21 +791,24 @@ bool FrontEnd::shrink_band() {
   return true;
 }
 
-void FrontEnd::compact_vertices(size_t first_vertex, bool surfaces) {
+void FrontEnd::compact_vertices(size_t first_vertex, bool surfaces, bool tex) {
   const std::span<BinnedTriangle> tris = edges_.triangles().subspan(draw_first_triangle_);
   for (const BinnedTriangle& t : tris)
     for (uint16_t v : t.v) vertices_[v].color_pending = kKeptVertex;
+  // The kept vertices' new indices replace their outcode and pending flag (link_of).
   auto kept = static_cast<uint16_t>(first_vertex);
   for (size_t i = first_vertex; i < vertex_count_; ++i)
-    if (vertices_[i].color_pending == kKeptVertex) vertices_[i].link = kept++;
+    set_link(vertices_[i], vertices_[i].color_pending == kKeptVertex ? kept++ : kNoLink);
   for (BinnedTriangle& t : tris)
-    for (uint16_t& v : t.v) v = vertices_[v].link;
+    for (uint16_t& v : t.v) v = link_of(vertices_[v]);
   size_t out = first_vertex;
   for (size_t i = first_vertex; i < vertex_count_; ++i) {
-    if (vertices_[i].color_pending != kKeptVertex) continue;
+    if (link_of(vertices_[i]) == kNoLink) continue;
     vertices_[out] = vertices_[i];
+    vertices_[out].outcode = 0;
     vertices_[out].color_pending = 0;
     if (surfaces) surfaces_[out] = surfaces_[i];
+    if (tex) tex_[out] = tex_[i];
     ++out;
   }
   vertex_count_ = out;

@@ -42,6 +42,7 @@ struct FrontEndStorage {
   std::span<uint32_t> lighting_tables{};
   std::span<PreparedLighting> pixel_lights{};
   std::span<uint32_t> strip_inputs{};
+  std::span<TexVertex> tex_vertices{};
 };
 
 // What the strip loop reads of a binned frame. It consumes the edge table as it goes: it
@@ -51,6 +52,7 @@ struct FrontEndStorage {
 struct BinnedFrame {
   std::span<const ScreenVertex> vertices;
   std::span<const SurfaceVertex> surfaces;  // Phong draws: indexed like vertices
+  std::span<const TexVertex> tex_vertices;  // draws with texture coordinates: the same
   std::span<BinnedTriangle> triangles;
   std::span<DrawRecord> draws;
   std::span<uint16_t> buckets;       // one list head per strip
@@ -78,7 +80,8 @@ class FrontEnd {
               const DrawState& state);
   // Adds triangles already in screen space (see Renderer::draw_screen).
   Status draw_screen(std::span<const ScreenVertex> vertices,
-                     std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
+                     std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state,
+                     std::span<const TexVertex> tex = {});
 
   // Bands (docs/bands.md). When the frame's triangles overflow their store, the frame becomes
   // its first band, which ends where the store is full (band_end()); when its vertices do not
@@ -114,6 +117,7 @@ class FrontEnd {
   BinnedFrame frame() {
     return {vertices_.first(vertex_count_),
             surfaces_,
+            tex_,
             edges_.triangles(),
             draws_.first(draw_count_),
             edges_.buckets(),
@@ -146,14 +150,16 @@ class FrontEnd {
   void run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model, const Material& material,
                 const DrawState& state, const DrawPlan& plan, const PreparedLighting& pl);
   void run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
+                  std::span<const TexVertex> tex,
                   std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
   [[gnu::noinline]] void replay(uint8_t index);
   // Binning a band whose triangle store is full: ends the band at a strip boundary above,
   // evicting the triangles that start below it. False when the band is one strip.
   bool shrink_band();
   // Binning a band: keeps only the vertices from `first_vertex` on that the draw's triangles
-  // (from draw_first_triangle_ on) refer to, and renumbers those triangles.
-  void compact_vertices(size_t first_vertex, bool surfaces);
+  // (from draw_first_triangle_ on) refer to (with their surfaces and texture entries when the
+  // draw has them), and renumbers those triangles.
+  void compact_vertices(size_t first_vertex, bool surfaces, bool tex);
   // A draw that no band can take (draw records, per-pixel lighting pools, a mesh larger than
   // the vertex store): counted as dropped, in this frame's statistics for good.
   void refuse(uint32_t triangles, bool vertex_store) {
@@ -180,6 +186,9 @@ class FrontEnd {
   bool surfaces_fit(size_t vertices) const {
     return surfaces_.size() >= vertex_count_ && vertices <= surfaces_.size() - vertex_count_;
   }
+  bool tex_fit(size_t vertices) const {
+    return tex_.size() >= vertex_count_ && vertices <= tex_.size() - vertex_count_;
+  }
   bool vertices_fit(size_t vertices) const { return vertices <= vertex_limit_ - vertex_count_; }
   // The vertex cache (docs/bands.md): the corners of a triangle of a mesh larger than the free
   // store, transformed into the cache on a miss; bin() copies a binned triangle's vertices out
@@ -190,6 +199,7 @@ class FrontEnd {
   std::span<ScreenVertex> vertices_{};
   std::span<DrawRecord> draws_{};
   std::span<SurfaceVertex> surfaces_{};
+  std::span<TexVertex> tex_{};
   std::span<uint32_t> lighting_tables_{};
   std::span<PreparedLighting> pixel_lights_{};
   EdgeTable edges_{};
@@ -215,8 +225,8 @@ class FrontEnd {
   // triangle with three corners in one set. Each entry: the mesh index (low half) and the store
   // index of its copy (high half; kNoCacheEntry: none yet); cache_lru_: per set, the way to
   // replace next. It takes the top kCacheSlots entries of the vertex store (and of the
-  // surfaces, for Phong) while a cached mesh is binned; the store below them ends at
-  // vertex_limit_.
+  // surfaces, for Phong, and of the texture entries, for draws with them) while a cached mesh is
+  // binned; the store below them ends at vertex_limit_.
   static constexpr size_t kCacheSets = 32;
   static constexpr size_t kCacheSlots = 2 * kCacheSets + 3;
   // Smallest store a mesh larger than it can be drawn through: the cache, a clipped polygon and
@@ -227,7 +237,7 @@ class FrontEnd {
   std::array<uint32_t, kCacheSlots> cache_{};
   size_t cache_first_ = kNoCache;
   size_t vertex_limit_ = 0;
-  bool cache_surfaces_ = false;
+  bool cache_surfaces_ = false, cache_tex_ = false;
   uint32_t cache_lru_ = 0;
   uint32_t refused_triangles_ = 0, refused_vertices_ = 0;
 };

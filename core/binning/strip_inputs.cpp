@@ -21,10 +21,13 @@ void InputHash::add(const ScreenVertex& v) {
   add(v.y);
   add(v.z);
   add(v.w);
-  add(v.u);
-  add(v.v);
   add(v.color);
-  add(v.spec);
+}
+
+void InputHash::add(const TexVertex& t) {
+  add(t.u);
+  add(t.v);
+  add(t.spec);
 }
 
 void InputHash::add(const SurfaceVertex& s) {

@@ -32,6 +32,7 @@ namespace lr {
 
 struct ScreenVertex;
 struct SurfaceVertex;
+struct TexVertex;
 struct Texture;
 struct Material;
 struct LightSet;
@@ -64,6 +65,7 @@ class InputHash {
   void add(const void* p);
   void add(const ScreenVertex& v);
   void add(const SurfaceVertex& s);
+  void add(const TexVertex& t);
   void add(const Texture& t);
   void add(const Material& m);
   void add(const LightSet& s);

@@ -39,11 +39,16 @@ struct FrameStorage {
   // last rendered frame's. The renderer leaves out a strip whose signatures agree when its sink
   // retains the previous frame (StripSink::retains_frame).
   std::span<uint32_t> strip_inputs{};
+  // Textured draws, and Phong draws with a texture or a normal map (may stay empty otherwise):
+  // their vertices' texture coordinates and secondary colours, one TexVertex per vertex-store
+  // entry (give it the size of `vertices`; a smaller one sends every such mesh larger than it
+  // through the vertex cache, docs/bands.md).
+  std::span<TexVertex> tex_vertices{};
 
   // The parts' shares.
   FrontEndStorage front_end() const {
-    return {vertices, triangles,       draws,        buckets,
-            surfaces, lighting_tables, pixel_lights, strip_inputs};
+    return {vertices,        triangles,    draws,        buckets,     surfaces,
+            lighting_tables, pixel_lights, strip_inputs, tex_vertices};
   }
   StripStorage strip_loop() const { return {active, active_index, depth}; }
 };
@@ -61,7 +66,9 @@ struct FrameCapacities {
   size_t surfaces = 0;              // SurfaceVertex store: 0, or the size of the vertex store
   size_t lighting_table_words = 0;  // PixelLighting::kTable pool (lighting_table_words())
   size_t pixel_lights = 0;          // materials of per-pixel lit draws
-  bool strip_skipping = false;      // keep strip signatures (2 words per strip)
+  // Draws with texture coordinates (textured, or Phong with a normal map).
+  size_t tex_vertices = 0;      // TexVertex store: 0, or the size of the vertex store
+  bool strip_skipping = false;  // keep strip signatures (2 words per strip)
 
   constexpr size_t strips() const {
     return static_cast<size_t>((height + strip_height - 1) / strip_height);
@@ -86,6 +93,7 @@ struct StaticFrameStorage {
   std::array<ActiveTriangle, kCaps.active> active{};
   std::array<ScreenVertex, kCaps.vertices> vertices{};
   std::array<SurfaceVertex, kCaps.surfaces> surfaces{};
+  std::array<TexVertex, kCaps.tex_vertices> tex_vertices{};
   std::array<BinnedTriangle, kCaps.triangles> triangles{};
   std::array<uint32_t, kCaps.lighting_table_words> lighting_tables{};
   std::array<uint32_t, kCaps.strip_inputs()> strip_inputs{};
@@ -95,8 +103,8 @@ struct StaticFrameStorage {
   alignas(4) std::array<uint16_t, kCaps.depth()> depth{};
 
   FrameStorage storage() {
-    return {vertices, triangles, draws,           buckets,      active,      active_index,
-            depth,    surfaces,  lighting_tables, pixel_lights, strip_inputs};
+    return {vertices, triangles, draws,           buckets,      active,       active_index,
+            depth,    surfaces,  lighting_tables, pixel_lights, strip_inputs, tex_vertices};
   }
 };
 
@@ -111,6 +119,7 @@ struct BasicFrameStorage {
         active(c.active),
         vertices(c.vertices),
         surfaces(c.surfaces),
+        tex_vertices(c.tex_vertices),
         triangles(c.triangles),
         lighting_tables(c.lighting_table_words),
         strip_inputs(c.strip_inputs()),
@@ -124,6 +133,7 @@ struct BasicFrameStorage {
   Container<ActiveTriangle> active;
   Container<ScreenVertex> vertices;
   Container<SurfaceVertex> surfaces;
+  Container<TexVertex> tex_vertices;
   Container<BinnedTriangle> triangles;
   Container<uint32_t> lighting_tables;
   Container<uint32_t> strip_inputs;
@@ -132,8 +142,8 @@ struct BasicFrameStorage {
   Container<uint16_t> depth;
 
   FrameStorage storage() {
-    return {vertices, triangles, draws,           buckets,      active,      active_index,
-            depth,    surfaces,  lighting_tables, pixel_lights, strip_inputs};
+    return {vertices, triangles, draws,           buckets,      active,       active_index,
+            depth,    surfaces,  lighting_tables, pixel_lights, strip_inputs, tex_vertices};
   }
 };
 

@@ -54,7 +54,9 @@ class Renderer {
   // the stores is drawn in bands, which read them again (docs/bands.md); the Mesh, the matrix,
   // the material and the state are copied. kCapacity (the draw is dropped and counted) when no
   // draw record is left, the mesh is larger than a vertex store too small for the vertex cache
-  // (docs/bands.md), or a Phong draw's lighting pools are full. kInvalidArgument (nothing added)
+  // (docs/bands.md), a textured mesh is larger than a FrameStorage::tex_vertices store too small
+  // for the cache (none given: any textured mesh), or a Phong draw's lighting pools are full.
+  // kInvalidArgument (nothing added)
   // when the mesh's arrays disagree in size, Gouraud lighting is asked of a mesh without normals,
   // or the renderer's SpanSet does not admit the draw's span state or its textures
   // (span_state.hpp).
@@ -64,12 +66,16 @@ class Renderer {
   }
 
   // Adds triangles already in screen space (snapped subpixel positions, depth, colour):
-  // for 2D overlays and for tests of the raster rules. Lighting does not apply. Both arrays
-  // must stay valid until render() returns. kCapacity as draw(); kInvalidArgument (nothing
-  // added) when the renderer's SpanSet does not admit the draw's span state.
+  // for 2D overlays and for tests of the raster rules. Lighting does not apply. A textured
+  // state needs `tex`, one entry per vertex (texture coordinates, secondary colour); others
+  // ignore it. The arrays must stay valid until render() returns. kCapacity as draw() (and
+  // when the vertices outnumber the tex_vertices store); kInvalidArgument (nothing added) when
+  // the renderer's SpanSet does not admit the draw's span state, or a textured state's `tex`
+  // is not as long as `vertices`.
   Status draw_screen(std::span<const ScreenVertex> vertices,
-                     std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state) {
-    return front_.draw_screen(vertices, triangles, state);
+                     std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state,
+                     std::span<const TexVertex> tex = {}) {
+    return front_.draw_screen(vertices, triangles, state, tex);
   }
 
   // Rasterizes the frame built since begin_frame(), in bands when it did not fit the stores

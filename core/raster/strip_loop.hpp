@@ -394,6 +394,8 @@ SetupInput StripLoop<PF, K, kSpans>::setup_input(const BinnedTriangle& bt) const
   const DrawRecord& dr = frame_.draws[bt.draw];
   SetupInput in;
   for (int k = 0; k < 3; ++k) in.v[k] = &frame_.vertices[bt.v[k]];
+  if (dr.uv)
+    for (int k = 0; k < 3; ++k) in.tex.tv[k] = &frame_.tex_vertices[bt.v[k]];
   in.first_row = 0;
   in.last_row = 0;
   in.colors = dr.texture ? ColorPlanes::kNone : dr.colors;

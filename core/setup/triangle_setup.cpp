@@ -221,13 +221,15 @@ bool affine_is_exact_enough(const ScreenVertex* const v[3]) {
 }  // namespace
 
 namespace {
-// The vertices (and surfaces) sorted by y (display rows, top first); a fixed network keeps ties
-// deterministic, so that setup_edges and setup_planes sort alike.
+// The vertices (and surfaces, texture entries) sorted by y (display rows, top first); a fixed
+// network keeps ties deterministic, so that setup_edges and setup_planes sort alike.
 struct Sorted {
   const ScreenVertex* v[3];
   const SurfaceVertex* sf[3];
-  Sorted(const ScreenVertex* const vs[3], const SurfaceVertex* const ss[3])
-      : v{vs[0], vs[1], vs[2]}, sf{ss[0], ss[1], ss[2]} {
+  const TexVertex* tv[3];
+  Sorted(const ScreenVertex* const vs[3], const SurfaceVertex* const ss[3],
+         const TexVertex* const ts[3])
+      : v{vs[0], vs[1], vs[2]}, sf{ss[0], ss[1], ss[2]}, tv{ts[0], ts[1], ts[2]} {
     order(0, 1);
     order(1, 2);
     order(0, 1);
@@ -236,6 +238,7 @@ struct Sorted {
     if (v[b]->y < v[a]->y) {
       std::swap(v[a], v[b]);
       std::swap(sf[a], sf[b]);
+      std::swap(tv[a], tv[b]);
     }
   }
 };
@@ -244,7 +247,8 @@ struct Sorted {
 void setup_edges(const ScreenVertex* const vertices[3], int32_t first, int32_t last,
                  ActiveTriangle& t) {
   constexpr const SurfaceVertex* kNone[3] = {nullptr, nullptr, nullptr};
-  const Sorted sorted(vertices, kNone);
+  constexpr const TexVertex* kNoTex[3] = {nullptr, nullptr, nullptr};
+  const Sorted sorted(vertices, kNone, kNoTex);
   const ScreenVertex* const* v = sorted.v;
   int32_t x0 = v[0]->x, y0 = v[0]->y, x1 = v[1]->x, y1 = v[1]->y, x2 = v[2]->x, y2 = v[2]->y;
   // Vertices sorted top to bottom: a positive area puts the middle vertex right of the long edge.
@@ -266,7 +270,7 @@ void setup_edges(const ScreenVertex* const vertices[3], int32_t first, int32_t l
 }
 
 void setup_planes(const SetupInput& in, ActiveTriangle& t) {
-  const Sorted sorted(in.v, in.phong.s);
+  const Sorted sorted(in.v, in.phong.s, in.tex.tv);
   const ScreenVertex* const* v = sorted.v;
   const SurfaceVertex* const* sf = sorted.sf;
   const PlaneBasis pb(v);  // after the sort: the planes' vertex 0 is the top vertex, as before
@@ -300,7 +304,7 @@ void setup_planes(const SetupInput& in, ActiveTriangle& t) {
       t.c[c] = make_plane(pb, cv);
     }
   }
-  if (tex) setup_texture(in.tex, v, pb, q, t);
+  if (tex) setup_texture(in.tex, v, sorted.tv, pb, q, t);
   if (phong) setup_phong(in.phong, sf, pb, q, t);
 }
 
@@ -362,10 +366,11 @@ void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const Pl
   }
 }
 
-void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const PlaneBasis& pb,
-                   const uint32_t q[3], ActiveTriangle& t) {
+void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3],
+                   const TexVertex* const tv[3], const PlaneBasis& pb, const uint32_t q[3],
+                   ActiveTriangle& t) {
   const TextureLevel& l0 = ts.texture->levels[0];
-  const int32_t us[3] = {v[0]->u, v[1]->u, v[2]->u}, vs[3] = {v[0]->v, v[1]->v, v[2]->v};
+  const int32_t us[3] = {tv[0]->u, tv[1]->u, tv[2]->u}, vs[3] = {tv[0]->v, tv[1]->v, tv[2]->v};
   texture_axis(us, l0.width, ts.wrap_s, ts.perspective, pb, q, t.s, t.off_s, t.m_s);
   texture_axis(vs, l0.height, ts.wrap_t, ts.perspective, pb, q, t.t, t.off_t, t.m_t);
   t.const_colors = false;
@@ -374,11 +379,11 @@ void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const
   if (!same) {
     same = true;
     for (int i = 1; i < 3; ++i)
-      same = same && v[i]->color == v[0]->color && v[i]->spec == v[0]->spec;
+      same = same && v[i]->color == v[0]->color && tv[i]->spec == tv[0]->spec;
   }
   if (same) {
     const Color15 pc = ts.flat ? ts.flat_primary : v[0]->color;
-    const Color15 sc = ts.flat ? ts.flat_secondary : v[0]->spec;
+    const Color15 sc = ts.flat ? ts.flat_secondary : tv[0]->spec;
     for (int c = 0; c < 3; ++c) {
       t.c[c] = Plane{channel(pc, c), 0, 0};
       t.extra.spec[c] = Plane{channel(sc, c), 0, 0};
@@ -390,7 +395,7 @@ void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const
     uint32_t p[3], sp[3];
     for (int i = 0; i < 3; ++i) {
       uint32_t pc = channel(ts.flat ? ts.flat_primary : v[i]->color, c);
-      uint32_t sc = channel(ts.flat ? ts.flat_secondary : v[i]->spec, c);
+      uint32_t sc = channel(ts.flat ? ts.flat_secondary : tv[i]->spec, c);
       p[i] = ts.perspective ? scale_by_q(pc, q[i]) : pc << 15;
       sp[i] = ts.perspective ? scale_by_q(sc, q[i]) : sc << 15;
     }

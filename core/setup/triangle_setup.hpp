@@ -38,10 +38,11 @@ struct PhongSetup {
 
 // How texture coordinates and colours of a textured triangle are laid out.
 struct TextureSetup {
-  const Texture* texture = nullptr;  // nullptr: untextured
-  bool perspective = true;           // planes of a * q (exact and span modes) or of a (affine)
-  bool colors = true;                // modulate: primary and secondary colour planes
-  bool flat = false;                 // constant colours flat_primary / flat_secondary
+  const Texture* texture = nullptr;                      // nullptr: untextured
+  const TexVertex* tv[3] = {nullptr, nullptr, nullptr};  // the vertices' coordinates, colours
+  bool perspective = true;  // planes of a * q (exact and span modes) or of a (affine)
+  bool colors = true;       // modulate: primary and secondary colour planes
+  bool flat = false;        // constant colours flat_primary / flat_secondary
   Color15 flat_primary{}, flat_secondary{};
   Wrap wrap_s = Wrap::kRepeat, wrap_t = Wrap::kRepeat;
 };
@@ -98,8 +99,9 @@ struct PlaneBasis {
 
 // The texture planes of a textured triangle (part of setup_triangle). q: the vertices' Q1.30
 // perspective factors (used when ts.perspective).
-void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3], const PlaneBasis& pb,
-                   const uint32_t q[3], ActiveTriangle& t);
+void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3],
+                   const TexVertex* const tv[3], const PlaneBasis& pb, const uint32_t q[3],
+                   ActiveTriangle& t);
 
 // q = round(w_min 2^30 / w) in Q1.30 for w_min <= w, at least 1 (exposed for tests): a 2-by-1
 // division by a normalised reciprocal instead of a 64-bit division, the same value.

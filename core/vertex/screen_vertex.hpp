@@ -1,5 +1,7 @@
 // A vertex after the vertex stage: projected, snapped, lit. One per mesh vertex of each draw,
-// plus those made by clipping. 40 bytes.
+// plus those made by clipping. 24 bytes: what every draw reads of a vertex. Textured draws keep
+// their texture coordinates and secondary colour apart (TexVertex), Phong draws their surface
+// (SurfaceVertex), each in a store of its own indexed like the vertex store.
 #pragma once
 
 #include <cstdint>
@@ -37,15 +39,33 @@ struct ScreenVertex {
   uint32_t z = 0;        // window depth, scaled as kDepthMax above
   uint32_t w = 0;        // clip-space w, Q16.16 (perspective correction); draw_screen reads
                          // 0 as 1.0. All-zero defaults keep static stores in .bss.
-  int32_t u = 0, v = 0;  // texture coordinates, Q12.20 (TexCoord)
   Color15 color{};       // lit or given colour (the primary colour when textured and lit)
-  Color15 spec{};        // secondary (specular) colour of textured, lit draws; else 0
   uint8_t outcode = 0;   // clip planes this vertex is outside of (0: projected fields valid)
   uint8_t color_pending = 0;  // vertex stage: 1 while its colour waits for the first triangle
                               // that is drawn with it (lit Gouraud: vertices are lit lazily)
-  uint16_t link = 0;          // front end scratch (a band's vertex compaction); in the padding
 };
-static_assert(sizeof(ScreenVertex) == 40);
+static_assert(sizeof(ScreenVertex) == 24);
+
+// A band's vertex compaction (front end) numbers the vertices it keeps in the two bytes above:
+// a kept vertex is projected (outcode 0) and lit (nothing pending), so both are free then.
+constexpr uint16_t link_of(const ScreenVertex& v) {
+  return static_cast<uint16_t>(v.outcode | v.color_pending << 8);
+}
+constexpr void set_link(ScreenVertex& v, uint16_t link) {
+  v.outcode = static_cast<uint8_t>(link);
+  v.color_pending = static_cast<uint8_t>(link >> 8);
+}
+
+// What a textured vertex has besides its ScreenVertex (and what a Phong draw with a texture or
+// a normal map reads: the coordinates). 16 bytes; in FrameStorage::tex_vertices, indexed like
+// the vertex store, so that untextured frames pay no RAM for it.
+struct TexVertex {
+  int32_t u = 0, v = 0;  // texture coordinates, Q12.20 (TexCoord)
+  Color15 spec{};        // secondary (specular) colour of textured, lit draws; else 0
+  uint16_t reserved = 0;
+  friend constexpr bool operator==(const TexVertex&, const TexVertex&) = default;
+};
+static_assert(sizeof(TexVertex) == 16);
 
 // Twice the signed area of the triangle (a, b, c) on the display, from the snapped subpixel
 // positions (subpixels^2): (b - a) x (c - a). |area| < 2^47 inside the guard band, exact in int64.

@@ -32,8 +32,8 @@ VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guar
 }
 
 void VertexStage::transform_one(const Mesh& mesh, const VertexColors& colors, size_t i,
-                                ScreenVertex& sv, SurfaceVertex* surface) const {
-  transform_vertex(mesh, colors, i, sv, surface);
+                                ScreenVertex& sv, SurfaceVertex* surface, TexVertex* tex) const {
+  transform_vertex(mesh, colors, i, sv, surface, tex);
 }
 
 bool VertexStage::project(const ClipCoord& c, ScreenVertex& v) const {

@@ -82,42 +82,33 @@ class VertexStage {
  public:
   VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width, int height);
 
-  // The mesh's vertices into out[0, n) (and surfaces[0, n) for Phong; else nullptr):
-  // transformed, clip-tested (outcode), projected and snapped when inside every plane.
+  // The mesh's vertices into out[0, n) (and surfaces[0, n) for Phong, tex[0, n) for draws
+  // with texture coordinates; else nullptr): transformed, clip-tested (outcode), projected and
+  // snapped when inside every plane.
   [[gnu::always_inline]] void transform(const Mesh& mesh, const VertexColors& colors,
-                                        ScreenVertex* out, SurfaceVertex* surfaces) const;
-  // One vertex: mesh vertex i into sv (and *surface for Phong; else nullptr), as transform().
+                                        ScreenVertex* out, SurfaceVertex* surfaces,
+                                        TexVertex* tex) const;
+  // One vertex: mesh vertex i into sv (and *surface, *tex when not nullptr), as transform().
   [[gnu::always_inline]] void transform_vertex(const Mesh& mesh, const VertexColors& colors,
-                                               size_t i, ScreenVertex& sv,
-                                               SurfaceVertex* surface) const;
+                                               size_t i, ScreenVertex& sv, SurfaceVertex* surface,
+                                               TexVertex* tex) const;
   // The same out of line: transform() and the vertex cache (FrontEnd::cache_corners) call it.
   void transform_one(const Mesh& mesh, const VertexColors& colors, size_t i, ScreenVertex& sv,
-                     SurfaceVertex* surface) const;
+                     SurfaceVertex* surface, TexVertex* tex) const;
 
-  // Lit colour(s) of mesh vertex i, with the normal negated or not (two-sided back faces).
+  // Lit colour(s) of mesh vertex i, with the normal negated or not (two-sided back faces): the
+  // secondary colour apart when colors.split, else 0.
   // (colors by value here and in light_face: the caller's copy stays in registers.)
-  void light(const Mesh& mesh, const VertexColors colors, size_t i, bool back,
-             ScreenVertex& sv) const {
+  LitColor light(const Mesh& mesh, const VertexColors colors, size_t i, bool back) const {
     Unit30 nw = world_normal(mesh.normals[i]);
     if (back) nw = negate(nw);
     if (!colors.need_position) {
-      if (colors.split) {
-        const LitColor lc = light_directional_split(*colors.lighting, nw);
-        sv.color = lc.primary;
-        sv.spec = lc.secondary;
-      } else {
-        sv.color = light_directional(*colors.lighting, nw);
-      }
-      return;
+      if (colors.split) return light_directional_split(*colors.lighting, nw);
+      return {light_directional(*colors.lighting, nw), Color15{}};
     }
     const Vec3 pw = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
-    if (colors.split) {
-      const LitColor lc = light_point_split(*colors.lighting, nw, pw);
-      sv.color = lc.primary;
-      sv.spec = lc.secondary;
-    } else {
-      sv.color = light_point(*colors.lighting, nw, pw);
-    }
+    if (colors.split) return light_point_split(*colors.lighting, nw, pw);
+    return {light_point(*colors.lighting, nw, pw), Color15{}};
   }
 
   // The lit colour of a flat-shaded triangle (face normal, centroid) of model-space corners.
@@ -171,22 +162,27 @@ bool front_facing_clip(const ClipCoord (&c)[3]);
 
 // One copy of the per-vertex code (transform_one), shared with the vertex cache's misses.
 inline void VertexStage::transform(const Mesh& mesh, const VertexColors& draw_colors,
-                                   ScreenVertex* out, SurfaceVertex* surfaces) const {
+                                   ScreenVertex* out, SurfaceVertex* surfaces,
+                                   TexVertex* tex) const {
   const VertexColors colors = draw_colors;  // a copy: kept in registers across the calls below
   const size_t n = mesh.positions.size();
   for (size_t i = 0; i < n; ++i)
-    transform_one(mesh, colors, i, out[i], surfaces != nullptr ? &surfaces[i] : nullptr);
+    transform_one(mesh, colors, i, out[i], surfaces != nullptr ? &surfaces[i] : nullptr,
+                  tex != nullptr ? &tex[i] : nullptr);
 }
 
 inline void VertexStage::transform_vertex(const Mesh& mesh, const VertexColors& colors, size_t i,
-                                          ScreenVertex& sv, SurfaceVertex* surface) const {
+                                          ScreenVertex& sv, SurfaceVertex* surface,
+                                          TexVertex* tex) const {
   sv.color_pending = colors.pending ? 1 : 0;
   const ClipCoord c = clip(mesh.positions[i]);
   sv.outcode = outcode(c, guard_);
   if (sv.outcode == 0) project(c, sv);
-  sv.u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
-  sv.v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
-  sv.spec = Color15{};
+  if (tex != nullptr) {
+    tex->u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
+    tex->v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
+    tex->spec = Color15{};
+  }
   if (surface != nullptr) {
     sv.color = Color15{};
     SurfaceVertex& su = *surface;

@@ -44,6 +44,11 @@ consteval size_t total_triangles() {
 constexpr size_t kVertexCapacity = total_vertices() + scene::kClipMargin;
 constexpr size_t kTriangleCapacity = total_triangles() + scene::kClipMargin;
 constexpr size_t kActive = scene::kActiveCapacity;
+consteval bool any_textured() {
+  for (bool t : scene::asset::textured)
+    if (t) return true;
+  return false;
+}
 static_assert(kVertexCapacity <= 0xFFFF && kTriangleCapacity <= 0xFFFE, "uint16 indices");
 
 // Constant-initialised: the stores go to .bss and cost no startup code.
@@ -53,7 +58,8 @@ constexpr lr::FrameCapacities kCapacities{.width = kWidth,
                                           .vertices = kVertexCapacity,
                                           .triangles = kTriangleCapacity,
                                           .draws = scene::asset::draw_count,
-                                          .active = kActive};
+                                          .active = kActive,
+                                          .tex_vertices = any_textured() ? kVertexCapacity : 0};
 lr::StaticFrameStorage<kCapacities> g_store;
 // Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
 alignas(4) std::array<std::array<PF::Storage, kStripPixels>, 2> g_strips{};

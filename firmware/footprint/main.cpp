@@ -98,6 +98,7 @@ constexpr size_t kStripPixels = size_t{kWidth} * kStripRows;
 //    rims cross the most), 103 from other heights. 128 = the peak + 1/3 for other views. An
 //    overflow drops triangles (counted in FrameStats, and fatal here), it corrupts nothing.
 //  - Phong only: one SurfaceVertex per vertex-store entry, one PreparedLighting (one material).
+//  - Textured only: one TexVertex per vertex-store entry.
 constexpr lr::FrameCapacities kCapacities{.width = kWidth,
                                           .height = kHeight,
                                           .strip_height = kStripRows,
@@ -106,7 +107,8 @@ constexpr lr::FrameCapacities kCapacities{.width = kWidth,
                                           .draws = 2,
                                           .active = 128,
                                           .surfaces = kPhong ? 640 : 0,
-                                          .pixel_lights = kPhong ? 1u : 0u};
+                                          .pixel_lights = kPhong ? 1u : 0u,
+                                          .tex_vertices = kTextured ? 640u : 0u};
 
 // Constant-initialised, zero-filled in .bss, no constructor at startup.
 lr::StaticFrameStorage<kCapacities> g_store;

@@ -55,7 +55,8 @@ constexpr lr::FrameCapacities kCapacities{.width = kWidth,
                                           .vertices = kVertices,
                                           .triangles = kTriangles,
                                           .draws = 16,
-                                          .active = kActive};
+                                          .active = kActive,
+                                          .tex_vertices = kVertices};
 // Sized for strips of 1 (the most edge-table buckets); the depth strip for the tallest strips.
 lr::StaticFrameStorage<kCapacities> g_store;
 alignas(4) std::array<uint16_t, size_t{kWidth} * kMaxStrip> g_depth{};

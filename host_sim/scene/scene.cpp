@@ -266,6 +266,10 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
   caps.draws = 256;
   caps.active = o.stores.active;
   caps.surfaces = phong ? caps.vertices : 0;
+  // Texture coordinates: a textured draw, or a Phong draw with a normal map.
+  bool uv = phong && textures.has_normal_map;
+  for (const Texture* t : textures.per_draw) uv = uv || t != nullptr;
+  caps.tex_vertices = uv ? caps.vertices : 0;
   caps.pixel_lights = materials;
   caps.lighting_table_words = o.pixel_lighting == PixelLighting::kTable
                                   ? materials * lighting_table_words(o.table.size, true)

@@ -106,7 +106,8 @@ struct Frame {
                                                        .vertices = 8192,
                                                        .triangles = 8192,
                                                        .draws = 16,
-                                                       .active = 4096}};
+                                                       .active = 4096,
+                                                       .tex_vertices = 8192}};
   Renderer<PF, K> renderer;
   Frame() {
     if (renderer.configure(store.storage(), kWidth, kHeight) != Status::kOk)

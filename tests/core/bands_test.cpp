@@ -40,7 +40,8 @@ struct Case {
 // Scenes that stress what bands change: many small triangles (the knot), per-pixel lighting
 // (its surface store is compacted with the vertices), near-plane clipping (vertices made in
 // each band), triangles spanning every strip (the ground), no depth test (only the submission
-// order decides overlaps), two-sided back faces (their own vertex copies), strips of 1 and 32.
+// order decides overlaps), two-sided back faces (their own vertex copies), textures (the
+// TexVertex store), strips of 1 and 32.
 std::vector<Case> cases() {
   std::vector<Case> out;
   {
@@ -83,6 +84,42 @@ std::vector<Case> cases() {
     c.options.shading = Shading::kFlat;
     c.options.eye = {0.1, 0.2, 0.8};  // inside: back faces, and the near plane cuts
     c.options.strip_height = 32;
+    out.push_back(c);
+  }
+  {
+    // Textured, lit and modulated (texture coordinates and secondary colours in the TexVertex
+    // store, compacted and cached with the vertices), two-sided Gouraud seen from inside (back
+    // faces get their own vertex and texture copies) and cut by the near plane.
+    static const host::HostTexture tex = [] {
+      host::HostTexture t;
+      std::string err;
+      EXPECT_TRUE(host::texture_from_image(test::checker64(), TexelFormat::kRgb565, false, t, err))
+          << err;
+      return t;
+    }();
+    Case c{"sphere_textured_two_sided", host::make_uv_sphere(14, 20), test::sphere_four_lights()};
+    c.options.width = 112;
+    c.options.height = 84;
+    c.options.two_sided = true;
+    c.options.texture_object = &tex.texture;
+    c.options.filter = Filter::kNearest;
+    c.options.material.specular = {0.6, 0.6, 0.6};
+    c.options.material.shininess = 24;
+    c.options.eye = {0.15, 0.25, 0.7};
+    c.options.strip_height = 2;
+    out.push_back(c);
+  }
+  {
+    // The same texture from outside, the near plane cutting the sphere: front faces, whose
+    // texture entries are copied out of the vertex cache with their vertices.
+    Case c{"sphere_textured_front", host::make_uv_sphere(18, 26), test::sphere_four_lights()};
+    c.options.width = 120;
+    c.options.height = 90;
+    c.options.texture_object = out.back().options.texture_object;
+    c.options.filter = Filter::kBilinear;
+    c.options.eye = {0.3, 0.4, 1.25};
+    c.options.near = 0.45;  // cuts the sphere in front of the eye
+    c.options.strip_height = 4;
     out.push_back(c);
   }
   {

@@ -4,6 +4,7 @@
 #include <array>
 #include <set>
 
+#include "host_sim/formats/texture_load.hpp"
 #include "host_sim/scene/mesh_prep.hpp"
 #include "host_sim/scene/scene.hpp"
 #include "tests/support/core_harness.hpp"
@@ -88,6 +89,58 @@ TEST(Capacity, VertexStoreFullDropsTheWholeDraw) {
   ref.begin();
   ref.renderer().draw_screen(a.vertices, a.triangles, test::coverage_state());
   EXPECT_EQ(got.rgb, ref.render().rgb);
+}
+
+// Textured draws keep their texture coordinates in the TexVertex store (FrameStorage::
+// tex_vertices): without one a textured draw is refused with kCapacity and counted, an
+// untextured one is drawn; draw_screen's texture entries must match its vertices.
+TEST(Capacity, TexturedDrawsNeedTheTexVertexStore) {
+  host::ImageRgb8 img;
+  img.width = img.height = 1;
+  img.rgb = {200, 100, 50};
+  host::HostTexture tex;
+  std::string err;
+  ASSERT_TRUE(host::texture_from_image(img, TexelFormat::kRgb888, false, tex, err)) << err;
+  DrawState textured = test::coverage_state();
+  textured.shading = Shading::kGouraud;
+  textured.texture = &tex.texture;
+  textured.sampler.filter = Filter::kNearest;
+  textured.sampler.env = TexEnv::kReplace;
+  const ScreenScene plain = squares(1), tiled = squares(3);
+  ScreenScene second;  // the third square of `tiled` alone
+  second.vertices.assign(tiled.vertices.begin() + 12, tiled.vertices.end());
+  second.triangles = {{0, 1, 2}, {3, 4, 5}};
+  const std::vector<TexVertex> uv(second.vertices.size());
+  for (size_t tex_store : {size_t{0}, size_t{100}}) {
+    SCOPED_TRACE(tex_store);
+    CoreHarness<8> core(64, 64, 100, 100, 16, 8, tex_store);
+    core.begin();
+    EXPECT_EQ(core.renderer().draw_screen(plain.vertices, plain.triangles, test::coverage_state()),
+              Status::kOk);
+    EXPECT_EQ(core.renderer().draw_screen(second.vertices, second.triangles, textured,
+                                          std::span(uv).first(5)),
+              Status::kInvalidArgument);  // one entry short: nothing added, nothing counted
+    EXPECT_EQ(core.renderer().stats().triangles_in, 2u);
+    const Status want = tex_store == 0 ? Status::kCapacity : Status::kOk;
+    EXPECT_EQ(core.renderer().draw_screen(second.vertices, second.triangles, textured, uv), want);
+    // A textured mesh: refused before anything is transformed.
+    const std::vector<Vec3> pos(3);
+    const std::vector<TexCoord> uvs(3);
+    const std::vector<std::array<uint16_t, 3>> tri = {{0, 1, 2}};
+    const Mesh mesh{pos, {}, {}, uvs, tri, {}};
+    DrawState unlit_textured = textured;
+    unlit_textured.lighting = false;
+    EXPECT_EQ(core.renderer().draw(mesh, Mat4::identity(), Material{}, unlit_textured), want);
+    const host::ImageRgb8 got = core.render();
+    const FrameStats& s = core.renderer().stats();
+    EXPECT_EQ(s.triangles_in, 5u);
+    EXPECT_EQ(s.dropped_vertex_capacity, tex_store == 0 ? 3u : 0u);
+    // The untextured square is drawn either way; the textured one only with the store.
+    const size_t first = 6 * 64 + 6, third = (3 + 28 + 4) * 64 + (4 + 30 + 4);
+    EXPECT_EQ(test::id_of(got, first), 0);
+    EXPECT_EQ(got.rgb[3 * third], tex_store == 0 ? 0 : 200);
+    EXPECT_EQ(got.rgb[3 * third + 1], tex_store == 0 ? 0 : 100);
+  }
 }
 
 // Overlapping triangles without a depth test (the submission order decides every overlap), more

@@ -181,7 +181,8 @@ class RigBase {
                                .active = 64,
                                .surfaces = 256,
                                .lighting_table_words = 4 * lighting_table_words(32, true),
-                               .pixel_lights = 8}),
+                               .pixel_lights = 8,
+                               .tex_vertices = 256}),
         display_(kW * kK) {}
   FrameStorage storage() { return store_.storage(); }
   virtual Status render_frame() = 0;

@@ -27,6 +27,7 @@ constexpr FrameCapacities kCaps{.width = 64,
                                 .surfaces = 48,
                                 .lighting_table_words = 2 * lighting_table_words(8, true),
                                 .pixel_lights = 2,
+                                .tex_vertices = 48,
                                 .strip_skipping = true};
 
 // The spans of a FrameStorage as byte ranges.

@@ -313,7 +313,8 @@ struct SmallStorage : BasicFrameStorage<std::vector> {
                                           .active = 256,
                                           .surfaces = n_surfaces,
                                           .lighting_table_words = n_table_words,
-                                          .pixel_lights = n_pls}) {}
+                                          .pixel_lights = n_pls,
+                                          .tex_vertices = 8192}) {}
 };
 
 TEST(LightingTable, DrawsOfOneMaterialShareOneTable) {

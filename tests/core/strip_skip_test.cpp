@@ -79,6 +79,7 @@ struct Rig {
                               .active = max_active,
                               .surfaces = 8192,
                               .pixel_lights = 8,
+                              .tex_vertices = 8192,
                               .strip_skipping = skip}),
         display(size_t{kW} * kK) {
     configured = renderer.configure(store.storage(), kW, kH);

@@ -25,10 +25,18 @@ host::HostTexture make_texture(const host::ImageRgb8& img, TexelFormat f, bool m
   return t;
 }
 
+// Screen-space vertices and their texture entries (draw_screen's two arrays).
+struct ScreenQuads {
+  std::vector<ScreenVertex> sv;
+  std::vector<TexVertex> tv;
+  size_t size() const { return sv.size(); }
+  ScreenVertex& operator[](size_t i) { return sv[i]; }
+};
+
 // A screen-space rectangle [x0, x1) x [y0, y1) (pixels) with texture coordinates u0..u1
 // (left to right) and v1..v0 (top to bottom: v grows upwards as in GL).
-void screen_quad(std::vector<ScreenVertex>& v, std::vector<std::array<uint16_t, 3>>& t, int x0,
-                 int y0, int x1, int y1, double u0, double u1, double v0, double v1) {
+void screen_quad(ScreenQuads& v, std::vector<std::array<uint16_t, 3>>& t, int x0, int y0, int x1,
+                 int y1, double u0, double u1, double v0, double v1) {
   auto base = static_cast<uint16_t>(v.size());
   const int xs[4] = {x0, x0, x1, x1}, ys[4] = {y0, y1, y1, y0};
   const double us[4] = {u0, u0, u1, u1}, vs[4] = {v1, v0, v0, v1};
@@ -37,10 +45,12 @@ void screen_quad(std::vector<ScreenVertex>& v, std::vector<std::array<uint16_t, 
     sv.x = xs[k] * S;
     sv.y = ys[k] * S;
     sv.z = kDepthMax / 2;
-    sv.u = static_cast<int32_t>(std::lround(us[k] * (1 << 20)));
-    sv.v = static_cast<int32_t>(std::lround(vs[k] * (1 << 20)));
+    TexVertex tv;
+    tv.u = static_cast<int32_t>(std::lround(us[k] * (1 << 20)));
+    tv.v = static_cast<int32_t>(std::lround(vs[k] * (1 << 20)));
     sv.color = {Color15::kOne, Color15::kOne, Color15::kOne};
-    v.push_back(sv);
+    v.sv.push_back(sv);
+    v.tv.push_back(tv);
   }
   t.push_back({base, uint16_t(base + 1), uint16_t(base + 2)});
   t.push_back({base, uint16_t(base + 2), uint16_t(base + 3)});
@@ -51,9 +61,8 @@ Rgb8 pixel(const host::ImageRgb8& img, int x, int y) {
   return {img.rgb[p], img.rgb[p + 1], img.rgb[p + 2]};
 }
 
-host::ImageRgb8 render_screen(const std::vector<ScreenVertex>& v,
-                              const std::vector<std::array<uint16_t, 3>>& t, const Texture& tex,
-                              Sampler smp, Perspective persp, int w, int h) {
+host::ImageRgb8 render_screen(const ScreenQuads& v, const std::vector<std::array<uint16_t, 3>>& t,
+                              const Texture& tex, Sampler smp, Perspective persp, int w, int h) {
   test::CoreHarness<8> core(w, h);
   core.begin();
   DrawState st;
@@ -63,7 +72,7 @@ host::ImageRgb8 render_screen(const std::vector<ScreenVertex>& v,
   st.texture = &tex;
   st.sampler = smp;
   st.perspective = persp;
-  EXPECT_EQ(core.renderer().draw_screen(v, t, st), Status::kOk);
+  EXPECT_EQ(core.renderer().draw_screen(v.sv, t, st, v.tv), Status::kOk);
   return core.render();
 }
 
@@ -77,7 +86,7 @@ TEST(TextureNearest, AxisAlignedQuadHitsTheExpectedTexelOnEveryPixel) {
   for (TexelFormat f : kAllFormats) {
     host::HostTexture tex = make_texture(img, f, false);
     for (Perspective p : kAllModes) {
-      std::vector<ScreenVertex> v;
+      ScreenQuads v;
       std::vector<std::array<uint16_t, 3>> t;
       screen_quad(v, t, 8, 4, 72, 68, 0, 1, 0, 1);
       Sampler smp;
@@ -104,7 +113,7 @@ TEST(TextureNearest, ImageTopRowShowsAtTheTopOfTheQuad) {
   img.height = 2;
   img.rgb = {255, 0, 0, 0, 0, 255};  // top red, bottom blue
   host::HostTexture tex = make_texture(img, TexelFormat::kRgb888, false);
-  std::vector<ScreenVertex> v;
+  ScreenQuads v;
   std::vector<std::array<uint16_t, 3>> t;
   screen_quad(v, t, 0, 0, 8, 8, 0, 1, 0, 1);
   Sampler smp;
@@ -124,7 +133,7 @@ TEST(TextureWrap, RepeatAndClampAreExactForCoordinatesNearPlusMinusAThousand) {
     const host::ImageRgb8 img = pattern(w, 3);
     host::HostTexture tex = make_texture(img, TexelFormat::kRgb888, false);
     for (Wrap wrap : {Wrap::kRepeat, Wrap::kClampToEdge}) {
-      std::vector<ScreenVertex> v;
+      ScreenQuads v;
       std::vector<std::array<uint16_t, 3>> t;
       screen_quad(v, t, 0, 0, 200, 4, u0, u1, 0.5, 0.5 + 1e-6);
       Sampler smp;
@@ -438,7 +447,7 @@ TEST(TextureExactPerspective, Rgb565ChunksPickTheTexelsOfThePreciseReciprocal) {
   host::HostTexture t888 = make_texture(img, TexelFormat::kRgb888, false);
   const uint32_t ws[4] = {1u << 16, 1u << 16, 12u << 16, 12u << 16};
   for (Wrap wrap : {Wrap::kRepeat, Wrap::kClampToEdge}) {
-    std::vector<ScreenVertex> v;
+    ScreenQuads v;
     std::vector<std::array<uint16_t, 3>> t;
     screen_quad(v, t, 2, 3, 318, 197, -3.0, 5.0, -2.0, 4.0);
     for (size_t k = 0; k < 4; ++k) v[k].w = ws[k];

@@ -115,6 +115,7 @@ void run(const Header& h, Bytes& in) {
   caps.draws = n_draws;
   caps.active = n_active;
   caps.surfaces = small ? n_vertices / 2 + 1 : n_vertices;
+  caps.tex_vertices = small ? n_vertices / 3 + 1 : n_vertices;
   caps.lighting_table_words = small ? 200 : 2 * lighting_table_words(kMaxLightingTable, true);
   caps.pixel_lights = small ? 1 : 4;
   BasicFrameStorage<std::vector> store(caps);
@@ -248,16 +249,21 @@ void run(const Header& h, Bytes& in) {
   const size_t nsv = h.b[10], nst = h.b[11];
   const int sshift = h.b[12] & 15;
   std::vector<ScreenVertex> svs(nsv);
-  for (ScreenVertex& v : svs) {
+  std::vector<TexVertex> stex(nsv);
+  for (size_t i = 0; i < nsv; ++i) {
+    ScreenVertex& v = svs[i];
     v.x = in.i32() >> sshift;
     v.y = in.i32() >> sshift;
     v.z = in.u32();
     v.w = in.u32();
-    v.u = in.i32();
-    v.v = in.i32();
+    stex[i].u = in.i32();
+    stex[i].v = in.i32();
     v.color = in.color15();
-    v.spec = in.color15();
+    stex[i].spec = in.color15();
   }
+  // A textured state's draw_screen needs one texture entry per vertex; one input in eight
+  // gives one short (kInvalidArgument).
+  if ((h.b[11] & 7) == 7 && !stex.empty()) stex.pop_back();
   std::vector<std::array<uint16_t, 3>> stris(nst);
   for (auto& t : stris) t = {index(), index(), index()};
 
@@ -270,7 +276,7 @@ void run(const Header& h, Bytes& in) {
     LR_FUZZ_CHECK(outcomes(renderer->stats()) == expected_in);
   };
   counted(renderer->draw(mesh, model, material, state), nt);
-  counted(renderer->draw_screen(svs, stris, state), nst);
+  counted(renderer->draw_screen(svs, stris, state, stex), nst);
   if (h.b[12] & 16) {
     const int64_t moved = int64_t{model.m[0][3].raw} + int64_t{in.i16()} * 16;
     model.m[0][3] =

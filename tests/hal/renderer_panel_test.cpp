@@ -44,6 +44,7 @@ class Scene {
                                .triangles = 256,
                                .draws = 4,
                                .active = 64,
+                               .tex_vertices = 256,
                                .strip_skipping = skip}),
         renderer_(std::make_unique<Renderer<PF, kRows, kUntexturedSpans>>()) {
     configured_ = renderer_->configure(store_.storage(), kWidth, kHeight);

@@ -395,9 +395,9 @@ TEST(AttributeDrift, SteppedPlanesStayWithinHalfAUnitPerPixelOfDistance) {
   {  // A right triangle with the budget's full width and height: the longest span and edges.
     Tri t{};
     const auto m = static_cast<int32_t>(kLimit);
-    t.v[0] = ScreenVertex{-m, -m, 0, 0, 0, 0, {}, {}, 0, 0};
-    t.v[1] = ScreenVertex{m, m, kDepthMax, 0, 0, 0, {}, {}, 0, 0};
-    t.v[2] = ScreenVertex{-m, m, 12345, 0, 0, 0, {}, {}, 0, 0};
+    t.v[0] = ScreenVertex{-m, -m, 0, 0, {}, 0, 0};
+    t.v[1] = ScreenVertex{m, m, kDepthMax, 0, {}, 0, 0};
+    t.v[2] = ScreenVertex{-m, m, 12345, 0, {}, 0, 0};
     t.a[0] = 0xFFFFFFFFu;
     t.a[1] = 0;
     t.a[2] = 0x80000001u;
@@ -446,8 +446,8 @@ TEST(AttributeDrift, SteppedPlanesStayWithinHalfAUnitPerPixelOfDistance) {
 TEST(AttributeDrift, NeedlesThinnerThanTheGradientLimitGetTheVertexMean) {
   // Documented in triangle_setup.hpp: gradients of 2^38 or more per pixel (needles much thinner
   // than a subpixel across the attribute's range) give a constant plane, the vertex mean.
-  ScreenVertex a{0, 0, 0, 0, 0, 0, {}, {}, 0, 0}, b{1000 * S, 1, 0, 0, 0, 0, {}, {}, 0, 0},
-      c{2000 * S, 1, 0, 0, 0, 0, {}, {}, 0, 0};
+  ScreenVertex a{0, 0, 0, 0, {}, 0, 0}, b{1000 * S, 1, 0, 0, {}, 0, 0},
+      c{2000 * S, 1, 0, 0, {}, 0, 0};
   const ScreenVertex* v[3] = {&a, &b, &c};
   const uint32_t vals[3] = {0, 0xFFFFFFFFu, 0x7FFFFFFFu};
   Plane p = make_plane(v, vals);

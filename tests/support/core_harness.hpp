@@ -15,11 +15,14 @@ namespace lr::test {
 template <int K = 8, class PF = Rgb888>
 class CoreHarness {
  public:
+  // tex_vertices: the TexVertex store (kAsVertices: as large as the vertex store).
+  static constexpr size_t kAsVertices = SIZE_MAX;
   CoreHarness(int width, int height, size_t max_vertices = 0xFFFF, size_t max_triangles = 0xFFFE,
-              size_t max_active = 1024, size_t max_draws = 64)
+              size_t max_active = 1024, size_t max_draws = 64, size_t tex_vertices = kAsVertices)
       : width_(width),
         height_(height),
-        store_(capacities(width, height, max_vertices, max_triangles, max_active, max_draws)),
+        store_(capacities(width, height, max_vertices, max_triangles, max_active, max_draws,
+                          tex_vertices)),
         display_(static_cast<size_t>(width) * K),
         renderer_(std::make_unique<Renderer<PF, K>>()) {
     configured_ = renderer_->configure(store_.storage(), width, height);
@@ -43,7 +46,7 @@ class CoreHarness {
   int width_, height_;
   // Every store, with room for Phong draws: a surface per vertex, 16 materials, 4 tables.
   static FrameCapacities capacities(int width, int height, size_t vertices, size_t triangles,
-                                    size_t active, size_t draws) {
+                                    size_t active, size_t draws, size_t tex_vertices) {
     FrameCapacities c;
     c.width = width;
     c.height = height;
@@ -53,6 +56,7 @@ class CoreHarness {
     c.draws = draws;
     c.active = active;
     c.surfaces = vertices;
+    c.tex_vertices = tex_vertices == kAsVertices ? vertices : tex_vertices;
     c.lighting_table_words = 4 * lighting_table_words(kMaxLightingTable, true);
     c.pixel_lights = 16;
     return c;
