@@ -4,7 +4,8 @@
 # 320x240, RGB565, strips of 8 rows, storage for 1,000 triangles), and the link guard.
 #
 #   bash scripts/footprint.sh [--write-docs] [BUILD_DIR ...]
-#                                     (default: build/cortex-m0plus build/cortex-m4f)
+#                                     (default: build/cortex-m0plus build/cortex-m4f; CI adds
+#                                     build/cortex-m4f-size, the -Os preset)
 #
 # For each bare-metal build tree that exists (others are skipped with a note):
 #   1. builds the footprint images (cmake --build -j2 --target lr_fp_*);
@@ -20,9 +21,12 @@
 #      complete, and the stack high-water mark the image measures (stack_probe.hpp) must not
 #      exceed the static bound of the reset path — a static analysis that underestimates fails
 #      here. Frames of the same configuration must be identical on every core (integer code);
-#   5. prints a markdown table per core and the RAM breakdown by store (the sizes the phong
-#      image prints), and, for Cortex-M0+ trees, which configurations fit the micro:bit
-#      (flash <= its FLASH, RAM + worst-case stack <= its RAM; firmware/common/microbit.ld).
+#   5. prints a markdown table per core (with the renderer's own flash: the image minus the
+#      empty image lr_fp_empty minus the scene's mesh and texture arrays), the RAM breakdown by
+#      store (the sizes the phong image prints), the gouraud image's flash by source folder
+#      (scripts/flash_by_folder.py), and, for Cortex-M0+ trees, which configurations fit the
+#      micro:bit (flash <= its FLASH, RAM + worst-case stack <= its RAM;
+#      firmware/common/microbit.ld).
 #      With --write-docs the report goes to docs/measurements/footprint.md when every check
 #      passed (scripts/write_measurements.py); it is then printed at the end, not as it runs.
 # Exit status: non-zero on any failure (guard, analysis, run, bound, missing tools).
@@ -60,6 +64,15 @@ indirect_rules=(
   --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'
   --indirect-from 'lr::FrontEnd::draw(_screen)?\(' 'lr::admits<'
 )
+
+# Bytes an ELF loads into flash: its sections with LOAD (objdump -h).
+loaded_bytes() {
+  local n=0 size flags
+  while read -r _ _ size _ _ _ _ flags; do
+    [[ $flags == *LOAD* ]] && n=$((n + 16#$size))
+  done < <("${prefix}objdump" -h "$1" | sed -n '/^ *[0-9][0-9]* /{N;s/\n */ /;p}')
+  echo "$n"
+}
 
 # The limits of the micro:bit (firmware/common/microbit.ld), in bytes.
 ld_length() {  # ld_length REGION FILE
@@ -105,7 +118,10 @@ for tree in "${trees[@]}"; do
   [[ -f $manifest ]] || { fail "$tree: no firmware/footprint images (not a bare-metal tree?)"; continue; }
   targets=()
   for cfg in "${configs[@]}"; do targets+=(--target "lr_fp_$cfg"); done
-  if ! cmake --build "$tree" -j2 "${targets[@]}" >"$tree/footprint_build.log" 2>&1; then
+  # The empty image in a second call: a tree from before it existed knows the target only once
+  # the first call has regenerated the build system.
+  if ! { cmake --build "$tree" -j2 "${targets[@]}" &&
+         cmake --build "$tree" -j2 --target lr_fp_empty; } >"$tree/footprint_build.log" 2>&1; then
     tail -30 "$tree/footprint_build.log" >&2
     fail "$tree: building the footprint images failed ($tree/footprint_build.log)"
     continue
@@ -122,12 +138,24 @@ for tree in "${trees[@]}"; do
     fi
   done < <(find "$tree" -name '*.elf' -type f | sort)
 
-  echo "### $core ($tree)"
+  # The optimisation level of the tree (CMakePresets.json: cortex-*, -o2, -size).
+  build_type=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$tree/CMakeCache.txt")
+  release_flags=$(sed -n 's/^CMAKE_CXX_FLAGS_RELEASE:[A-Z]*=//p' "$tree/CMakeCache.txt")
+  case $build_type in
+    MinSizeRel) opt=-Os ;;
+    Release) opt=$(grep -o -- '-O[0-3s]' <<<"${release_flags:--O3}" | tail -1) ;;
+    *) opt=$build_type ;;
+  esac
+  # The baseline: the empty image's loaded bytes (startup, semihosting, no renderer).
+  empty_elf=$(find "$tree/firmware/footprint" -name lr_fp_empty.elf | head -1)
+  empty_flash=$(loaded_bytes "$empty_elf")
+
+  echo "### $core at $opt ($tree)"
   echo
   echo "Link guard ($lr_fw_guard_what): $clean of $elfs ELFs clean."
   echo
-  echo "| configuration | flash | RAM | worst-case stack | measured stack (QEMU) | main alone (static) |"
-  echo "|---|---:|---:|---:|---:|---:|"
+  echo "| configuration | flash | renderer flash | RAM | worst-case stack | measured stack (QEMU) | main alone (static) |"
+  echo "|---|---:|---:|---:|---:|---:|---:|"
   fits=() misfits=()
   breakdown=""
   while read -r cfg elf machine board; do
@@ -180,7 +208,14 @@ for tree in "${trees[@]}"; do
       checksum_of[$cfg]=${checksum_of[$cfg]:-"$core $sum"}
     fi
     [[ $measured != "—" ]] && measured="$(group "$measured") B"
-    echo "| $cfg | $(group "$flash") B | $(group "$ram") B | $(group "$total") B | $measured | $(group "$main_bound") B |"
+    # The renderer's own flash: the image minus the empty image minus the scene's mesh and
+    # texture arrays (the lr::fw::footprint::k* objects, firmware/footprint/scene.hpp).
+    assets=$("${prefix}nm" -S -C "$elf" | python3 -c '
+import sys
+print(sum(int(f[1], 16) for f in (l.split(None, 3) for l in sys.stdin)
+          if len(f) == 4 and f[3].startswith("lr::fw::footprint::k")))')
+    renderer=$((flash - empty_flash - assets))
+    echo "| $cfg | $(group "$flash") B | $(group "$renderer") B | $(group "$ram") B | $(group "$total") B | $measured | $(group "$main_bound") B |"
     if (( flash <= mb_flash && ram + total <= mb_ram )); then
       fits+=("$cfg")
     else
@@ -200,9 +235,18 @@ for tree in "${trees[@]}"; do
     fi
   done <"$manifest"
   echo
-  echo "Flash: every byte loaded into flash (vector table, code, .rodata, unwind index, and the .data load image); RAM: .data + .bss, without the reserved .stack section; worst-case stack: the reset path (Reset_Handler -> main -> ...) plus every exception handler with its exception frame, nested (scripts/stack_usage.py); measured: the stack high-water mark of the run (a lower bound, checked <= the reset path's bound); main alone: the static bound of main's calls, without startup and handlers."
+  echo "Flash: every byte loaded into flash (vector table, code, .rodata, unwind index, and the .data load image); renderer flash: that minus the empty image's ($(group "$empty_flash") B: startup, C library shims, semihosting; firmware/footprint/empty.cpp) minus the scene's mesh and texture arrays; RAM: .data + .bss, without the reserved .stack section; worst-case stack: the reset path (Reset_Handler -> main -> ...) plus every exception handler with its exception frame, nested (scripts/stack_usage.py); measured: the stack high-water mark of the run (a lower bound, checked <= the reset path's bound); main alone: the static bound of main's calls, without startup and handlers."
   echo
   [[ -n $breakdown ]] && echo "RAM at 320x240 with 1,000 triangles ($core, phong image): $breakdown." && echo
+  # Where one family's renderer flash is (the Gouraud image), by source folder.
+  gouraud_elf=$(awk '$1 == "gouraud" {print $2}' "$manifest")
+  if [[ -n $gouraud_elf ]] && by_folder=$(python3 scripts/flash_by_folder.py "$gouraud_elf" \
+       --exclude 'lr::fw::footprint::k' --tool-prefix "$prefix"); then
+    echo "Flash of the gouraud image by source folder ($core at $opt; without its mesh arrays; scripts/flash_by_folder.py):"
+    echo
+    echo "$by_folder"
+    echo
+  fi
   if [[ $core == *m0plus* ]]; then
     echo "Fit the micro:bit ($(group "$mb_flash") B flash, $(group "$mb_ram") B RAM for data, bss and stack): ${fits[*]:-none}."
     if [[ ${#misfits[@]} -gt 0 ]]; then

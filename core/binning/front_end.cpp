@@ -420,32 +420,9 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
     ++stats_.clipped_away;
     return;
   }
-  // Binning a band: a polygon wholly outside it is not kept (its vertices would fill the store);
-  // its pieces are counted as bin() would count them.
-  if (banding_) [[unlikely]] {
-    int32_t ymin = vertices_[first].y, ymax = ymin;
-    for (int k = 1; k < m; ++k) {
-      const int32_t y = vertices_[first + static_cast<size_t>(k)].y;
-      ymin = y < ymin ? y : ymin;
-      ymax = y > ymax ? y : ymax;
-    }
-    if (last_row_at_or_above(ymax) < band_r0_ || first_row_below(ymin) > band_r1_) {
-      bool binned = false;
-      Outcome last = Outcome::kClippedAway;
-      for (int k = 1; k + 1 < m; ++k) {
-        int32_t r0 = 0, r1 = 0;
-        const auto at = static_cast<size_t>(first) + static_cast<size_t>(k);
-        const Outcome r = edges_.classify(vertices_[first], vertices_[at], vertices_[at + 1],
-                                          d.state.cull, r0, r1);
-        if (r == Outcome::kBinned)
-          binned = true;
-        else
-          last = r;
-      }
-      count_outcome(stats_, binned, last);
-      return;
-    }
-  }
+  // Binning a band: a polygon wholly outside it is not kept (its vertices would fill the store).
+  if (banding_ && polygon_outside_band(first, m, d.state.cull)) [[unlikely]]
+    return;
   vertex_count_ += static_cast<size_t>(m);
   bool binned = false;
   Outcome last = Outcome::kClippedAway;
@@ -689,6 +666,33 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
     count_outcome(stats_, r == Outcome::kBinned, r);
   }
   if (banding_) compact_vertices(base, false, uv);
+}
+
+// A clipped polygon's vertices, projected at [first, first + m) but not yet kept: true when no
+// row of it touches the band, its pieces then counted as bin() would count them. Out of line:
+// one copy for both triangle loops.
+bool FrontEnd::polygon_outside_band(uint16_t first, int m, Cull cull) {
+  int32_t ymin = vertices_[first].y, ymax = ymin;
+  for (int k = 1; k < m; ++k) {
+    const int32_t y = vertices_[first + static_cast<size_t>(k)].y;
+    ymin = y < ymin ? y : ymin;
+    ymax = y > ymax ? y : ymax;
+  }
+  if (last_row_at_or_above(ymax) >= band_r0_ && first_row_below(ymin) <= band_r1_) return false;
+  bool binned = false;
+  Outcome last = Outcome::kClippedAway;
+  for (int k = 1; k + 1 < m; ++k) {
+    int32_t r0 = 0, r1 = 0;
+    const auto at = static_cast<size_t>(first) + static_cast<size_t>(k);
+    const Outcome r =
+        edges_.classify(vertices_[first], vertices_[at], vertices_[at + 1], cull, r0, r1);
+    if (r == Outcome::kBinned)
+      binned = true;
+    else
+      last = r;
+  }
+  count_outcome(stats_, binned, last);
+  return true;
 }
 
 void FrontEnd::begin_bands() {

@@ -153,6 +153,7 @@ class FrontEnd {
                   std::span<const TexVertex> tex,
                   std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
   [[gnu::noinline]] void replay(uint8_t index);
+  [[gnu::noinline]] bool polygon_outside_band(uint16_t first, int m, Cull cull);
   // Binning a band whose triangle store is full: ends the band at a strip boundary above,
   // evicting the triangles that start below it. False when the band is one strip.
   bool shrink_band();

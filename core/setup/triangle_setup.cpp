@@ -221,15 +221,21 @@ bool affine_is_exact_enough(const ScreenVertex* const v[3]) {
 }  // namespace
 
 namespace {
-// The vertices (and surfaces, texture entries) sorted by y (display rows, top first); a fixed
-// network keeps ties deterministic, so that setup_edges and setup_planes sort alike.
+// The vertices (and, with kExtras, their surfaces and texture entries) sorted by y (display rows,
+// top first); a fixed network keeps ties deterministic, so that setup_edges and setup_planes sort
+// alike.
+template <bool kExtras>
 struct Sorted {
   const ScreenVertex* v[3];
-  const SurfaceVertex* sf[3];
-  const TexVertex* tv[3];
+  const SurfaceVertex* sf[3] = {nullptr, nullptr, nullptr};
+  const TexVertex* tv[3] = {nullptr, nullptr, nullptr};
+  explicit Sorted(const ScreenVertex* const vs[3]) : v{vs[0], vs[1], vs[2]} { sort(); }
   Sorted(const ScreenVertex* const vs[3], const SurfaceVertex* const ss[3],
          const TexVertex* const ts[3])
       : v{vs[0], vs[1], vs[2]}, sf{ss[0], ss[1], ss[2]}, tv{ts[0], ts[1], ts[2]} {
+    sort();
+  }
+  void sort() {
     order(0, 1);
     order(1, 2);
     order(0, 1);
@@ -237,8 +243,10 @@ struct Sorted {
   void order(int a, int b) {
     if (v[b]->y < v[a]->y) {
       std::swap(v[a], v[b]);
-      std::swap(sf[a], sf[b]);
-      std::swap(tv[a], tv[b]);
+      if constexpr (kExtras) {
+        std::swap(sf[a], sf[b]);
+        std::swap(tv[a], tv[b]);
+      }
     }
   }
 };
@@ -246,9 +254,7 @@ struct Sorted {
 
 void setup_edges(const ScreenVertex* const vertices[3], int32_t first, int32_t last,
                  ActiveTriangle& t) {
-  constexpr const SurfaceVertex* kNone[3] = {nullptr, nullptr, nullptr};
-  constexpr const TexVertex* kNoTex[3] = {nullptr, nullptr, nullptr};
-  const Sorted sorted(vertices, kNone, kNoTex);
+  const Sorted<false> sorted(vertices);
   const ScreenVertex* const* v = sorted.v;
   int32_t x0 = v[0]->x, y0 = v[0]->y, x1 = v[1]->x, y1 = v[1]->y, x2 = v[2]->x, y2 = v[2]->y;
   // Vertices sorted top to bottom: a positive area puts the middle vertex right of the long edge.
@@ -270,7 +276,7 @@ void setup_edges(const ScreenVertex* const vertices[3], int32_t first, int32_t l
 }
 
 void setup_planes(const SetupInput& in, ActiveTriangle& t) {
-  const Sorted sorted(in.v, in.phong.s, in.tex.tv);
+  const Sorted<true> sorted(in.v, in.phong.s, in.tex.tv);
   const ScreenVertex* const* v = sorted.v;
   const SurfaceVertex* const* sf = sorted.sf;
   const PlaneBasis pb(v);  // after the sort: the planes' vertex 0 is the top vertex, as before
