@@ -85,6 +85,7 @@ Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int 
       s.vertices.size() > kMaxStoreEntries ? s.vertices.first(kMaxStoreEntries) : s.vertices;
   draws_ = s.draws;
   surfaces_ = s.surfaces;
+  active_extra_ = s.active_extra;
   tex_ = s.tex_vertices.size() > kMaxStoreEntries ? s.tex_vertices.first(kMaxStoreEntries)
                                                   : s.tex_vertices;
   lighting_tables_ = s.lighting_tables;
@@ -450,7 +451,8 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   // A mesh larger than the stores needs room for the vertex cache (docs/bands.md).
   if ((n > vertices_.size() && vertices_.size() < kMinCachedStore) ||
       (plan.kind.phong && n > surfaces_.size() && surfaces_.size() < kMinCachedStore) ||
-      (plan.uv && n > tex_.size() && tex_.size() < kMinCachedStore)) {
+      (plan.uv && n > tex_.size() && tex_.size() < kMinCachedStore) ||
+      ((plan.textured || plan.kind.phong) && !active_extra_)) {
     refuse(tri_count, true);
     return Status::kCapacity;
   }
@@ -603,7 +605,8 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   if (!admitted(state, {false, gouraud, !lights_.normal_only()})) return Status::kInvalidArgument;
   const auto tri_count = static_cast<uint32_t>(triangles.size());
   stats_.triangles_in += tri_count;
-  if (vertices.size() > vertices_.size() || (uv && vertices.size() > tex_.size())) {
+  if (vertices.size() > vertices_.size() ||
+      (uv && (vertices.size() > tex_.size() || !active_extra_))) {
     refuse(tri_count, true);
     return Status::kCapacity;
   }

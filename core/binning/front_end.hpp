@@ -43,6 +43,7 @@ struct FrontEndStorage {
   std::span<PreparedLighting> pixel_lights{};
   std::span<uint32_t> strip_inputs{};
   std::span<TexVertex> tex_vertices{};
+  bool active_extra = false;  // the strip loop has the planes of textured and Phong triangles
 };
 
 // What the strip loop reads of a binned frame. It consumes the edge table as it goes: it
@@ -239,6 +240,7 @@ class FrontEnd {
   size_t cache_first_ = kNoCache;
   size_t vertex_limit_ = 0;
   bool cache_surfaces_ = false, cache_tex_ = false;
+  bool active_extra_ = false;  // FrontEndStorage::active_extra
   uint32_t cache_lru_ = 0;
   uint32_t refused_triangles_ = 0, refused_vertices_ = 0;
 };

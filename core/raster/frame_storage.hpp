@@ -44,13 +44,17 @@ struct FrameStorage {
   // entry (give it the size of `vertices`; a smaller one sends every such mesh larger than it
   // through the vertex cache, docs/bands.md).
   std::span<TexVertex> tex_vertices{};
+  // Textured and Phong draws (may stay empty otherwise): the planes of those families, one
+  // ActiveExtra per active slot (give it the size of `active`). Without it such draws are
+  // refused (kCapacity).
+  std::span<ActiveExtra> active_extra{};
 
   // The parts' shares.
   FrontEndStorage front_end() const {
-    return {vertices,        triangles,    draws,        buckets,     surfaces,
-            lighting_tables, pixel_lights, strip_inputs, tex_vertices};
+    return {vertices,        triangles,    draws,        buckets,      surfaces,
+            lighting_tables, pixel_lights, strip_inputs, tex_vertices, !active_extra.empty()};
   }
-  StripStorage strip_loop() const { return {active, active_index, depth}; }
+  StripStorage strip_loop() const { return {active, active_index, depth, active_extra}; }
 };
 
 // How much one frame may hold at once. Every store's size follows from these (the accessors
@@ -68,6 +72,7 @@ struct FrameCapacities {
   size_t pixel_lights = 0;          // materials of per-pixel lit draws
   // Draws with texture coordinates (textured, or Phong with a normal map).
   size_t tex_vertices = 0;      // TexVertex store: 0, or the size of the vertex store
+  size_t active_extra = 0;      // ActiveExtra store (textured, Phong): 0, or the size of `active`
   bool strip_skipping = false;  // keep strip signatures (2 words per strip)
 
   constexpr size_t strips() const {
@@ -91,6 +96,7 @@ struct StaticFrameStorage {
   std::array<PreparedLighting, kCaps.pixel_lights> pixel_lights{};
   std::array<DrawRecord, kCaps.draws> draws{};
   std::array<ActiveTriangle, kCaps.active> active{};
+  std::array<ActiveExtra, kCaps.active_extra> active_extra{};
   std::array<ScreenVertex, kCaps.vertices> vertices{};
   std::array<SurfaceVertex, kCaps.surfaces> surfaces{};
   std::array<TexVertex, kCaps.tex_vertices> tex_vertices{};
@@ -103,8 +109,9 @@ struct StaticFrameStorage {
   alignas(4) std::array<uint16_t, kCaps.depth()> depth{};
 
   FrameStorage storage() {
-    return {vertices, triangles, draws,           buckets,      active,       active_index,
-            depth,    surfaces,  lighting_tables, pixel_lights, strip_inputs, tex_vertices};
+    return {vertices,     triangles,    draws,       buckets,         active,
+            active_index, depth,        surfaces,    lighting_tables, pixel_lights,
+            strip_inputs, tex_vertices, active_extra};
   }
 };
 
@@ -117,6 +124,7 @@ struct BasicFrameStorage {
         pixel_lights(c.pixel_lights),
         draws(c.draws),
         active(c.active),
+        active_extra(c.active_extra),
         vertices(c.vertices),
         surfaces(c.surfaces),
         tex_vertices(c.tex_vertices),
@@ -131,6 +139,7 @@ struct BasicFrameStorage {
   Container<PreparedLighting> pixel_lights;
   Container<DrawRecord> draws;
   Container<ActiveTriangle> active;
+  Container<ActiveExtra> active_extra;
   Container<ScreenVertex> vertices;
   Container<SurfaceVertex> surfaces;
   Container<TexVertex> tex_vertices;
@@ -142,8 +151,9 @@ struct BasicFrameStorage {
   Container<uint16_t> depth;
 
   FrameStorage storage() {
-    return {vertices, triangles, draws,           buckets,      active,       active_index,
-            depth,    surfaces,  lighting_tables, pixel_lights, strip_inputs, tex_vertices};
+    return {vertices,     triangles,    draws,       buckets,         active,
+            active_index, depth,        surfaces,    lighting_tables, pixel_lights,
+            strip_inputs, tex_vertices, active_extra};
   }
 };
 

@@ -33,9 +33,10 @@ namespace lr {
 
 // The strip loop's stores (its part of FrameStorage, core/raster/frame_storage.hpp).
 struct StripStorage {
-  std::span<ActiveTriangle> active;  // triangles being rasterized at once
-  std::span<uint16_t> active_index;  // 2 x active.size(): draw order and free slots
-  std::span<uint16_t> depth;         // width x K (16-bit depth of one strip)
+  std::span<ActiveTriangle> active;       // triangles being rasterized at once
+  std::span<uint16_t> active_index;       // 2 x active.size(): draw order and free slots
+  std::span<uint16_t> depth;              // width x K (16-bit depth of one strip)
+  std::span<ActiveExtra> active_extra{};  // empty, or one per active slot: textured and Phong
 };
 
 template <class PF, int K, SpanSet kSpans = kAllSpans>
@@ -51,6 +52,7 @@ class StripLoop {
     if (s.active.empty() || s.active_index.size() < 2 * s.active.size() ||
         s.active.size() > kMaxStoreEntries)
       return false;
+    if (!s.active_extra.empty() && s.active_extra.size() < s.active.size()) return false;
     storage_ = s;
     inputs_known_ = false;
     return true;
@@ -380,6 +382,10 @@ template <class PF, int K, SpanSet kSpans>
     ++stats_->triangles_without_pixels;
     return false;
   }
+  // Textured and Phong triangles get their slot's extra planes (the front end refuses such
+  // draws when there are none).
+  const DrawRecord& dr = frame_.draws[bt.draw];
+  t.ext = dr.texture != nullptr || dr.phong ? &storage_.active_extra[slot] : nullptr;
   setup_planes(setup_input(bt), t);
   ++stats_->triangles_set_up;
   t.index = node;

@@ -19,6 +19,33 @@ struct Plane {
   }
 };
 
+// The planes of the textured and Phong families: in a store of their own
+// (FrameStorage::active_extra), one per active slot, so that untextured frames pay no RAM for
+// them. 124 bytes.
+struct ActiveExtra {
+  // s, t: texel coordinates of level 0 in Q.8 relative to the triangle's own origin (off_s,
+  // off_t; see setup_texture), as s * q >> m_s (perspective) or s << m_s (affine).
+  Plane s, t;
+  // Three more planes, used by one family each: a textured triangle's secondary colour, a
+  // Phong triangle's world position.
+  union Extra {
+    Plane spec[3];      // textured: secondary colour, in the format of ActiveTriangle::c
+    Plane position[3];  // Phong: world position relative to org, shifted right by m_p
+    constexpr Extra() : spec{} {}
+  } extra;
+  int32_t off_s = 0, off_t = 0;
+  uint8_t m_s = 0, m_t = 0;
+  // Textured, modulated: the colours are the same at the three vertices; c[i].base and
+  // extra.spec[i].base hold them (Q1.15) and there are no colour planes.
+  bool const_colors = false;
+  // Phong triangles: tangent planes, the position planes' origin (world Q16.16) and shift, and
+  // the bitangent's handedness (+-16384).
+  uint8_t m_p = 0;
+  int16_t handedness = 0;
+  Plane tan[3];
+  int32_t org[3] = {0, 0, 0};
+};
+
 struct ActiveTriangle {
   EdgeWalker long_edge;    // top vertex to bottom vertex
   EdgeWalker short_edge;   // the short edge of the current row (top, then bottom)
@@ -36,29 +63,11 @@ struct ActiveTriangle {
   Plane z;
   Plane q;
   Plane c[3];  // colour channels; Phong: the normal's components
-  // Textured triangles. s, t: texel coordinates of level 0 in Q.8 relative to the triangle's
-  // own origin (off_s, off_t; see setup_texture), as s * q >> m_s (perspective) or s << m_s
-  // (affine).
-  Plane s, t;
-  // Three more planes, used by one family each: a textured triangle's secondary colour, a
-  // Phong triangle's world position.
-  union Extra {
-    Plane spec[3];      // textured: secondary colour, in the format of c
-    Plane position[3];  // Phong: world position relative to org, shifted right by m_p
-    constexpr Extra() : spec{} {}
-  } extra;
-  int32_t off_s = 0, off_t = 0;
-  uint8_t m_s = 0, m_t = 0;
-  // Textured, modulated: the colours are the same at the three vertices; c[i].base and
-  // extra.spec[i].base hold them (Q1.15) and there are no colour planes.
-  bool const_colors = false;
-  // Phong triangles: tangent planes, the position planes' origin (world Q16.16) and shift, and
-  // the bitangent's handedness (+-16384).
-  uint8_t m_p = 0;
-  int16_t handedness = 0;
-  Plane tan[3];
-  int32_t org[3] = {0, 0, 0};
+  // Textured and Phong triangles: their slot's planes (nullptr for the others).
+  ActiveExtra* ext = nullptr;
 };
+static_assert(sizeof(ActiveExtra) == 124);
+static_assert(sizeof(ActiveTriangle) == 136 + sizeof(ActiveExtra*));  // 140 B on Cortex-M
 
 inline constexpr uint32_t kPlaneBias = 1u << 31;
 // A biased signed plane value back to int32.

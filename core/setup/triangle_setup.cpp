@@ -321,6 +321,7 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
 
 void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const PlaneBasis& pb,
                  const uint32_t q[3], ActiveTriangle& t) {
+  ActiveExtra& ex = *t.ext;
   // Q1.30 values times q (Q1.30), biased: |x q| <= 2^30.
   auto scaled = [&q](int64_t x, int i) {
     return static_cast<uint32_t>(((x * q[i]) >> 30) + kPlaneBias);
@@ -334,19 +335,19 @@ void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const Pl
     }
     t.c[c] = make_plane(pb, a);
   }
-  t.handedness = s[0]->handedness;
+  ex.handedness = s[0]->handedness;
   if (ps.tangent) {
     for (int c = 0; c < 3; ++c) {
       uint32_t a[3];
       for (int i = 0; i < 3; ++i) a[i] = scaled(int64_t{s[i]->tangent[c]} << 16, i);
-      t.tan[c] = make_plane(pb, a);
+      ex.tan[c] = make_plane(pb, a);
     }
   }
   if (ps.position) {
     const Vec3& o = s[0]->position;
-    t.org[0] = o.x.raw;
-    t.org[1] = o.y.raw;
-    t.org[2] = o.z.raw;
+    ex.org[0] = o.x.raw;
+    ex.org[1] = o.y.raw;
+    ex.org[2] = o.z.raw;
     int64_t rel[3][3];
     uint64_t hi = 0;
     for (int i = 0; i < 3; ++i) {
@@ -361,13 +362,13 @@ void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const Pl
       }
     }
     const int bits = hi == 0 ? 0 : 64 - clz64(hi);  // <= 31
-    t.m_p = static_cast<uint8_t>(bits);
+    ex.m_p = static_cast<uint8_t>(bits);
     for (int c = 0; c < 3; ++c) {
       uint32_t a[3];
       // |rel| < 2^bits, q <= 2^30: |rel q| >> bits < 2^30.
       for (int i = 0; i < 3; ++i)
         a[i] = static_cast<uint32_t>(((rel[i][c] * q[i]) >> bits) + kPlaneBias);
-      t.extra.position[c] = make_plane(pb, a);
+      ex.extra.position[c] = make_plane(pb, a);
     }
   }
 }
@@ -375,11 +376,12 @@ void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const Pl
 void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3],
                    const TexVertex* const tv[3], const PlaneBasis& pb, const uint32_t q[3],
                    ActiveTriangle& t) {
+  ActiveExtra& ex = *t.ext;
   const TextureLevel& l0 = ts.texture->levels[0];
   const int32_t us[3] = {tv[0]->u, tv[1]->u, tv[2]->u}, vs[3] = {tv[0]->v, tv[1]->v, tv[2]->v};
-  texture_axis(us, l0.width, ts.wrap_s, ts.perspective, pb, q, t.s, t.off_s, t.m_s);
-  texture_axis(vs, l0.height, ts.wrap_t, ts.perspective, pb, q, t.t, t.off_t, t.m_t);
-  t.const_colors = false;
+  texture_axis(us, l0.width, ts.wrap_s, ts.perspective, pb, q, ex.s, ex.off_s, ex.m_s);
+  texture_axis(vs, l0.height, ts.wrap_t, ts.perspective, pb, q, ex.t, ex.off_t, ex.m_t);
+  ex.const_colors = false;
   if (!ts.colors) return;
   bool same = ts.flat;
   if (!same) {
@@ -392,9 +394,9 @@ void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3],
     const Color15 sc = ts.flat ? ts.flat_secondary : tv[0]->spec;
     for (int c = 0; c < 3; ++c) {
       t.c[c] = Plane{channel(pc, c), 0, 0};
-      t.extra.spec[c] = Plane{channel(sc, c), 0, 0};
+      ex.extra.spec[c] = Plane{channel(sc, c), 0, 0};
     }
-    t.const_colors = true;
+    ex.const_colors = true;
     return;
   }
   for (int c = 0; c < 3; ++c) {
@@ -406,7 +408,7 @@ void setup_texture(const TextureSetup& ts, const ScreenVertex* const v[3],
       sp[i] = ts.perspective ? scale_by_q(sc, q[i]) : sc << 15;
     }
     t.c[c] = make_plane(pb, p);
-    t.extra.spec[c] = make_plane(pb, sp);
+    ex.extra.spec[c] = make_plane(pb, sp);
   }
 }
 

@@ -113,12 +113,12 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
   uint32_t n[3], p[3] = {0, 0, 0}, tg[3] = {0, 0, 0};
   for (int c = 0; c < 3; ++c) {
     n[c] = tri.c[c].at(col, row);
-    if constexpr (kPosition) p[c] = tri.extra.position[c].at(col, row);
-    if constexpr (kNormalMap) tg[c] = tri.tan[c].at(col, row);
+    if constexpr (kPosition) p[c] = tri.ext->extra.position[c].at(col, row);
+    if constexpr (kNormalMap) tg[c] = tri.ext->tan[c].at(col, row);
   }
   if constexpr (kUv) {
-    s = tri.s.at(col, row);
-    t = tri.t.at(col, row);
+    s = tri.ext->s.at(col, row);
+    t = tri.ext->t.at(col, row);
   }
 
   // Normal-map coordinates: in the texture's texels when both are given (sizes may differ).
@@ -150,8 +150,8 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
         detail::PlaneValues pc{};
         const auto half = static_cast<uint32_t>(len / 2);
         pc.q = q + tri.q.gx * half;
-        pc.s = s + tri.s.gx * half;
-        pc.t = t + tri.t.gx * half;
+        pc.s = s + tri.ext->s.gx * half;
+        pc.t = t + tri.ext->t.gx * half;
         const int32_t lod = detail::lod_at(tri, pc);
         lv = d.mip == MipMode::kNearest ? detail::choose_levels<MipMode::kNearest>(lod, last_level)
                                         : detail::choose_levels<MipMode::kLinear>(lod, last_level);
@@ -181,7 +181,7 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
           if constexpr (kPosition) {
             int32_t w[3];
             for (int c = 0; c < 3; ++c) {
-              const int64_t v = int64_t{tri.org[c]} + rc.div(p[c] - kPlaneBias, tri.m_p);
+              const int64_t v = int64_t{tri.ext->org[c]} + rc.div(p[c] - kPlaneBias, tri.ext->m_p);
               w[c] = v > INT32_MAX   ? INT32_MAX
                      : v < INT32_MIN ? INT32_MIN
                                      : static_cast<int32_t>(v);
@@ -189,8 +189,8 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
             pos[m] = {Fixed::from_raw(w[0]), Fixed::from_raw(w[1]), Fixed::from_raw(w[2])};
           }
           if constexpr (kUv) {
-            cs[m] = detail::wrap_add(rc.div(s, tri.m_s), tri.off_s);
-            ct[m] = detail::wrap_add(rc.div(t, tri.m_t), tri.off_t);
+            cs[m] = detail::wrap_add(rc.div(s, tri.ext->m_s), tri.ext->off_s);
+            ct[m] = detail::wrap_add(rc.div(t, tri.ext->m_t), tri.ext->off_t);
           }
         } else {
           for (int c = 0; c < 3; ++c) nv[m][c] = unbias(n[c]);
@@ -200,12 +200,12 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
       q += tri.q.gx;
       for (int c = 0; c < 3; ++c) {
         n[c] += tri.c[c].gx;
-        if constexpr (kPosition) p[c] += tri.extra.position[c].gx;
-        if constexpr (kNormalMap) tg[c] += tri.tan[c].gx;
+        if constexpr (kPosition) p[c] += tri.ext->extra.position[c].gx;
+        if constexpr (kNormalMap) tg[c] += tri.ext->tan[c].gx;
       }
       if constexpr (kUv) {
-        s += tri.s.gx;
-        t += tri.t.gx;
+        s += tri.ext->s.gx;
+        t += tri.ext->t.gx;
       }
     }
     done += len;
@@ -254,7 +254,7 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
         int64_t b[3] = {(int64_t{nn.y} * tt.z - int64_t{nn.z} * tt.y) >> 30,
                         (int64_t{nn.z} * tt.x - int64_t{nn.x} * tt.z) >> 30,
                         (int64_t{nn.x} * tt.y - int64_t{nn.y} * tt.x) >> 30};
-        if (tri.handedness < 0)
+        if (tri.ext->handedness < 0)
           for (int64_t& c : b) c = -c;
         const int64_t kx = detail::normal_map_component(detail::channel8(nmap[j], 0));
         const int64_t ky = detail::normal_map_component(detail::channel8(nmap[j], 1));

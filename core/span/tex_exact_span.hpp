@@ -118,10 +118,10 @@ struct ExactChunk {  // no member initialisers, as ChunkCoord; setup() writes wh
     const uint32_t half_e = se > 0 ? 1u << (se - 1) : 0u;
     const uint32_t r0 = 0xFFFFFFFFu / ((static_cast<uint32_t>(q0) + half_e) >> se);
     const uint32_t r1 = 0xFFFFFFFFu / ((static_cast<uint32_t>(q1) + half_e) >> se);
-    return chunk_coord(s_plane, tri.s.gx, tri.m_s, tri.off_s, q0, q1, gq, len, se, sh, fb, r0, r1,
-                       s) &&
-           chunk_coord(t_plane, tri.t.gx, tri.m_t, tri.off_t, q0, q1, gq, len, se, sh, fb, r0, r1,
-                       t);
+    return chunk_coord(s_plane, tri.ext->s.gx, tri.ext->m_s, tri.ext->off_s, q0, q1, gq, len, se,
+                       sh, fb, r0, r1, s) &&
+           chunk_coord(t_plane, tri.ext->t.gx, tri.ext->m_t, tri.ext->off_t, q0, q1, gq, len, se,
+                       sh, fb, r0, r1, t);
   }
 };
 
@@ -223,8 +223,8 @@ uint32_t exact_span_565(const ActiveTriangle& tri, const Texture& tex, typename 
   uint32_t z = 0;
   const uint32_t dz = tri.z.gx;
   if constexpr (kDepth) z = depth_start(tri.z, col, row);
-  uint32_t qp = tri.q.at(col, row), sp = tri.s.at(col, row), tp = tri.t.at(col, row);
-  const uint32_t gq = tri.q.gx, gs = tri.s.gx, gt = tri.t.gx;
+  uint32_t qp = tri.q.at(col, row), sp = tri.ext->s.at(col, row), tp = tri.ext->t.at(col, row);
+  const uint32_t gq = tri.q.gx, gs = tri.ext->s.gx, gt = tri.ext->t.gx;
   uint32_t written = 0;
   for (int32_t done = 0; done < count;) {
     int len = count - done < 32 ? static_cast<int>(count - done) : 32;

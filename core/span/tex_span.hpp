@@ -135,12 +135,12 @@ struct PlaneValues {
   uint32_t q, s, t, c[6];
   void load(const ActiveTriangle& tri, int32_t col, int32_t row, bool colors) {
     q = tri.q.at(col, row);
-    s = tri.s.at(col, row);
-    t = tri.t.at(col, row);
+    s = tri.ext->s.at(col, row);
+    t = tri.ext->t.at(col, row);
     if (colors) {
       for (int k = 0; k < 3; ++k) {
         c[k] = tri.c[k].at(col, row);
-        c[k + 3] = tri.extra.spec[k].at(col, row);
+        c[k + 3] = tri.ext->extra.spec[k].at(col, row);
       }
     }
   }
@@ -150,8 +150,8 @@ struct PlaneValues {
 inline TexAttrs exact_attrs(const ActiveTriangle& tri, const PlaneValues& p, bool colors) {
   const PreciseRecip rc(p.q);
   TexAttrs a;
-  a.s = rc.div(p.s, tri.m_s);
-  a.t = rc.div(p.t, tri.m_t);
+  a.s = rc.div(p.s, tri.ext->m_s);
+  a.t = rc.div(p.t, tri.ext->m_t);
   if (colors)
     for (int k = 0; k < 6; ++k) a.c[k] = rc.div(p.c[k], Color15::kFracBits);
   return a;
@@ -162,11 +162,11 @@ inline TexAttrs exact_attrs(const ActiveTriangle& tri, const PlaneValues& p, boo
 inline int32_t lod_at(const ActiveTriangle& tri, const PlaneValues& pc) {
   PlaneValues px1 = pc, py1 = pc;
   px1.q += tri.q.gx;
-  px1.s += tri.s.gx;
-  px1.t += tri.t.gx;
+  px1.s += tri.ext->s.gx;
+  px1.t += tri.ext->t.gx;
   py1.q += tri.q.gy;
-  py1.s += tri.s.gy;
-  py1.t += tri.t.gy;
+  py1.s += tri.ext->s.gy;
+  py1.t += tri.ext->t.gy;
   const TexAttrs b = exact_attrs(tri, pc, false);
   const TexAttrs bx = exact_attrs(tri, px1, false);
   const TexAttrs by = exact_attrs(tri, py1, false);
@@ -193,7 +193,7 @@ using TexSpanFn = uint32_t (*)(const ActiveTriangle& t, const DrawRecord& d,
 
 namespace detail {
 // The span body. kConstColors: a modulated triangle whose colours are the same at its three
-// vertices (ActiveTriangle::const_colors: flat shading, or faces lit alike such as a cube's under
+// vertices (ActiveExtra::const_colors: flat shading, or faces lit alike such as a cube's under
 // directional light) modulates every texel by those values: no colour planes to step, no colour
 // divisions.
 template <class PF, bool kDepth, TexPersp kPersp, TexEnv kEnv, MipMode kMip, bool kConstColors>
@@ -206,7 +206,7 @@ uint32_t fill_tex_span_body(const ActiveTriangle& tri, const DrawRecord& d,
   if constexpr (kConstColors)
     for (int k = 0; k < 3; ++k) {
       prim[k] = clamp_c15(static_cast<int32_t>(tri.c[k].base));
-      sec[k] = clamp_c15(static_cast<int32_t>(tri.extra.spec[k].base));
+      sec[k] = clamp_c15(static_cast<int32_t>(tri.ext->extra.spec[k].base));
     }
   constexpr int kMaxChunk = 32;
   const Texture& tex = *d.texture;
@@ -225,18 +225,19 @@ uint32_t fill_tex_span_body(const ActiveTriangle& tri, const DrawRecord& d,
   pv.load(tri, col, row, kColors);
   detail::PlaneValues gx{};
   gx.q = tri.q.gx;
-  gx.s = tri.s.gx;
-  gx.t = tri.t.gx;
+  gx.s = tri.ext->s.gx;
+  gx.t = tri.ext->t.gx;
   for (int k = 0; k < 3; ++k) {
     gx.c[k] = tri.c[k].gx;
-    gx.c[k + 3] = tri.extra.spec[k].gx;
+    gx.c[k + 3] = tri.ext->extra.spec[k].gx;
   }
 
   int32_t affine_lod = 0;
   if constexpr (kPersp == TexPersp::kAffine && kMip != MipMode::kNone)
-    affine_lod = detail::lod_q8(
-        static_cast<int32_t>(tri.s.gx) >> tri.m_s, static_cast<int32_t>(tri.t.gx) >> tri.m_t,
-        static_cast<int32_t>(tri.s.gy) >> tri.m_s, static_cast<int32_t>(tri.t.gy) >> tri.m_t);
+    affine_lod = detail::lod_q8(static_cast<int32_t>(tri.ext->s.gx) >> tri.ext->m_s,
+                                static_cast<int32_t>(tri.ext->t.gx) >> tri.ext->m_t,
+                                static_cast<int32_t>(tri.ext->s.gy) >> tri.ext->m_s,
+                                static_cast<int32_t>(tri.ext->t.gy) >> tri.ext->m_t);
 
   TexAttrs a0;  // span mode: exact attributes at the chunk start
   if constexpr (kPersp == TexPersp::kSpan) a0 = detail::exact_attrs(tri, pv, kColors);
@@ -310,16 +311,16 @@ uint32_t fill_tex_span_body(const ActiveTriangle& tri, const DrawRecord& d,
           if constexpr (kColors)
             for (int c = 0; c < 6; ++c) a.c[c] = a0.c[c] + (acc_c[c] >> 8);
         } else {
-          a.s = static_cast<int32_t>(pv.s) >> tri.m_s;
-          a.t = static_cast<int32_t>(pv.t) >> tri.m_t;
+          a.s = static_cast<int32_t>(pv.s) >> tri.ext->m_s;
+          a.t = static_cast<int32_t>(pv.t) >> tri.ext->m_t;
           if constexpr (kColors)
             for (int c = 0; c < 6; ++c) a.c[c] = static_cast<int32_t>(pv.c[c]) >> 15;
         }
         idx[m] = static_cast<int16_t>(k);
         // Modular: coordinates only overflow for degenerate inputs, where any texel will do,
         // and repeat wrapping is modular anyway.
-        cs[m] = detail::wrap_add(a.s, tri.off_s);
-        ct[m] = detail::wrap_add(a.t, tri.off_t);
+        cs[m] = detail::wrap_add(a.s, tri.ext->off_s);
+        ct[m] = detail::wrap_add(a.t, tri.ext->off_t);
         if constexpr (kColors)
           for (int c = 0; c < 6; ++c) cc[m][c] = static_cast<uint16_t>(clamp_c15(a.c[c]));
         ++m;
@@ -387,7 +388,7 @@ uint32_t fill_exact_565(const ActiveTriangle& tri, const DrawRecord& d, typename
   if constexpr (kConstColors)
     for (int k = 0; k < 3; ++k) {
       prim[k] = clamp_c15(static_cast<int32_t>(tri.c[k].base));
-      sec[k] = clamp_c15(static_cast<int32_t>(tri.extra.spec[k].base));
+      sec[k] = clamp_c15(static_cast<int32_t>(tri.ext->extra.spec[k].base));
     }
   auto slow = [&](typename PF::Storage* p, uint16_t* dp, int32_t c, int32_t r) {
     return fill_tex_span_body<PF, kDepth, TexPersp::kExact, kEnv, MipMode::kNone, kConstColors>(
@@ -423,12 +424,12 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
     if (d.texture->format == TexelFormat::kRgb565) {
       if constexpr (kEnv == TexEnv::kReplace)
         return detail::fill_exact_565<PF, kDepth, kEnv, false>(tri, d, px, depth, col, row, count);
-      else if (tri.const_colors)
+      else if (tri.ext->const_colors)
         return detail::fill_exact_565<PF, kDepth, kEnv, true>(tri, d, px, depth, col, row, count);
     }
   }
   if constexpr (kEnv == TexEnv::kModulate)
-    if (tri.const_colors)
+    if (tri.ext->const_colors)
       return detail::fill_tex_span_body<PF, kDepth, kPersp, kEnv, kMip, true>(tri, d, px, depth,
                                                                               col, row, count);
   return detail::fill_tex_span_body<PF, kDepth, kPersp, kEnv, kMip, false>(tri, d, px, depth, col,

@@ -85,7 +85,8 @@ constexpr lr::FrameCapacities kCapacities{
     .surfaces = kSurfaceCapacity,
     .lighting_table_words = 2 * lr::lighting_table_words(kTableSize, false),
     .pixel_lights = 2,
-    .tex_vertices = kVertexCapacity};
+    .tex_vertices = kVertexCapacity,
+    .active_extra = kActive};
 lr::StaticFrameStorage<kCapacities> g_store;
 // Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
 alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_strips{};

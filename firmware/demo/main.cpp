@@ -59,7 +59,8 @@ constexpr lr::FrameCapacities kCapacities{.width = kWidth,
                                           .triangles = kTriangleCapacity,
                                           .draws = scene::asset::draw_count,
                                           .active = kActive,
-                                          .tex_vertices = any_textured() ? kVertexCapacity : 0};
+                                          .tex_vertices = any_textured() ? kVertexCapacity : 0,
+                                          .active_extra = any_textured() ? kActive : 0};
 lr::StaticFrameStorage<kCapacities> g_store;
 // Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
 alignas(4) std::array<std::array<PF::Storage, kStripPixels>, 2> g_strips{};

@@ -108,7 +108,8 @@ constexpr lr::FrameCapacities kCapacities{.width = kWidth,
                                           .active = 128,
                                           .surfaces = kPhong ? 640 : 0,
                                           .pixel_lights = kPhong ? 1u : 0u,
-                                          .tex_vertices = kTextured ? 640u : 0u};
+                                          .tex_vertices = kTextured ? 640u : 0u,
+                                          .active_extra = kTextured || kPhong ? 128u : 0u};
 
 // Constant-initialised, zero-filled in .bss, no constructor at startup.
 lr::StaticFrameStorage<kCapacities> g_store;

@@ -53,7 +53,8 @@ constexpr lr::FrameCapacities kCapacities{.width = peer::kWidth,
                                           .triangles = kTriangleCapacity,
                                           .draws = 2,
                                           .active = kActive,
-                                          .tex_vertices = kVertexCapacity};
+                                          .tex_vertices = kVertexCapacity,
+                                          .active_extra = kActive};
 lr::StaticFrameStorage<kCapacities> g_store;
 // Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
 alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_strips{};

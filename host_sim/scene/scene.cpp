@@ -270,6 +270,9 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
   bool uv = phong && textures.has_normal_map;
   for (const Texture* t : textures.per_draw) uv = uv || t != nullptr;
   caps.tex_vertices = uv ? caps.vertices : 0;
+  bool textured = false;
+  for (const Texture* t : textures.per_draw) textured = textured || t != nullptr;
+  caps.active_extra = phong || textured ? caps.active : 0;
   caps.pixel_lights = materials;
   caps.lighting_table_words = o.pixel_lighting == PixelLighting::kTable
                                   ? materials * lighting_table_words(o.table.size, true)

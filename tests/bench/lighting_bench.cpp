@@ -98,11 +98,15 @@ struct Frame {
   std::vector<SurfaceVertex> surfaces = std::vector<SurfaceVertex>(16384);
   std::vector<uint32_t> tables = std::vector<uint32_t>(lighting_table_words(256, false));
   std::vector<PreparedLighting> pixel_lights = std::vector<PreparedLighting>(2);
+  std::vector<TexVertex> tex = std::vector<TexVertex>(16384);
+  std::vector<ActiveExtra> extra = std::vector<ActiveExtra>(4096);
   Renderer<Rgb565Be, kStrip> renderer;
   Frame() {
-    if (renderer.configure({vertices, triangles, draws, buckets, active, index, depth, surfaces,
-                            tables, pixel_lights},
-                           kWidth, kHeight) != Status::kOk)
+    FrameStorage s{vertices, triangles, draws,    buckets, active,
+                   index,    depth,     surfaces, tables,  pixel_lights};
+    s.tex_vertices = tex;
+    s.active_extra = extra;
+    if (renderer.configure(s, kWidth, kHeight) != Status::kOk)
       die("lighting_bench", "configure failed");
   }
 };

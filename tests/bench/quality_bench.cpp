@@ -107,7 +107,8 @@ struct Frame {
                                                        .triangles = 8192,
                                                        .draws = 16,
                                                        .active = 4096,
-                                                       .tex_vertices = 8192}};
+                                                       .tex_vertices = 8192,
+                                                       .active_extra = 4096}};
   Renderer<PF, K> renderer;
   Frame() {
     if (renderer.configure(store.storage(), kWidth, kHeight) != Status::kOk)

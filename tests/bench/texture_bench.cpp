@@ -120,11 +120,14 @@ struct Frame {
   std::vector<ActiveTriangle> active = std::vector<ActiveTriangle>(256);
   std::vector<uint16_t> index = std::vector<uint16_t>(512);
   std::vector<uint16_t> depth = std::vector<uint16_t>(kWidth * kStrip);
+  std::vector<TexVertex> tex = std::vector<TexVertex>(1024);
+  std::vector<ActiveExtra> extra = std::vector<ActiveExtra>(256);
   Renderer<PF, kStrip> renderer;
   Frame() {
-    if (renderer.configure({vertices, triangles, draws, buckets, active, index, depth}, kWidth,
-                           kHeight) != Status::kOk)
-      die("configure failed");
+    FrameStorage s{vertices, triangles, draws, buckets, active, index, depth};
+    s.tex_vertices = tex;
+    s.active_extra = extra;
+    if (renderer.configure(s, kWidth, kHeight) != Status::kOk) die("configure failed");
   }
 };
 

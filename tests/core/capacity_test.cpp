@@ -235,6 +235,52 @@ TEST(Capacity, InvalidIndicesAndCoordinatesAreRejectedAndCounted) {
   EXPECT_EQ(core.renderer().stats().binned_inputs, 2u);
 }
 
+// The planes of textured and Phong triangles live in FrameStorage::active_extra: without it
+// those draws are refused (kCapacity, counted) and untextured ones drawn; a store smaller than
+// the active list is a configuration error.
+TEST(Capacity, TexturedAndPhongDrawsNeedTheActiveExtraStore) {
+  FrameCapacities caps{.width = 64,
+                       .height = 64,
+                       .strip_height = 8,
+                       .vertices = 64,
+                       .triangles = 64,
+                       .draws = 4,
+                       .active = 8,
+                       .surfaces = 64,
+                       .pixel_lights = 2,
+                       .tex_vertices = 64};
+  BasicFrameStorage<std::vector> store(caps);
+  std::vector<ActiveExtra> short_extra(7);
+  FrameStorage s = store.storage();
+  s.active_extra = short_extra;
+  auto r = std::make_unique<Renderer<Rgb888, 8>>();
+  EXPECT_EQ(r->configure(s, 64, 64), Status::kInvalidArgument);
+  s.active_extra = {};
+  ASSERT_EQ(r->configure(s, 64, 64), Status::kOk);
+  ASSERT_EQ(r->begin_frame({}, {}, {0, 0, 0}), Status::kOk);
+  host::ImageRgb8 img;
+  img.width = img.height = 1;
+  img.rgb = {200, 100, 50};
+  host::HostTexture tex;
+  std::string err;
+  ASSERT_TRUE(host::texture_from_image(img, TexelFormat::kRgb888, false, tex, err)) << err;
+  DrawState textured = test::coverage_state();
+  textured.texture = &tex.texture;
+  const ScreenScene sq = squares(1);
+  const std::vector<TexVertex> uv(sq.vertices.size());
+  EXPECT_EQ(r->draw_screen(sq.vertices, sq.triangles, textured, uv), Status::kCapacity);
+  const std::vector<Vec3> pos(3);
+  const std::vector<Normal16> nrm(3, Normal16{0, 0, 16384});
+  const std::vector<std::array<uint16_t, 3>> tri = {{0, 1, 2}};
+  DrawState phong;
+  phong.shading = Shading::kPhong;
+  EXPECT_EQ(r->draw(Mesh{pos, nrm, {}, {}, tri, {}}, Mat4::identity(), Material{}, phong),
+            Status::kCapacity);
+  EXPECT_EQ(r->draw_screen(sq.vertices, sq.triangles, test::coverage_state()), Status::kOk);
+  EXPECT_EQ(r->stats().dropped_vertex_capacity, 3u);
+  EXPECT_EQ(r->stats().triangles_in, 5u);
+}
+
 TEST(Capacity, BadConfigurationIsRefused) {
   BasicFrameStorage<std::vector> store(FrameCapacities{.width = 64,
                                                        .height = 64,

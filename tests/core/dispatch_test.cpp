@@ -182,7 +182,8 @@ class RigBase {
                                .surfaces = 256,
                                .lighting_table_words = 4 * lighting_table_words(32, true),
                                .pixel_lights = 8,
-                               .tex_vertices = 256}),
+                               .tex_vertices = 256,
+                               .active_extra = 64}),
         display_(kW * kK) {}
   FrameStorage storage() { return store_.storage(); }
   virtual Status render_frame() = 0;

@@ -314,7 +314,8 @@ struct SmallStorage : BasicFrameStorage<std::vector> {
                                           .surfaces = n_surfaces,
                                           .lighting_table_words = n_table_words,
                                           .pixel_lights = n_pls,
-                                          .tex_vertices = 8192}) {}
+                                          .tex_vertices = 8192,
+                                          .active_extra = 256}) {}
 };
 
 TEST(LightingTable, DrawsOfOneMaterialShareOneTable) {

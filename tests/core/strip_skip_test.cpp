@@ -80,6 +80,7 @@ struct Rig {
                               .surfaces = 8192,
                               .pixel_lights = 8,
                               .tex_vertices = 8192,
+                              .active_extra = max_active,
                               .strip_skipping = skip}),
         display(size_t{kW} * kK) {
     configured = renderer.configure(store.storage(), kW, kH);

@@ -48,7 +48,8 @@ constexpr lr::FrameCapacities kCapacities{
     .triangles = peer_bunnyx_asset::meshes[0].triangles.size() + 32,
     .draws = 2,
     .active = 2048,
-    .tex_vertices = peer_bunnyx_asset::meshes[0].positions.size() + 32};
+    .tex_vertices = peer_bunnyx_asset::meshes[0].positions.size() + 32,
+    .active_extra = 2048};
 
 // The core's frame of a case, as lr_peer draws it, in RGB888.
 void render_core(const peer::PeerCase& c, lr::host::RenderResult& out) {

@@ -45,6 +45,7 @@ class Scene {
                                .draws = 4,
                                .active = 64,
                                .tex_vertices = 256,
+                               .active_extra = 64,
                                .strip_skipping = skip}),
         renderer_(std::make_unique<Renderer<PF, kRows, kUntexturedSpans>>()) {
     configured_ = renderer_->configure(store_.storage(), kWidth, kHeight);
