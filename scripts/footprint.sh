@@ -226,11 +226,11 @@ print(sum(int(f[1], 16) for f in (l.split(None, 3) for l in sys.stdin)
       declare -A st=()
       # The image prints its stores' sizes in this order (firmware/footprint/main.cpp).
       read -r -a sizes <<<"$(sed -n 's/^footprint: stores \(.*\)/\1/p' <<<"$run")"
-      names=(vertices triangles buckets active active_index depth strip_buffers draws surfaces pixel_lights)
+      names=(vertices triangles buckets active active_index depth strip_buffers draws surfaces pixel_lights tex_vertices active_extra)
       for i in "${!names[@]}"; do st[${names[$i]}]=${sizes[$i]:-0}; done
       all=0
       for k in "${!st[@]}"; do all=$((all + st[$k])); done
-      breakdown="vertex store $(group "${st[vertices]:-0}") B, triangles $(group $(( ${st[triangles]:-0} + ${st[buckets]:-0} ))) B (with $(group "${st[buckets]:-0}") B of strip bucket heads), active $(group $(( ${st[active]:-0} + ${st[active_index]:-0} ))) B (with $(group "${st[active_index]:-0}") B of index), depth strip $(group "${st[depth]:-0}") B, strip buffers $(group "${st[strip_buffers]:-0}") B, draw records $(group "${st[draws]:-0}") B, surfaces for Phong $(group $(( ${st[surfaces]:-0} + ${st[pixel_lights]:-0} ))) B (with $(group "${st[pixel_lights]:-0}") B of prepared lighting); $(group "$all") B in all"
+      breakdown="vertex store $(group "${st[vertices]:-0}") B, triangles $(group $(( ${st[triangles]:-0} + ${st[buckets]:-0} ))) B (with $(group "${st[buckets]:-0}") B of strip bucket heads), active $(group $(( ${st[active]:-0} + ${st[active_index]:-0} ))) B (with $(group "${st[active_index]:-0}") B of index), extra planes of textured and Phong triangles $(group "${st[active_extra]:-0}") B, texture entries $(group "${st[tex_vertices]:-0}") B, depth strip $(group "${st[depth]:-0}") B, strip buffers $(group "${st[strip_buffers]:-0}") B, draw records $(group "${st[draws]:-0}") B, surfaces for Phong $(group $(( ${st[surfaces]:-0} + ${st[pixel_lights]:-0} ))) B (with $(group "${st[pixel_lights]:-0}") B of prepared lighting); $(group "$all") B in all"
       unset st
     fi
   done <"$manifest"

@@ -328,10 +328,10 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
 void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&sv)[3],
                           bool back_copies, Rgb8 flat, Rgb8 flat_spec, const int32_t* rows,
                           bool cached) {
+  int32_t classified[2] = {0, 0};  // (read by bin() below: not scoped to the block)
   if (back_copies) {
     // Binning a band: a triangle of another band gets no copies (they would fill the store with
     // vertices no triangle of the band uses). Its tests are bin()'s, done once here.
-    int32_t classified[2] = {0, 0};
     if (banding_ && rows == nullptr) [[unlikely]] {
       const Outcome r =
           edges_.classify(*sv[0], *sv[1], *sv[2], d.state.cull, classified[0], classified[1]);

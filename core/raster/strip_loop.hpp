@@ -384,8 +384,10 @@ template <class PF, int K, SpanSet kSpans>
   }
   // Textured and Phong triangles get their slot's extra planes (the front end refuses such
   // draws when there are none).
-  const DrawRecord& dr = frame_.draws[bt.draw];
-  t.ext = dr.texture != nullptr || dr.phong ? &storage_.active_extra[slot] : nullptr;
+  if constexpr ((kSpans.families & ~(1u << static_cast<unsigned>(SpanFamily::kUntextured))) != 0) {
+    const DrawRecord& dr = frame_.draws[bt.draw];
+    t.ext = dr.texture != nullptr || dr.phong ? &storage_.active_extra[slot] : nullptr;
+  }
   setup_planes(setup_input(bt), t);
   ++stats_->triangles_set_up;
   t.index = node;

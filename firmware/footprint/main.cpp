@@ -235,12 +235,15 @@ int main() {
   report("checksum", g_checksum.hash.value, true);
   // The stores' bytes, for scripts/footprint.sh's RAM breakdown, in this order: vertices,
   // triangles, buckets, active, active_index, depth, strip_buffers, draws, surfaces,
-  // pixel_lights.
+  // pixel_lights, tex_vertices, active_extra.
   static constexpr uint32_t kStoreBytes[] = {
-      sizeof(g_store.vertices),      sizeof(g_store.triangles),    sizeof(g_store.buckets),
-      sizeof(g_store.active),        sizeof(g_store.active_index), sizeof(g_store.depth),
-      sizeof(g_store_strip_buffers), sizeof(g_store.draws),        sizeof(g_store.surfaces),
-      sizeof(g_store.pixel_lights)};
+      sizeof(g_store.vertices), sizeof(g_store.triangles), sizeof(g_store.buckets),
+      sizeof(g_store.active), sizeof(g_store.active_index), sizeof(g_store.depth),
+      sizeof(g_store_strip_buffers), sizeof(g_store.draws), sizeof(g_store.surfaces),
+      sizeof(g_store.pixel_lights),
+      // (an empty std::array is 1 byte: the stores' sizes from their capacities)
+      kCapacities.tex_vertices * sizeof(lr::TexVertex),
+      kCapacities.active_extra * sizeof(lr::ActiveExtra)};
   sh::write("footprint: stores");
   for (const uint32_t bytes : kStoreBytes) {
     sh::write(" ");
