@@ -67,7 +67,7 @@ struct ActiveTriangle {
   ActiveExtra* ext = nullptr;
 };
 static_assert(sizeof(ActiveExtra) == 124);
-static_assert(sizeof(ActiveTriangle) == 136 + sizeof(ActiveExtra*));  // 140 B on Cortex-M
+static_assert(sizeof(ActiveTriangle) == 136 + sizeof(uintptr_t));  // 140 B on Cortex-M
 
 inline constexpr uint32_t kPlaneBias = 1u << 31;
 // A biased signed plane value back to int32.
