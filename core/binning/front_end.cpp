@@ -153,10 +153,7 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
   // (One pass: the band is the viewport, to which classify() clamped the rows already.)
   if (banding_) [[unlikely]] {
     if (r1 < band_r0_ || r0 > band_r1_) return Outcome::kBinned;
-    if (r0 < band_r0_) {
-      r0 = band_r0_;
-      ++band_carried_;  // binned in its own band already: not counted again
-    }
+    if (r0 < band_r0_) r0 = band_r0_;
     if (r1 > band_r1_) r1 = band_r1_;
   }
   while (edges_.full()) {
@@ -198,6 +195,10 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
       return Outcome::kVertexCapacity;
     }
   }
+  // A triangle from above the band was counted in its own band: not counted again (only once
+  // it is added: a dropped one was never counted here).
+  if (banding_ && rows[0] < band_r0_) [[unlikely]]
+    ++band_carried_;
   BinnedTriangle& t = edges_.add(r0);
   t.v[0] = a;
   t.v[1] = b;

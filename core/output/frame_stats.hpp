@@ -7,7 +7,10 @@ namespace lr {
 
 struct FrameStats {
   // Triangles given to draw(), and what became of them (each input triangle is counted in
-  // exactly one of binned_inputs, culled_*, clipped_away, rejected_invalid, dropped_*).
+  // exactly one of binned_inputs, culled_*, clipped_away, rejected_invalid, dropped_*). Except
+  // below the minimum capacities (render() returns kCapacity, docs/bands.md): a triangle
+  // dropped from one band may be drawn in another, so dropped_* counts the drops of every band
+  // and the sum may exceed triangles_in.
   uint32_t triangles_in = 0;
   uint32_t culled_backface = 0;
   uint32_t culled_zero_area = 0;

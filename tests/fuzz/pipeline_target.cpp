@@ -289,10 +289,14 @@ void run(const Header& h, Bytes& in) {
   host::DepthCapture depth_capture;
   depth_capture.resize(width, height);
   const Status st = renderer->render(display, (h.b[2] & 8) ? &depth_capture : nullptr);
-  if (st != Status::kOk) std::fprintf(stderr, "render: %s\n", display.error().c_str());
-  LR_FUZZ_CHECK(st == Status::kOk);
-
   const FrameStats& s = renderer->stats();
+  // Stores below the minimum (docs/bands.md: a strip that needs more than they hold) are the
+  // one case render() reports: kCapacity, with the drop counted. Anything else is a failure.
+  const bool dropped = s.dropped_vertex_capacity + s.dropped_triangle_capacity != 0;
+  if (st != Status::kOk && !(st == Status::kCapacity && dropped))
+    std::fprintf(stderr, "render: status %d, %s\n", static_cast<int>(st), display.error().c_str());
+  LR_FUZZ_CHECK(st == Status::kOk || (st == Status::kCapacity && dropped));
+
   static const bool verbose = std::getenv("LR_FUZZ_VERBOSE") != nullptr;
   if (verbose) {
     std::fprintf(stderr,
@@ -303,11 +307,16 @@ void run(const Header& h, Bytes& in) {
                  s.rejected_invalid, s.dropped_vertex_capacity, s.dropped_triangle_capacity,
                  s.strip_passes, s.pixels_written, s.pixels_tested);
   }
-  LR_FUZZ_CHECK(s.triangles_in == outcomes(s));
+  // Below the minimum a triangle may be dropped in one band and drawn in another (frame_stats.hpp).
+  if (st == Status::kOk)
+    LR_FUZZ_CHECK(s.triangles_in == outcomes(s));
+  else
+    LR_FUZZ_CHECK(s.triangles_in <= outcomes(s));
   LR_FUZZ_CHECK(s.strips == static_cast<uint32_t>((height + K - 1) / K));
   LR_FUZZ_CHECK(display.strips() == s.strips);
   LR_FUZZ_CHECK(s.empty_strips <= s.strips);
-  LR_FUZZ_CHECK(s.binned_inputs <= s.triangles_binned);
+  // (Below the minimum an input counted as binned may have had every piece dropped.)
+  if (st == Status::kOk) LR_FUZZ_CHECK(s.binned_inputs <= s.triangles_binned);
   LR_FUZZ_CHECK(s.clipped <= s.triangles_in);
   LR_FUZZ_CHECK(s.max_active <= n_active);
   LR_FUZZ_CHECK(s.pixels_written <= s.pixels_tested);
