@@ -112,7 +112,8 @@ class Renderer {
 // A frame the stores hold whole is one band. One they do not is binned again and rasterized a
 // band of strips at a time (docs/bands.md): each band is asked for the rest of the frame and
 // ends where the triangle store fills up; a band whose vertices do not fit is binned again at
-// half the height (the next may be twice as tall again). Only a single strip that does not fit
+// half the height, and the next may be one strip taller (a binning pass per retry is the cost:
+// doubling again made every other band a retry). Only a single strip that does not fit
 // drops work: what fit is drawn and kCapacity returned. One call of the strip loop's strips()
 // either way: it is inlined here once.
 template <class PF, int K, SpanSet kSpans>
@@ -137,7 +138,7 @@ Status Renderer<PF, K, kSpans>::render(StripSink<PF>& sink, DepthSink* depth_sin
         }
         complete = false;
       }
-      size = std::min(strips, 2 * size);
+      size = std::min(strips, size + 1);
     }
     if (bands) {
       if (front_.band_dropped()) complete = false;
