@@ -12,7 +12,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: lineraster-asset --obj FILE [--texture FILE.png] [--format rgb565|rgb888|l8|palette8]\n"
-    "  [--mipmaps] [--fit | --fit-box] [--subdivide N] --name IDENT --out FILE.hpp\n"
+    "  [--mipmaps] [--fit | --fit-box] [--subdivide N] [--locality] --name IDENT --out FILE.hpp\n"
     "Writes a C++ header with the mesh (Q16.16 positions, Q1.14 normals, Q12.20 uvs, indices,\n"
     "materials) and the texture (level 0 and, with --mipmaps, its mip chain) as constexpr data in\n"
     "namespace IDENT. Without --texture, the first material's map_Kd is used (if any).\n"
@@ -20,7 +20,9 @@ constexpr const char* kUsage =
     "fit.\n"
     "--fit: centred on the bounding box, farthest vertex at distance 1; --fit-box: centred on the\n"
     "bounding box, uniformly scaled so that its largest half extent is 1 (inside [-1, 1]^3).\n"
-    "Defaults: --format rgb565, no mipmaps, no fit, no subdivision.\n";
+    "--locality: triangles sorted by the Z-order of their centroids, vertices numbered by first\n"
+    "use (for meshes larger than the renderer's vertex store: its vertex cache hits more).\n"
+    "Defaults: --format rgb565, no mipmaps, no fit, no subdivision, the file's order.\n";
 
 int fail(const std::string& msg) {
   std::fprintf(stderr, "lineraster-asset: %s\n", msg.c_str());
@@ -104,6 +106,11 @@ const Row kOptions[] = {
     {"--fit-box", OptionKind::kFlag,
      [](AssetArgs& a, const OptionArg&) {
        a.asset.fit_box = true;
+       return OptionError{};
+     }},
+    {"--locality", OptionKind::kFlag,
+     [](AssetArgs& a, const OptionArg&) {
+       a.asset.locality = true;
        return OptionError{};
      }},
     {"--subdivide", OptionKind::kValue,

@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "host_sim/formats/obj_loader.hpp"
+#include "host_sim/scene/locality_order.hpp"
 #include "host_sim/scene/mesh_prep.hpp"
 
 namespace lr::host {
@@ -99,7 +100,7 @@ void write_preamble(std::string& s, const AssetOptions& o, const AssetData& d) {
        std::to_string(vertices) + " vertices, " + std::to_string(triangles) + " triangles" +
        (o.fit ? ", fitted (--fit)" : "") + (o.fit_box ? ", fitted to its box (--fit-box)" : "") +
        (o.subdivide > 0 ? ", subdivided " + std::to_string(o.subdivide) + "x (--subdivide)" : "") +
-       "\n";
+       (o.locality ? ", in spatial order (--locality)" : "") + "\n";
   if (d.has_texture) {
     const Texture& t = d.texture.texture;
     s += "//   texture: " + comment_safe(d.texture_path) + ": " +
@@ -268,6 +269,7 @@ bool load_asset(const AssetOptions& o, AssetData& out, std::string& error) {
   if (o.subdivide > 0) mesh = subdivide(mesh, o.subdivide);
   if (o.fit && o.fit_box) return fail(error, "--fit and --fit-box exclude each other");
   if (o.fit_box) apply_fit(mesh, fit_box_transform(mesh));
+  if (o.locality) sort_for_locality(mesh);
   SceneOptions so;
   so.fit = o.fit;
   so.use_mesh_materials = true;

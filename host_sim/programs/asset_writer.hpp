@@ -38,6 +38,7 @@ struct AssetOptions {
   bool fit = false;          // fit_transform: farthest vertex at distance 1
   bool fit_box = false;      // fit_box_transform: largest half extent 1 (not with fit)
   int subdivide = 0;         // midpoint subdivision levels (mesh_prep.hpp: subdivide), 0..4
+  bool locality = false;     // triangles and vertices in spatial order (locality_order.hpp)
   std::string name;          // a C++ identifier: the header's namespace
   std::string command_line;  // recorded in the header's comment ("" = none)
 };

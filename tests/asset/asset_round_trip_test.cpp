@@ -358,6 +358,44 @@ TEST(AssetTool, FitBoxPutsTheLargestHalfExtentAtOne) {
   EXPECT_EQ(r.err, "lineraster-asset: --fit and --fit-box exclude each other\n");
 }
 
+TEST(AssetTool, LocalityReordersTheSameTrianglesAndSaysSo) {
+  AssetOptions o;
+  o.obj_path = kData + "torus_knot.obj";
+  o.name = "knot";
+  AssetData plain, local;
+  std::string error;
+  ASSERT_TRUE(load_asset(o, plain, error)) << error;
+  o.locality = true;
+  ASSERT_TRUE(load_asset(o, local, error)) << error;
+  ASSERT_EQ(plain.draws.size(), 1u);
+  ASSERT_EQ(local.draws.size(), 1u);
+  const FixedDraw& a = plain.draws[0];
+  const FixedDraw& b = local.draws[0];
+  ASSERT_EQ(a.positions.size(), b.positions.size());
+  ASSERT_EQ(a.triangles.size(), b.triangles.size());
+  EXPECT_NE(a.triangles, b.triangles);
+  // The same triangles with the same windings: each as its corners' raw coordinates from its
+  // smallest corner on, as a sorted list.
+  const auto triangles = [](const FixedDraw& d) {
+    std::vector<std::array<std::array<int32_t, 3>, 3>> list;
+    for (const auto& t : d.triangles) {
+      std::array<std::array<int32_t, 3>, 3> c;
+      for (size_t k = 0; k < 3; ++k) {
+        const Vec3& p = d.positions[t[k]];
+        c[k] = {p.x.raw, p.y.raw, p.z.raw};
+      }
+      std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+      list.push_back(c);
+    }
+    std::sort(list.begin(), list.end());
+    return list;
+  };
+  EXPECT_EQ(triangles(a), triangles(b));
+  EXPECT_NE(asset_header_text(o, local).find("in spatial order (--locality)"), std::string::npos);
+  o.locality = false;
+  EXPECT_EQ(asset_header_text(o, plain).find("--locality"), std::string::npos);
+}
+
 TEST(AssetTool, WritesAHeaderAndReplacesAnOldOneWhole) {
   TmpDir dir("lr_asset_test");
   const std::string out = dir.file("cube.hpp");
