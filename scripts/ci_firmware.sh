@@ -19,6 +19,9 @@ fail() {
   exit 1
 }
 [[ -x "$sim" ]] || fail "$sim not built (cmake --preset debug && cmake --build --preset debug --target lineraster-sim)"
+# The stack analysis's rules for calls through pointers: scripts/lib/firmware_rules.sh.
+# shellcheck source=scripts/lib/firmware_rules.sh
+source scripts/lib/firmware_rules.sh
 command -v qemu-system-arm >/dev/null 2>&1 || fail "qemu-system-arm not installed (scripts/setup.sh test)"
 
 trees=("$@")
@@ -60,10 +63,7 @@ for tree in "${trees[@]}"; do
     reserved="$(arm-none-eabi-nm "$elf" | awk '$NF == "__stack_size" { print $1 }')"
     [[ -n "$reserved" ]] && reserved=$((16#$reserved))
     worst="$(python3 scripts/stack_usage.py "$elf" "$tree" --vector-table .isr_vector --entry main \
-      --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|strips|raster_triangle)\(' 'OrderedStripSink<.*>::|lr::StripSink<.*>::(retains_frame|keep)\(|lr::fill_span<|lr::fill_tex_span<|lr::fill_phong_span<' \
-      --indirect-from 'lr::(detail::)?fill_(tex_span_body|tex_span|phong_span)<' 'lr::fetch_batch<' \
-      --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_' \
-      --indirect-from 'lr::FrontEnd::draw(_screen)?\(' 'lr::admits<' --tool-prefix arm-none-eabi- --machine 2>&1)" \
+      "${lr_fw_stack_rules[@]}" --tool-prefix arm-none-eabi- --machine 2>&1)" \
       || fail "$name ($board): stack analysis failed: $worst"
     worst="$(awk -F'\t' '$1 == "total" { print $2 }' <<<"$worst")"
     [[ -n "$reserved" && -n "$worst" ]] || fail "$name ($board): no __stack_size symbol or no stack total"

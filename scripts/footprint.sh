@@ -53,18 +53,6 @@ for tool in "${prefix}objdump" "${prefix}nm" "${prefix}readelf" python3 qemu-sys
   command -v "$tool" >/dev/null || { echo "footprint: $tool not found (bash scripts/setup.sh test)" >&2; exit 1; }
 done
 
-# Calls through pointers in these images, for stack_usage.py: the renderer calls the sink's
-# virtual methods and the span routines of its families; textured and Phong spans call texel
-# fetchers; the front end calls the renderer's admission test; Reset_Handler calls the static
-# constructors (none: the images constant-initialise).
-indirect_rules=(
-  --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|strips|raster_triangle)\('
-  'OrderedStripSink<.*>::|lr::StripSink<.*>::(retains_frame|keep)\(|lr::fill_span<|lr::fill_tex_span<|lr::fill_phong_span<'
-  --indirect-from 'lr::(detail::)?fill_(tex_span_body|tex_span|phong_span)<' 'lr::fetch_batch<'
-  --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'
-  --indirect-from 'lr::FrontEnd::draw(_screen)?\(' 'lr::admits<'
-)
-
 # Bytes an ELF loads into flash: its sections with LOAD (objdump -h).
 loaded_bytes() {
   local n=0 size flags
@@ -178,7 +166,7 @@ for tree in "${trees[@]}"; do
     done < <("${prefix}objdump" -h "$elf" | sed -n '/^ *[0-9][0-9]* /{N;s/\n */ /;p}')
     # Worst-case stack.
     su_out=$(python3 scripts/stack_usage.py "$elf" "$tree" --vector-table .isr_vector --entry main \
-             "${indirect_rules[@]}" --tool-prefix "$prefix" --machine 2>&1 </dev/null)
+             "${lr_fw_stack_rules[@]}" --tool-prefix "$prefix" --machine 2>&1 </dev/null)
     if [[ $? -ne 0 ]]; then
       fail "$core $cfg: stack analysis: $su_out"
       continue

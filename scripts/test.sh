@@ -2,10 +2,11 @@
 # Installs what is missing, checks the sources (clang-format, clang-tidy, the include layers),
 # builds and runs every test: the debug build, the same suite under
 # AddressSanitizer + UndefinedBehaviorSanitizer, the bare-metal builds for Cortex-M0+, M4F, M7 and
-# M33 run under QEMU (smoke, fault, demo frames against lineraster-sim, instruction-count check,
-# footprint with its link and stack guards), the 32-bit ARM Linux build run under qemu-arm, the
-# ARM Linux guest, the 64-bit ARM Linux core tests, the fuzzers' fixed runs, and the benchmarks'
-# figures (printed, never asserted). Each step prints its duration.
+# M33 run under QEMU (smoke, fault, demo frames against lineraster-sim, the bunny in the
+# micro:bit's 16 KB, instruction-count check, footprint with its link and stack guards), the
+# 32-bit ARM Linux build run under qemu-arm, the ARM Linux guest, the 64-bit ARM Linux core
+# tests, the fuzzers' fixed runs, and the benchmarks' figures (printed, never asserted). Each
+# step prints its duration.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh test
@@ -53,6 +54,9 @@ LR_CROSS_RUN_QEMU=1 LR_HOST_SMOKE=$host/tests/firmware_host/lr_smoke_host bash s
 
 step "bare metal: demo frames identical to lineraster-sim's, worst-case stack within the reserved stack"
 bash scripts/ci_firmware.sh
+
+step "bare metal: the bunny (peer scene S1) in the micro:bit's 16 KB of RAM, its frame the one-pass frame"
+bash scripts/microbit_bunny.sh build/cortex-m0plus build/cortex-m4f
 
 step "bare metal: the instruction-counting plugin against known instruction sequences"
 for core in cortex-m4f cortex-m0plus; do
