@@ -99,6 +99,7 @@ for tree in "${trees[@]}"; do
   worst="$(awk -F'\t' '$1 == "total" { print $2 }' <<<"$worst")"
   [[ -n "$worst" ]] || fail "$name ($board): no stack total"
   ((worst <= stack)) || fail "$name ($board): worst-case stack $worst B > the $stack B reserved"
+  stores="$(stat vertex_store) vertices, $(stat triangle_store) binned triangles and $(stat active_store) active triangles"
   echo "microbit_bunny: $core on $board: frame = S1 ($sum), = the host's PPM; $instructions instructions, $(stat bands) bands; RAM $((data + bss)) B + stack $stack B (worst case $worst B)"
   rows+=("| $core | $board ($machine) | $(commas "$instructions") | $(stat bands) | $(stat band_retries) | $(stat strip_passes) | $(commas "$(stat vertices)") | $(commas "$(stat store_bytes)") | $(commas "$(stat strip_bytes)") | $(commas "$(stat renderer_bytes)") | $(commas $((data + bss))) | $(commas "$stack") ($(commas "$worst")) | $(commas $((data + bss + stack))) |")
 done
@@ -107,9 +108,9 @@ table="$(
   echo "## S1 in 16 KB of RAM (lr_peer_bunny_16k)"
   echo
   echo "The bunny (1,839 vertices, 3,674 triangles, from flash; the asset in spatial order,"
-  echo "\`lineraster-asset --locality\`) at 320x240 RGB565 in strips of 1 row, stores of 176"
-  echo "vertices, 80 binned triangles and 4 active triangles. Every frame below is the one-pass S1"
-  echo "frame (checksum $s1_sum) and the host's PPM byte for byte."
+  echo "\`lineraster-asset --locality\`) at 320x240 RGB565 in strips of 1 row, stores of $stores."
+  echo "Every frame below is the one-pass S1 frame (checksum $s1_sum) and the host's PPM byte for"
+  echo "byte."
   echo
   echo "| core | board | instructions | bands | band retries | strip passes | vertices transformed | stores (B) | strip buffers (B) | renderer (B) | .data + .bss (B) | stack reserved (worst case) | RAM in all (B) |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"

@@ -51,6 +51,14 @@ struct DrawRecord {
   ColorPlanes colors = ColorPlanes::kNone;  // untextured draws
   bool depth = false;                       // the depth test (DrawState::depth_test)
   bool flat = false;
+  // The draw's first vertex in the vertex store: its binned triangles refer to vertices from
+  // here up to the next draw's first (the strip loop finds a triangle's draw by its first
+  // vertex). Set when the draw is binned, in every band.
+  uint16_t first_vertex = 0;
+  // Flat shading: each binned triangle has its colours in FrameStorage::triangle_colors;
+  // otherwise a draw without colour planes has one colour, `color`.
+  bool triangle_colors = false;
+  Rgb8 color{};
   const Texture* texture = nullptr;  // textured draws
   bool uv = false;  // the vertices have TexVertex entries (textured, or Phong with a normal map)
   // The texel fetchers (fetch, env_fetch, nmap_fetch) are chosen by the strip loop when it

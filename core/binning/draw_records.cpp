@@ -14,6 +14,7 @@ Status FrontEnd::add_draw_record(const DrawState& state, bool has_color_planes, 
   DrawRecord r;
   r.depth = state.depth_test;
   r.flat = state.shading == Shading::kFlat;
+  r.first_vertex = static_cast<uint16_t>(vertex_count_);  // until it is binned
   r.filter = state.sampler.filter;
   r.wrap_s = state.sampler.wrap_s;
   r.wrap_t = state.sampler.wrap_t;

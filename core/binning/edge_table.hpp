@@ -21,15 +21,19 @@ namespace lr {
 class EdgeTable {
  public:
   // Takes the stores for a viewport of `height` rows in strips of `strip_height`: false when
-  // the buckets (one per strip) or the signatures (none, or two per strip) do not fit.
-  bool configure(std::span<BinnedTriangle> triangles, std::span<uint16_t> buckets,
-                 std::span<uint32_t> strip_inputs, int width, int height, int strip_height) {
+  // the buckets (one per strip) or the signatures (none, or two per strip) do not fit, or when
+  // the triangle colours (none, or one per triangle) are fewer than the triangles.
+  bool configure(std::span<BinnedTriangle> triangles, std::span<TriangleColors> colors,
+                 std::span<uint16_t> buckets, std::span<uint32_t> strip_inputs, int width,
+                 int height, int strip_height) {
     const int strips = (height + strip_height - 1) / strip_height;
     if (buckets.size() < static_cast<size_t>(strips)) return false;
     if (!strip_inputs.empty() && strip_inputs.size() < 2 * static_cast<size_t>(strips))
       return false;
+    if (!colors.empty() && colors.size() < triangles.size()) return false;
     triangles_ =
         triangles.size() > kMaxStoreEntries - 1 ? triangles.first(kMaxStoreEntries - 1) : triangles;
+    colors_ = colors.empty() ? colors : colors.first(triangles_.size());
     buckets_ = buckets;
     strip_inputs_ = strip_inputs;
     width_ = width;
@@ -69,14 +73,18 @@ class EdgeTable {
   }
 
   // Removes the triangles of the buckets of strips >= cut (evicted(t) is called for each) and
-  // closes the gaps, keeping the others in submission order: strip_of(t) gives the strip of a
-  // kept triangle, whose bucket is rebuilt. `mark` (an index into the store, or size()) becomes
-  // the new index of the first kept triangle at or after it.
+  // closes the gaps, keeping the others (and their colours) in submission order: strip_of(t)
+  // gives the strip of a kept triangle, whose bucket is rebuilt. `mark` (an index into the
+  // store, or size()) becomes the new index of the first kept triangle at or after it.
   template <class StripOf, class Evicted>
   void evict_from(int cut, size_t& mark, StripOf&& strip_of, Evicted&& evicted) {
     for (int s = cut; s < strips_; ++s) {
       uint16_t& head = buckets_[static_cast<size_t>(s)];
-      for (uint16_t i = head; i != kNoTriangle; i = triangles_[i].next) triangles_[i].reserved = 1;
+      for (uint16_t i = head; i != kNoTriangle;) {
+        const uint16_t next = triangles_[i].next;
+        triangles_[i].next = kEvicted;
+        i = next;
+      }
       head = kNoTriangle;
     }
     for (int s = 0; s < cut; ++s) buckets_[static_cast<size_t>(s)] = kNoTriangle;
@@ -84,13 +92,14 @@ class EdgeTable {
     for (size_t i = 0; i < count_; ++i) {
       if (i == mark) new_mark = out;
       BinnedTriangle t = triangles_[i];
-      if (t.reserved != 0) {
+      if (t.next == kEvicted) {
         evicted(t);
         continue;
       }
       uint16_t& head = buckets_[static_cast<size_t>(strip_of(t))];
       t.next = head;
       head = static_cast<uint16_t>(out);
+      if (!colors_.empty()) colors_[out] = colors_[i];
       triangles_[out++] = t;
     }
     mark = mark >= count_ ? out : new_mark;
@@ -108,6 +117,10 @@ class EdgeTable {
     return t;
   }
 
+  // The colours of the triangle add() returned last. has_colors().
+  void set_colors(const TriangleColors& c) { colors_[count_ - 1] = c; }
+  bool has_colors() const { return !colors_.empty(); }
+
   // Mixes a triangle's signature into those of the strips of rows [r0, r1]. signing().
   void sign(int32_t r0, int32_t r1, uint32_t triangle_signature) {
     for (int32_t s = r0 / strip_height_; s <= r1 / strip_height_; ++s) {
@@ -122,11 +135,18 @@ class EdgeTable {
   size_t size() const { return count_; }
   int strips() const { return strips_; }
   std::span<BinnedTriangle> triangles() const { return triangles_.first(count_); }
+  std::span<const TriangleColors> colors() const {
+    return colors_.empty() ? colors_ : colors_.first(count_);
+  }
   std::span<uint16_t> buckets() const { return buckets_.first(static_cast<size_t>(strips_)); }
   std::span<uint32_t> strip_inputs() const { return strip_inputs_; }
 
  private:
+  // A triangle's `next` while evict_from() removes it (no index is this large: configure()).
+  static constexpr uint16_t kEvicted = kNoTriangle - 1;
+
   std::span<BinnedTriangle> triangles_{};
+  std::span<TriangleColors> colors_{};
   std::span<uint16_t> buckets_{};
   std::span<uint32_t> strip_inputs_{};
   int width_ = 0, height_ = 0, strip_height_ = 1, strips_ = 0;

@@ -79,7 +79,8 @@ Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int 
     return Status::kInvalidArgument;
   if (strip_height < 1 || strip_height > 32) return Status::kInvalidArgument;
   if (s.draws.empty() || s.draws.size() > 256) return Status::kInvalidArgument;
-  if (!edges_.configure(s.triangles, s.buckets, s.strip_inputs, width, height, strip_height))
+  if (!edges_.configure(s.triangles, s.triangle_colors, s.buckets, s.strip_inputs, width, height,
+                        strip_height))
     return Status::kInvalidArgument;
   vertices_ =
       s.vertices.size() > kMaxStoreEntries ? s.vertices.first(kMaxStoreEntries) : s.vertices;
@@ -203,10 +204,7 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
   t.v[0] = a;
   t.v[1] = b;
   t.v[2] = c;
-  t.draw = draw;
-  t.flat = flat;
-  t.flat_spec = flat_spec;
-  t.reserved = 0;
+  if (draw_colors_) edges_.set_colors({flat, flat_spec});
   ++stats_.triangles_binned;
   return Outcome::kBinned;
 }
@@ -457,9 +455,18 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
     refuse(tri_count, true);
     return Status::kCapacity;
   }
+  // Flat shading: each triangle's colours need their store.
+  const bool triangle_colors = !plan.gouraud && !plan.kind.phong;
+  if (triangle_colors && !edges_.has_colors()) {
+    refuse(tri_count, false);
+    return Status::kCapacity;
+  }
   uint8_t draw_index = 0;
   if (add_draw_record(state, plan.kind.color_planes, tri_count, draw_index) != Status::kOk)
     return Status::kCapacity;
+  draws_[draw_index].triangle_colors = triangle_colors;
+  if (!triangle_colors && !plan.kind.color_planes && !plan.kind.phong)
+    draws_[draw_index].color = to_rgb8_sat(material.diffuse);
 
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   PreparedLighting pl;
@@ -484,6 +491,8 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
 void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
                         const Material& material, const DrawState& state, const DrawPlan& plan,
                         const PreparedLighting& pl) {
+  draws_[index].first_vertex = static_cast<uint16_t>(vertex_count_);
+  draw_colors_ = draws_[index].triangle_colors;
   const size_t n = mesh.positions.size();
   const bool phong = plan.kind.phong, uv = plan.uv;
   // A mesh larger than the free store goes through the vertex cache at the top of the stores.
@@ -611,9 +620,14 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
     refuse(tri_count, true);
     return Status::kCapacity;
   }
+  if (!gouraud && !edges_.has_colors()) {
+    refuse(tri_count, false);
+    return Status::kCapacity;
+  }
   uint8_t draw_index = 0;
   if (add_draw_record(state, gouraud, tri_count, draw_index) != Status::kOk)
     return Status::kCapacity;
+  draws_[draw_index].triangle_colors = !gouraud;
   if (edges_.signing()) sign_draw(draw_index, nullptr);
   DrawCall& call = draws_[draw_index].call;
   call.mesh = Mesh{};
@@ -632,6 +646,8 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
                           std::span<const TexVertex> tex,
                           std::span<const std::array<uint16_t, 3>> triangles,
                           const DrawState& state) {
+  draws_[index].first_vertex = static_cast<uint16_t>(vertex_count_);
+  draw_colors_ = draws_[index].triangle_colors;
   const size_t n = vertices.size();
   const bool uv = !tex.empty();
   if (!vertices_fit(n) || (uv && !tex_fit(n))) {

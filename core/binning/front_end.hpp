@@ -44,6 +44,7 @@ struct FrontEndStorage {
   std::span<uint32_t> strip_inputs{};
   std::span<TexVertex> tex_vertices{};
   bool active_extra = false;  // the strip loop has the planes of textured and Phong triangles
+  std::span<TriangleColors> triangle_colors{};  // flat-shaded draws: one per binned triangle
 };
 
 // What the strip loop reads of a binned frame. It consumes the edge table as it goes: it
@@ -55,6 +56,7 @@ struct BinnedFrame {
   std::span<const SurfaceVertex> surfaces;  // Phong draws: indexed like vertices
   std::span<const TexVertex> tex_vertices;  // draws with texture coordinates: the same
   std::span<BinnedTriangle> triangles;
+  std::span<const TriangleColors> triangle_colors;  // flat-shaded draws: indexed like triangles
   std::span<DrawRecord> draws;
   std::span<uint16_t> buckets;       // one list head per strip
   std::span<uint32_t> strip_inputs;  // empty, or this frame's signatures then the last frame's
@@ -109,6 +111,8 @@ class FrontEnd {
   FrameStats& mutable_stats() { return stats_; }
   std::span<const ScreenVertex> screen_vertices() const { return vertices_.first(vertex_count_); }
   std::span<const BinnedTriangle> binned_triangles() const { return edges_.triangles(); }
+  // Flat-shaded draws' triangles: their colours, indexed like binned_triangles().
+  std::span<const TriangleColors> triangle_colors() const { return edges_.colors(); }
   int width() const { return width_; }
   int height() const { return height_; }
   int strip_height() const { return strip_height_; }
@@ -120,6 +124,7 @@ class FrontEnd {
             surfaces_,
             tex_,
             edges_.triangles(),
+            edges_.colors(),
             draws_.first(draw_count_),
             edges_.buckets(),
             edges_.strip_inputs(),
@@ -223,6 +228,7 @@ class FrontEnd {
   bool band_dropped_ = false;       // the band is one strip and dropped triangles
   FrameStats band_before_{};        // the statistics before the band (here, not on the stack)
   size_t draw_first_triangle_ = 0;  // the running draw's first binned triangle
+  bool draw_colors_ = false;        // the running draw's triangles have TriangleColors
   // The vertex cache: kCacheSets sets of two slots by mesh index, and a spare per corner for a
   // triangle with three corners in one set. Each entry: the mesh index (low half) and the store
   // index of its copy (high half; kNoCacheEntry: none yet); cache_lru_: per set, the way to

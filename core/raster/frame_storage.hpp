@@ -48,11 +48,16 @@ struct FrameStorage {
   // ActiveExtra per active slot (give it the size of `active`). Without it such draws are
   // refused (kCapacity).
   std::span<ActiveExtra> active_extra{};
+  // Flat-shaded draws (may stay empty otherwise): each binned triangle's colours, one
+  // TriangleColors per entry of `triangles` (give it that size). Without it such draws are
+  // refused (kCapacity).
+  std::span<TriangleColors> triangle_colors{};
 
   // The parts' shares.
   FrontEndStorage front_end() const {
     return {vertices,        triangles,    draws,        buckets,      surfaces,
-            lighting_tables, pixel_lights, strip_inputs, tex_vertices, !active_extra.empty()};
+            lighting_tables, pixel_lights, strip_inputs, tex_vertices, !active_extra.empty(),
+            triangle_colors};
   }
   StripStorage strip_loop() const { return {active, active_index, depth, active_extra}; }
 };
@@ -71,8 +76,10 @@ struct FrameCapacities {
   size_t lighting_table_words = 0;  // PixelLighting::kTable pool (lighting_table_words())
   size_t pixel_lights = 0;          // materials of per-pixel lit draws
   // Draws with texture coordinates (textured, or Phong with a normal map).
-  size_t tex_vertices = 0;      // TexVertex store: 0, or the size of the vertex store
-  size_t active_extra = 0;      // ActiveExtra store (textured, Phong): 0, or the size of `active`
+  size_t tex_vertices = 0;  // TexVertex store: 0, or the size of the vertex store
+  size_t active_extra = 0;  // ActiveExtra store (textured, Phong): 0, or the size of `active`
+  // Flat-shaded draws.
+  size_t triangle_colors = 0;   // TriangleColors store: 0, or the size of `triangles`
   bool strip_skipping = false;  // keep strip signatures (2 words per strip)
 
   constexpr size_t strips() const {
@@ -101,6 +108,7 @@ struct StaticFrameStorage {
   std::array<SurfaceVertex, kCaps.surfaces> surfaces{};
   std::array<TexVertex, kCaps.tex_vertices> tex_vertices{};
   std::array<BinnedTriangle, kCaps.triangles> triangles{};
+  std::array<TriangleColors, kCaps.triangle_colors> triangle_colors{};
   std::array<uint32_t, kCaps.lighting_table_words> lighting_tables{};
   std::array<uint32_t, kCaps.strip_inputs()> strip_inputs{};
   std::array<uint16_t, kCaps.buckets()> buckets{};
@@ -109,9 +117,9 @@ struct StaticFrameStorage {
   alignas(4) std::array<uint16_t, kCaps.depth()> depth{};
 
   FrameStorage storage() {
-    return {vertices,     triangles,    draws,       buckets,         active,
-            active_index, depth,        surfaces,    lighting_tables, pixel_lights,
-            strip_inputs, tex_vertices, active_extra};
+    return {vertices,     triangles,    draws,        buckets,         active,
+            active_index, depth,        surfaces,     lighting_tables, pixel_lights,
+            strip_inputs, tex_vertices, active_extra, triangle_colors};
   }
 };
 
@@ -129,6 +137,7 @@ struct BasicFrameStorage {
         surfaces(c.surfaces),
         tex_vertices(c.tex_vertices),
         triangles(c.triangles),
+        triangle_colors(c.triangle_colors),
         lighting_tables(c.lighting_table_words),
         strip_inputs(c.strip_inputs()),
         buckets(c.buckets()),
@@ -144,6 +153,7 @@ struct BasicFrameStorage {
   Container<SurfaceVertex> surfaces;
   Container<TexVertex> tex_vertices;
   Container<BinnedTriangle> triangles;
+  Container<TriangleColors> triangle_colors;
   Container<uint32_t> lighting_tables;
   Container<uint32_t> strip_inputs;
   Container<uint16_t> buckets;
@@ -151,9 +161,9 @@ struct BasicFrameStorage {
   Container<uint16_t> depth;
 
   FrameStorage storage() {
-    return {vertices,     triangles,    draws,       buckets,         active,
-            active_index, depth,        surfaces,    lighting_tables, pixel_lights,
-            strip_inputs, tex_vertices, active_extra};
+    return {vertices,     triangles,    draws,        buckets,         active,
+            active_index, depth,        surfaces,     lighting_tables, pixel_lights,
+            strip_inputs, tex_vertices, active_extra, triangle_colors};
   }
 };
 

@@ -92,6 +92,7 @@ class Renderer {
   const FrameStats& stats() const { return front_.stats(); }
   std::span<const ScreenVertex> screen_vertices() const { return front_.screen_vertices(); }
   std::span<const BinnedTriangle> binned_triangles() const { return front_.binned_triangles(); }
+  std::span<const TriangleColors> triangle_colors() const { return front_.triangle_colors(); }
   int width() const { return front_.width(); }
   int height() const { return front_.height(); }
   int strip_height() const { return front_.strip_height(); }

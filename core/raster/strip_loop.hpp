@@ -86,7 +86,8 @@ class StripLoop {
  private:
   bool activate(int strip);
   bool set_up(uint16_t node, int strip, uint16_t slot);
-  SetupInput setup_input(const BinnedTriangle& bt) const;
+  SetupInput setup_input(uint16_t node, const BinnedTriangle& bt, const DrawRecord& dr) const;
+  uint8_t draw_of(const BinnedTriangle& bt) const;
   void crowded_strip(int strip, Pixel* pixels, int y0, int rows);
   void skip_strip(int strip, int y0, int rows);
   void carry_into(int strip, uint16_t carried);
@@ -382,24 +383,42 @@ template <class PF, int K, SpanSet kSpans>
     ++stats_->triangles_without_pixels;
     return false;
   }
+  const uint8_t draw = draw_of(bt);
+  const DrawRecord& dr = frame_.draws[draw];
   // Textured and Phong triangles get their slot's extra planes (the front end refuses such
   // draws when there are none).
-  if constexpr ((kSpans.families & ~(1u << static_cast<unsigned>(SpanFamily::kUntextured))) != 0) {
-    const DrawRecord& dr = frame_.draws[bt.draw];
+  if constexpr ((kSpans.families & ~(1u << static_cast<unsigned>(SpanFamily::kUntextured))) != 0)
     t.ext = dr.texture != nullptr || dr.phong ? &storage_.active_extra[slot] : nullptr;
-  }
-  setup_planes(setup_input(bt), t);
+  setup_planes(setup_input(node, bt, dr), t);
   ++stats_->triangles_set_up;
   t.index = node;
-  t.draw = bt.draw;
-  t.flat = bt.flat;
+  t.draw = draw;
+  t.flat = dr.triangle_colors ? frame_.triangle_colors[node].primary : dr.color;
   return true;
+}
+
+// The draw whose vertices a binned triangle's are: the last whose first vertex is at or below
+// its first (the draws' vertex ranges follow each other in draw order).
+template <class PF, int K, SpanSet kSpans>
+uint8_t StripLoop<PF, K, kSpans>::draw_of(const BinnedTriangle& bt) const {
+  const std::span<const DrawRecord> draws = frame_.draws;
+  size_t lo = 0, n = draws.size();
+  while (n > 1) {
+    const size_t half = n / 2;
+    if (draws[lo + half].first_vertex <= bt.v[0]) {
+      lo += half;
+      n -= half;
+    } else {
+      n = half;
+    }
+  }
+  return static_cast<uint8_t>(lo);
 }
 
 // What setup_planes needs of a binned triangle and its draw (the rows are setup_edges').
 template <class PF, int K, SpanSet kSpans>
-SetupInput StripLoop<PF, K, kSpans>::setup_input(const BinnedTriangle& bt) const {
-  const DrawRecord& dr = frame_.draws[bt.draw];
+SetupInput StripLoop<PF, K, kSpans>::setup_input(uint16_t node, const BinnedTriangle& bt,
+                                                 const DrawRecord& dr) const {
   SetupInput in;
   for (int k = 0; k < 3; ++k) in.v[k] = &frame_.vertices[bt.v[k]];
   if (dr.uv)
@@ -430,8 +449,11 @@ SetupInput StripLoop<PF, K, kSpans>::setup_input(const BinnedTriangle& bt) const
     in.tex.perspective = dr.persp != TexPersp::kAffine;
     in.tex.colors = dr.env == TexEnv::kModulate;
     in.tex.flat = dr.flat;
-    in.tex.flat_primary = from_rgb8(bt.flat);
-    in.tex.flat_secondary = from_rgb8(bt.flat_spec);
+    if (dr.triangle_colors) {
+      const TriangleColors& c = frame_.triangle_colors[node];
+      in.tex.flat_primary = from_rgb8(c.primary);
+      in.tex.flat_secondary = from_rgb8(c.secondary);
+    }
     in.tex.wrap_s = dr.wrap_s;
     in.tex.wrap_t = dr.wrap_t;
   }

@@ -86,7 +86,8 @@ constexpr lr::FrameCapacities kCapacities{
     .lighting_table_words = 2 * lr::lighting_table_words(kTableSize, false),
     .pixel_lights = 2,
     .tex_vertices = kVertexCapacity,
-    .active_extra = kActive};
+    .active_extra = kActive,
+    .triangle_colors = kTriangleCapacity};
 lr::StaticFrameStorage<kCapacities> g_store;
 // Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
 alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_strips{};

@@ -37,9 +37,9 @@ using Pixel = PF::Storage;
 // for the mesh. Smaller stores still draw the frame, in more bands and passes (the statistics
 // printed below); the vertex store cannot go below the minimum of docs/bands.md.
 constexpr int kStripRows = 1;
-constexpr size_t kVertices = 176;  // the cache's 67 entries and the copies of one band
-constexpr size_t kTriangles = 80;  // binned triangles of one band
-constexpr size_t kActive = 4;      // triangles rasterized at once (more: the strip in passes)
+constexpr size_t kVertices = 200;   // the cache's 67 entries and the copies of one band
+constexpr size_t kTriangles = 104;  // binned triangles of one band
+constexpr size_t kActive = 4;       // triangles rasterized at once (more: the strip in passes)
 constexpr size_t kStripPixels = size_t{peer::kWidth} * kStripRows;
 
 constexpr lr::FrameCapacities kCapacities{.width = peer::kWidth,
@@ -105,6 +105,9 @@ void write_stats(const lr::FrameStats& st) {
       {"max_active", st.max_active},
       {"dropped_vertices", st.dropped_vertex_capacity},
       {"dropped_triangles", st.dropped_triangle_capacity},
+      {"vertex_store", static_cast<uint32_t>(kVertices)},
+      {"triangle_store", static_cast<uint32_t>(kTriangles)},
+      {"active_store", static_cast<uint32_t>(kActive)},
       {"store_bytes", static_cast<uint32_t>(sizeof(g_store))},
       {"strip_bytes", static_cast<uint32_t>(sizeof(g_strips))},
       {"renderer_bytes", static_cast<uint32_t>(sizeof(g_renderer))}};

@@ -57,7 +57,8 @@ constexpr lr::FrameCapacities kCapacities{.width = kWidth,
                                           .draws = 16,
                                           .active = kActive,
                                           .tex_vertices = kVertices,
-                                          .active_extra = kActive};
+                                          .active_extra = kActive,
+                                          .triangle_colors = kTriangles};
 // Sized for strips of 1 (the most edge-table buckets); the depth strip for the tallest strips.
 lr::StaticFrameStorage<kCapacities> g_store;
 alignas(4) std::array<uint16_t, size_t{kWidth} * kMaxStrip> g_depth{};

@@ -273,6 +273,7 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
   bool textured = false;
   for (const Texture* t : textures.per_draw) textured = textured || t != nullptr;
   caps.active_extra = phong || textured ? caps.active : 0;
+  caps.triangle_colors = o.shading == Shading::kFlat ? caps.triangles : 0;
   caps.pixel_lights = materials;
   caps.lighting_table_words = o.pixel_lighting == PixelLighting::kTable
                                   ? materials * lighting_table_words(o.table.size, true)

@@ -90,6 +90,7 @@ host::SceneOptions options(Scene s, const Mode& m) {
 struct Frame {
   std::vector<ScreenVertex> vertices = std::vector<ScreenVertex>(16384);
   std::vector<BinnedTriangle> triangles = std::vector<BinnedTriangle>(16384);
+  std::vector<TriangleColors> colors = std::vector<TriangleColors>(16384);
   std::vector<DrawRecord> draws = std::vector<DrawRecord>(16);
   std::vector<uint16_t> buckets = std::vector<uint16_t>((kHeight + kStrip - 1) / kStrip);
   std::vector<ActiveTriangle> active = std::vector<ActiveTriangle>(4096);
@@ -106,6 +107,7 @@ struct Frame {
                    index,    depth,     surfaces, tables,  pixel_lights};
     s.tex_vertices = tex;
     s.active_extra = extra;
+    s.triangle_colors = colors;
     if (renderer.configure(s, kWidth, kHeight) != Status::kOk)
       die("lighting_bench", "configure failed");
   }

@@ -108,7 +108,8 @@ struct Frame {
                                                        .draws = 16,
                                                        .active = 4096,
                                                        .tex_vertices = 8192,
-                                                       .active_extra = 4096}};
+                                                       .active_extra = 4096,
+                                                       .triangle_colors = 8192}};
   Renderer<PF, K> renderer;
   Frame() {
     if (renderer.configure(store.storage(), kWidth, kHeight) != Status::kOk)

@@ -107,7 +107,8 @@ uint32_t checksum(const bench::Prepared& p, uint32_t& pixels) {
                                                        .draws = 16,
                                                        .active = 4096,
                                                        .tex_vertices = 8192,
-                                                       .active_extra = 4096}};
+                                                       .active_extra = 4096,
+                                                       .triangle_colors = 8192}};
   auto r = std::make_unique<Renderer<Rgb565Be, K>>();
   if (r->configure(store.storage(), kW, kH) != Status::kOk) die("configure failed");
   std::vector<uint16_t> a(size_t(kW) * K), b(size_t(kW) * K);

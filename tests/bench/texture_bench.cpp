@@ -115,6 +115,7 @@ template <class PF>
 struct Frame {
   std::vector<ScreenVertex> vertices = std::vector<ScreenVertex>(1024);
   std::vector<BinnedTriangle> triangles = std::vector<BinnedTriangle>(2048);
+  std::vector<TriangleColors> colors = std::vector<TriangleColors>(2048);
   std::vector<DrawRecord> draws = std::vector<DrawRecord>(8);
   std::vector<uint16_t> buckets = std::vector<uint16_t>((kHeight + kStrip - 1) / kStrip);
   std::vector<ActiveTriangle> active = std::vector<ActiveTriangle>(256);
@@ -127,6 +128,7 @@ struct Frame {
     FrameStorage s{vertices, triangles, draws, buckets, active, index, depth};
     s.tex_vertices = tex;
     s.active_extra = extra;
+    s.triangle_colors = colors;
     if (renderer.configure(s, kWidth, kHeight) != Status::kOk) die("configure failed");
   }
 };

@@ -86,7 +86,7 @@ TEST(Cli, PpmByExtensionAndStatsJson) {
   EXPECT_NE(r.out.find("\"triangles_in\":4000"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"strip_height\":16"), std::string::npos);
   EXPECT_NE(r.out.find("\"strips\":15"), std::string::npos);
-  EXPECT_NE(r.out.find("\"bytes_per_binned_triangle\":16"), std::string::npos);
+  EXPECT_NE(r.out.find("\"bytes_per_binned_triangle\":8"), std::string::npos);
 }
 
 // --subdivide N: four triangles for one, N times, over V + E vertices

@@ -235,6 +235,23 @@ TEST(Capacity, InvalidIndicesAndCoordinatesAreRejectedAndCounted) {
   EXPECT_EQ(core.renderer().stats().binned_inputs, 2u);
 }
 
+// A renderer on `s` without one of its optional stores, begun: configure() first refuses the
+// store `short_size` entries long (too short for what it goes with), then takes none. nullptr
+// when a step fails (the expectations say which).
+template <class T>
+std::unique_ptr<Renderer<Rgb888, 8>> begun_without(FrameStorage s,
+                                                   std::span<T> FrameStorage::*store,
+                                                   size_t short_size) {
+  std::vector<T> too_short(short_size);
+  s.*store = too_short;
+  auto r = std::make_unique<Renderer<Rgb888, 8>>();
+  EXPECT_EQ(r->configure(s, 64, 64), Status::kInvalidArgument);
+  s.*store = {};
+  if (r->configure(s, 64, 64) != Status::kOk || r->begin_frame({}, {}, {0, 0, 0}) != Status::kOk)
+    return nullptr;
+  return r;
+}
+
 // The planes of textured and Phong triangles live in FrameStorage::active_extra: without it
 // those draws are refused (kCapacity, counted) and untextured ones drawn; a store smaller than
 // the active list is a configuration error.
@@ -248,16 +265,11 @@ TEST(Capacity, TexturedAndPhongDrawsNeedTheActiveExtraStore) {
                        .active = 8,
                        .surfaces = 64,
                        .pixel_lights = 2,
-                       .tex_vertices = 64};
+                       .tex_vertices = 64,
+                       .triangle_colors = 64};
   BasicFrameStorage<std::vector> store(caps);
-  std::vector<ActiveExtra> short_extra(7);
-  FrameStorage s = store.storage();
-  s.active_extra = short_extra;
-  auto r = std::make_unique<Renderer<Rgb888, 8>>();
-  EXPECT_EQ(r->configure(s, 64, 64), Status::kInvalidArgument);
-  s.active_extra = {};
-  ASSERT_EQ(r->configure(s, 64, 64), Status::kOk);
-  ASSERT_EQ(r->begin_frame({}, {}, {0, 0, 0}), Status::kOk);
+  const auto r = begun_without(store.storage(), &FrameStorage::active_extra, 7);
+  ASSERT_NE(r, nullptr);
   host::ImageRgb8 img;
   img.width = img.height = 1;
   img.rgb = {200, 100, 50};
@@ -279,6 +291,85 @@ TEST(Capacity, TexturedAndPhongDrawsNeedTheActiveExtraStore) {
   EXPECT_EQ(r->draw_screen(sq.vertices, sq.triangles, test::coverage_state()), Status::kOk);
   EXPECT_EQ(r->stats().dropped_vertex_capacity, 3u);
   EXPECT_EQ(r->stats().triangles_in, 5u);
+}
+
+// A flat-shaded triangle's colours live in FrameStorage::triangle_colors (a Gouraud triangle is
+// 8 bytes without them): without the store flat draws are refused (kCapacity, counted as
+// triangles dropped) and Gouraud ones drawn; a store smaller than the triangles' is a
+// configuration error.
+TEST(Capacity, FlatDrawsNeedTheTriangleColorStore) {
+  FrameCapacities caps{.width = 64,
+                       .height = 64,
+                       .strip_height = 8,
+                       .vertices = 64,
+                       .triangles = 16,
+                       .draws = 4,
+                       .active = 8};
+  BasicFrameStorage<std::vector> store(caps);
+  const auto r = begun_without(store.storage(), &FrameStorage::triangle_colors, 15);
+  ASSERT_NE(r, nullptr);
+  const ScreenScene sq = squares(1);
+  EXPECT_EQ(r->draw_screen(sq.vertices, sq.triangles, test::coverage_state()), Status::kCapacity);
+  const std::vector<Vec3> pos = {{Fixed{}, Fixed{}, Fixed::from_int(-2)},
+                                 {Fixed::from_int(1), Fixed{}, Fixed::from_int(-2)},
+                                 {Fixed{}, Fixed::from_int(1), Fixed::from_int(-2)}};
+  const std::vector<Normal16> nrm(3, Normal16{0, 0, 16384});
+  const std::vector<std::array<uint16_t, 3>> tri = {{0, 1, 2}};
+  DrawState flat_lit;
+  flat_lit.shading = Shading::kFlat;
+  EXPECT_EQ(r->draw(Mesh{pos, nrm, {}, {}, tri, {}}, Mat4::identity(), Material{}, flat_lit),
+            Status::kCapacity);
+  DrawState gouraud = test::coverage_state();
+  gouraud.shading = Shading::kGouraud;
+  EXPECT_EQ(r->draw_screen(sq.vertices, sq.triangles, gouraud), Status::kOk);
+  EXPECT_EQ(r->stats().dropped_triangle_capacity, 3u);
+  EXPECT_EQ(r->stats().triangles_in, 5u);
+  host::CaptureDisplay<Rgb888> display(64 * 8);
+  EXPECT_EQ(r->render(display), Status::kOk);
+  EXPECT_EQ(r->stats().pixels_written, 100u);  // the Gouraud square, 10 x 10
+}
+
+// The strip loop finds a binned triangle's draw by its first vertex (each draw's vertices are
+// one range of the store): flat, Gouraud and flat draws in turn each draw with their own
+// state, in one pass and in bands.
+TEST(Capacity, EachTriangleIsDrawnWithItsOwnDraw) {
+  const ScreenScene all = squares(3);
+  // Square k: its 6 vertices and 2 triangles, renumbered from 0; the Gouraud one in white.
+  const auto square = [&](size_t k, bool white) {
+    ScreenScene s;
+    s.vertices.assign(all.vertices.begin() + static_cast<std::ptrdiff_t>(6 * k),
+                      all.vertices.begin() + static_cast<std::ptrdiff_t>(6 * k + 6));
+    if (white)
+      for (ScreenVertex& v : s.vertices) v.color = {Color15::kOne, Color15::kOne, Color15::kOne};
+    s.triangles = {{0, 1, 2}, {3, 4, 5}};
+    return s;
+  };
+  const ScreenScene a = square(0, false), b = square(1, true), c = square(2, false);
+  DrawState gouraud = test::coverage_state();
+  gouraud.shading = Shading::kGouraud;
+  for (size_t max_triangles : {16u, 4u}) {
+    CoreHarness<8> core(64, 64, 100, max_triangles);
+    core.begin();
+    ASSERT_EQ(core.renderer().draw_screen(a.vertices, a.triangles, test::coverage_state()),
+              Status::kOk);
+    ASSERT_EQ(core.renderer().draw_screen(b.vertices, b.triangles, gouraud), Status::kOk);
+    ASSERT_EQ(core.renderer().draw_screen(c.vertices, c.triangles, test::coverage_state()),
+              Status::kOk);
+    Status st = Status::kInvalidArgument;
+    const host::ImageRgb8 img = core.render(&st);
+    EXPECT_EQ(st, Status::kOk);
+    EXPECT_EQ(core.renderer().stats().bands > 1, max_triangles == 4);
+    // A pixel inside each triangle: the flat ones their ids' colours, the Gouraud one white.
+    const auto at = [&](int x, int y) { return test::id_of(img, size_t(y) * 64 + size_t(x)); };
+    EXPECT_EQ(at(5, 4), 0);    // square 0, triangle 0
+    EXPECT_EQ(at(12, 11), 1);  // square 0, triangle 1
+    const size_t p = size_t(18) * 64 + 20;
+    EXPECT_EQ(img.rgb[3 * p], 255);  // square 1
+    EXPECT_EQ(img.rgb[3 * p + 1], 255);
+    EXPECT_EQ(img.rgb[3 * p + 2], 255);
+    EXPECT_EQ(at(35, 32), 4);  // square 2, triangle 0
+    EXPECT_EQ(at(42, 39), 5);  // square 2, triangle 1
+  }
 }
 
 TEST(Capacity, BadConfigurationIsRefused) {

@@ -183,7 +183,8 @@ class RigBase {
                                .lighting_table_words = 4 * lighting_table_words(32, true),
                                .pixel_lights = 8,
                                .tex_vertices = 256,
-                               .active_extra = 64}),
+                               .active_extra = 64,
+                               .triangle_colors = 256}),
         display_(kW * kK) {}
   FrameStorage storage() { return store_.storage(); }
   virtual Status render_frame() = 0;

@@ -29,6 +29,7 @@ constexpr FrameCapacities kCaps{.width = 64,
                                 .pixel_lights = 2,
                                 .tex_vertices = 48,
                                 .active_extra = 16,
+                                .triangle_colors = 40,
                                 .strip_skipping = true};
 
 // The spans of a FrameStorage as byte ranges.
@@ -41,11 +42,11 @@ Range range(std::span<T> s) {
   return {reinterpret_cast<const char*>(s.data()), s.size_bytes()};
 }
 std::vector<Range> ranges(const FrameStorage& s) {
-  return {range(s.vertices),     range(s.triangles),    range(s.draws),
-          range(s.buckets),      range(s.active),       range(s.active_index),
-          range(s.depth),        range(s.surfaces),     range(s.lighting_tables),
-          range(s.pixel_lights), range(s.strip_inputs), range(s.tex_vertices),
-          range(s.active_extra)};
+  return {range(s.vertices),     range(s.triangles),      range(s.draws),
+          range(s.buckets),      range(s.active),         range(s.active_index),
+          range(s.depth),        range(s.surfaces),       range(s.lighting_tables),
+          range(s.pixel_lights), range(s.strip_inputs),   range(s.tex_vertices),
+          range(s.active_extra), range(s.triangle_colors)};
 }
 
 void expect_sized(const FrameStorage& s, const FrameCapacities& c) {
@@ -62,6 +63,7 @@ void expect_sized(const FrameStorage& s, const FrameCapacities& c) {
   EXPECT_EQ(s.strip_inputs.size(), c.strip_skipping ? 2 * c.strips() : 0u);
   EXPECT_EQ(s.tex_vertices.size(), c.tex_vertices);
   EXPECT_EQ(s.active_extra.size(), c.active_extra);
+  EXPECT_EQ(s.triangle_colors.size(), c.triangle_colors);
 }
 
 void expect_disjoint(const FrameStorage& s) {

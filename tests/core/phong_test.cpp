@@ -315,7 +315,8 @@ struct SmallStorage : BasicFrameStorage<std::vector> {
                                           .lighting_table_words = n_table_words,
                                           .pixel_lights = n_pls,
                                           .tex_vertices = 8192,
-                                          .active_extra = 256}) {}
+                                          .active_extra = 256,
+                                          .triangle_colors = 8192}) {}
 };
 
 TEST(LightingTable, DrawsOfOneMaterialShareOneTable) {

@@ -81,6 +81,7 @@ struct Rig {
                               .pixel_lights = 8,
                               .tex_vertices = 8192,
                               .active_extra = max_active,
+                              .triangle_colors = max_triangles,
                               .strip_skipping = skip}),
         display(size_t{kW} * kK) {
     configured = renderer.configure(store.storage(), kW, kH);

@@ -51,6 +51,8 @@ Result run(const host::HostMesh& m, Vec3 eye, int w, int h) {
   std::vector<ref::ScreenTri> tris;
   std::vector<int32_t> id_of_binned;
   auto sv = core.renderer().screen_vertices();
+  const auto colors = core.renderer().triangle_colors();
+  size_t ids_seen = 0;
   for (const BinnedTriangle& bt : core.renderer().binned_triangles()) {
     ref::ScreenTri s{};
     for (int k = 0; k < 3; ++k) {
@@ -58,7 +60,8 @@ Result run(const host::HostMesh& m, Vec3 eye, int w, int h) {
       s.y[k] = sv[bt.v[k]].y;
     }
     tris.push_back(s);
-    id_of_binned.push_back(int32_t(bt.flat.r | (bt.flat.g << 8) | (bt.flat.b << 16)) - 1);
+    const Rgb8 c = colors[ids_seen++].primary;  // flat: the provoking vertex's colour
+    id_of_binned.push_back(int32_t(c.r | (c.g << 8) | (c.b << 16)) - 1);
   }
   std::vector<int32_t> hits, owner;
   ref::coverage(tris, w, h, kSubpixelBits, hits, owner);

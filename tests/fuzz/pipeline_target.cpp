@@ -117,6 +117,7 @@ void run(const Header& h, Bytes& in) {
   caps.surfaces = small ? n_vertices / 2 + 1 : n_vertices;
   caps.tex_vertices = small ? n_vertices / 3 + 1 : n_vertices;
   caps.active_extra = n_active;
+  caps.triangle_colors = n_triangles;
   caps.lighting_table_words = small ? 200 : 2 * lighting_table_words(kMaxLightingTable, true);
   caps.pixel_lights = small ? 1 : 4;
   BasicFrameStorage<std::vector> store(caps);

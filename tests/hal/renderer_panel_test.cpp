@@ -46,6 +46,7 @@ class Scene {
                                .active = 64,
                                .tex_vertices = 256,
                                .active_extra = 64,
+                               .triangle_colors = 256,
                                .strip_skipping = skip}),
         renderer_(std::make_unique<Renderer<PF, kRows, kUntexturedSpans>>()) {
     configured_ = renderer_->configure(store_.storage(), kWidth, kHeight);

@@ -309,6 +309,8 @@ inline void run_3d(uint64_t count, uint64_t seed, RunFigures& f) {
     std::vector<int32_t> ids;
     auto sv = core.renderer().screen_vertices();
     constexpr int64_t kBand = int64_t{1} << 22;
+    const auto colors = core.renderer().triangle_colors();
+    size_t ids_seen = 0;
     for (const BinnedTriangle& bt : core.renderer().binned_triangles()) {
       ref::ScreenTri t{};
       for (int k = 0; k < 3; ++k) {
@@ -317,7 +319,8 @@ inline void run_3d(uint64_t count, uint64_t seed, RunFigures& f) {
         if (std::abs(t.x[k]) >= kBand || std::abs(t.y[k]) >= kBand) ++f.out_of_band;
       }
       tris.push_back(t);
-      ids.push_back(static_cast<int32_t>(bt.flat.r | (bt.flat.g << 8) | (bt.flat.b << 16)) - 1);
+      const Rgb8 c = colors[ids_seen++].primary;  // flat: the provoking vertex's colour
+      ids.push_back(static_cast<int32_t>(c.r | (c.g << 8) | (c.b << 16)) - 1);
     }
     compare_frame(img, tris, ids, s.pixels_written, f);
 

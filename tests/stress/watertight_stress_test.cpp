@@ -140,6 +140,8 @@ Frame render(const Poly& p, const Camera& cam, Cull cull, int w, int h) {
   f.img = core.render();
   f.written = core.renderer().stats().pixels_written;
   auto sv = core.renderer().screen_vertices();
+  const auto colors = core.renderer().triangle_colors();
+  size_t ids_seen = 0;
   for (const BinnedTriangle& bt : core.renderer().binned_triangles()) {
     ref::ScreenTri s{};
     for (int k = 0; k < 3; ++k) {
@@ -147,7 +149,8 @@ Frame render(const Poly& p, const Camera& cam, Cull cull, int w, int h) {
       s.y[k] = sv[bt.v[k]].y;
     }
     f.tris.push_back(s);
-    f.ids.push_back(int32_t(bt.flat.r | (bt.flat.g << 8) | (bt.flat.b << 16)) - 1);
+    const Rgb8 c = colors[ids_seen++].primary;  // flat: the provoking vertex's colour
+    f.ids.push_back(int32_t(c.r | (c.g << 8) | (c.b << 16)) - 1);
     f.area.push_back((s.x[1] - s.x[0]) * (s.y[2] - s.y[0]) - (s.x[2] - s.x[0]) * (s.y[1] - s.y[0]));
   }
   return f;

@@ -58,6 +58,7 @@ class CoreHarness {
     c.surfaces = vertices;
     c.tex_vertices = tex_vertices == kAsVertices ? vertices : tex_vertices;
     c.active_extra = active;
+    c.triangle_colors = triangles;
     c.lighting_table_words = 4 * lighting_table_words(kMaxLightingTable, true);
     c.pixel_lights = 16;
     return c;
