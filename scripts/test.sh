@@ -55,8 +55,8 @@ LR_CROSS_RUN_QEMU=1 LR_HOST_SMOKE=$host/tests/firmware_host/lr_smoke_host bash s
 step "bare metal: demo frames identical to lineraster-sim's, worst-case stack within the reserved stack"
 bash scripts/ci_firmware.sh
 
-step "bare metal: the bunny (peer scene S1) in the micro:bit's 16 KB of RAM, its frame the one-pass frame"
-bash scripts/microbit_bunny.sh build/cortex-m0plus build/cortex-m4f
+step "bare metal: the peer bunnies in small RAM (S1 in the micro:bit's 16 KB, S1x in 64 KB), frames = one pass"
+bash scripts/small_ram.sh build/cortex-m0plus build/cortex-m4f
 
 step "bare metal: the instruction-counting plugin against known instruction sequences"
 for core in cortex-m4f cortex-m0plus; do

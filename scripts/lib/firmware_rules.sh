@@ -93,7 +93,7 @@ lr_fw_guard() {
 }
 
 # Calls through pointers in the images, for scripts/stack_usage.py (its --indirect-from rules;
-# shared by scripts/footprint.sh, ci_firmware.sh and microbit_bunny.sh): the renderer calls the
+# shared by scripts/footprint.sh, ci_firmware.sh and small_ram.sh): the renderer calls the
 # sink's virtual methods and the span routines of its families; textured and Phong spans call
 # texel fetchers; the front end calls the renderer's admission test; Reset_Handler calls the
 # static constructors (none: the images constant-initialise).

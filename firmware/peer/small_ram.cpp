@@ -1,13 +1,13 @@
-// lr_peer_bunny_16k: the peer scene S1 (the bunny, 1,839 vertices and 3,674 triangles from
-// flash, Gouraud, one light; scenes.hpp) at 320x240 in 16 KB of RAM in all, the micro:bit's.
-// The stores hold a fraction of the mesh, so the frame is drawn in bands (docs/bands.md); it
-// must still be the one-pass frame lr_peer draws, pixel for pixel.
+// The peer scenes S1 and S1x in small RAM: the stores hold a fraction of the mesh, so the frame
+// is drawn in bands (docs/bands.md); it must still be the one-pass frame lr_peer draws, pixel for
+// pixel. LR_SMALL_RAM_CASE picks the case of small_ram_cases.hpp: 0, S1 in the micro:bit's 16 KB
+// (lr_peer_bunny_16k); 1, S1x in 64 KB (lr_peer_bunnyx_64k).
 //
 // The frame goes twice through the renderer:
 //   1. into a PPM file on the host (semihosting), while every RGB565 pixel is folded into the
-//      FNV-1a checksum lr_peer prints for S1 (the same bytes: big-endian RGB565, rows top to
-//      bottom): scripts/microbit_bunny.sh compares the checksum with lr_peer_host's S1 line and
-//      the file with the one this program's host build writes;
+//      FNV-1a checksum lr_peer prints for the scene (the same bytes: big-endian RGB565, rows top
+//      to bottom): scripts/small_ram.sh compares the checksum with lr_peer_host's line and the
+//      file with the one this program's host build writes;
 //   2. into a sink that does no per-pixel work, between two calls of lr_bench_marker(), for the
 //      instruction count (scripts/icount.sh), in lr_bench's line format.
 // It fails when a store drops work, when render() reports a capacity error, or when a strip is
@@ -23,7 +23,16 @@
 #include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
 #include "firmware/peer/scenes.hpp"
+#include "firmware/peer/small_ram_cases.hpp"
+#if LR_SMALL_RAM_CASE == 1
+#include "peer_bunnyx_local_asset.hpp"  // lineraster-asset --fit-box --subdivide 2 --locality
+namespace asset = ::peer_bunnyx_local_asset;
+constexpr const lr::fw::peer::small::SmallRamCase& kSmall = lr::fw::peer::small::kBunnyx64k;
+#else
 #include "peer_bunny_local_asset.hpp"  // lineraster-asset --obj bunny.obj --fit-box --locality
+namespace asset = ::peer_bunny_local_asset;
+constexpr const lr::fw::peer::small::SmallRamCase& kSmall = lr::fw::peer::small::kBunny16k;
+#endif
 
 namespace {
 
@@ -32,39 +41,33 @@ namespace peer = lr::fw::peer;
 using PF = lr::Rgb565Be;
 using Pixel = PF::Storage;
 
-// The budget (bytes of RAM, .data + .bss, the stack apart): strips of one row (two colour
-// strips of 640 B, a depth strip of 640 B) and stores sized for the bunny's fullest rows, not
-// for the mesh. Smaller stores still draw the frame, in more bands and passes (the statistics
-// printed below); the vertex store cannot go below the minimum of docs/bands.md.
-constexpr int kStripRows = 1;
-constexpr size_t kVertices = 200;   // the cache's 67 entries and the copies of one band
-constexpr size_t kTriangles = 104;  // binned triangles of one band
-constexpr size_t kActive = 4;       // triangles rasterized at once (more: the strip in passes)
+constexpr int kStripRows = kSmall.strip_rows;
 constexpr size_t kStripPixels = size_t{peer::kWidth} * kStripRows;
 
 constexpr lr::FrameCapacities kCapacities{.width = peer::kWidth,
                                           .height = peer::kHeight,
                                           .strip_height = kStripRows,
-                                          .vertices = kVertices,
-                                          .triangles = kTriangles,
+                                          .vertices = kSmall.vertices,
+                                          .triangles = kSmall.triangles,
                                           .draws = 1,
-                                          .active = kActive};
+                                          .active = kSmall.active};
 lr::StaticFrameStorage<kCapacities> g_store;
 // Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
 alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_strips{};
 
-// S1 is lit Gouraud with perspective-exact colours and a depth test: the renderer links those
-// span routines only.
+// S1 and S1x are lit Gouraud with perspective-exact colours and a depth test: the renderer links
+// those span routines only.
 constexpr lr::SpanSet kSpans =
     lr::kUntexturedSpans.only_depth(true).only(lr::ColorPlanes::kPerspective);
 lr::Renderer<PF, kStripRows, kSpans> g_renderer;
 
-constexpr const peer::PeerCase& kCase = peer::kCases[0];
-static_assert(kCase.geometry == peer::Geometry::kBunny && kCase.state.lighting);
+constexpr const peer::PeerCase& kCase = peer::kCases[kSmall.scene];
+static_assert(kCase.state.lighting && kCase.state.texture == nullptr);
+static_assert(asset::meshes.size() == 1);
 
-// The PPM file and lr_peer's checksum of the same strips.
+// The PPM file (in QEMU's working directory) and lr_peer's checksum of the same strips.
 struct PpmAndChecksum {
-  lr::fw::PpmFile<PF> file{"lr_peer_bunny_16k.ppm"};
+  lr::fw::PpmFile<PF> file{kSmall.ppm};
   lr::fw::ChecksumConsumer<PF> sum;
   bool to_file = true;
   lr::Status begin(uint16_t w, uint16_t h) {
@@ -81,19 +84,20 @@ PpmAndChecksum g_out;
 lr::fw::OrderedStripSink<PF, PpmAndChecksum> g_sink(g_strips[0], g_strips[1], g_out);
 
 bool check(lr::Status st, const char* what) {
-  return lr::fw::check("lr_peer_bunny_16k", st, what);
+  return lr::fw::check(kSmall.name, st, what);
 }
 
 // The measured work: one whole frame.
 [[gnu::noinline]] lr::Status render_frame(const lr::Camera& camera, const lr::Mat4& model) {
   lr::Status s = g_renderer.begin_frame(camera, kCase.lights, peer::kBackground);
   if (s == lr::Status::kOk)
-    s = g_renderer.draw(peer_bunny_local_asset::meshes[0], model, kCase.material, kCase.state);
+    s = g_renderer.draw(asset::meshes[0], model, kCase.material, kCase.state);
   return s == lr::Status::kOk ? g_renderer.render(g_sink) : s;
 }
 
 void write_stats(const lr::FrameStats& st) {
-  sh::write("lr_peer_bunny_16k:");
+  sh::write(kSmall.name);
+  sh::write(":");
   const lr::fw::NamedCount counts[] = {
       {"pixels_written", st.pixels_written},
       {"vertices", st.vertices_transformed},
@@ -105,9 +109,11 @@ void write_stats(const lr::FrameStats& st) {
       {"max_active", st.max_active},
       {"dropped_vertices", st.dropped_vertex_capacity},
       {"dropped_triangles", st.dropped_triangle_capacity},
-      {"vertex_store", static_cast<uint32_t>(kVertices)},
-      {"triangle_store", static_cast<uint32_t>(kTriangles)},
-      {"active_store", static_cast<uint32_t>(kActive)},
+      {"vertex_store", static_cast<uint32_t>(kSmall.vertices)},
+      {"triangle_store", static_cast<uint32_t>(kSmall.triangles)},
+      {"active_store", static_cast<uint32_t>(kSmall.active)},
+      {"ram_budget", kSmall.ram_budget},
+      {"strip_rows", static_cast<uint32_t>(kStripRows)},
       {"store_bytes", static_cast<uint32_t>(sizeof(g_store))},
       {"strip_bytes", static_cast<uint32_t>(sizeof(g_strips))},
       {"renderer_bytes", static_cast<uint32_t>(sizeof(g_renderer))}};
@@ -119,17 +125,18 @@ bool complete(const lr::FrameStats& st) {
   const uint32_t dropped = st.dropped_vertex_capacity + st.dropped_triangle_capacity;
   if (dropped == 0 && st.pixels_written > 0 && g_sink.strips() == peer::kHeight / kStripRows)
     return true;
-  sh::write("lr_peer_bunny_16k: the frame is incomplete (capacity, or strips missing)\n");
+  sh::write(kSmall.name);
+  sh::write(": the frame is incomplete (capacity, or strips missing)\n");
   return false;
 }
 
 bool run() {
-  static_assert(peer_bunny_local_asset::meshes.size() == 1);
   if (!check(g_renderer.configure(g_store.storage(), peer::kWidth, peer::kHeight), "configure"))
     return false;
   lr::Camera camera;
   if (!peer::make_camera(kCase, camera)) {
-    sh::write("lr_peer_bunny_16k: projection rejected\n");
+    sh::write(kSmall.name);
+    sh::write(": projection rejected\n");
     return false;
   }
   const lr::Mat4 model = peer::model(kCase);
@@ -146,7 +153,9 @@ bool run() {
   lr_bench_marker();
   if (!check(s, "render (counted)") || !complete(g_renderer.stats())) return false;
 
-  sh::write("lr_bench: case S1-16k checksum ");
+  sh::write("lr_bench: case ");
+  sh::write(kSmall.case_name);
+  sh::write(" checksum ");
   sh::write_hex(sum);
   sh::write("\n");
   return true;
@@ -155,8 +164,14 @@ bool run() {
 }  // namespace
 
 int main() {
-  sh::write("lr_peer_bunny_16k: S1, 320x240 RGB565 in strips of 1 row, banded stores\n");
+  sh::write(kSmall.name);
+  sh::write(": ");
+  sh::write(kCase.name);
+  sh::write(", 320x240 RGB565 in strips of ");
+  sh::write_dec(static_cast<uint32_t>(kStripRows));
+  sh::write(" row(s), banded stores\n");
   const bool ok = run();
-  sh::write(ok ? "lr_peer_bunny_16k: PASS\n" : "lr_peer_bunny_16k: FAIL\n");
+  sh::write(kSmall.name);
+  sh::write(ok ? ": PASS\n" : ": FAIL\n");
   return ok ? 0 : 1;
 }
