@@ -377,8 +377,8 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
                             const ClipCoord (&clip)[3], uint8_t oc_or, bool back_colored, Rgb8 flat,
                             Rgb8 flat_spec) {
   ++stats_.clipped;
-  ClipVertex poly[kMaxClipVertices];
-  for (int k = 0; k < 3; ++k) {
+  const ClipPolygon poly(clip_polygon_.data(), kMaxClipVertices);
+  for (size_t k = 0; k < 3; ++k) {
     poly[k].p = clip[k];
     poly[k].color = back_colored ? d.back_colors[k].primary : sv[k]->color;
     if (d.plan.uv) {
@@ -392,7 +392,8 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
     }
     if (d.plan.kind.phong) poly[k].surface = surfaces_[vi[k]];
   }
-  const int m = clip_polygon(poly, 3, oc_or, d.stage.guard());
+  const int m = clip_polygon(poly, ClipPolygon(clip_scratch_.data(), kMaxClipVertices), 3, oc_or,
+                             d.stage.guard());
   if (m < 3) {
     ++stats_.clipped_away;
     return;
@@ -406,8 +407,8 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
   }
   const auto first = static_cast<uint16_t>(vertex_count_);
   int projected = 0;
-  for (int k = 0; k < m; ++k) {
-    const size_t at = vertex_count_ + static_cast<size_t>(k);
+  for (size_t k = 0; k < static_cast<size_t>(m); ++k) {
+    const size_t at = vertex_count_ + k;
     ScreenVertex& nv = vertices_[at];
     nv.color = poly[k].color;
     nv.outcode = 0;
@@ -469,8 +470,11 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
     draws_[draw_index].color = to_rgb8_sat(material.diffuse);
 
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
-  PreparedLighting pl;
-  if (plan.lit) pl = prepare_lighting(lights_, material, view_dir, camera_.eye);
+  PreparedLighting& pl = lighting_;
+  if (plan.lit)
+    prepare_lighting(lights_, material, view_dir, camera_.eye, pl);
+  else
+    pl = PreparedLighting{};
   if (plan.kind.phong && add_phong_state(state, pl, draws_[draw_index]) != Status::kOk) {
     --draw_count_;
     refuse(tri_count, false);
@@ -738,9 +742,12 @@ void FrontEnd::replay(uint8_t index) {
   const Material material = c.material.get();
   DrawPlan plan;
   plan_draw(c.mesh, state, lights_, plan);  // passed in draw()
-  PreparedLighting pl;
+  PreparedLighting& pl = lighting_;
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
-  if (plan.lit) pl = prepare_lighting(lights_, material, view_dir, camera_.eye);
+  if (plan.lit)
+    prepare_lighting(lights_, material, view_dir, camera_.eye, pl);
+  else
+    pl = PreparedLighting{};
   run_mesh(index, c.mesh, c.model, material, state, plan, pl);
 }
 

@@ -228,7 +228,13 @@ class FrontEnd {
   bool band_dropped_ = false;       // the band is one strip and dropped triangles
   FrameStats band_before_{};        // the statistics before the band (here, not on the stack)
   size_t draw_first_triangle_ = 0;  // the running draw's first binned triangle
-  bool draw_colors_ = false;        // the running draw's triangles have TriangleColors
+  // Working memory of one draw, kept here rather than on the stack (the worst-case stack is a
+  // budget of its own, and these are the largest locals of the deepest path): the draw's
+  // prepared lighting, and a clipped polygon with the clipper's scratch.
+  PreparedLighting lighting_{};
+  std::array<ClipVertex, kMaxClipVertices> clip_polygon_{};
+  std::array<ClipVertex, kMaxClipVertices> clip_scratch_{};
+  bool draw_colors_ = false;  // the running draw's triangles have TriangleColors
   // The vertex cache: kCacheSets sets of two slots by mesh index, and a spare per corner for a
   // triangle with three corners in one set. Each entry: the mesh index (low half) and the store
   // index of its copy (high half; kNoCacheEntry: none yet); cache_lru_: per set, the way to

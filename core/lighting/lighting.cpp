@@ -35,6 +35,13 @@ Unit30 half_vector(const Unit30& l, const Unit30& v) {
 
 PreparedLighting prepare_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec3 eye) {
   PreparedLighting pl;
+  prepare_lighting(set, m, view_dir, eye, pl);
+  return pl;
+}
+
+void prepare_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec3 eye,
+                      PreparedLighting& pl) {
+  pl = PreparedLighting{};
   pl.count = set.count > kMaxLights ? kMaxLights : set.count;
   pl.shininess_q8 = m.shininess_q8;
   pl.material = m;
@@ -65,7 +72,6 @@ PreparedLighting prepare_lighting(const LightSet& set, const Material& m, Vec3 v
       d.ks[c] = mul15(channel(src.specular, c), channel(m.specular, c));
     }
   }
-  return pl;
 }
 
 namespace {

@@ -93,6 +93,9 @@ struct PreparedLighting {
 
 // view_dir: world-space direction from the scene towards the eye (the view's +Z axis).
 PreparedLighting prepare_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec3 eye);
+// The same into `pl` (no temporary on the caller's stack: the front end keeps one for its draws).
+void prepare_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec3 eye,
+                      PreparedLighting& pl);
 
 // Lit colour of a surface point with unit normal n (world) at world position p (read only for
 // point lights and the local viewer).

@@ -92,22 +92,22 @@ uint8_t outcode(const ClipCoord& c, GuardBand g) {
   return code;
 }
 
-int clip_polygon(ClipVertex* poly, int n, uint8_t planes, GuardBand g) {
-  ClipVertex tmp[kMaxClipVertices];
+int clip_polygon(ClipPolygon poly, ClipPolygon scratch, int n, uint8_t planes, GuardBand g) {
   for (int i = 0; i < kClipPlanes && n > 0; ++i) {
     if (!(planes & (1u << i))) continue;
     int m = 0;
     for (int k = 0; k < n; ++k) {
-      const ClipVertex& a = poly[k];
-      const ClipVertex& b = poly[(k + 1) % n];
+      const ClipVertex& a = poly[static_cast<size_t>(k)];
+      const ClipVertex& b = poly[static_cast<size_t>((k + 1) % n)];
       int64_t da = distance(a.p, i, g), db = distance(b.p, i, g);
       // A convex polygon gains at most one vertex per plane; the bound only guards against
       // rounding making a sliver non-convex.
-      if (da >= 0 && m < kMaxClipVertices) tmp[m++] = a;
+      if (da >= 0 && m < kMaxClipVertices) scratch[static_cast<size_t>(m++)] = a;
       if ((da >= 0) != (db >= 0) && m < kMaxClipVertices)
-        tmp[m++] = da >= 0 ? intersect(a, b, da, db) : intersect(b, a, db, da);
+        scratch[static_cast<size_t>(m++)] =
+            da >= 0 ? intersect(a, b, da, db) : intersect(b, a, db, da);
     }
-    for (int k = 0; k < m; ++k) poly[k] = tmp[k];
+    for (int k = 0; k < m; ++k) poly[static_cast<size_t>(k)] = scratch[static_cast<size_t>(k)];
     n = m;
   }
   return n;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "core/math/mat4.hpp"
 #include "core/output/color.hpp"
@@ -44,9 +45,11 @@ struct ClipVertex {
 uint8_t outcode(const ClipCoord& c, GuardBand g);
 
 // Clips the convex polygon poly[0..n) against the planes in `planes`; returns the new vertex
-// count (0: nothing left). poly must have room for kMaxClipVertices. Intersections are always
-// computed from the inside vertex towards the outside one, so an edge shared by two triangles
-// is cut at the same point in both (no cracks after clipping).
-int clip_polygon(ClipVertex* poly, int n, uint8_t planes, GuardBand g);
+// count (0: nothing left), the polygon in poly. `scratch` holds each plane's output (the caller
+// owns both: the front end keeps them in its object, not on the stack). Intersections are
+// always computed from the inside vertex towards the outside one, so an edge shared by two
+// triangles is cut at the same point in both (no cracks after clipping).
+using ClipPolygon = std::span<ClipVertex, kMaxClipVertices>;
+int clip_polygon(ClipPolygon poly, ClipPolygon scratch, int n, uint8_t planes, GuardBand g);
 
 }  // namespace lr

@@ -173,12 +173,20 @@ void report(const char* label, uint32_t value, bool hex = false) {
   sh::write("\n");
 }
 
+// The frame's camera, lights, material and model matrix, static: the renderer copies them, and
+// on the stack they would add to the deepest path (render() -> ... -> the span routines) whose
+// depth the footprint measures.
+lr::Camera g_camera;
+lr::LightSet g_lights;
+lr::Material g_material;  // GL's default material (unlit: unused)
+lr::Mat4 g_model;
+
 bool render_frame() {
   if (!check(g_renderer.configure(g_store.storage(), kWidth, kHeight), "configure")) return false;
 
   // The torus seen from 40 degrees above its plane, filling two thirds of the screen (52,000
   // pixels): every strip but a few at the top and bottom has work.
-  lr::Camera camera;
+  lr::Camera& camera = g_camera;
   camera.eye = {Fixed::from_double(0.0), Fixed::from_double(1.8), Fixed::from_double(2.2)};
   const lr::Vec3 target{Fixed::from_double(0.0), Fixed::from_double(-0.1), Fixed::from_double(0.0)};
   const lr::Vec3 up{Fixed::from_double(0.0), Fixed::from_double(1.0), Fixed::from_double(0.0)};
@@ -189,14 +197,14 @@ bool render_frame() {
     return false;
   }
 
-  lr::LightSet lights;
+  lr::LightSet& lights = g_lights;
   lights.lights[0].position = {Fixed::from_double(0.4), Fixed::from_double(0.8),
                                Fixed::from_double(0.6)};
   lights.count = 1;
   constexpr uint16_t kAmbient = 6554;  // 0.2 in Q1.15, GL's default global ambient
   lights.global_ambient = {kAmbient, kAmbient, kAmbient};
 
-  lr::Material material;  // GL's default material (unlit: unused)
+  lr::Material& material = g_material;
   if constexpr (kLit) {
     const lr::NamedMaterial* gold = lr::find_material(kTextured ? "silver" : "gold");
     if (gold == nullptr) return false;
@@ -205,8 +213,8 @@ bool render_frame() {
 
   if (!check(g_renderer.begin_frame(camera, lights, lr::Rgb8{16, 24, 48}), "begin_frame"))
     return false;
-  const lr::Mat4 model = lr::rotate_y(Fixed::from_double(20.0));
-  if (!check(g_renderer.draw(kMesh, model, material, make_state()), "draw")) return false;
+  g_model = lr::rotate_y(Fixed::from_double(20.0));
+  if (!check(g_renderer.draw(kMesh, g_model, material, make_state()), "draw")) return false;
   return check(g_renderer.render(g_sink), "render");
 }
 
