@@ -22,13 +22,13 @@ struct SmallRamCase {
 };
 
 // S1, the bunny (1,839 vertices, 3,674 triangles), in the micro:bit's 16 KB: strips of one row
-// (two colour strips and a depth strip of 640 B each) and a 6 KB stack.
+// (two colour strips and a depth strip of 640 B each) and a 3 KB stack.
 inline constexpr SmallRamCase kBunny16k{
-    "lr_peer_bunny_16k", "S1-16k", "lr_peer_bunny_16k.ppm", 0, 16 * 1024, 1, 200, 104, 4};
+    "lr_peer_bunny_16k", "S1-16k", "lr_peer_bunny_16k.ppm", 0, 16 * 1024, 1, 216, 128, 4};
 
 // S1x, the bunny subdivided twice (29,394 vertices, 58,784 triangles; about 2.5 MB in one
-// pass), in 64 KB: strips of two rows (1,280 B each) and an 8 KB stack.
+// pass), in 64 KB: strips of two rows (1,280 B each) and a 4 KB stack.
 inline constexpr SmallRamCase kBunnyx64k{
-    "lr_peer_bunnyx_64k", "S1x-64k", "lr_peer_bunnyx_64k.ppm", 1, 64 * 1024, 2, 1408, 1536, 16};
+    "lr_peer_bunnyx_64k", "S1x-64k", "lr_peer_bunnyx_64k.ppm", 1, 64 * 1024, 2, 1536, 1536, 16};
 
 }  // namespace lr::fw::peer::small
