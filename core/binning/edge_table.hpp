@@ -149,7 +149,7 @@ class EdgeTable {
   std::span<TriangleColors> colors_{};
   std::span<uint16_t> buckets_{};
   std::span<uint32_t> strip_inputs_{};
-  int width_ = 0, height_ = 0, strip_height_ = 1, strips_ = 0;
+  int width_ = 0, height_ = 0, strip_height_ = 0, strips_ = 0;
   size_t count_ = 0;
   uint32_t frame_signature_ = 0;
 };

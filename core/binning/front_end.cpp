@@ -109,7 +109,7 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
   background_ = background;
   vertex_count_ = draw_count_ = 0;
   vertex_limit_ = vertices_.size();
-  cache_first_ = kNoCache;
+  cache_first_ = 0;
   overflow_ = banding_ = band_dropped_ = false;
   band_r0_ = 0;
   band_r1_ = height_ - 1;
@@ -543,7 +543,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   else
     triangle_loop<false>(d, tri_count);
   if (cached) {
-    cache_first_ = kNoCache;
+    cache_first_ = 0;
     vertex_limit_ = vertices_.size();
   }
   if (banding_) compact_vertices(base, phong, uv);

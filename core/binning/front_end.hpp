@@ -60,9 +60,16 @@ struct BinnedFrame {
   std::span<DrawRecord> draws;
   std::span<uint16_t> buckets;       // one list head per strip
   std::span<uint32_t> strip_inputs;  // empty, or this frame's signatures then the last frame's
-  int width = 0, height = 0, strip_height = 1, strips = 0;
+  int width = 0, height = 0, strip_height = 0, strips = 0;
   Rgb8 background{};
 };
+
+// A LightSet of zero bytes (no light, every field zero): the front end's default.
+constexpr LightSet zero_lights() {
+  LightSet s;
+  for (Light& l : s.lights) l = Light{LightKind::kDirectional, {}, {}, {}, {}, {}, {}, {}};
+  return s;
+}
 
 class FrontEnd {
  public:
@@ -211,10 +218,13 @@ class FrontEnd {
   std::span<PreparedLighting> pixel_lights_{};
   EdgeTable edges_{};
   FrameStats stats_{};
-  int width_ = 0, height_ = 0, strip_height_ = 1;
-  GuardBand guard_{};
-  Camera camera_{};
-  LightSet lights_{};
+  // Every default is zero bytes (configure() and begin_frame() set what a frame uses), so that a
+  // static renderer is constant-initialised into .bss, not copied from flash into .data: hence
+  // the camera's zero matrices and the lights' zero fields instead of their types' defaults.
+  int width_ = 0, height_ = 0, strip_height_ = 0;
+  GuardBand guard_{0, 0};
+  Camera camera_{Mat4{}, Mat4{}, Vec3{}};
+  LightSet lights_ = zero_lights();
   Rgb8 background_{};
   size_t vertex_count_ = 0, draw_count_ = 0;
   size_t pixel_light_count_ = 0, table_words_used_ = 0;
@@ -247,9 +257,8 @@ class FrontEnd {
   // a triangle's copies.
   static constexpr size_t kMinCachedStore = kCacheSlots + kMaxClipVertices + 3;
   static constexpr uint32_t kNoCacheEntry = 0xFFFF;
-  static constexpr size_t kNoCache = SIZE_MAX;
   std::array<uint32_t, kCacheSlots> cache_{};
-  size_t cache_first_ = kNoCache;
+  size_t cache_first_ = 0;  // while a cached mesh is binned
   size_t vertex_limit_ = 0;
   bool cache_surfaces_ = false, cache_tex_ = false;
   bool active_extra_ = false;  // FrontEndStorage::active_extra

@@ -131,6 +131,16 @@ TEST(FrameStorage, StaticStoresAreConstantInitialisedToZeroBytes) {
   EXPECT_EQ(nonzero, 0u);
 }
 
+TEST(FrameStorage, StaticRenderersAreConstantInitialisedToZeroBytes) {
+  // Likewise the renderer object (its front end's working memory is 2 KB): all zero bytes, it
+  // goes to .bss and costs no flash.
+  constinit static Renderer<Rgb565Be, 8, kUntexturedSpans> renderer;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(&renderer);
+  size_t nonzero = 0;
+  for (size_t i = 0; i < sizeof(renderer); ++i) nonzero += bytes[i] != 0 ? 1 : 0;
+  EXPECT_EQ(nonzero, 0u);
+}
+
 TEST(FrameStorage, TheRendererItIsSizedForAcceptsIt) {
   BasicFrameStorage<std::vector> store(kCaps);
   Renderer<Rgb888, 8> r;
