@@ -45,7 +45,7 @@ using Pixel = PF::Storage;
 constexpr int kWidth = 320;
 constexpr int kHeight = 240;
 
-// Board-dependent sizes. The small profile (16 KB of RAM, of which the stack takes 6 KB) holds
+// Board-dependent sizes. The small profile (16 KB of RAM, of which the stack takes 4 KB) holds
 // this scene with little to spare: 6 vertices and 8 triangles (nothing is clipped: the
 // octahedron lies well inside the near plane), at most 7 triangles active at once ("max active"
 // in the report); docs/measurements/footprint.md has the RAM they take.
