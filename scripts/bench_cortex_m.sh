@@ -66,7 +66,7 @@ for tree in "${trees[@]}"; do
       BEGIN { n = 0; c = 0 }
       /^icount: marker / { counts[n++] = $NF }
       /^lr_bench: case / { name[c] = $3; px[c] = $7; tri[c] = $9; c++ }
-      function commas(v,   s) { s = sprintf("%d", v); while (s ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9]($|,)/, ",&", s); return s }
+      function commas(v,   s) { s = sprintf("%.0f", v); while (s ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9]($|,)/, ",&", s); return s }
       END {
         if (n != 2 * c) { print "marker count " n " != 2 x " c " cases" > "/dev/stderr"; exit 1 }
         for (i = 0; i < c; i++) {
@@ -96,7 +96,7 @@ for tree in "${trees[@]}"; do
         }
         /^icount: marker / { counts[n++] = $NF }
         /^lr_bench: case / { name[c++] = $3 }
-        function commas(v,   s) { s = sprintf("%d", v); while (s ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9]($|,)/, ",&", s); return s }
+        function commas(v,   s) { s = sprintf("%.0f", v); while (s ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9]($|,)/, ",&", s); return s }
         END {
           for (i = 0; i < c; i++) {
             if (!(name[i] in budget)) continue

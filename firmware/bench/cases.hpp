@@ -228,7 +228,7 @@ inline constexpr std::array kCases = {
               with_cull(shading(Shading::kGouraud), Cull::kBack), Tex::kNone, 256},
     BenchCase{"knot64k_bands_4096", "", Mesh3::kKnot64k, kKnotView, demo::sim_default_lights(), 0,
               true, with_cull(shading(Shading::kGouraud), Cull::kBack), Tex::kNone, 4096},
-    //   the subdivided knot in small stores (189 KB instead of 1.9 MB): 3,072 vertices (its
+    //   the subdivided knot in small stores (108 KB instead of 1.3 MB): 3,072 vertices (its
     //   32,841 go through the vertex cache), 3,072 binned triangles, 64 active triangles
     //   (crowded strips drawn in passes); 2,048 of either does not hold its fullest strip
     BenchCase{"knot64k_small_stores", "", Mesh3::kKnot64k, kKnotView, demo::sim_default_lights(), 0,
