@@ -273,9 +273,14 @@ void run(const Header& h, Bytes& in) {
   uint32_t expected_in = 0;
   auto counted = [&](Status s, size_t n) {
     // A rejected draw (kInvalidArgument) adds nothing; anything else counts every triangle.
+    // Once the stores have overflowed, later draws are only recorded: their outcomes are
+    // counted when render() bins the frame in bands (checked after it), not here.
     if (s != Status::kInvalidArgument) expected_in += static_cast<uint32_t>(n);
     LR_FUZZ_CHECK(renderer->stats().triangles_in == expected_in);
-    LR_FUZZ_CHECK(outcomes(renderer->stats()) == expected_in);
+    if (renderer->front_end().needs_bands())
+      LR_FUZZ_CHECK(outcomes(renderer->stats()) <= expected_in);
+    else
+      LR_FUZZ_CHECK(outcomes(renderer->stats()) == expected_in);
   };
   counted(renderer->draw(mesh, model, material, state), nt);
   counted(renderer->draw_screen(svs, stris, state, stex), nst);
