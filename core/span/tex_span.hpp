@@ -242,10 +242,16 @@ uint32_t fill_tex_span_body(const ActiveTriangle& tri, const DrawRecord& d,
   TexAttrs a0;  // span mode: exact attributes at the chunk start
   if constexpr (kPersp == TexPersp::kSpan) a0 = detail::exact_attrs(tri, pv, kColors);
 
+  // Only what the state uses has room on the stack: the texels of one level overwrite the s
+  // coordinates (fetch_batch reads s[k] and t[k] before it writes out[k]), unless a second
+  // level is fetched at the same coordinates (trilinear); colours only when they vary.
+  constexpr bool kTwoLevels = kMip == MipMode::kLinear;
   int16_t idx[kMaxChunk];
   int32_t cs[kMaxChunk], ct[kMaxChunk];
-  uint16_t cc[kMaxChunk][6];
-  Texel texels[kMaxChunk], texels1[kMaxChunk];
+  uint16_t cc[kColors ? kMaxChunk : 1][6];
+  Texel own_texels[kTwoLevels ? kMaxChunk : 1], texels1[kTwoLevels ? kMaxChunk : 1];
+  // The unsigned view of int32_t storage: an access the aliasing rules allow.
+  Texel* const texels = kTwoLevels ? own_texels : reinterpret_cast<Texel*>(cs);
   uint32_t written = 0;
 
   for (int32_t done = 0; done < count;) {
