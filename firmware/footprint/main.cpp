@@ -2,18 +2,23 @@
 // 1,000 triangles, drawing a 1,000-triangle torus (firmware/footprint/scene.hpp) in the shading
 // of one configuration (LR_FOOTPRINT_CONFIG, set by firmware/footprint/CMakeLists.txt):
 //
-//   1 unlit         vertex colours, no lighting
-//   2 gouraud       lit per vertex ("gold")
-//   3 tex_nearest   lit per vertex, 32x32 RGB565 texture, nearest, repeat, no mipmaps
-//   4 tex_bilinear  the same, bilinear
-//   5 phong         lit per pixel, exact ("gold"), one directional light, no maps
+//   1 unlit          vertex colours, no lighting
+//   2 gouraud        lit per vertex ("gold")
+//   3 tex_nearest    lit per vertex, 32x32 RGB565 texture, nearest, repeat, no mipmaps
+//   4 tex_bilinear   the same, bilinear
+//   5 phong          lit per pixel, exact ("gold"), one directional light, no maps
+//   6 gouraud_tex    three draws, a third of the torus each: gouraud, tex_nearest, tex_bilinear
+//                    (the renderer holds the three states' routines and nothing else)
+//   7 every_feature  five draws, a fifth each: configurations 1 to 5, with a renderer that
+//                    holds every span routine the core has (kAllSpans: every family, texel
+//                    format, wrap, filter, mip mode, environment and map)
 //
-// Each renderer, Renderer<PF, 8, kSpans>, links only the span routine and the texel fetcher of
-// the one state its configuration draws with (kSpans: the smallest lr::SpanSet holding that
-// state, core/span/span_state.hpp; e.g. tex_nearest links no bilinear fetcher and no mipmap code),
-// and only the mesh arrays its draw reads, so scripts/footprint.sh's flash,
-// RAM and stack figures are those of a real application of that kind (what the core links for
-// every draw, e.g. its texel fetchers, counts too). Static storage only: no heap, no exceptions.
+// Each renderer, Renderer<PF, 8, kSpans>, links only the span routines and texel fetchers of
+// the states its configuration draws with (kSpans: the smallest lr::SpanSet holding them,
+// core/span/span_state.hpp; e.g. tex_nearest links no bilinear fetcher and no mipmap code), and
+// only the mesh arrays its draws read, so scripts/footprint.sh's flash, RAM and stack figures
+// are those of a real application of that kind (what the core links for every draw, e.g. its
+// texel fetchers, counts too). Static storage only: no heap, no exceptions.
 //
 // Output (semihosting): the frame's checksum (FNV-1a, as lr_smoke's), the frame statistics and
 // the stack high-water mark (stack_probe.hpp), for footprint.sh to check against the static
@@ -21,6 +26,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
+#include <utility>
 
 #include "core/raster/renderer.hpp"
 #include "core/scene/camera.hpp"
@@ -32,7 +39,8 @@
 #include "firmware/footprint/stack_probe.hpp"
 
 #ifndef LR_FOOTPRINT_CONFIG
-#error "LR_FOOTPRINT_CONFIG (1 unlit .. 5 phong) is set by firmware/footprint/CMakeLists.txt"
+#error \
+    "LR_FOOTPRINT_CONFIG (1 unlit .. 7 every_feature) is set by firmware/footprint/CMakeLists.txt"
 #endif
 
 namespace {
@@ -41,28 +49,53 @@ namespace fp = lr::fw::footprint;
 namespace sh = lr::fw::semihost;
 using lr::Fixed;
 
-enum class Config : int { kUnlit = 1, kGouraud, kTexNearest, kTexBilinear, kPhong };
-constexpr Config kConfig = static_cast<Config>(LR_FOOTPRINT_CONFIG);
-static_assert(LR_FOOTPRINT_CONFIG >= 1 && LR_FOOTPRINT_CONFIG <= 5, "unknown configuration");
+// A draw's shading (configurations 1 to 5), and the configuration of the image.
+enum class Part : int { kUnlit = 1, kGouraud, kTexNearest, kTexBilinear, kPhong };
+static_assert(LR_FOOTPRINT_CONFIG >= 1 && LR_FOOTPRINT_CONFIG <= 7, "unknown configuration");
+constexpr int kConfig = LR_FOOTPRINT_CONFIG;
+constexpr int kGouraudTex = 6, kEveryFeature = 7;
 
-constexpr bool kTextured = kConfig == Config::kTexNearest || kConfig == Config::kTexBilinear;
-constexpr bool kPhong = kConfig == Config::kPhong;
-constexpr bool kLit = kConfig != Config::kUnlit;
-constexpr lr::Filter kFilter =
-    kConfig == Config::kTexNearest ? lr::Filter::kNearest : lr::Filter::kBilinear;
+struct Parts {
+  std::array<Part, 5> part{};
+  size_t count = 0;
+};
+constexpr Parts parts_of(int config) {
+  if (config == kGouraudTex) return {{Part::kGouraud, Part::kTexNearest, Part::kTexBilinear}, 3};
+  if (config == kEveryFeature)
+    return {{Part::kUnlit, Part::kGouraud, Part::kTexNearest, Part::kTexBilinear, Part::kPhong}, 5};
+  return {{static_cast<Part>(config)}, 1};
+}
+constexpr Parts kParts = parts_of(kConfig);
 
-// The span state of the draw (make_state() below), and the set of the renderer: that state with
-// the texture's format and wraps. A draw outside the set would be refused (draw() fails).
-constexpr lr::SpanState make_span_state() {
+constexpr bool textured(Part p) {
+  return p == Part::kTexNearest || p == Part::kTexBilinear;
+}
+constexpr bool any_part(bool (*pred)(Part)) {
+  for (size_t i = 0; i < kParts.count; ++i)
+    if (pred(kParts.part[i])) return true;
+  return false;
+}
+constexpr bool kTextured = any_part(textured);
+constexpr bool kPhong = any_part([](Part p) { return p == Part::kPhong; });
+constexpr bool kLit = any_part([](Part p) { return p != Part::kUnlit; });
+
+constexpr lr::Filter filter_of(Part p) {
+  return p == Part::kTexNearest ? lr::Filter::kNearest : lr::Filter::kBilinear;
+}
+
+// The span state of a draw (make_state() below), and the set of the renderer: the states of its
+// draws with the texture's format and wraps (every routine for every_feature). A draw outside
+// the set would be refused (draw() fails).
+constexpr lr::SpanState make_span_state(Part p) {
   lr::SpanState s;
   s.depth = true;
-  if constexpr (kTextured) {
+  if (textured(p)) {
     s.family = lr::SpanFamily::kTextured;
     s.persp = lr::TexPersp::kExact;
     s.env = lr::TexEnv::kModulate;
     s.mip = lr::MipMode::kNone;
-    s.filter = kFilter;
-  } else if constexpr (kPhong) {
+    s.filter = filter_of(p);
+  } else if (p == Part::kPhong) {
     s.family = lr::SpanFamily::kPhong;
     s.method = lr::PixelLighting::kExact;
     s.position = false;  // one directional light, infinite viewer
@@ -72,9 +105,14 @@ constexpr lr::SpanState make_span_state() {
   }
   return s;
 }
-constexpr lr::SpanSet kSpans = lr::span_set_of(make_span_state())
-                                   .only(lr::TexelFormat::kRgb565)
-                                   .only_wraps(lr::Wrap::kRepeat, lr::Wrap::kRepeat);
+constexpr lr::SpanSet make_span_set() {
+  if (kConfig == kEveryFeature) return lr::kAllSpans;
+  lr::SpanSet set = lr::span_set_of(make_span_state(kParts.part[0]));
+  for (size_t i = 1; i < kParts.count; ++i)
+    set = set | lr::span_set_of(make_span_state(kParts.part[i]));
+  return set.only(lr::TexelFormat::kRgb565).only_wraps(lr::Wrap::kRepeat, lr::Wrap::kRepeat);
+}
+constexpr lr::SpanSet kSpans = make_span_set();
 
 using PF = lr::Rgb565Be;
 using Pixel = PF::Storage;
@@ -99,16 +137,19 @@ constexpr size_t kStripPixels = size_t{kWidth} * kStripRows;
 //    overflow drops triangles (counted in FrameStats, and fatal here), it corrupts nothing.
 //  - Phong only: one SurfaceVertex per vertex-store entry, one PreparedLighting (one material).
 //  - Textured only: one TexVertex per vertex-store entry.
+//  - The images of several draws (gouraud_tex, every_feature) transform the torus's vertices
+//    once per draw: their vertex stores hold 640 per draw.
+constexpr size_t kVertices = 640 * kParts.count;
 constexpr lr::FrameCapacities kCapacities{.width = kWidth,
                                           .height = kHeight,
                                           .strip_height = kStripRows,
-                                          .vertices = 640,
+                                          .vertices = kVertices,
                                           .triangles = 1024,
-                                          .draws = 2,
+                                          .draws = kParts.count + 1,
                                           .active = 128,
-                                          .surfaces = kPhong ? 640 : 0,
+                                          .surfaces = kPhong ? kVertices : 0,
                                           .pixel_lights = kPhong ? 1u : 0u,
-                                          .tex_vertices = kTextured ? 640u : 0u,
+                                          .tex_vertices = kTextured ? kVertices : 0,
                                           .active_extra = kTextured || kPhong ? 128u : 0u};
 
 // Constant-initialised, zero-filled in .bss, no constructor at startup.
@@ -124,39 +165,44 @@ lr::fw::OrderedStripSink<PF, lr::fw::ChecksumConsumer<PF>> g_sink(g_store_strip_
                                                                   g_store_strip_buffers[1],
                                                                   g_checksum);
 
-// ---- The draw --------------------------------------------------------------------------------
-constexpr lr::Mesh make_mesh() {
+// ---- The draws -------------------------------------------------------------------------------
+// Draw i of n covers the torus's triangles [1000 i / n, 1000 (i + 1) / n).
+constexpr lr::Mesh make_mesh(Part p, size_t i) {
   lr::Mesh m{};
   m.positions = fp::kPositions;
-  m.triangles = fp::kTriangles;
-  if constexpr (kLit) m.normals = fp::kNormals;
-  if constexpr (!kLit) m.colors = fp::kColors;
-  if constexpr (kTextured) m.uvs = fp::kUvs;
+  const size_t first = fp::kTriangleCount * i / kParts.count;
+  const size_t last = fp::kTriangleCount * (i + 1) / kParts.count;
+  m.triangles = std::span(fp::kTriangles).subspan(first, last - first);
+  if (p != Part::kUnlit) m.normals = fp::kNormals;
+  if (p == Part::kUnlit) m.colors = fp::kColors;
+  if (textured(p)) m.uvs = fp::kUvs;
   return m;
 }
-constexpr lr::Mesh kMesh = make_mesh();
+template <size_t... I>
+constexpr std::array<lr::Mesh, sizeof...(I)> make_meshes(std::index_sequence<I...>) {
+  return {make_mesh(kParts.part[I], I)...};
+}
+constexpr auto kMeshes = make_meshes(std::make_index_sequence<kParts.count>{});
 
-lr::DrawState make_state() {
+lr::DrawState make_state(Part p) {
   lr::DrawState s;
-  s.lighting = kLit;
-  s.shading = kPhong ? lr::Shading::kPhong : lr::Shading::kGouraud;
+  s.lighting = p != Part::kUnlit;
+  s.shading = p == Part::kPhong ? lr::Shading::kPhong : lr::Shading::kGouraud;
   s.depth_test = true;
   s.cull = lr::Cull::kBack;
-  if constexpr (kTextured) {
+  if (textured(p)) {
     s.texture = &fp::kTexture;
-    s.sampler.filter = kFilter;
+    s.sampler.filter = filter_of(p);
     s.sampler.mip = lr::MipMode::kNone;
     s.sampler.env = lr::TexEnv::kModulate;
   }
-  if constexpr (kPhong) s.pixel_lighting = lr::PixelLighting::kExact;
+  if (p == Part::kPhong) s.pixel_lighting = lr::PixelLighting::kExact;
   return s;
 }
 
-constexpr const char* kName = kConfig == Config::kUnlit         ? "unlit"
-                              : kConfig == Config::kGouraud     ? "gouraud"
-                              : kConfig == Config::kTexNearest  ? "tex_nearest"
-                              : kConfig == Config::kTexBilinear ? "tex_bilinear"
-                                                                : "phong";
+constexpr const char* kNames[] = {"unlit", "gouraud",     "tex_nearest",  "tex_bilinear",
+                                  "phong", "gouraud_tex", "every_feature"};
+constexpr const char* kName = kNames[kConfig - 1];
 
 bool check(lr::Status st, const char* what) {
   return lr::fw::check("footprint", st, what);
@@ -178,10 +224,12 @@ void report(const char* label, uint32_t value, bool hex = false) {
 // depth the footprint measures.
 lr::Camera g_camera;
 lr::LightSet g_lights;
-lr::Material g_material;  // GL's default material (unlit: unused)
+lr::Material g_gold, g_silver;  // untextured and textured lit draws (unlit: unused)
 lr::Mat4 g_model;
 
-bool render_frame() {
+// Everything before render(), out of line: its temporaries (the camera's computation, the
+// materials) are off the stack while the frame renders, as an application would keep them.
+[[gnu::noinline]] bool prepare_frame() {
   if (!check(g_renderer.configure(g_store.storage(), kWidth, kHeight), "configure")) return false;
 
   // The torus seen from 40 degrees above its plane, filling two thirds of the screen (52,000
@@ -204,18 +252,24 @@ bool render_frame() {
   constexpr uint16_t kAmbient = 6554;  // 0.2 in Q1.15, GL's default global ambient
   lights.global_ambient = {kAmbient, kAmbient, kAmbient};
 
-  lr::Material& material = g_material;
   if constexpr (kLit) {
-    const lr::NamedMaterial* gold = lr::find_material(kTextured ? "silver" : "gold");
-    if (gold == nullptr) return false;
-    material = lr::to_material(*gold);
+    const lr::NamedMaterial* gold = lr::find_material("gold");
+    const lr::NamedMaterial* silver = lr::find_material("silver");
+    if (gold == nullptr || silver == nullptr) return false;
+    g_gold = lr::to_material(*gold);
+    g_silver = lr::to_material(*silver);
   }
 
   if (!check(g_renderer.begin_frame(camera, lights, lr::Rgb8{16, 24, 48}), "begin_frame"))
     return false;
   g_model = lr::rotate_y(Fixed::from_double(20.0));
-  if (!check(g_renderer.draw(kMesh, g_model, material, make_state()), "draw")) return false;
-  return check(g_renderer.render(g_sink), "render");
+  for (size_t i = 0; i < kParts.count; ++i) {
+    const Part p = kParts.part[i];
+    if (!check(g_renderer.draw(kMeshes[i], g_model, textured(p) ? g_silver : g_gold, make_state(p)),
+               "draw"))
+      return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -229,7 +283,7 @@ int main() {
   sh::write("footprint: ");
   sh::write(kName);
   sh::write(": 320x240 RGB565, strips of 8 rows, torus of 1,000 triangles\n");
-  bool ok = render_frame();
+  bool ok = prepare_frame() && check(g_renderer.render(g_sink), "render");
   const lr::FrameStats& st = g_renderer.stats();
   const uint32_t dropped = st.dropped_vertex_capacity + st.dropped_triangle_capacity;
   report("triangles binned", st.triangles_binned);
