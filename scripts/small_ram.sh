@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# The peer bunnies in small RAM, drawn in bands (firmware/peer/small_ram.cpp): lr_peer_bunny_16k,
-# S1 (3,674 triangles) in 16 KB — on Cortex-M0+ on the micro:bit, whose RAM is 16 KB in all — and
-# lr_peer_bunnyx_64k, S1x (58,784 triangles) in 64 KB on Cortex-M4F. Runs each image of each
-# bare-metal tree under QEMU with the instruction-counting plugin (scripts/icount.sh) and checks
+# The peer bunnies and the 64,000-triangle knot in small RAM, drawn in bands (firmware/peer/
+# small_ram.cpp): lr_peer_bunny_16k, S1 (3,674 triangles) in 16 KB — on Cortex-M0+ on the
+# micro:bit, whose RAM is 16 KB in all — and lr_peer_bunnyx_64k, S1x (58,784 triangles), and
+# lr_peer_knot64k_64k, lr_bench's knot64k_gouraud (64,000 triangles), in 64 KB on Cortex-M4F;
+# and lr_peer_bunny_64k, S1 in 64 KB in one pass (the program fails if it needs a second band).
+# Runs each image of each bare-metal tree under QEMU with the instruction-counting plugin
+# (scripts/icount.sh) and checks
 #   1. the run passes: no store dropped work, every strip arrived;
-#   2. its frame checksum is the scene's in lr_peer_host (the one-pass frame, strips of 8, stores
-#      for the whole mesh), and its PPM file is byte for byte the one the host build of the same
-#      program writes (lr_peer_<name>_host);
+#   2. its frame checksum is the scene's in lr_peer_host or lr_bench_host (the one-pass frame,
+#      strips of 8, stores for the whole mesh), and its PPM file is byte for byte the one the
+#      host build of the same program writes (lr_peer_<name>_host);
 #   3. its RAM (.data + .bss + the stack the linker script reserves) is within the case's budget,
 #      and the reserved stack covers the static worst case (scripts/stack_usage.py).
 # Then prints one Markdown table: instructions of the frame (between the program's two
@@ -49,15 +52,19 @@ fi
 
 host_dir="${LR_HOST_DIR:-build/debug/tests/firmware_host}"
 host_dir="$(cd "$host_dir" 2>/dev/null && pwd)" || fail "${LR_HOST_DIR:-build/debug/tests/firmware_host} missing (cmake --preset debug and build)"
-[[ -x "$host_dir/lr_peer_host" ]] || fail "$host_dir/lr_peer_host not built"
+for exe in lr_peer_host lr_bench_host; do
+  [[ -x "$host_dir/$exe" ]] || fail "$host_dir/$exe not built"
+done
 plugin_args=()
 [[ -n "${LR_ICOUNT_PLUGIN:-}" ]] && plugin_args=(--plugin "$LR_ICOUNT_PLUGIN")
 out=out/small_ram
 mkdir -p "$out"
-peer_log="$("$host_dir/lr_peer_host")"
+# The one-pass frames' case lines: the peer scenes', and lr_bench's (the knot).
+one_pass_log="$("$host_dir/lr_peer_host")"$'\n'"$("$host_dir/lr_bench_host")"
 
 # The host build's frame of an image (run once per image name): its PPM in $out/host/<name>/ and
-# its case line, checked against the one-pass frame of lr_peer_host. Prints the checksum.
+# its case line, checked against the one-pass frame of lr_peer_host or lr_bench_host. Prints the
+# checksum.
 declare -A host_sums=()
 host_frame() {
   local name="$1" dir="$out/host/$1" sum case_name one_pass
@@ -66,8 +73,8 @@ host_frame() {
   (cd "$dir" && rm -f "$name.ppm" && "$host_dir/${name}_host" >log.txt) \
     || fail "${name}_host failed: $(tail -2 "$dir/log.txt")"
   read -r case_name sum < <(awk '$1 == "lr_bench:" && $2 == "case" { print $3, $5 }' "$dir/log.txt")
-  one_pass="$(awk -v c="${case_name%-*}" '$1 == "lr_bench:" && $3 == c { print $5 }' <<<"$peer_log")"
-  [[ -n "$one_pass" ]] || fail "lr_peer_host printed no ${case_name%-*} case"
+  one_pass="$(awk -v c="${case_name%-*}" '$1 == "lr_bench:" && $3 == c { print $5 }' <<<"$one_pass_log")"
+  [[ -n "$one_pass" ]] || fail "neither lr_peer_host nor lr_bench_host printed a ${case_name%-*} case"
   [[ "$sum" == "$one_pass" ]] || fail "${name}_host: the banded frame ($sum) is not the one-pass ${case_name%-*} frame ($one_pass)"
   echo "$sum"
 }
@@ -79,7 +86,7 @@ for tree in "${trees[@]}"; do
   core="$(basename "$tree")"
   found=0
   while read -r name board machine elf; do
-    [[ "$name" == lr_peer_bunny_16k || "$name" == lr_peer_bunnyx_64k ]] || continue
+    [[ "$name" =~ ^lr_peer_(bunny_16k|bunny_64k|bunnyx_64k|knot64k_64k)$ ]] || continue
     found=1
     [[ -f "$elf" ]] || fail "$elf not built (cmake --build $tree --target $name)"
     [[ -n "${host_sums[$name]:-}" ]] || host_sums[$name]="$(host_frame "$name")"
@@ -119,12 +126,14 @@ for tree in "${trees[@]}"; do
 done
 
 table="$(
-  echo "## The peer bunnies in small RAM (firmware/peer/small_ram.cpp)"
+  echo "## The peer bunnies and the 64,000-triangle knot in small RAM (firmware/peer/small_ram.cpp)"
   echo
-  echo "S1 (the bunny, 1,839 vertices and 3,674 triangles) and S1x (subdivided twice, 29,394"
-  echo "vertices and 58,784 triangles), from flash in spatial order (\`lineraster-asset --locality\`),"
-  echo "at 320x240 RGB565, drawn in bands. Every frame below is its scene's one-pass frame (the"
-  echo "checksum of lr_peer's case) and the host build's PPM byte for byte."
+  echo "S1 (the bunny, 1,839 vertices and 3,674 triangles), S1x (subdivided twice, 29,394"
+  echo "vertices and 58,784 triangles) and lr_bench's knot64k_gouraud (the torus knot subdivided"
+  echo "twice, 32,841 vertices and 64,000 triangles), from flash in spatial order"
+  echo "(\`lineraster-asset --locality\`), at 320x240 RGB565, drawn in bands. Every frame below is"
+  echo "its scene's one-pass frame (the checksum of lr_peer's or lr_bench's case) and the host"
+  echo "build's PPM byte for byte."
   echo
   echo "| case | core | board | instructions | bands | band retries | strip passes | strip rows | stores: vertices / binned / active | stores (B) | strip buffers (B) | renderer (B) | .data + .bss (B) | stack reserved (worst case) | RAM in all (B) |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
@@ -133,6 +142,6 @@ table="$(
 echo "$table"
 if ((write_docs)); then
   echo "$table" | python3 scripts/write_measurements.py small_ram "bash scripts/small_ram.sh --write-docs" \
-    "The peer bunnies in small RAM (S1 in the micro:bit's 16 KB, S1x in 64 KB)"
+    "The peer bunnies and the knot in small RAM (S1 in the micro:bit's 16 KB, S1x and the 64,000-triangle knot in 64 KB)"
 fi
 echo "small_ram: PASS (${#trees[@]} trees)"

@@ -26,6 +26,7 @@
 #include "core/math/mat4.hpp"
 #include "core/scene/material.hpp"
 #include "core/scene/mesh.hpp"
+#include "firmware/bench/knot_view.hpp"
 #include "firmware/demo/scene.hpp"
 
 namespace lr::fw::bench {
@@ -110,9 +111,6 @@ consteval DrawState without_depth(DrawState s) {
   return s;
 }
 
-inline constexpr SceneView kKnotView{demo::kSimDefaultView.fovy,   demo::kSimDefaultView.near,
-                                     demo::kSimDefaultView.far,    vec(0, 0, 2.4),
-                                     demo::kSimDefaultView.target, demo::kSimDefaultView.up};
 inline constexpr SceneView kCubeView{demo::kSimDefaultView.fovy,   demo::kSimDefaultView.near,
                                      demo::kSimDefaultView.far,    vec(0, 0.81, 1.35),
                                      demo::kSimDefaultView.target, demo::kSimDefaultView.up};
@@ -177,15 +175,13 @@ inline constexpr std::array kCases = {
     // A closed mesh: back faces culled, as in the budget case of the 4,000-triangle knot
     // (knot_gouraud_cullback).
     BenchCase{"knot64k_gouraud", LR_KNOT " --subdivide 2 --cull back", Mesh3::kKnot64k, kKnotView,
-              demo::sim_default_lights(), 0, true,
-              with_cull(shading(Shading::kGouraud), Cull::kBack)},
+              demo::sim_default_lights(), 0, true, knot64k_state()},
 
     // Early outs (scripts/bench_cortex_m.sh, second table). Every *_vertices case is the case
     // before it without triangles: the difference is the triangles' cost alone.
     //   back-face: knot_gouraud (no culling) against knot_gouraud_cullback
     BenchCase{"knot_gouraud_cullback", LR_KNOT " --cull back", Mesh3::kKnot, kKnotView,
-              demo::sim_default_lights(), 0, true,
-              with_cull(shading(Shading::kGouraud), Cull::kBack)},
+              demo::sim_default_lights(), 0, true, knot64k_state()},
     BenchCase{"knot_vertices", "", Mesh3::kKnotVertices, kKnotView, demo::sim_default_lights(), 0,
               true, shading(Shading::kGouraud)},
     //   covering no pixel centre: the knot at 24 and at 12 units (two equations: per dropped

@@ -11,5 +11,7 @@ lr_asset_header(peer_bunnyx_asset tests/data/peer/bunny.obj --fit-box --subdivid
 lr_asset_header(peer_bunnyx_local_asset tests/data/peer/bunny.obj --fit-box --subdivide 2 --locality)
 lr_asset_header(peer_cube_asset tests/data/peer/cube.obj --texture tests/data/peer/baboon.png)
 lr_asset_header(peer_ground_asset tests/data/peer/ground.obj)
+# lr_bench's 64,000-triangle knot (knot64k_gouraud) in spatial order, for the small-RAM program.
+lr_asset_header(knot64k_local_asset tests/host/data/torus_knot.obj --fit --subdivide 2 --locality)
 set(LR_PEER_ASSET_HEADERS ${peer_bunny_asset_HEADER} ${peer_bunnyx_asset_HEADER}
     ${peer_cube_asset_HEADER} ${peer_ground_asset_HEADER})

@@ -1,13 +1,15 @@
-// The peer scenes S1 and S1x in small RAM: the stores hold a fraction of the mesh, so the frame
-// is drawn in bands (docs/bands.md); it must still be the one-pass frame lr_peer draws, pixel for
-// pixel. LR_SMALL_RAM_CASE picks the case of small_ram_cases.hpp: 0, S1 in the micro:bit's 16 KB
-// (lr_peer_bunny_16k); 1, S1x in 64 KB (lr_peer_bunnyx_64k).
+// The peer scenes S1 and S1x, and lr_bench's 64,000-triangle knot, in small RAM: the stores hold
+// a fraction of the mesh, so the frame is drawn in bands (docs/bands.md); it must still be the
+// one-pass frame lr_peer (or lr_bench) draws, pixel for pixel. LR_SMALL_RAM_CASE picks the case
+// of small_ram_cases.hpp: 0, S1 in the micro:bit's 16 KB (lr_peer_bunny_16k); 1, S1x in 64 KB
+// (lr_peer_bunnyx_64k); 2, knot64k_gouraud in 64 KB (lr_peer_knot64k_64k); 3, S1 in 64 KB in
+// one pass (lr_peer_bunny_64k: stores for the whole frame, no band).
 //
 // The frame goes twice through the renderer:
 //   1. into a PPM file on the host (semihosting), while every RGB565 pixel is folded into the
-//      FNV-1a checksum lr_peer prints for the scene (the same bytes: big-endian RGB565, rows top
-//      to bottom): scripts/small_ram.sh compares the checksum with lr_peer_host's line and the
-//      file with the one this program's host build writes;
+//      FNV-1a checksum lr_peer (lr_bench) prints for the scene (the same bytes: big-endian RGB565,
+//      rows top to bottom): scripts/small_ram.sh compares the checksum with lr_peer_host's line and
+//      the file with the one this program's host build writes;
 //   2. into a sink that does no per-pixel work, between two calls of lr_bench_marker(), for the
 //      instruction count (scripts/icount.sh), in lr_bench's line format.
 // It fails when a store drops work, when render() reports a capacity error, or when a strip is
@@ -17,6 +19,7 @@
 #include <cstdint>
 
 #include "core/raster/renderer.hpp"
+#include "firmware/bench/knot_view.hpp"
 #include "firmware/common/bench_case.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/ppm_file.hpp"
@@ -24,7 +27,15 @@
 #include "firmware/common/semihost.hpp"
 #include "firmware/peer/scenes.hpp"
 #include "firmware/peer/small_ram_cases.hpp"
-#if LR_SMALL_RAM_CASE == 1
+#if LR_SMALL_RAM_CASE == 2
+#include "knot64k_local_asset.hpp"  // lineraster-asset --fit --subdivide 2 --locality
+namespace asset = ::knot64k_local_asset;
+constexpr const lr::fw::peer::small::SmallRamCase& kSmall = lr::fw::peer::small::kKnot64k64k;
+#elif LR_SMALL_RAM_CASE == 3
+#include "peer_bunny_local_asset.hpp"  // lineraster-asset --obj bunny.obj --fit-box --locality
+namespace asset = ::peer_bunny_local_asset;
+constexpr const lr::fw::peer::small::SmallRamCase& kSmall = lr::fw::peer::small::kBunny64k;
+#elif LR_SMALL_RAM_CASE == 1
 #include "peer_bunnyx_local_asset.hpp"  // lineraster-asset --fit-box --subdivide 2 --locality
 namespace asset = ::peer_bunnyx_local_asset;
 constexpr const lr::fw::peer::small::SmallRamCase& kSmall = lr::fw::peer::small::kBunnyx64k;
@@ -55,14 +66,32 @@ lr::StaticFrameStorage<kCapacities> g_store;
 // Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
 alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_strips{};
 
-// S1 and S1x are lit Gouraud with perspective-exact colours and a depth test: the renderer links
+// Every case is lit Gouraud with perspective-exact colours and a depth test: the renderer links
 // those span routines only.
 constexpr lr::SpanSet kSpans =
     lr::kUntexturedSpans.only_depth(true).only(lr::ColorPlanes::kPerspective);
 lr::Renderer<PF, kStripRows, kSpans> g_renderer;
 
-constexpr const peer::PeerCase& kCase = peer::kCases[kSmall.scene];
-static_assert(kCase.state.lighting && kCase.state.texture == nullptr);
+// What the frame draws besides its mesh: a peer scene's, or lr_bench's knot64k_gouraud's.
+struct Scene {
+  const char* name;
+  lr::LightSet lights;
+  lr::DrawState state;
+  lr::Rgb8 background;
+};
+constexpr bool kKnot = kSmall.scene == peer::small::kKnotScene;
+consteval Scene make_scene() {
+  if constexpr (kKnot) {
+    return {"knot64k_gouraud", lr::fw::demo::sim_default_lights(), lr::fw::bench::knot64k_state(),
+            lr::Rgb8{0, 0, 0}};
+  } else {
+    const peer::PeerCase& c = peer::kCases[kSmall.scene];
+    return {c.name, c.lights, c.state, peer::kBackground};
+  }
+}
+constexpr Scene kScene = make_scene();
+lr::Material g_material;  // the scene's (prepare())
+static_assert(kScene.state.lighting && kScene.state.texture == nullptr);
 static_assert(asset::meshes.size() == 1);
 
 // The PPM file (in QEMU's working directory) and lr_peer's checksum of the same strips.
@@ -89,9 +118,8 @@ bool check(lr::Status st, const char* what) {
 
 // The measured work: one whole frame.
 [[gnu::noinline]] lr::Status render_frame(const lr::Camera& camera, const lr::Mat4& model) {
-  lr::Status s = g_renderer.begin_frame(camera, kCase.lights, peer::kBackground);
-  if (s == lr::Status::kOk)
-    s = g_renderer.draw(asset::meshes[0], model, kCase.material, kCase.state);
+  lr::Status s = g_renderer.begin_frame(camera, kScene.lights, kScene.background);
+  if (s == lr::Status::kOk) s = g_renderer.draw(asset::meshes[0], model, g_material, kScene.state);
   return s == lr::Status::kOk ? g_renderer.render(g_sink) : s;
 }
 
@@ -130,6 +158,15 @@ bool complete(const lr::FrameStats& st) {
   return false;
 }
 
+// A one-pass case must not need bands or strips in passes: its stores hold the whole frame.
+bool in_one_pass(const lr::FrameStats& st) {
+  if (!kSmall.one_pass || (st.bands == 1 && st.band_retries == 0 && st.strip_passes == 0))
+    return true;
+  sh::write(kSmall.name);
+  sh::write(": the frame needed bands or strips in passes: not one pass\n");
+  return false;
+}
+
 // The camera, the model matrix and the first frame's statistics, static: on the stack they would
 // add to the deepest path, whose bound is part of the RAM budget.
 lr::Camera g_camera;
@@ -141,12 +178,26 @@ lr::FrameStats g_first_stats;
 [[gnu::noinline]] bool prepare() {
   if (!check(g_renderer.configure(g_store.storage(), peer::kWidth, peer::kHeight), "configure"))
     return false;
-  if (!peer::make_camera(kCase, g_camera)) {
+  bool camera_ok = false;
+  if constexpr (kKnot) {
+    // lr_bench's camera, model matrix and material of the case (firmware/bench/cases.hpp).
+    camera_ok =
+        lr::fw::demo::make_camera(lr::fw::bench::kKnotView, peer::kWidth, peer::kHeight, g_camera);
+    g_model = lr::rotate_y(lr::Fixed::from_int(0));
+    const lr::NamedMaterial* gold = lr::find_material("gold");
+    if (gold == nullptr) return false;
+    g_material = lr::to_material(*gold);
+  } else {
+    const peer::PeerCase& c = peer::kCases[kSmall.scene];
+    camera_ok = peer::make_camera(c, g_camera);
+    g_model = peer::model(c);
+    g_material = c.material;
+  }
+  if (!camera_ok) {
     sh::write(kSmall.name);
-    sh::write(": projection rejected\n");
+    sh::write(": camera rejected\n");
     return false;
   }
-  g_model = peer::model(kCase);
   return true;
 }
 
@@ -159,7 +210,7 @@ bool run() {
   g_first_stats = g_renderer.stats();
   const lr::FrameStats& st = g_first_stats;
   write_stats(st);
-  if (!check(first, "render (to the file)") || !complete(st)) return false;
+  if (!check(first, "render (to the file)") || !complete(st) || !in_one_pass(st)) return false;
 
   g_out.to_file = false;
   g_out.sum.enabled = false;
@@ -181,7 +232,7 @@ bool run() {
 int main() {
   sh::write(kSmall.name);
   sh::write(": ");
-  sh::write(kCase.name);
+  sh::write(kScene.name);
   sh::write(", 320x240 RGB565 in strips of ");
   sh::write_dec(static_cast<uint32_t>(kStripRows));
   sh::write(" row(s), banded stores\n");
