@@ -214,6 +214,36 @@ def bands(k):
     return "\n".join(out)
 
 
+# Sharing decisions: the case drawn with shared code against the same case with specialised code
+# (firmware/bench/cases.hpp), and what the sharing saves in flash (scripts/footprint.sh's
+# tex_nearest_shared image against tex_nearest).
+SHARING = [
+    ("texel fetch through the fetcher, shared span body (over inlined per filter and wrap; RGB565,"
+     " exact perspective, no mipmaps, replaced or constant colours)",
+     [("cube_nearest", "cube_nearest_shared"), ("cube_bilinear", "cube_bilinear_shared"),
+      ("ground_nearest", "ground_nearest_shared"), ("ground_bilinear", "ground_bilinear_shared")]),
+]
+
+
+def sharing(k):
+    out = ["| shared code | specialised -> shared | pixels | instructions more | per pixel |"
+           " same frame |", "|---|---|---:|---:|---:|---|"]
+    missing = []
+    for what, pairs in SHARING:
+        for base, shared in pairs:
+            if base not in k or shared not in k:
+                missing.extend(n for n in (base, shared) if n not in k)
+                continue
+            b, c = k[base], k[shared]
+            extra = c["ins"] - b["ins"]
+            same = "yes" if b["checksum"] == c["checksum"] else "no (bilinear weights within one step)"
+            out.append(f"| {what} | {base} -> {shared} | {commas(b['pixels'])} | {commas(extra)} |"
+                       f" {fmt(extra / b['pixels'])} | {same} |")
+    if missing:
+        out.append(f"\n(missing cases: {', '.join(sorted(set(missing)))})")
+    return "\n".join(out)
+
+
 def main():
     k = parse(sys.stdin.read())
     print("Early outs: instructions of what an early out drops, against what the same item costs"
@@ -238,6 +268,11 @@ def main():
           " (identical frames; the checksums above agree).")
     print()
     print(bands(k))
+    print()
+    print("Sharing: what a piece of shared code costs per pixel against its specialised copy"
+          " (the flash it saves: docs/measurements/footprint.md, tex_nearest_shared).")
+    print()
+    print(sharing(k))
 
 
 if __name__ == "__main__":

@@ -38,7 +38,7 @@ root=$PWD
 source scripts/lib/firmware_rules.sh
 prefix=arm-none-eabi-
 qemu_timeout=${LR_FOOTPRINT_QEMU_TIMEOUT:-120}
-configs=(unlit gouraud tex_nearest tex_bilinear phong gouraud_tex every_feature)
+configs=(unlit gouraud tex_nearest tex_bilinear phong gouraud_tex every_feature tex_nearest_shared)
 status=0
 
 fail() {

@@ -10,10 +10,13 @@
 //               table: bilinear lookup) x texture x normal map x environment map,
 //               x filter (texture or normal map) x mip mode (texture)
 // The texel fetchers are also chosen by the texture's format and wraps (fetch_index): those are
-// checked per texture against the set's masks but do not multiply the span states. The pixel
-// format is the renderer's PF (every table is per PF). Not instances, so not state dimensions:
-// the span length of TexPersp::kSpan (8, 16, 32) and Phong's mip mode (per chunk of 16 pixels,
-// inside the routine; it is still a dimension of the set, so that "no mipmaps" holds for Phong).
+// checked per texture against the set's masks but do not multiply the span states. Nor does the
+// inlined fetch (SpanSet::inline_fetch), a choice of code, not of state: whether the textured
+// routines carry copies with the fetch inlined per filter and wrap for the spans that allow it. The
+// pixel format is the renderer's PF (every table is per PF). Not instances, so not state
+// dimensions: the span length of TexPersp::kSpan (8, 16, 32) and Phong's mip mode (per chunk of 16
+// pixels, inside the routine; it is still a dimension of the set, so that "no mipmaps" holds for
+// Phong).
 //
 // SpanSet is the restriction: one mask per dimension (a product set), usable as a non-type
 // template parameter: Renderer<PF, K, kSet>. The routine tables of a renderer are generated
@@ -86,6 +89,12 @@ struct SpanSet {
   // textures and normal maps (environment maps clamp).
   uint8_t formats = 0b1111;  // TexelFormat
   uint8_t wrap_s = 0b11, wrap_t = 0b11;
+  // Textured spans of an RGB565 texture with exact perspective and no mipmaps, replaced or
+  // modulated by constant colours (power-of-two repeat, or clamp): on, a routine per filter and
+  // wrap with the fetch inlined; off, the shared span body, which calls the texel fetcher per
+  // chunk of pixels. Off trades instructions per pixel for flash; nearest picks the same
+  // texels, bilinear's coordinates may differ by 1/256 texel (at most one 5-bit weight step).
+  uint8_t inline_fetch = 0b11;
 
   friend constexpr bool operator==(const SpanSet&, const SpanSet&) = default;
 
@@ -130,6 +139,9 @@ struct SpanSet {
   constexpr SpanSet only_position(bool on) const {
     return with(&SpanSet::position, detail::bit(on));
   }
+  constexpr SpanSet only_inline_fetch(bool on) const {
+    return with(&SpanSet::inline_fetch, detail::bit(on));
+  }
   constexpr SpanSet only_table_filter(Filter v) const {
     return with(&SpanSet::table_filter, detail::bit(v));
   }
@@ -159,10 +171,11 @@ struct SpanSet {
     return r;
   }
   static constexpr uint8_t SpanSet::*kMasks[] = {
-      &SpanSet::families, &SpanSet::depth,        &SpanSet::colors,  &SpanSet::persp,
-      &SpanSet::env,      &SpanSet::mip,          &SpanSet::filter,  &SpanSet::method,
-      &SpanSet::position, &SpanSet::table_filter, &SpanSet::texture, &SpanSet::normal_map,
-      &SpanSet::envmap,   &SpanSet::formats,      &SpanSet::wrap_s,  &SpanSet::wrap_t};
+      &SpanSet::families,    &SpanSet::depth,        &SpanSet::colors,  &SpanSet::persp,
+      &SpanSet::env,         &SpanSet::mip,          &SpanSet::filter,  &SpanSet::method,
+      &SpanSet::position,    &SpanSet::table_filter, &SpanSet::texture, &SpanSet::normal_map,
+      &SpanSet::envmap,      &SpanSet::formats,      &SpanSet::wrap_s,  &SpanSet::wrap_t,
+      &SpanSet::inline_fetch};
 };
 
 // Presets: kUntexturedSpans, kTexturedSpans and kPhongSpans keep the untextured routines

@@ -423,10 +423,12 @@ uint32_t fill_exact_565(const ActiveTriangle& tri, const DrawRecord& d, typename
 
 // One routine per (depth, perspective mode, environment, mip mode); a modulated one picks its
 // body per span by whether the triangle's colours are constant (a per-span choice, not per pixel).
-template <class PF, bool kDepth, TexPersp kPersp, TexEnv kEnv, MipMode kMip>
+// kInlineFetch: whether the spans that allow it take fill_exact_565 (SpanSet::inline_fetch).
+template <class PF, bool kDepth, TexPersp kPersp, TexEnv kEnv, MipMode kMip,
+          bool kInlineFetch = true>
 uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename PF::Storage* px,
                        uint16_t* depth, int32_t col, int32_t row, int32_t count) {
-  if constexpr (kPersp == TexPersp::kExact && kMip == MipMode::kNone) {
+  if constexpr (kInlineFetch && kPersp == TexPersp::kExact && kMip == MipMode::kNone) {
     if (d.texture->format == TexelFormat::kRgb565) {
       if constexpr (kEnv == TexEnv::kReplace)
         return detail::fill_exact_565<PF, kDepth, kEnv, false>(tri, d, px, depth, col, row, count);
@@ -444,20 +446,20 @@ uint32_t fill_tex_span(const ActiveTriangle& tri, const DrawRecord& d, typename 
 
 // The textured family (dispatch.hpp): fill_tex_span per (depth test, perspective mode,
 // environment, mip mode); the filter is the fetcher's.
-template <class PF>
+template <class PF, bool kInlineFetch = true>
 struct TexturedSpans {
   using Layout = TexturedLayout;
   using Fn = TexSpanFn<PF>;
   static constexpr auto kUsed = &UsedRoutines::textured;
   template <bool kDepth, TexPersp kPersp, TexEnv kEnv, MipMode kMip>
   static constexpr Fn routine() {
-    return &fill_tex_span<PF, kDepth, kPersp, kEnv, kMip>;
+    return &fill_tex_span<PF, kDepth, kPersp, kEnv, kMip, kInlineFetch>;
   }
 };
 
 template <class PF, SpanSet kSet = kAllSpans>
 inline constexpr std::array<TexSpanFn<PF>, kTexturedRoutines> kTexSpanTable =
-    make_table<TexturedSpans<PF>, kSet>();
+    make_table<TexturedSpans<PF, detail::has(kSet.inline_fetch, true)>, kSet>();
 
 // The textured span routine for a draw: generated from the template and the state space,
 // indexed by its state (nullptr for a state outside kSet, which draw() refuses).

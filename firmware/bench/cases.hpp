@@ -65,6 +65,7 @@ struct BenchCase {
   uint16_t triangle_store = 0;  // binned-triangle store of the case (0: the benchmark's whole)
   uint16_t vertex_store = 0;    // vertex store, as triangle_store
   uint16_t active_store = 0;    // active list, as triangle_store
+  bool shared_fetch = false;    // drawn without the inlined texel fetch (SpanSet::inline_fetch)
 };
 
 consteval LightSet one_light(double x, double y, double z) {
@@ -282,6 +283,26 @@ inline constexpr std::array kCases = {
               "--light-dir -0.3,1,0.8 --filter bilinear",
               Mesh3::kCube, kCubeView, one_light(-0.3, 1, 0.8), 35, false,
               textured(Filter::kBilinear, MipMode::kLinear, true, Cull::kBack), Tex::kTiles},
+
+    // Sharing (scripts/bench_cortex_m.sh, fourth table): the cube (modulated by the constant
+    // colours of its faces) and the ground (replaced) without the inlined texel fetch, against
+    // cube_* and ground_* with it: the same frames.
+    BenchCase{"cube_nearest_shared", LR_CUBE " --filter nearest", Mesh3::kCube, kCubeView,
+              one_light(-0.3, 1, 0.8), 35, false,
+              textured(Filter::kNearest, MipMode::kNone, true, Cull::kBack), Tex::kTiles, 0, 0, 0,
+              true},
+    BenchCase{"cube_bilinear_shared", LR_CUBE " --filter bilinear", Mesh3::kCube, kCubeView,
+              one_light(-0.3, 1, 0.8), 35, false,
+              textured(Filter::kBilinear, MipMode::kNone, true, Cull::kBack), Tex::kTiles, 0, 0, 0,
+              true},
+    BenchCase{"ground_nearest_shared", LR_GROUND " --filter nearest", Mesh3::kGround, kGroundView,
+              demo::sim_default_lights(), 0, false,
+              textured(Filter::kNearest, MipMode::kNone, false, Cull::kNone), Tex::kGround, 0, 0, 0,
+              true},
+    BenchCase{"ground_bilinear_shared", LR_GROUND " --filter bilinear", Mesh3::kGround, kGroundView,
+              demo::sim_default_lights(), 0, false,
+              textured(Filter::kBilinear, MipMode::kNone, false, Cull::kNone), Tex::kGround, 0, 0,
+              0, true},
 };
 
 #undef LR_KNOT

@@ -93,6 +93,13 @@ lr::StaticFrameStorage<kCapacities> g_store;
 alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_strips{};
 
 lr::Renderer<PF, kStripRows> g_renderer;
+// The cases with BenchCase::shared_fetch: a renderer without the inlined texel fetch
+// (SpanSet::inline_fetch), for the textured states of the cube and the ground.
+constexpr lr::SpanSet kSharedFetchSpans = lr::kTexturedOnly.only(lr::TexPersp::kExact)
+                                              .only(lr::MipMode::kNone)
+                                              .only(lr::TexelFormat::kRgb565)
+                                              .only_inline_fetch(false);
+lr::Renderer<PF, kStripRows, kSharedFetchSpans> g_shared_renderer;
 
 // Two buffers lent in turn; each strip is hashed (the checked frame) or only handed back (the
 // measured one).
@@ -113,7 +120,8 @@ struct Prepared {
   std::span<const lr::Mesh> meshes;
 };
 
-bool prepare(const bench::BenchCase& c, Prepared& p) {
+template <class R>
+bool prepare(R& renderer, const bench::BenchCase& c, Prepared& p) {
   const size_t active = c.active_store != 0                ? c.active_store
                         : c.mesh == bench::Mesh3::kKnot64k ? kActive
                                                            : kActiveSmall;
@@ -122,7 +130,7 @@ bool prepare(const bench::BenchCase& c, Prepared& p) {
   storage.active_index = storage.active_index.first(2 * active);
   if (c.triangle_store != 0) storage.triangles = storage.triangles.first(c.triangle_store);
   if (c.vertex_store != 0) storage.vertices = storage.vertices.first(c.vertex_store);
-  if (!check(g_renderer.configure(storage, kWidth, kHeight), "configure")) return false;
+  if (!check(renderer.configure(storage, kWidth, kHeight), "configure")) return false;
   if (!lr::fw::demo::make_camera(c.view, kWidth, kHeight, p.camera)) {
     sh::write("lr_bench: camera rejected\n");
     return false;
@@ -139,25 +147,28 @@ bool prepare(const bench::BenchCase& c, Prepared& p) {
 }
 
 // The measured work: one whole frame.
-[[gnu::noinline]] lr::Status render_frame(const bench::BenchCase& c, const Prepared& p) {
-  lr::Status s = g_renderer.begin_frame(p.camera, c.lights, lr::Rgb8{0, 0, 0});
+template <class R>
+[[gnu::noinline]] lr::Status render_frame(R& renderer, const bench::BenchCase& c,
+                                          const Prepared& p) {
+  lr::Status s = renderer.begin_frame(p.camera, c.lights, lr::Rgb8{0, 0, 0});
   for (size_t d = 0; d < p.meshes.size() && s == lr::Status::kOk; ++d)
-    s = g_renderer.draw(p.meshes[d], p.models[d], p.materials[d], p.state);
-  return s == lr::Status::kOk ? g_renderer.render(g_sink) : s;
+    s = renderer.draw(p.meshes[d], p.models[d], p.materials[d], p.state);
+  return s == lr::Status::kOk ? renderer.render(g_sink) : s;
 }
 
-bool run_case(const bench::BenchCase& c) {
+template <class R>
+bool run_case(R& renderer, const bench::BenchCase& c) {
   Prepared p;
-  if (!prepare(c, p)) return false;
+  if (!prepare(renderer, c, p)) return false;
   g_checksum.enabled = true;
-  if (!check(render_frame(c, p), c.name)) return false;
+  if (!check(render_frame(renderer, c, p), c.name)) return false;
   const uint32_t sum = g_checksum.hash.value;
-  const lr::FrameStats st = g_renderer.stats();
+  const lr::FrameStats st = renderer.stats();
   const uint32_t dropped = st.dropped_vertex_capacity + st.dropped_triangle_capacity;
 
   g_checksum.enabled = false;
   lr_bench_marker();
-  const lr::Status s = render_frame(c, p);
+  const lr::Status s = render_frame(renderer, c, p);
   lr_bench_marker();
   if (!check(s, c.name)) return false;
 
@@ -199,7 +210,8 @@ bool run_case(const bench::BenchCase& c) {
 int main() {
   sh::write("lr_bench: 320x240 RGB565, strips of 8 rows\n");
   bool ok = true;
-  for (const bench::BenchCase& c : bench::kCases) ok = run_case(c) && ok;
+  for (const bench::BenchCase& c : bench::kCases)
+    ok = (c.shared_fetch ? run_case(g_shared_renderer, c) : run_case(g_renderer, c)) && ok;
   sh::write(ok ? "lr_bench: PASS\n" : "lr_bench: FAIL\n");
   return ok ? 0 : 1;
 }

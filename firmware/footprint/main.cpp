@@ -12,6 +12,9 @@
 //   7 every_feature  five draws, a fifth each: configurations 1 to 5, with a renderer that
 //                    holds every span routine the core has (kAllSpans: every family, texel
 //                    format, wrap, filter, mip mode, environment and map)
+//   8 tex_nearest_shared  tex_nearest without the inlined texel fetch (SpanSet::inline_fetch):
+//                    the flash that sharing the span body saves (bench_cortex_m.sh: its cost
+//                    per pixel)
 //
 // Each renderer, Renderer<PF, 8, kSpans>, links only the span routines and texel fetchers of
 // the states its configuration draws with (kSpans: the smallest lr::SpanSet holding them,
@@ -39,8 +42,7 @@
 #include "firmware/footprint/stack_probe.hpp"
 
 #ifndef LR_FOOTPRINT_CONFIG
-#error \
-    "LR_FOOTPRINT_CONFIG (1 unlit .. 7 every_feature) is set by firmware/footprint/CMakeLists.txt"
+#error "LR_FOOTPRINT_CONFIG (1 unlit .. 8) is set by firmware/footprint/CMakeLists.txt"
 #endif
 
 namespace {
@@ -51,9 +53,9 @@ using lr::Fixed;
 
 // A draw's shading (configurations 1 to 5), and the configuration of the image.
 enum class Part : int { kUnlit = 1, kGouraud, kTexNearest, kTexBilinear, kPhong };
-static_assert(LR_FOOTPRINT_CONFIG >= 1 && LR_FOOTPRINT_CONFIG <= 7, "unknown configuration");
+static_assert(LR_FOOTPRINT_CONFIG >= 1 && LR_FOOTPRINT_CONFIG <= 8, "unknown configuration");
 constexpr int kConfig = LR_FOOTPRINT_CONFIG;
-constexpr int kGouraudTex = 6, kEveryFeature = 7;
+constexpr int kGouraudTex = 6, kEveryFeature = 7, kTexNearestShared = 8;
 
 struct Parts {
   std::array<Part, 5> part{};
@@ -63,6 +65,7 @@ constexpr Parts parts_of(int config) {
   if (config == kGouraudTex) return {{Part::kGouraud, Part::kTexNearest, Part::kTexBilinear}, 3};
   if (config == kEveryFeature)
     return {{Part::kUnlit, Part::kGouraud, Part::kTexNearest, Part::kTexBilinear, Part::kPhong}, 5};
+  if (config == kTexNearestShared) return {{Part::kTexNearest}, 1};
   return {{static_cast<Part>(config)}, 1};
 }
 constexpr Parts kParts = parts_of(kConfig);
@@ -110,7 +113,8 @@ constexpr lr::SpanSet make_span_set() {
   lr::SpanSet set = lr::span_set_of(make_span_state(kParts.part[0]));
   for (size_t i = 1; i < kParts.count; ++i)
     set = set | lr::span_set_of(make_span_state(kParts.part[i]));
-  return set.only(lr::TexelFormat::kRgb565).only_wraps(lr::Wrap::kRepeat, lr::Wrap::kRepeat);
+  set = set.only(lr::TexelFormat::kRgb565).only_wraps(lr::Wrap::kRepeat, lr::Wrap::kRepeat);
+  return kConfig == kTexNearestShared ? set.only_inline_fetch(false) : set;
 }
 constexpr lr::SpanSet kSpans = make_span_set();
 
@@ -200,8 +204,8 @@ lr::DrawState make_state(Part p) {
   return s;
 }
 
-constexpr const char* kNames[] = {"unlit", "gouraud",     "tex_nearest",  "tex_bilinear",
-                                  "phong", "gouraud_tex", "every_feature"};
+constexpr const char* kNames[] = {"unlit", "gouraud",     "tex_nearest",   "tex_bilinear",
+                                  "phong", "gouraud_tex", "every_feature", "tex_nearest_shared"};
 constexpr const char* kName = kNames[kConfig - 1];
 
 bool check(lr::Status st, const char* what) {

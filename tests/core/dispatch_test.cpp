@@ -611,7 +611,7 @@ constexpr auto kSampledStates = [] {
   return a;
 }();
 
-constexpr SpanSet kNoValues{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+constexpr SpanSet kNoValues{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
 
 // The values a state's routines are chosen by: span_set_of's bits for the dimensions that apply
 // to its family (and to its maps), every other mask empty.
@@ -1070,6 +1070,52 @@ TEST(SpanDispatch, RepeatAndClampDifferBeyondTheTexture) {
   const Diff d = diff(repeat, clamp);
   EXPECT_GT(d.covered, 150);
   EXPECT_GE(d.max, 100);
+}
+
+// The inlined fetch (SpanSet::inline_fetch) is code, not state: a renderer without it has the
+// routines with the fetch through the fetcher (the shared span body), with nearest the same
+// pixels (bilinear: tests/core/texture_test.cpp). Replaced and modulated RGB565 quads with exact
+// perspective, repeat and clamp: spans the inlined routines take (a modulated quad's colours are
+// constant when its vertex colours are).
+template <TexEnv kEnv, Wrap kWrap>
+void check_shared_fetch() {
+  constexpr SpanState kState{.family = SpanFamily::kTextured,
+                             .persp = TexPersp::kExact,
+                             .env = kEnv,
+                             .mip = MipMode::kNone,
+                             .filter = Filter::kNearest};
+  constexpr SpanSet kInlined =
+      span_set_of(kState).only(TexelFormat::kRgb565).only_wraps(kWrap, kWrap);
+  constexpr SpanSet kShared = kInlined.only_inline_fetch(false);
+  constexpr size_t kIndex = textured_index(true, TexPersp::kExact, kEnv, MipMode::kNone);
+  static_assert(kTexSpanTable<PF, kInlined>[kIndex] ==
+                &fill_tex_span<PF, true, TexPersp::kExact, kEnv, MipMode::kNone, true>);
+  static_assert(kTexSpanTable<PF, kShared>[kIndex] ==
+                &fill_tex_span<PF, true, TexPersp::kExact, kEnv, MipMode::kNone, false>);
+  const Quad q({Rgb8{200, 180, 90}, Rgb8{200, 180, 90}, Rgb8{200, 180, 90}, Rgb8{200, 180, 90}},
+               3.0);
+  DrawSetup u = setup_for(kState, assets());
+  u.state.texture = &format_texture(TexelFormat::kRgb565);
+  u.state.sampler.wrap_s = u.state.sampler.wrap_t = kWrap;
+  const Mat4 model = place(0.1, -0.1, -3, -40, 25);
+  Rig<kInlined> inlined;
+  Rig<kShared> shared;
+  for (RigBase* rig : {static_cast<RigBase*>(&inlined), static_cast<RigBase*>(&shared)}) {
+    ASSERT_EQ(rig->r().begin_frame(camera(), u.lights, Rgb8{8, 8, 8}), Status::kOk);
+    ASSERT_EQ(rig->r().draw(q.mesh(), model, u.material, u.state), Status::kOk);
+  }
+  const host::ImageRgb8 want = inlined.render();
+  const host::ImageRgb8 got = shared.render();
+  EXPECT_GT(count_fg(want), 200);
+  EXPECT_TRUE(want.rgb == got.rgb)
+      << "env " << static_cast<int>(kEnv) << " wrap " << static_cast<int>(kWrap);
+}
+
+TEST(SpanDispatch, TheSharedFetchDrawsTheInlinedFetchsFrameWithNearest) {
+  check_shared_fetch<TexEnv::kReplace, Wrap::kRepeat>();
+  check_shared_fetch<TexEnv::kReplace, Wrap::kClampToEdge>();
+  check_shared_fetch<TexEnv::kModulate, Wrap::kRepeat>();
+  check_shared_fetch<TexEnv::kModulate, Wrap::kClampToEdge>();
 }
 
 }  // namespace

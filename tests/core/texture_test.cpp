@@ -61,9 +61,10 @@ Rgb8 pixel(const host::ImageRgb8& img, int x, int y) {
   return {img.rgb[p], img.rgb[p + 1], img.rgb[p + 2]};
 }
 
+template <SpanSet kSet = kAllSpans>
 host::ImageRgb8 render_screen(const ScreenQuads& v, const std::vector<std::array<uint16_t, 3>>& t,
                               const Texture& tex, Sampler smp, Perspective persp, int w, int h) {
-  test::CoreHarness<8> core(w, h);
+  test::CoreHarness<8, Rgb888, kSet> core(w, h);
   core.begin();
   DrawState st;
   st.shading = Shading::kGouraud;
@@ -472,6 +473,50 @@ TEST(TextureExactPerspective, Rgb565ChunksPickTheTexelsOfThePreciseReciprocal) {
     std::printf("exact perspective rgb565 vs precise, wrap %d: %d of %d pixels equal\n", int(wrap),
                 same, covered);
   }
+}
+
+// Without the inlined fetch (SpanSet::inline_fetch off) the same spans take the shared span
+// body: its coordinates come from the per-pixel division of exact_attrs, the inlined routine's
+// from its chunk remainder planes (docs/numerics.md). Nearest picks the same texel on every pixel;
+// bilinear's Q.8 coordinates may differ by one unit, which moves a 5-bit weight by at most one
+// step on each axis: at most 2/32 of the largest step between neighbouring texels (here 255).
+TEST(TextureExactPerspective, Rgb565WithoutTheInlinedFetchIsTheSameTexelOrOneWeightStep) {
+  host::ImageRgb8 img = pattern(64, 64);
+  host::HostTexture t565 = make_texture(img, TexelFormat::kRgb565, false);
+  constexpr SpanSet kShared = kAllSpans.only_inline_fetch(false);
+  const uint32_t ws[4] = {1u << 16, 1u << 16, 12u << 16, 12u << 16};
+  for (Filter filter : {Filter::kNearest, Filter::kBilinear})
+    for (TexEnv env : {TexEnv::kReplace, TexEnv::kModulate})
+      for (Wrap wrap : {Wrap::kRepeat, Wrap::kClampToEdge}) {
+        ScreenQuads v;
+        std::vector<std::array<uint16_t, 3>> t;
+        screen_quad(v, t, 2, 3, 318, 197, -3.0, 5.0, -2.0, 4.0);
+        for (size_t k = 0; k < 4; ++k) v[k].w = ws[k];
+        Sampler smp;
+        smp.filter = filter;
+        smp.env = env;
+        smp.wrap_s = smp.wrap_t = wrap;
+        const host::ImageRgb8 inlined =
+            render_screen(v, t, t565.texture, smp, Perspective::kExact, 320, 200);
+        const host::ImageRgb8 shared =
+            render_screen<kShared>(v, t, t565.texture, smp, Perspective::kExact, 320, 200);
+        int differ = 0, max = 0;
+        for (int y = 3; y < 197; ++y)
+          for (int x = 2; x < 318; ++x) {
+            const Rgb8 a = pixel(inlined, x, y), b = pixel(shared, x, y);
+            differ += a == b ? 0 : 1;
+            for (int d : {a.r - b.r, a.g - b.g, a.b - b.b}) max = std::max(max, std::abs(d));
+          }
+        std::printf(
+            "shared fetch vs inlined, filter %d env %d wrap %d: %d of %d pixels differ, "
+            "max %d\n",
+            int(filter), int(env), int(wrap), differ, 316 * 194, max);
+        if (filter == Filter::kNearest) {
+          EXPECT_EQ(differ, 0) << "env " << int(env) << " wrap " << int(wrap);
+        } else {
+          EXPECT_LE(max, 2 * 255 / 32 + 1) << "env " << int(env) << " wrap " << int(wrap);
+        }
+      }
 }
 
 }  // namespace

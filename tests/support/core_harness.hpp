@@ -12,7 +12,7 @@
 
 namespace lr::test {
 
-template <int K = 8, class PF = Rgb888>
+template <int K = 8, class PF = Rgb888, SpanSet kSet = kAllSpans>
 class CoreHarness {
  public:
   // tex_vertices: the TexVertex store (kAsVertices: as large as the vertex store).
@@ -24,11 +24,11 @@ class CoreHarness {
         store_(capacities(width, height, max_vertices, max_triangles, max_active, max_draws,
                           tex_vertices)),
         display_(static_cast<size_t>(width) * K),
-        renderer_(std::make_unique<Renderer<PF, K>>()) {
+        renderer_(std::make_unique<Renderer<PF, K, kSet>>()) {
     configured_ = renderer_->configure(store_.storage(), width, height);
   }
   Status configured() const { return configured_; }
-  Renderer<PF, K>& renderer() { return *renderer_; }
+  Renderer<PF, K, kSet>& renderer() { return *renderer_; }
   Status begin(Rgb8 background = {0, 0, 0}, const Camera& cam = {}, const LightSet& lights = {}) {
     return renderer_->begin_frame(cam, lights, background);
   }
@@ -67,7 +67,7 @@ class CoreHarness {
   BasicFrameStorage<std::vector> store_;
   host::CaptureDisplay<PF> display_;
   host::DepthCapture depth_capture_;
-  std::unique_ptr<Renderer<PF, K>> renderer_;
+  std::unique_ptr<Renderer<PF, K, kSet>> renderer_;
   Status configured_ = Status::kInvalidArgument;
 };
 
