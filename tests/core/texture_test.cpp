@@ -439,6 +439,14 @@ static_assert(!detail::stores_565<Rgb888>());
 // in chunks) against the general routine's precise reciprocal (the same image as RGB888): a quad
 // whose w grows 12-fold from left to right, so that chunks are foreshortened and texture
 // coordinates reach -3 and 5 periods (repeat) or the clamped edges.
+// The exact-perspective tests' quad: nearly the whole 320x200 frame, its right edge 12 times
+// farther than its left (w), texture coordinates over several repeats.
+void receding_quad(ScreenQuads& v, std::vector<std::array<uint16_t, 3>>& t) {
+  const uint32_t ws[4] = {1u << 16, 1u << 16, 12u << 16, 12u << 16};
+  screen_quad(v, t, 2, 3, 318, 197, -3.0, 5.0, -2.0, 4.0);
+  for (size_t k = 0; k < 4; ++k) v[k].w = ws[k];
+}
+
 TEST(TextureExactPerspective, Rgb565ChunksPickTheTexelsOfThePreciseReciprocal) {
   host::ImageRgb8 img = pattern(64, 64);
   for (uint8_t& c : img.rgb) c = static_cast<uint8_t>((c & 0xF8u) | (c >> 5));  // 5-bit exact
@@ -446,12 +454,10 @@ TEST(TextureExactPerspective, Rgb565ChunksPickTheTexelsOfThePreciseReciprocal) {
     img.rgb[i] = static_cast<uint8_t>((img.rgb[i] & 0xFCu) | (img.rgb[i] >> 6));
   host::HostTexture t565 = make_texture(img, TexelFormat::kRgb565, false);
   host::HostTexture t888 = make_texture(img, TexelFormat::kRgb888, false);
-  const uint32_t ws[4] = {1u << 16, 1u << 16, 12u << 16, 12u << 16};
   for (Wrap wrap : {Wrap::kRepeat, Wrap::kClampToEdge}) {
     ScreenQuads v;
     std::vector<std::array<uint16_t, 3>> t;
-    screen_quad(v, t, 2, 3, 318, 197, -3.0, 5.0, -2.0, 4.0);
-    for (size_t k = 0; k < 4; ++k) v[k].w = ws[k];
+    receding_quad(v, t);
     Sampler smp;
     smp.filter = Filter::kNearest;
     smp.env = TexEnv::kReplace;
@@ -484,14 +490,12 @@ TEST(TextureExactPerspective, Rgb565WithoutTheInlinedFetchIsTheSameTexelOrOneWei
   host::ImageRgb8 img = pattern(64, 64);
   host::HostTexture t565 = make_texture(img, TexelFormat::kRgb565, false);
   constexpr SpanSet kShared = kAllSpans.only_inline_fetch(false);
-  const uint32_t ws[4] = {1u << 16, 1u << 16, 12u << 16, 12u << 16};
   for (Filter filter : {Filter::kNearest, Filter::kBilinear})
     for (TexEnv env : {TexEnv::kReplace, TexEnv::kModulate})
       for (Wrap wrap : {Wrap::kRepeat, Wrap::kClampToEdge}) {
         ScreenQuads v;
         std::vector<std::array<uint16_t, 3>> t;
-        screen_quad(v, t, 2, 3, 318, 197, -3.0, 5.0, -2.0, 4.0);
-        for (size_t k = 0; k < 4; ++k) v[k].w = ws[k];
+        receding_quad(v, t);
         Sampler smp;
         smp.filter = filter;
         smp.env = env;
