@@ -36,6 +36,11 @@ Status FrontEnd::add_draw_record(const DrawState& state, bool has_color_planes, 
   return Status::kOk;
 }
 
+Status FrontEnd::phong_record(FrontEnd& fe, const DrawState& state, const PreparedLighting& pl,
+                              DrawRecord& r) {
+  return fe.add_phong_state(state, pl, r);
+}
+
 Status FrontEnd::add_phong_state(const DrawState& state, const PreparedLighting& pl,
                                  DrawRecord& r) {
   // Prepared lighting: shared by the draws of equal materials.

@@ -73,7 +73,7 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
 }  // namespace
 
 Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int strip_height,
-                           AdmitFn admit) {
+                           AdmitFn admit, PhongRecordFn phong) {
   configured_ = false;
   if (width < 1 || height < 1 || width > kMaxViewport || height > kMaxViewport)
     return Status::kInvalidArgument;
@@ -97,6 +97,7 @@ Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int 
   guard_.gx = 8192 / width > 1 ? 8192 / width : 1;
   guard_.gy = 8192 / height > 1 ? 8192 / height : 1;
   admit_ = admit;
+  phong_ = phong;
   configured_ = true;
   return Status::kOk;
 }
@@ -475,7 +476,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
     prepare_lighting(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
-  if (plan.kind.phong && add_phong_state(state, pl, draws_[draw_index]) != Status::kOk) {
+  if (plan.kind.phong && phong_(*this, state, pl, draws_[draw_index]) != Status::kOk) {
     --draw_count_;
     refuse(tri_count, false);
     return Status::kCapacity;

@@ -75,9 +75,10 @@ class FrontEnd {
  public:
   // Checks the stores against the viewport (width, height in [1, kMaxViewport]) and strip
   // height (1..32). Must succeed before begin_frame. admit: the renderer's test of a draw's
-  // span state (nullptr: every draw is admitted).
+  // span state (nullptr: every draw is admitted); phong: how Phong draws get their records
+  // (nullptr: Phong draws are refused).
   Status configure(const FrontEndStorage& storage, int width, int height, int strip_height,
-                   AdmitFn admit = nullptr);
+                   AdmitFn admit = nullptr, PhongRecordFn phong = &FrontEnd::phong_record);
   // Refuses every call until the next successful configure().
   void deconfigure() { configured_ = false; }
   bool configured() const { return configured_; }
@@ -142,6 +143,11 @@ class FrontEnd {
             background_};
   }
 
+  // The records of Phong draws (draw_records.cpp): what configure() takes as `phong` from a
+  // renderer with Phong spans.
+  static Status phong_record(FrontEnd& fe, const DrawState& state, const PreparedLighting& pl,
+                             DrawRecord& r);
+
  private:
   struct MeshDraw;  // one draw()'s context (front_end.cpp)
   // draw()'s loop body and its two ends (front_end.cpp, always inlined into draw()).
@@ -189,7 +195,7 @@ class FrontEnd {
               Cull cull, const int32_t* rows = nullptr);
   // Refuses a draw the renderer links no routine for.
   bool admitted(const DrawState& state, const DrawKind& kind) const {
-    return admit_ == nullptr || admit_(state, kind);
+    return (!kind.phong || phong_ != nullptr) && (admit_ == nullptr || admit_(state, kind));
   }
   // Draw records (draw_records.cpp): a new record for a draw's state, its per-pixel lighting,
   // its signature once final.
@@ -230,6 +236,7 @@ class FrontEnd {
   size_t pixel_light_count_ = 0, table_words_used_ = 0;
   bool configured_ = false;
   AdmitFn admit_ = nullptr;
+  PhongRecordFn phong_ = nullptr;
   // Bands: the stores overflowed (the rest of the frame is only recorded), binning a band
   // (vertices are compacted per draw), the band's rows, and the refused draws' triangles.
   bool overflow_ = false, banding_ = false;

@@ -38,7 +38,7 @@ class Renderer {
       front_.deconfigure();
       return Status::kInvalidArgument;
     }
-    return front_.configure(storage.front_end(), width, height, K, &admits<kSpans>);
+    return front_.configure(storage.front_end(), width, height, K, &admits<kSpans>, phong_record());
   }
 
   // Starts a frame: clears the stores and the statistics.
@@ -106,6 +106,14 @@ class Renderer {
   FrontEnd& front_end() { return front_; }
 
  private:
+  // Phong records only in a renderer with Phong spans: the others link no lighting tables.
+  static constexpr PhongRecordFn phong_record() {
+    if constexpr (kSpans.has(SpanFamily::kPhong))
+      return &FrontEnd::phong_record;
+    else
+      return nullptr;
+  }
+
   FrontEnd front_;
   StripLoop<PF, K, kSpans> strip_;
 };

@@ -386,10 +386,12 @@ template <class PF, int K, SpanSet kSpans>
   const uint8_t draw = draw_of(bt);
   const DrawRecord& dr = frame_.draws[draw];
   // Textured and Phong triangles get their slot's extra planes (the front end refuses such
-  // draws when there are none).
-  if constexpr ((kSpans.families & ~(1u << static_cast<unsigned>(SpanFamily::kUntextured))) != 0)
+  // draws when there are none). A renderer without those spans sets up no such planes.
+  constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
+  constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
+  if constexpr (kTexture)
     t.ext = dr.texture != nullptr || dr.phong ? &storage_.active_extra[slot] : nullptr;
-  setup_planes(setup_input(node, bt, dr), t);
+  setup_planes<kTexture, kPhong>(setup_input(node, bt, dr), t);
   ++stats_->triangles_set_up;
   t.index = node;
   t.draw = draw;
@@ -428,7 +430,7 @@ SetupInput StripLoop<PF, K, kSpans>::setup_input(uint16_t node, const BinnedTria
   in.colors = dr.texture ? ColorPlanes::kNone : dr.colors;
   in.depth = dr.depth;
   in.affine_colors_ok = dr.depth ? kAffineColors[1] : kAffineColors[0];
-  if (dr.phong) {
+  if (kSpans.has(SpanFamily::kPhong) && dr.phong) {
     for (int k = 0; k < 3; ++k) in.phong.s[k] = &frame_.surfaces[bt.v[k]];
     in.phong.position = dr.position;
     in.phong.tangent = dr.normal_map != nullptr;
@@ -444,7 +446,7 @@ SetupInput StripLoop<PF, K, kSpans>::setup_input(uint16_t node, const BinnedTria
       in.tex.wrap_s = dr.wrap_s;
       in.tex.wrap_t = dr.wrap_t;
     }
-  } else if (dr.texture) {
+  } else if (kSpans.has(SpanFamily::kTextured) && dr.texture) {
     in.tex.texture = dr.texture;
     in.tex.perspective = dr.persp != TexPersp::kAffine;
     in.tex.colors = dr.env == TexEnv::kModulate;

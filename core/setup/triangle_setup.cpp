@@ -275,7 +275,9 @@ void setup_edges(const ScreenVertex* const vertices[3], int32_t first, int32_t l
   }
 }
 
+template <bool kTexture, bool kPhong>
 void setup_planes(const SetupInput& in, ActiveTriangle& t) {
+  static_assert(kTexture || !kPhong, "Phong's maps use the texture planes");
   const Sorted<true> sorted(in.v, in.phong.s, in.tex.tv);
   const ScreenVertex* const* v = sorted.v;
   const SurfaceVertex* const* sf = sorted.sf;
@@ -284,9 +286,9 @@ void setup_planes(const SetupInput& in, ActiveTriangle& t) {
     uint32_t z[3] = {v[0]->z, v[1]->z, v[2]->z};
     t.z = make_plane(pb, z);
   }
-  const bool tex = in.tex.texture != nullptr;
+  const bool tex = kTexture && in.tex.texture != nullptr;
   uint32_t q[3] = {1u << 30, 1u << 30, 1u << 30};
-  const bool phong = sf[0] != nullptr;
+  const bool phong = kPhong && sf[0] != nullptr;
   t.colors = in.colors;
   if (in.colors == ColorPlanes::kPerspective && in.affine_colors_ok && !tex && !phong &&
       affine_is_exact_enough(v))
@@ -310,13 +312,19 @@ void setup_planes(const SetupInput& in, ActiveTriangle& t) {
       t.c[c] = make_plane(pb, cv);
     }
   }
-  if (tex) setup_texture(in.tex, v, sorted.tv, pb, q, t);
-  if (phong) setup_phong(in.phong, sf, pb, q, t);
+  if constexpr (kTexture)
+    if (tex) setup_texture(in.tex, v, sorted.tv, pb, q, t);
+  if constexpr (kPhong)
+    if (phong) setup_phong(in.phong, sf, pb, q, t);
 }
+
+template void setup_planes<false, false>(const SetupInput&, ActiveTriangle&);
+template void setup_planes<true, false>(const SetupInput&, ActiveTriangle&);
+template void setup_planes<true, true>(const SetupInput&, ActiveTriangle&);
 
 void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
   setup_edges(in.v, in.first_row, in.last_row, t);
-  setup_planes(in, t);
+  setup_planes<true, true>(in, t);
 }
 
 void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const PlaneBasis& pb,

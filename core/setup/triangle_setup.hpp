@@ -64,7 +64,11 @@ void setup_triangle(const SetupInput& in, ActiveTriangle& out);
 // The two halves of setup_triangle: the rows and edge walkers (rows first..last, inclusive), then
 // the attribute planes and the colour planes' kind (all of `in` but its rows): the strip loop
 // sets up no planes for a triangle whose rows cover no pixel centre.
+// setup_planes' kTexture and kPhong: whether it sets up texture and Phong planes at all. A
+// renderer whose spans have neither family links neither routine (the front end refuses such
+// draws before setup); kPhong needs kTexture (Phong's maps use the texture planes).
 void setup_edges(const ScreenVertex* const v[3], int32_t first, int32_t last, ActiveTriangle& out);
+template <bool kTexture, bool kPhong>
 void setup_planes(const SetupInput& in, ActiveTriangle& out);
 
 // What every plane of one triangle shares (docs/numerics.md#attribute-plane-equations). Most

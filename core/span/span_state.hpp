@@ -120,6 +120,8 @@ struct SpanSet {
   constexpr bool admits_sampler(TexelFormat f, Wrap s, Wrap t) const {
     return detail::has(formats, f) && detail::has(wrap_s, s) && detail::has(wrap_t, t);
   }
+  // Spans of this family.
+  constexpr bool has(SpanFamily f) const { return detail::has(families, f); }
   // An environment map of this format.
   constexpr bool admits_envmap(TexelFormat f) const { return detail::has(formats, f); }
 

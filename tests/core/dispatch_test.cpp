@@ -211,10 +211,10 @@ class Rig final : public RigBase {
 // admission of a restricted renderer without its tables (no template: compiled once).
 class AdmitRig final : public RigBase {
  public:
-  explicit AdmitRig(AdmitFn admit) {
+  explicit AdmitRig(AdmitFn admit, PhongRecordFn phong = &FrontEnd::phong_record) {
     builder_ = &front_;
     EXPECT_TRUE(strip_.configure(storage().strip_loop(), kW));
-    EXPECT_EQ(front_.configure(storage().front_end(), kW, kH, kK, admit), Status::kOk);
+    EXPECT_EQ(front_.configure(storage().front_end(), kW, kH, kK, admit, phong), Status::kOk);
   }
 
  private:
@@ -687,6 +687,32 @@ void check_sampled_states(std::index_sequence<K...> /*sample*/) {
 
 TEST(SpanDispatch, SampledRestrictedRenderersDrawTheFullRenderersFrame) {
   check_sampled_states(std::make_index_sequence<kSampledStates.size()>{});
+}
+
+// A front end without Phong records (what a renderer without Phong spans configures, so that it
+// links no lighting tables) refuses Phong draws, adding and counting nothing, and draws the
+// other families' frames.
+TEST(SpanDispatch, AFrontEndWithoutPhongRecordsRefusesPhongDrawsOnly) {
+  const Assets& a = assets();
+  AdmitRig without(nullptr, nullptr);
+  for (SpanFamily f : {SpanFamily::kUntextured, SpanFamily::kTextured}) {
+    const DrawSetup u = setup_for(first_state(f), a);
+    AdmitRig with(nullptr);
+    ASSERT_EQ(draw_scene(with, u), Status::kOk);
+    ASSERT_EQ(draw_scene(without, u), Status::kOk);
+    const host::ImageRgb8 want = with.render();
+    EXPECT_GT(count_fg(want), 100);
+    EXPECT_TRUE(without.render().rgb == want.rgb) << "family " << static_cast<int>(f);
+  }
+  const DrawSetup p = setup_for(first_state(SpanFamily::kPhong), a);
+  ASSERT_EQ(draw_scene(without, p, true, false), Status::kInvalidArgument);
+  const FrameStats& s = without.r().stats();
+  EXPECT_EQ(s.triangles_in, 0u);
+  EXPECT_EQ(s.vertices_transformed, 0u);
+  EXPECT_EQ(count_fg(without.render()), 0);
+  AdmitRig with(nullptr);
+  ASSERT_EQ(draw_scene(with, p), Status::kOk);
+  EXPECT_GT(count_fg(with.render()), 100);
 }
 
 // ---- (c) Each family's routine does what its state says ---------------------------------------
