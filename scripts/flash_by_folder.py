@@ -5,7 +5,8 @@ Sums the sizes of the image's code and read-only symbols (nm -S -l: the line tab
 symbol's file) by the project folder they come from (core/<stage>, firmware/<part>); symbols
 without line information (tables GCC emits without a location, libgcc) are "unattributed".
 RAM symbols (.bss, .data) are left out; so are the symbols whose name starts with one of the
---exclude prefixes (the scene's mesh and texture arrays). Prints a markdown table, largest
+--exclude prefixes (the scene's mesh and texture arrays). Aliases (two names at one address, as
+GCC gives a class's complete and base constructors) are counted once. Prints a markdown table, largest
 first, with each folder's three largest symbols.
 
   python3 scripts/flash_by_folder.py ELF [--exclude PREFIX ...] [--tool-prefix arm-none-eabi-]
@@ -35,10 +36,12 @@ def main():
         return 1
     sizes = collections.Counter()
     largest = collections.defaultdict(list)
+    seen = set()
     for line in out.splitlines():
         m = LINE.match(line)
-        if not m or m.group(3) in "bBdD":
+        if not m or m.group(3) in "bBdD" or (m.group(1), m.group(2)) in seen:
             continue
+        seen.add((m.group(1), m.group(2)))
         size, name, path = int(m.group(2), 16), m.group(4), m.group(5) or ""
         if any(name.startswith(p) for p in args.exclude):
             continue

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 #include "core/math/fixed.hpp"
 #include "core/math/sqrt.hpp"
@@ -52,9 +53,8 @@ constexpr int64_t dot_q30(Vec3 a, Vec3 b) {
          ((int64_t{a.z.raw} * b.z.raw) >> 2);
 }
 
-// Normalises the vector (x, y, z), given in any common fixed-point scale, to a Q1.30 unit vector.
-// Returns false (and leaves `out` unchanged) for the zero vector.
-constexpr bool normalize_unit30(int64_t x, int64_t y, int64_t z, Unit30& out) {
+namespace detail {
+constexpr bool normalize_unit30_body(int64_t x, int64_t y, int64_t z, Unit30& out) {
   uint64_t m = abs64(x) | abs64(y) | abs64(z);
   if (m == 0) return false;
   // Bring the largest magnitude into [2^29, 2^30): squares then sum below 3 * 2^60.
@@ -79,6 +79,16 @@ constexpr bool normalize_unit30(int64_t x, int64_t y, int64_t z, Unit30& out) {
   out.y = static_cast<int32_t>(round_div(y * (int64_t{1} << 30), len));
   out.z = static_cast<int32_t>(round_div(z * (int64_t{1} << 30), len));
   return true;
+}
+}  // namespace detail
+
+// Normalises the vector (x, y, z), given in any common fixed-point scale, to a Q1.30 unit vector.
+// Returns false (and leaves `out` unchanged) for the zero vector. At run time one out-of-line
+// copy (vec.cpp): the body is 0.7 KB of flash, and each translation unit made its own.
+bool normalize_unit30_call(int64_t x, int64_t y, int64_t z, Unit30& out);
+constexpr bool normalize_unit30(int64_t x, int64_t y, int64_t z, Unit30& out) {
+  if (std::is_constant_evaluated()) return detail::normalize_unit30_body(x, y, z, out);
+  return normalize_unit30_call(x, y, z, out);
 }
 
 constexpr Vec3 to_vec3(Unit30 u) {

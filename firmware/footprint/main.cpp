@@ -231,8 +231,9 @@ lr::LightSet g_lights;
 lr::Material g_gold, g_silver;  // untextured and textured lit draws (unlit: unused)
 lr::Mat4 g_model;
 
-// Everything before render(), out of line: its temporaries (the camera's computation, the
-// materials) are off the stack while the frame renders, as an application would keep them.
+// Everything before the draws, out of line: its temporaries (the camera's computation, the
+// materials) are off the stack while the frame is drawn and rendered, as an application would
+// keep them.
 [[gnu::noinline]] bool prepare_frame() {
   if (!check(g_renderer.configure(g_store.storage(), kWidth, kHeight), "configure")) return false;
 
@@ -264,9 +265,12 @@ lr::Mat4 g_model;
     g_silver = lr::to_material(*silver);
   }
 
-  if (!check(g_renderer.begin_frame(camera, lights, lr::Rgb8{16, 24, 48}), "begin_frame"))
-    return false;
   g_model = lr::rotate_y(Fixed::from_double(20.0));
+  return check(g_renderer.begin_frame(camera, lights, lr::Rgb8{16, 24, 48}), "begin_frame");
+}
+
+// The frame's draws, each a call with the static state above.
+[[gnu::noinline]] bool draw_frame() {
   for (size_t i = 0; i < kParts.count; ++i) {
     const Part p = kParts.part[i];
     if (!check(g_renderer.draw(kMeshes[i], g_model, textured(p) ? g_silver : g_gold, make_state(p)),
@@ -287,7 +291,7 @@ int main() {
   sh::write("footprint: ");
   sh::write(kName);
   sh::write(": 320x240 RGB565, strips of 8 rows, torus of 1,000 triangles\n");
-  bool ok = prepare_frame() && check(g_renderer.render(g_sink), "render");
+  bool ok = prepare_frame() && draw_frame() && check(g_renderer.render(g_sink), "render");
   const lr::FrameStats& st = g_renderer.stats();
   const uint32_t dropped = st.dropped_vertex_capacity + st.dropped_triangle_capacity;
   report("triangles binned", st.triangles_binned);
