@@ -160,9 +160,17 @@ bool write_png_data(const std::string& path, const uint8_t* data, int width, int
       return false;
     }
     ctx.info = png_create_info_struct(ctx.png);
+    errno = 0;
     const bool ok = ctx.info && png_write_all(&ctx);
+    // The reason, before png_destroy_write_struct clears ctx.info: libpng's message, or for a
+    // failed write ("Write Error") the system's.
+    if (!ok && ctx.info == nullptr)
+      what = "cannot initialise libpng";
+    else if (!ok && std::ferror(f) != 0 && errno != 0)
+      what = std::string("write failed: ") + std::strerror(errno);
+    else if (!ok)
+      what = ctx.msg.text;
     png_destroy_write_struct(&ctx.png, &ctx.info);
-    if (!ok) what = ctx.info ? ctx.msg.text : "cannot initialise libpng";
     return ok;
   });
 }

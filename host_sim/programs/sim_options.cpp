@@ -1,6 +1,7 @@
 #include "host_sim/programs/sim_options.hpp"
 
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <initializer_list>
@@ -41,20 +42,35 @@ constexpr const char* kUsage =
 
 // ---- Values ----
 
-// A finite decimal (strtod's syntax, the whole string).
-bool parse_double(std::string_view s, double& out) {
-  if (s.empty()) return false;
-  std::string tmp(s);
-  char* end = nullptr;
-  out = std::strtod(tmp.c_str(), &end);
-  return end == tmp.c_str() + tmp.size() && std::isfinite(out);
+// An optional sign ('+' is allowed, as people write it) and the rest of a number.
+std::string_view unsigned_part(std::string_view s, bool& negative) {
+  negative = !s.empty() && s[0] == '-';
+  if (!s.empty() && (s[0] == '+' || s[0] == '-')) s.remove_prefix(1);
+  return s;
 }
 
-// A whole number within +-1e9, written as any finite decimal ("12", "12.0", "1.2e1").
+// A finite decimal, the whole string: digits with an optional point and exponent ("2", "-0.5",
+// "1e-3"). Not hexadecimal, not "inf" or "nan", no blanks (strtod takes all of those).
+bool parse_double(std::string_view s, double& out) {
+  bool negative = false;
+  s = unsigned_part(s, negative);
+  if (s.empty() || !(std::isdigit(static_cast<unsigned char>(s[0])) || s[0] == '.')) return false;
+  double v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc{} || end != s.data() + s.size() || !std::isfinite(v)) return false;
+  out = negative ? -v : v;
+  return true;
+}
+
+// A whole number within +-1e9, in decimal digits only ("320", "-2"; not "0x140" or "1e2").
 bool parse_int(std::string_view s, int& out) {
-  double d = 0;
-  if (!parse_double(s, d) || d != std::floor(d) || d < -1e9 || d > 1e9) return false;
-  out = static_cast<int>(d);
+  bool negative = false;
+  s = unsigned_part(s, negative);
+  if (s.empty() || !std::isdigit(static_cast<unsigned char>(s[0]))) return false;
+  long long v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc{} || end != s.data() + s.size() || v > 1000000000) return false;
+  out = static_cast<int>(negative ? -v : v);
   return true;
 }
 

@@ -28,10 +28,11 @@ std::string tmpdir() {
   return dir.path();
 }
 
-Outcome run(const std::string& args) {
+// `prefix`: shell commands run first, in the same shell (limits for the run).
+Outcome run(const std::string& args, const std::string& prefix = "") {
   static const std::string dir = tmpdir();
   std::string out = dir + "/stdout", err = dir + "/stderr";
-  std::string cmd = std::string(LR_SIM) + " " + args + " >" + out + " 2>" + err;
+  std::string cmd = prefix + std::string(LR_SIM) + " " + args + " >" + out + " 2>" + err;
   int rc = std::system(cmd.c_str());
   Outcome r;
   r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
@@ -72,6 +73,29 @@ TEST(Cli, RendersPngWithTheRequestedSize) {
   }
   EXPECT_GT(lit, 3000u);
   EXPECT_GT(golden, lit * 99 / 100);
+}
+
+// Decimal numbers in their usual forms (a '+' sign, a leading point, an exponent) are the
+// numbers they write.
+TEST(Cli, DecimalNumbersInTheirUsualFormsAreAccepted) {
+  const std::string a = tmpdir() + "/n1.png", b = tmpdir() + "/n2.png";
+  ASSERT_EQ(run("--obj " + kMesh +
+                " --fit --width 160 --height 120 --fovy 60 --near 0.1 --eye "
+                "0,0,3 --out " +
+                a)
+                .status,
+            0);
+  const Outcome r = run("--obj " + kMesh +
+                        " --fit --width +160 --height 120 --fovy 6e1 --near .1 --eye -0,+0,3.0 "
+                        "--out " +
+                        b);
+  ASSERT_EQ(r.status, 0) << r.err;
+  lr::host::ImageRgb8 x, y;
+  std::string err;
+  ASSERT_TRUE(lr::host::read_png(a, x, err)) << err;
+  ASSERT_TRUE(lr::host::read_png(b, y, err)) << err;
+  EXPECT_EQ(x.width, 160);
+  EXPECT_TRUE(x.rgb == y.rgb);
 }
 
 TEST(Cli, PpmByExtensionAndStatsJson) {
@@ -146,6 +170,15 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
       {"--obj", "--obj: missing value"},
       {"--obj " + kMesh + " --width 0", "--width: bad value '0'"},
       {"--obj " + kMesh + " --width abc", "--width: bad value 'abc'"},
+      // Numbers are decimal, whole strings: what strtod would also take is refused.
+      {"--obj " + kMesh + " --width 0x140", "--width: bad value '0x140'"},
+      {"--obj " + kMesh + " --width 1e2", "--width: bad value '1e2'"},
+      {"--obj " + kMesh + " --width 320.0", "--width: bad value '320.0'"},
+      {"--obj " + kMesh + " --width 320x", "--width: bad value '320x'"},
+      {"--obj " + kMesh + " --fovy 0x3c", "--fovy: bad value '0x3c'"},
+      {"--obj " + kMesh + " --fovy inf", "--fovy: bad value 'inf'"},
+      {"--obj " + kMesh + " --near nan", "--near: bad value 'nan'"},
+      {"--obj " + kMesh + " --eye 0,0,+-3", "--eye: bad value '0,0,+-3'"},
       {"--obj " + kMesh + " --eye 1,2", "--eye: bad value '1,2'"},
       {"--obj " + kMesh + " --bg 2,0,0", "--bg: bad value '2,0,0'"},
       {"--obj " + kMesh + " --material unobtainium", "unknown material"},
@@ -254,6 +287,22 @@ TEST(Cli, UnwritableOutputFailsWithoutPartialFile) {
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(lines(r.err), 1u);
   EXPECT_NE(r.err.find("/nonexistent-dir/x.png"), std::string::npos) << r.err;
+}
+
+// A write that fails half-way (here a file-size limit of 512 B, as a full disk would) says why,
+// in the system's words, and leaves no file behind.
+TEST(Cli, AFailedWriteSaysWhyAndLeavesNoFile) {
+  const std::string limit = "trap '' XFSZ; ulimit -f 1; ";
+  for (const std::string name : {"w.png", "w.ppm"}) {
+    const std::string out = tmpdir() + "/" + name;
+    fs::remove(out);
+    const Outcome r = run("--obj " + kMesh + " --fit --out " + out, limit);
+    EXPECT_EQ(r.status, 2) << name;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find(out + ": write failed: File too large"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << name;
+    EXPECT_FALSE(fs::exists(out + ".tmp")) << name;
+  }
 }
 
 // ---- Lights and per-pixel (Phong) lighting ----
