@@ -39,6 +39,7 @@ struct HostMesh {
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<int32_t> triangle_material;  // per triangle: index into materials, or -1
   std::vector<HostMaterial> materials;
+  std::vector<std::string> material_libraries;  // the MTL files read, as their paths were opened
 
   bool has_colors() const { return !colors.empty(); }
   bool has_uvs() const { return !uvs.empty(); }

@@ -604,6 +604,7 @@ class ObjParser {
     }
     std::vector<HostMaterial> mats;
     if (!parse_mtl_impl(text, path, dir_of(path), mats, error_)) return false;
+    mtl_files_.push_back(path);
     for (HostMaterial& m : mats) {
       const auto it = std::find_if(materials_.begin(), materials_.end(),
                                    [&](const HostMaterial& x) { return x.name == m.name; });
@@ -673,6 +674,7 @@ class ObjParser {
     mesh.triangles = std::move(triangles_);
     mesh.triangle_material = std::move(triangle_material_);
     mesh.materials = std::move(materials_);
+    mesh.material_libraries = std::move(mtl_files_);
     out = std::move(mesh);
     return true;
   }
@@ -734,6 +736,7 @@ class ObjParser {
   std::vector<uint32_t> face_start_, face_vertices_;
   std::vector<std::array<uint32_t, 3>> triangles_;
   std::vector<int32_t> triangle_material_;
+  std::vector<std::string> mtl_files_;  // the MTL files read
   std::vector<HostMaterial> materials_;
   int32_t current_material_ = -1;
 };

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 
 #include "host_sim/formats/obj_loader.hpp"
@@ -295,6 +296,9 @@ bool load_asset(const AssetOptions& o, AssetData& out, std::string& error) {
     d.has_texture = true;
     d.texture_path = tex;
   }
+  d.inputs.push_back(o.obj_path);
+  d.inputs.insert(d.inputs.end(), mesh.material_libraries.begin(), mesh.material_libraries.end());
+  if (d.has_texture) d.inputs.push_back(tex);
   for (const FixedDraw& fd : d.draws) {
     bool t = d.has_texture && !fd.uvs.empty();
     if (t && !explicit_texture) {
@@ -327,6 +331,12 @@ bool write_asset_header(const AssetOptions& o, const std::string& out_path, std:
   const std::string text = asset_header_text(o, d);
   if (out_path.empty() || out_path.find('\0') != std::string::npos)
     return fail(error, "--out: invalid file name");
+  // The header never replaces what it was made from (the same file by any name or link).
+  for (const std::string& in : d.inputs) {
+    std::error_code ec;
+    if (std::filesystem::equivalent(out_path, in, ec))
+      return fail(error, out_path + ": is an input (" + in + "): refusing to overwrite it");
+  }
   const std::string tmp = out_path + ".tmp";
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) return fail(error, out_path + ": cannot write: " + std::strerror(errno));

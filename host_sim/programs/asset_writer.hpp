@@ -50,6 +50,7 @@ struct AssetData {
   bool has_texture = false;
   std::string texture_path;  // the file the texture came from
   HostTexture texture;
+  std::vector<std::string> inputs;  // every file read: the OBJ, its MTL files, the texture
 };
 
 // A valid name: [A-Za-z_][A-Za-z0-9_]*, not a C++ keyword, not reserved (no "__", no leading

@@ -322,6 +322,37 @@ TEST(AssetTool, ErrorsAreOneLineExitTwoAndNoOutput) {
   EXPECT_EQ(r.err, "lineraster-asset: " + dir.file("tri.obj") +
                        ": no texture coordinates (vt) for the texture " + kData + "checker.png\n");
   std::filesystem::remove(dir.file("tri.obj"));
+  // Onto one of its inputs (the OBJ, its MTL, the texture; by another name too): refused, the
+  // input untouched.
+  {
+    const std::string obj = dir.file("in.obj"), mtl = dir.file("in.mtl"), png = dir.file("in.png");
+    std::filesystem::copy_file(kData + "cube.obj", obj);
+    { std::ofstream(mtl) << "newmtl m\nKd 1 1 1\nmap_Kd in.png\n"; }
+    std::filesystem::copy_file(kData + "checker.png", png);
+    {
+      std::ifstream in(obj);
+      std::stringstream ss;
+      ss << in.rdbuf();
+      std::string text = ss.str();
+      const size_t at = text.find("mtllib ");
+      ASSERT_NE(at, std::string::npos);
+      text.replace(at, text.find('\n', at) - at, "mtllib in.mtl");
+      for (size_t u = text.find("usemtl "); u != std::string::npos; u = text.find("usemtl ", u + 1))
+        text.replace(u, text.find('\n', u) - u, "usemtl m");
+      std::ofstream(obj) << text;
+    }
+    const auto before = std::filesystem::file_size(obj);
+    for (const std::string& target : {obj, mtl, png, dir.path() + "/./in.obj"}) {
+      const ToolRun t = run_tool("--obj " + obj + " --name a --out " + target, dir);
+      EXPECT_EQ(t.status, 2) << target;
+      EXPECT_NE(t.err.find(": is an input ("), std::string::npos) << t.err;
+      EXPECT_NE(t.err.find("refusing to overwrite it"), std::string::npos) << t.err;
+    }
+    EXPECT_EQ(std::filesystem::file_size(obj), before);
+    const ToolRun ok = run_tool("--obj " + obj + " --name a --out " + dir.file("in.hpp"), dir);
+    EXPECT_EQ(ok.status, 0) << ok.err;
+    for (const std::string& f : {obj, mtl, png, dir.file("in.hpp")}) std::filesystem::remove(f);
+  }
   // Into a missing directory: refused, nothing left behind.
   const ToolRun m = run_tool(cube + " --name a --out " + dir.file("no/such/dir.hpp"), dir);
   EXPECT_EQ(m.status, 2);
