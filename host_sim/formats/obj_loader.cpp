@@ -15,6 +15,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include <sys/stat.h>
+
 namespace lr::host {
 namespace {
 
@@ -86,8 +88,17 @@ std::string dir_of(const std::string& path) {
   return path.substr(0, slash);
 }
 
+// Why read_file failed, for "PATH: cannot open: ..." messages.
+std::string read_error(int err) {
+  if (err == EFBIG) return "larger than the 1 GiB limit";
+  if (err == ENODEV) return "a device, not a file";
+  return std::strerror(err);
+}
+
 // Reads a whole file (at most kMaxFileBytes). On failure returns false with `err` = errno of the
-// failing call (EFBIG when the file is too large).
+// failing call, EFBIG for a file too large and ENODEV for a device (read_error() says so). A
+// regular file's size is checked before reading, so a huge one is refused at once; a device
+// (/dev/zero, /dev/urandom) is refused; pipes are read up to the limit.
 bool read_file(const std::string& path, std::string& text, int& err) {
   if (path.find('\0') != std::string::npos) {
     err = ENOENT;
@@ -98,6 +109,15 @@ bool read_file(const std::string& path, std::string& text, int& err) {
   if (!f) {
     err = errno != 0 ? errno : EIO;
     return false;
+  }
+  struct stat st {};
+  if (fstat(fileno(f), &st) == 0) {
+    const bool device = S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode);
+    if (device || (S_ISREG(st.st_mode) && static_cast<uint64_t>(st.st_size) > kMaxFileBytes)) {
+      std::fclose(f);
+      err = device ? ENODEV : EFBIG;
+      return false;
+    }
   }
   std::string data;
   char buf[65536];
@@ -600,7 +620,7 @@ class ObjParser {
     int err = 0;
     if (!read_file(path, text, err)) {
       return fail(error_, w,
-                  "cannot open material library " + quote(path) + ": " + std::strerror(err));
+                  "cannot open material library " + quote(path) + ": " + read_error(err));
     }
     std::vector<HostMaterial> mats;
     if (!parse_mtl_impl(text, path, dir_of(path), mats, error_)) return false;
@@ -758,7 +778,7 @@ bool load_obj(const std::string& path, HostMesh& out, std::string& error) {
   std::string text;
   int err = 0;
   if (!read_file(path, text, err)) {
-    error = path + ": cannot open: " + std::strerror(err);
+    error = path + ": cannot open: " + read_error(err);
     return false;
   }
   return parse_obj(text, path, dir_of(path), out, error);

@@ -6,11 +6,15 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "tests/support/tmp_dir.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace lr::host {
 namespace {
@@ -519,6 +523,34 @@ TEST(ObjLoaderErrors, MissingFile) {
   EXPECT_FALSE(load_obj(dir.path(), m, error));  // a directory
   EXPECT_EQ(error, dir.path() + ": cannot open: Is a directory");
   expect_sentinel(m);
+}
+
+// Refused before reading: a device (an endless /dev/zero read 1 GB before) and a file above the
+// 1 GiB limit (a sparse one: its size is checked, nothing is read); an MTL file the same way.
+// A pipe is still read.
+TEST(ObjLoaderErrors, DevicesAndFilesAboveTheLimitAreRefusedBeforeReading) {
+  HostMesh m = sentinel();
+  std::string error;
+  EXPECT_FALSE(load_obj("/dev/zero", m, error));
+  EXPECT_EQ(error, "/dev/zero: cannot open: a device, not a file");
+  expect_sentinel(m);
+  TmpDir dir("lr_obj_test");
+  const std::string big = dir.write("big.obj", "");
+  ASSERT_EQ(truncate(big.c_str(), (off_t{1} << 30) + 1), 0);
+  EXPECT_FALSE(load_obj(big, m, error));
+  EXPECT_EQ(error, big + ": cannot open: larger than the 1 GiB limit");
+  expect_sentinel(m);
+  const std::string obj =
+      dir.write("m.obj", "mtllib /dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_FALSE(load_obj(obj, m, error));
+  EXPECT_EQ(error, obj + ":1: cannot open material library '/dev/zero': a device, not a file");
+  expect_sentinel(m);
+  const std::string fifo = dir.file("pipe.obj");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string cmd = "printf 'v 0 0 0\\nv 1 0 0\\nv 0 1 0\\nf 1 2 3\\n' > " + fifo + " &";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  ASSERT_TRUE(load_obj(fifo, m, error)) << error;
+  EXPECT_EQ(m.triangles.size(), 1u);
 }
 
 TEST(ObjLoaderErrors, LoadObjNamesTheFileAsGiven) {
