@@ -1,6 +1,7 @@
 // lineraster-sim: renders an OBJ with the fixed-point core to PNG or PPM, optionally through a
 // panel (--display). The options: sim_options.cpp.
-// Any wrong option or bad file: one line on stderr, exit status 2, no output written.
+// Any wrong option or bad file: one line on stderr, exit status 2, no output written. Work
+// dropped for lack of store space: the image is written, a warning says what, exit status 3.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -25,9 +26,50 @@ using lr::host::SimOptions;
 
 using ull = unsigned long long;
 
+constexpr int kBadInput = 2;
+constexpr int kIncomplete = 3;
+
 int fail(const std::string& msg) {
   std::fprintf(stderr, "lineraster-sim: %s\n", msg.c_str());
-  return 2;
+  return kBadInput;
+}
+
+// What was dropped over the frames rendered (RenderResult::incomplete).
+struct Dropped {
+  int frames = 0;
+  uint64_t vertex_capacity = 0, triangle_capacity = 0;
+  void add(const RenderResult& r) {
+    if (!r.incomplete) return;
+    ++frames;
+    vertex_capacity += r.stats.dropped_vertex_capacity;
+    triangle_capacity += r.stats.dropped_triangle_capacity;
+  }
+};
+
+// A hint when the (last) frame shows nothing of the model: why, from the statistics.
+void report_empty(const RenderResult& r, const SimOptions& o) {
+  const lr::FrameStats& s = r.stats;
+  if (s.pixels_written != 0 || s.triangles_in == 0) return;
+  const char* why = "no triangle covers a pixel centre";
+  if (s.culled_backface == s.triangles_in)
+    why = "every triangle faces away and back faces are culled";
+  else if (s.culled_offscreen + s.clipped_away + s.culled_backface >= s.triangles_in)
+    why = "the model is outside the view";
+  std::fprintf(stderr, "lineraster-sim: warning: nothing of the model is visible: %s%s\n", why,
+               o.scene.fit ? "" : " (--fit puts it in view)");
+}
+
+// The one warning line of an incomplete frame; the exit status.
+int report_dropped(const Dropped& d, const SimOptions& o) {
+  if (d.frames == 0) return 0;
+  const auto& s = o.scene.stores;
+  std::fprintf(stderr,
+               "lineraster-sim: warning: %d frame(s) incomplete for lack of store space: %llu "
+               "triangles dropped for the vertex store, %llu for the binned-triangle store "
+               "(--stores %zu,%zu,%zu)\n",
+               d.frames, static_cast<ull>(d.vertex_capacity), static_cast<ull>(d.triangle_capacity),
+               s.vertices, s.triangles, s.active);
+  return kIncomplete;
 }
 
 // What --frames adds up over the frames sent to a panel.
@@ -86,7 +128,7 @@ void print_totals(int frames, uint64_t pixels, const PanelTotals* panel, double 
 // panel (opened after the first frame rendered: a bad scene leaves it alone). `result` is the
 // last frame.
 bool render_frames(SimOptions& o, const lr::host::HostMesh& mesh, lr::host::PanelOutput& panel,
-                   RenderResult& result, std::string& error) {
+                   RenderResult& result, Dropped& dropped, std::string& error) {
   const bool to_panel = o.display.kind != lr::host::DisplayKind::kNone;
   const double base_rotation = o.scene.model_rotate_y;
   const int count = o.frames > 0 ? o.frames : 1;
@@ -98,6 +140,7 @@ bool render_frames(SimOptions& o, const lr::host::HostMesh& mesh, lr::host::Pane
       o.scene.model_rotate_y = std::fmod(base_rotation + 360.0 * f / o.frames, 360.0);
     auto t0 = std::chrono::steady_clock::now();
     if (!lr::host::render_scene(mesh, o.scene, result, error)) return false;
+    dropped.add(result);
     BusTotals sent;
     if (to_panel) {
       if (f == 0) {  // the panel's start-up (reset and sleep-out delays) is not the frame's time
@@ -188,9 +231,11 @@ int main(int argc, char** argv) {
   if (o.subdivisions > 0) mesh = lr::host::subdivide(mesh, o.subdivisions);
   lr::host::PanelOutput panel;
   RenderResult result;
-  if (!render_frames(o, mesh, panel, result, error)) return fail(error);
+  Dropped dropped;
+  if (!render_frames(o, mesh, panel, result, dropped, error)) return fail(error);
   report_emulator_warnings(panel);
   if (!write_outputs(o, panel, result, error)) return fail(error);
   if (o.stats) print_stats(o, result);
-  return 0;
+  report_empty(result, o);
+  return report_dropped(dropped, o);
 }

@@ -27,7 +27,7 @@ constexpr const char* kUsage =
     "  [--no-depth] [--cull back|none] [--depth-out FILE.png] [--strip-height 1|2|4|8|16|32]\n"
     "  [--stats] [--texture FILE.png] [--filter nearest|bilinear] [--wrap repeat|clamp]\n"
     "  [--perspective exact|span8|span16|span32|affine] [--mipmap none|nearest|linear]\n"
-    "  [--texture-format rgb565|rgb888|l8|palette8] [--subdivide N]\n"
+    "  [--texture-format rgb565|rgb888|l8|palette8] [--subdivide N] [--stores V,T,A]\n"
     "Phong only (--shading phong): [--lighting exact|table] [--lighting-table N]\n"
     "  [--lighting-table-filter nearest|bilinear] [--envmap FILE.png] [--normalmap FILE.png]\n"
     "--light: repeatable, at most 4, not with --light-dir; colour r,g,b default 1,1,1; c,l,q:\n"
@@ -38,7 +38,11 @@ constexpr const char* kUsage =
     "PANEL: st7789:240x240|240x320|135x240|320x240[:ROT] or ili9341:240x320|320x240[:ROT], ROT\n"
     "  0|90|180|270 (default 0); the frame is the panel's size. spidev and ft232h need --panel.\n"
     "--frames N: N frames turning the model 360/N degrees about y each, statistics per frame.\n"
-    "--subdivide N: split each triangle in 4 at its edge midpoints, N times (0..4).\n";
+    "--subdivide N: split each triangle in 4 at its edge midpoints, N times (0..4).\n"
+    "--stores V,T,A: the renderer's vertex, binned-triangle and active-triangle stores (default\n"
+    "  65535,65534,4096), as a firmware's; a frame that needs more is drawn in bands.\n"
+    "Exit status: 0 drawn; 2 bad input, nothing written; 3 written, but work was dropped for\n"
+    "  lack of store space (a warning says what).\n";
 
 // ---- Values ----
 
@@ -170,6 +174,20 @@ OptionError int_in(const OptionArg& a, int lo, int hi, int& out) {
   if (!parse_int(a.value, n) || n < lo || n > hi)
     return a.bad(std::to_string(lo) + ".." + std::to_string(hi));
   out = n;
+  return {};
+}
+
+// --stores V,T,A: each within the core's limits (the store's index type).
+OptionError stores(SimOptions& o, const OptionArg& a) {
+  const std::string_view s = a.value;
+  const size_t c1 = s.find(','), c2 = c1 == std::string_view::npos ? c1 : s.find(',', c1 + 1);
+  int v = 0, t = 0, n = 0;
+  if (c2 == std::string_view::npos || s.find(',', c2 + 1) != std::string_view::npos ||
+      !parse_int(s.substr(0, c1), v) || !parse_int(s.substr(c1 + 1, c2 - c1 - 1), t) ||
+      !parse_int(s.substr(c2 + 1), n) || v < 1 || v > 0xFFFF || t < 1 || t > 0xFFFE || n < 1 ||
+      n > 0xFFFF)
+    return a.bad("expected V,T,A: 1..65535, 1..65534, 1..65535");
+  o.scene.stores = {static_cast<size_t>(v), static_cast<size_t>(t), static_cast<size_t>(n)};
   return {};
 }
 
@@ -421,6 +439,7 @@ const Row kOptions[] = {
     {"--model-translate", kValue, scene_vec3<&SceneOptions::model_translate>},
     {"--subdivide", kValue,
      [](SimOptions& o, const OptionArg& a) { return int_in(a, 0, 4, o.subdivisions); }},
+    {"--stores", kValue, stores},
     // Shading, lights, materials.
     {"--shading", kValue,
      [](SimOptions& o, const OptionArg& a) {

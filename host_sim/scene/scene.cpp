@@ -331,6 +331,7 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
   st.table = o.table;
   st.envmap = textures.has_envmap ? &textures.envmap.texture : nullptr;
   st.normal_map = textures.has_normal_map ? &textures.normal_map.texture : nullptr;
+  out.incomplete = false;
   for (size_t i = 0; i < draws.size(); ++i) {
     const FixedDraw& d = draws[i];
     Mesh m = d.mesh();
@@ -344,12 +345,13 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
       error = std::string("draw: ") + to_string(s);
       return false;
     }
+    out.incomplete = out.incomplete || s == Status::kCapacity;
   }
   CaptureDisplay<PF> display(static_cast<size_t>(caps.width) * K);  // one strip
   DepthCapture depth_capture;
   depth_capture.resize(o.width, o.height);
   // kCapacity: a strip held more than the stores (the frame is what fit; the statistics count
-  // what was dropped).
+  // what was dropped, and the caller is told: RenderResult::incomplete).
   Status s = renderer->render(display, &depth_capture);
   if (s != Status::kOk && s != Status::kCapacity) {
     error = std::string("render: ") + to_string(s) + " " + display.error();
@@ -358,6 +360,8 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
   out.image = display.image();
   out.depth = depth_capture.depth();
   out.stats = renderer->stats();
+  out.incomplete = out.incomplete || s == Status::kCapacity ||
+                   out.stats.dropped_vertex_capacity + out.stats.dropped_triangle_capacity > 0;
   out.strips = display.strips();
   out.bytes = display.bytes();
   return true;

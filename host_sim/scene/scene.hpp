@@ -89,6 +89,9 @@ struct RenderResult {
   FrameStats stats;
   uint32_t strips = 0;
   uint64_t bytes = 0;
+  // Work dropped for lack of store space (a draw refused with kCapacity, or render() reporting a
+  // strip that did not fit): the image is what fit. The statistics count the triangles.
+  bool incomplete = false;
 };
 
 // The model transform the options describe, applied to positions in double:

@@ -98,6 +98,55 @@ TEST(Cli, DecimalNumbersInTheirUsualFormsAreAccepted) {
   EXPECT_TRUE(x.rgb == y.rgb);
 }
 
+// Stores smaller than the frame: it is drawn in bands, the same image (exit 0); below the
+// minimum (a strip touching more triangles than the binned store holds) the image is written
+// with what fit, one warning line says what was dropped, and the exit status is 3.
+TEST(Cli, WorkDroppedForLackOfStoreSpaceIsAWarningAndExitStatusThree) {
+  const std::string full = tmpdir() + "/s0.png", banded = tmpdir() + "/s1.png",
+                    cut = tmpdir() + "/s2.png";
+  ASSERT_EQ(run("--obj " + kMesh + " --fit --out " + full).status, 0);
+  const Outcome b = run("--obj " + kMesh + " --fit --stores 2000,1000,16 --stats --out " + banded);
+  ASSERT_EQ(b.status, 0) << b.err;
+  EXPECT_EQ(b.err, "");
+  EXPECT_NE(b.out.find("\"dropped_triangle_capacity\":0,"), std::string::npos) << b.out;
+  lr::host::ImageRgb8 want, got;
+  std::string err;
+  ASSERT_TRUE(lr::host::read_png(full, want, err)) << err;
+  ASSERT_TRUE(lr::host::read_png(banded, got, err)) << err;
+  EXPECT_TRUE(want.rgb == got.rgb);
+
+  const Outcome c = run("--obj " + kMesh + " --fit --stores 400,300,8 --stats --out " + cut);
+  EXPECT_EQ(c.status, 3) << c.err;
+  EXPECT_EQ(lines(c.err), 1u) << c.err;
+  EXPECT_EQ(c.err.rfind("lineraster-sim: warning: 1 frame(s) incomplete for lack of store space: "
+                        "0 triangles dropped for the vertex store, ",
+                        0),
+            0u)
+      << c.err;
+  EXPECT_NE(c.err.find("for the binned-triangle store (--stores 400,300,8)"), std::string::npos);
+  EXPECT_EQ(c.out.find("\"dropped_triangle_capacity\":0,"), std::string::npos) << c.out;
+  ASSERT_TRUE(lr::host::read_png(cut, got, err)) << err;
+  EXPECT_FALSE(want.rgb == got.rgb);
+  // --frames counts the incomplete frames.
+  const Outcome f = run("--obj " + kMesh + " --fit --stores 400,300,8 --frames 2 --out " + cut);
+  EXPECT_EQ(f.status, 3);
+  EXPECT_NE(f.err.find("warning: 2 frame(s) incomplete"), std::string::npos) << f.err;
+}
+
+// A frame that shows nothing of the model is written, with a hint why.
+TEST(Cli, NothingVisibleGivesAHint) {
+  const std::string out = tmpdir() + "/e.png";
+  const Outcome away = run("--obj " + kMesh + " --eye 0,0,3 --target 0,0,6 --out " + out);
+  EXPECT_EQ(away.status, 0);
+  EXPECT_EQ(away.err,
+            "lineraster-sim: warning: nothing of the model is visible: the model is outside the "
+            "view (--fit puts it in view)\n");
+  EXPECT_TRUE(fs::exists(out));
+  const Outcome seen = run("--obj " + kMesh + " --fit --out " + out);
+  EXPECT_EQ(seen.status, 0);
+  EXPECT_EQ(seen.err, "");
+}
+
 TEST(Cli, PpmByExtensionAndStatsJson) {
   std::string out = tmpdir() + "/b.ppm";
   Outcome r = run("--obj " + kMesh + " --fit --stats --out " + out + " --strip-height 16");
@@ -179,6 +228,9 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
       {"--obj " + kMesh + " --fovy inf", "--fovy: bad value 'inf'"},
       {"--obj " + kMesh + " --near nan", "--near: bad value 'nan'"},
       {"--obj " + kMesh + " --eye 0,0,+-3", "--eye: bad value '0,0,+-3'"},
+      {"--obj " + kMesh + " --stores 0,100,4", "--stores: bad value '0,100,4'"},
+      {"--obj " + kMesh + " --stores 100,65535,4", "--stores: bad value '100,65535,4'"},
+      {"--obj " + kMesh + " --stores 100,100", "--stores: bad value '100,100'"},
       {"--obj " + kMesh + " --eye 1,2", "--eye: bad value '1,2'"},
       {"--obj " + kMesh + " --bg 2,0,0", "--bg: bad value '2,0,0'"},
       {"--obj " + kMesh + " --material unobtainium", "unknown material"},
