@@ -40,6 +40,7 @@ struct HostMesh {
   std::vector<int32_t> triangle_material;  // per triangle: index into materials, or -1
   std::vector<HostMaterial> materials;
   std::vector<std::string> material_libraries;  // the MTL files read, as their paths were opened
+  std::vector<std::string> warnings;  // "FILE:LINE: what was done" for each input accepted as is
 
   bool has_colors() const { return !colors.empty(); }
   bool has_uvs() const { return !uvs.empty(); }

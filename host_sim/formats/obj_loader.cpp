@@ -293,6 +293,11 @@ bool fail(std::string& error, const Where& w, const std::string& msg) {
   return false;
 }
 
+// What other loaders accept and this one does too, with one line "FILE:LINE: what was done".
+void warn(std::vector<std::string>& warnings, const Where& w, const std::string& msg) {
+  warnings.push_back(w.name + ":" + std::to_string(w.line) + ": " + msg);
+}
+
 // Reads tokens[first..] as finite doubles into `vals`.
 bool read_numbers(const std::vector<std::string_view>& tokens, size_t first, double* vals,
                   const Where& w, std::string& error) {
@@ -336,7 +341,8 @@ bool normalize(Vec3d& v) {
 // MTL
 
 bool parse_mtl_impl(std::string_view text, const std::string& name, const std::string& base_dir,
-                    std::vector<HostMaterial>& out, std::string& error) {
+                    std::vector<HostMaterial>& out, std::string& error,
+                    std::vector<std::string>& warnings) {
   std::vector<HostMaterial> mats;
   HostMaterial* cur = nullptr;
   std::vector<std::string_view> tok;
@@ -350,7 +356,8 @@ bool parse_mtl_impl(std::string_view text, const std::string& name, const std::s
     const std::string_view kw = tok[0];
     if (iequals(kw, "newmtl")) {
       const std::string_view mname = rest_after(line, kw);
-      if (mname.empty()) return fail(error, w, "newmtl needs a name");
+      // Blender writes materials without a name: "usemtl" alone selects them.
+      if (mname.empty()) warn(warnings, w, "newmtl without a name: the material is named ''");
       mats.emplace_back();
       cur = &mats.back();
       cur->name = std::string(mname);
@@ -532,8 +539,12 @@ class ObjParser {
     double v[3] = {0, 0, 0};
     if (!read_numbers(tok_, 1, v, w, error_)) return false;
     Vec3d nv{v[0], v[1], v[2]};
-    if (!normalize(nv)) return fail(error_, w, "vn has zero length");
     if (normals_.size() >= kNone - 1) return fail(error_, w, "too many normals");
+    // A zero normal stays (0, 0, 0): the corners that use it get the faces' smooth normal.
+    if (!normalize(nv)) {
+      warn(warnings_, w, "vn has zero length: its corners get the faces' normal");
+      nv = Vec3d{0, 0, 0};
+    }
     normals_.push_back(nv);
     return true;
   }
@@ -623,7 +634,7 @@ class ObjParser {
                   "cannot open material library " + quote(path) + ": " + read_error(err));
     }
     std::vector<HostMaterial> mats;
-    if (!parse_mtl_impl(text, path, dir_of(path), mats, error_)) return false;
+    if (!parse_mtl_impl(text, path, dir_of(path), mats, error_, warnings_)) return false;
     mtl_files_.push_back(path);
     for (HostMaterial& m : mats) {
       const auto it = std::find_if(materials_.begin(), materials_.end(),
@@ -656,14 +667,19 @@ class ObjParser {
 
   bool on_usemtl(std::string_view line, const Where& w) {
     const std::string_view mname = rest_after(line, tok_[0]);
-    if (mname.empty()) return fail(error_, w, "usemtl needs a material name");
     for (size_t i = 0; i < materials_.size(); ++i) {
       if (materials_[i].name == mname) {
         current_material_ = static_cast<int32_t>(i);
         return true;
       }
     }
-    return fail(error_, w, "unknown material " + quote(mname));
+    // No library, or a name it does not define: what follows gets the default material.
+    current_material_ = -1;
+    warn(warnings_, w,
+         (materials_.empty() ? "usemtl " + quote(mname) + " without a material library"
+                             : "unknown material " + quote(mname)) +
+             ": the default material is used");
+    return true;
   }
 
   bool build(HostMesh& out) {
@@ -679,7 +695,7 @@ class ObjParser {
       mesh.positions[i] = positions_[k.p];
       if (colour_state_ == 1) mesh.colors[i] = colors_[k.p];
       if (any_uv_) mesh.uvs[i] = k.t != kNone ? uvs_[k.t] : Vec2d{0.0, 0.0};
-      if (k.n != kNone) {
+      if (k.n != kNone && normals_[k.n] != Vec3d{0, 0, 0}) {
         mesh.normals[i] = normals_[k.n];
       } else {
         need_smooth = true;
@@ -688,13 +704,15 @@ class ObjParser {
     if (need_smooth) {
       const std::vector<Vec3d> smooth = smooth_normals();
       for (size_t i = 0; i < nv; ++i) {
-        if (corners_[i].n == kNone) mesh.normals[i] = smooth[corners_[i].p];
+        if (corners_[i].n == kNone || normals_[corners_[i].n] == Vec3d{0, 0, 0})
+          mesh.normals[i] = smooth[corners_[i].p];
       }
     }
     mesh.triangles = std::move(triangles_);
     mesh.triangle_material = std::move(triangle_material_);
     mesh.materials = std::move(materials_);
     mesh.material_libraries = std::move(mtl_files_);
+    mesh.warnings = std::move(warnings_);
     out = std::move(mesh);
     return true;
   }
@@ -757,6 +775,7 @@ class ObjParser {
   std::vector<std::array<uint32_t, 3>> triangles_;
   std::vector<int32_t> triangle_material_;
   std::vector<std::string> mtl_files_;  // the MTL files read
+  std::vector<std::string> warnings_;
   std::vector<HostMaterial> materials_;
   int32_t current_material_ = -1;
 };
@@ -764,8 +783,10 @@ class ObjParser {
 }  // namespace
 
 bool parse_mtl(std::string_view text, const std::string& name, const std::string& base_dir,
-               std::vector<HostMaterial>& out, std::string& error) {
-  return parse_mtl_impl(text, name, base_dir, out, error);
+               std::vector<HostMaterial>& out, std::string& error,
+               std::vector<std::string>* warnings) {
+  std::vector<std::string> ignored;
+  return parse_mtl_impl(text, name, base_dir, out, error, warnings ? *warnings : ignored);
 }
 
 bool parse_obj(std::string_view text, const std::string& name, const std::string& base_dir,

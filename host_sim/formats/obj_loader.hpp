@@ -43,7 +43,12 @@
 // Errors are one line "FILE:LINE: what is wrong" (LINE 1-based; for "no faces" the last line).
 // Numbers are read with std::from_chars (a leading '+' is accepted); trailing garbage, NaN/Inf and
 // values too large for a double are errors; values too small for a double read as 0. OBJ and MTL
-// files larger than 1 GiB are refused (as "cannot open ...: File too large").
+// files larger than 1 GiB, and devices, are refused before reading.
+//
+// Accepted with a warning (HostMesh::warnings, "FILE:LINE: what was done"), as other loaders
+// accept them: `usemtl` without a library or naming a material it does not define (the default
+// material), `usemtl` with no name (the material named '', else the default), `newmtl` with no
+// name, a zero-length `vn` (its corners get the faces' smooth normal).
 #pragma once
 
 #include <string>
@@ -68,6 +73,7 @@ bool parse_obj(std::string_view text, const std::string& name, const std::string
 // definition); map_Kd paths are resolved relative to `base_dir`. On failure returns false, sets
 // `error` to "NAME:LINE: what is wrong" and leaves `out` untouched.
 bool parse_mtl(std::string_view text, const std::string& name, const std::string& base_dir,
-               std::vector<HostMaterial>& out, std::string& error);
+               std::vector<HostMaterial>& out, std::string& error,
+               std::vector<std::string>* warnings = nullptr);
 
 }  // namespace lr::host

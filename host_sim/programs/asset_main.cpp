@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "host_sim/programs/asset_writer.hpp"
 #include "host_sim/programs/option_table.hpp"
@@ -154,6 +155,9 @@ int main(int argc, char** argv) {
     return fail("--name '" + o.name + "' is not a usable C++ identifier");
   if (args.out.empty()) return fail("--out FILE.hpp is required");
   o.command_line = quoted_command_line(argc, argv);
-  if (!lr::host::write_asset_header(o, args.out, error)) return fail(error);
+  std::vector<std::string> warnings;
+  if (!lr::host::write_asset_header(o, args.out, error, &warnings)) return fail(error);
+  for (const std::string& w : warnings)
+    std::fprintf(stderr, "lineraster-asset: warning: %s\n", w.c_str());
   return 0;
 }

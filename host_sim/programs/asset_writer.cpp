@@ -289,6 +289,11 @@ bool load_asset(const AssetOptions& o, AssetData& out, std::string& error) {
       }
     }
   }
+  d.warnings = mesh.warnings;
+  if (!tex.empty() && !explicit_texture && !mesh.has_uvs()) {
+    d.warnings.push_back(tex + ": the mesh has no texture coordinates (vt): drawn untextured");
+    tex.clear();
+  }
   if (!tex.empty()) {
     if (!mesh.has_uvs())
       return fail(error, o.obj_path + ": no texture coordinates (vt) for the texture " + tex);
@@ -325,9 +330,11 @@ std::string asset_header_text(const AssetOptions& o, const AssetData& d) {
   return s;
 }
 
-bool write_asset_header(const AssetOptions& o, const std::string& out_path, std::string& error) {
+bool write_asset_header(const AssetOptions& o, const std::string& out_path, std::string& error,
+                        std::vector<std::string>* warnings) {
   AssetData d;
   if (!load_asset(o, d, error)) return false;
+  if (warnings != nullptr) *warnings = d.warnings;
   const std::string text = asset_header_text(o, d);
   if (out_path.empty() || out_path.find('\0') != std::string::npos)
     return fail(error, "--out: invalid file name");

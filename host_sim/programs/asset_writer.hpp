@@ -50,7 +50,8 @@ struct AssetData {
   bool has_texture = false;
   std::string texture_path;  // the file the texture came from
   HostTexture texture;
-  std::vector<std::string> inputs;  // every file read: the OBJ, its MTL files, the texture
+  std::vector<std::string> inputs;    // every file read: the OBJ, its MTL files, the texture
+  std::vector<std::string> warnings;  // what the files asked for and was left out or replaced
 };
 
 // A valid name: [A-Za-z_][A-Za-z0-9_]*, not a C++ keyword, not reserved (no "__", no leading
@@ -66,6 +67,6 @@ std::string asset_header_text(const AssetOptions& options, const AssetData& data
 // load_asset + asset_header_text, then writes the header through OUT.tmp renamed over
 // `out_path` (no output on any failure). False with a one-line error.
 bool write_asset_header(const AssetOptions& options, const std::string& out_path,
-                        std::string& error);
+                        std::string& error, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace lr::host

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "hal/panel_sink.hpp"
 #include "host_sim/emulator/emulator_bus.hpp"
@@ -32,6 +33,15 @@ constexpr int kIncomplete = 3;
 int fail(const std::string& msg) {
   std::fprintf(stderr, "lineraster-sim: %s\n", msg.c_str());
   return kBadInput;
+}
+
+// The loader's and the scene's warnings, one line each (at most 20, then how many more).
+void warn_all(const std::vector<std::string>& warnings) {
+  constexpr size_t kShown = 20;
+  for (size_t i = 0; i < warnings.size() && i < kShown; ++i)
+    std::fprintf(stderr, "lineraster-sim: warning: %s\n", warnings[i].c_str());
+  if (warnings.size() > kShown)
+    std::fprintf(stderr, "lineraster-sim: warning: %zu more warnings\n", warnings.size() - kShown);
 }
 
 // What was dropped over the frames rendered (RenderResult::incomplete).
@@ -228,12 +238,14 @@ int main(int argc, char** argv) {
   }
   lr::host::HostMesh mesh;
   if (!lr::host::load_obj(o.obj, mesh, error)) return fail(error);
+  warn_all(mesh.warnings);
   if (o.subdivisions > 0) mesh = lr::host::subdivide(mesh, o.subdivisions);
   lr::host::PanelOutput panel;
   RenderResult result;
   Dropped dropped;
   if (!render_frames(o, mesh, panel, result, dropped, error)) return fail(error);
   report_emulator_warnings(panel);
+  warn_all(result.warnings);
   if (!write_outputs(o, panel, result, error)) return fail(error);
   if (o.stats) print_stats(o, result);
   report_empty(result, o);

@@ -156,6 +156,7 @@ struct DrawTextures {
   std::vector<const Texture*> per_draw;
   HostTexture envmap, normal_map;
   bool has_envmap = false, has_normal_map = false;
+  std::vector<std::string> warnings;  // a material's texture left out
 };
 
 bool load_draw_textures(const HostMesh& mesh, const std::vector<FixedDraw>& draws,
@@ -169,6 +170,16 @@ bool load_draw_textures(const HostMesh& mesh, const std::vector<FixedDraw>& draw
     if (path.empty() && d.material_index >= 0 && size_t(d.material_index) < mesh.materials.size())
       path = mesh.materials[size_t(d.material_index)].map_kd;
     if (path.empty()) {
+      out.per_draw.push_back(nullptr);
+      continue;
+    }
+    if (d.uvs.empty() && o.texture.empty()) {
+      // A material's map_Kd on faces without vt: drawn untextured, as other loaders do.
+      const std::string w = path +
+                            ": the faces of its material have no texture coordinates (vt): "
+                            "drawn untextured";
+      if (std::find(out.warnings.begin(), out.warnings.end(), w) == out.warnings.end())
+        out.warnings.push_back(w);
       out.per_draw.push_back(nullptr);
       continue;
     }
@@ -446,6 +457,7 @@ bool render_scene(const HostMesh& mesh, const SceneOptions& o, RenderResult& out
   }
   DrawTextures textures;
   if (!load_draw_textures(*src, draws, o, textures, error)) return false;
+  out.warnings = textures.warnings;
   if (!o.envmap.empty()) {
     if (!load_texture(o.envmap, o.texture_format, false, textures.envmap, error)) return false;
     textures.has_envmap = true;

@@ -92,6 +92,7 @@ struct RenderResult {
   // Work dropped for lack of store space (a draw refused with kCapacity, or render() reporting a
   // strip that did not fit): the image is what fit. The statistics count the triangles.
   bool incomplete = false;
+  std::vector<std::string> warnings;  // what the scene's files asked for and was left out
 };
 
 // The model transform the options describe, applied to positions in double:

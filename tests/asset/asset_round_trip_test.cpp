@@ -362,6 +362,24 @@ TEST(AssetTool, ErrorsAreOneLineExitTwoAndNoOutput) {
   EXPECT_TRUE(dir.entries().empty());
 }
 
+// A material's texture on a mesh without vt: the header is untextured, and one warning line says
+// so (an explicit --texture is still an error, above).
+TEST(AssetTool, AMaterialTextureWithoutUvsIsLeftOutWithAWarning) {
+  TmpDir dir("lr_asset_test");
+  dir.write("t.mtl", "newmtl t\nKd 1 1 1\nmap_Kd " + kData + "checker.png\n");
+  dir.write("t.obj", "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl t\nf 1 2 3\n");
+  const ToolRun r =
+      run_tool("--obj " + dir.file("t.obj") + " --name a --out " + dir.file("a.hpp"), dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "lineraster-asset: warning: " + kData +
+                       "checker.png: the mesh has no texture coordinates (vt): drawn untextured\n");
+  std::ifstream in(dir.file("a.hpp"));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_NE(ss.str().find("draw_count = 1"), std::string::npos);
+  EXPECT_EQ(ss.str().find("lr::Texture texture{"), std::string::npos);
+}
+
 TEST(AssetTool, FitBoxPutsTheLargestHalfExtentAtOne) {
   TmpDir dir("lr_asset_test");
   // Box [0, 4] x [0, 2] x [0, 1]: centre (2, 1, 0.5), largest half extent 2.

@@ -46,6 +46,7 @@ Outcome run(const std::string& args, const std::string& prefix = "") {
 }
 
 const std::string kMesh = std::string(LR_SOURCE_DIR) + "/tests/host/data/torus_knot.obj";
+const std::string kData = std::string(LR_SOURCE_DIR) + "/tests/host/data/";
 
 size_t lines(const std::string& s) {
   size_t n = 0;
@@ -145,6 +146,45 @@ TEST(Cli, NothingVisibleGivesAHint) {
   const Outcome seen = run("--obj " + kMesh + " --fit --out " + out);
   EXPECT_EQ(seen.status, 0);
   EXPECT_EQ(seen.err, "");
+}
+
+// What other loaders accept is drawn, with one warning line each: a usemtl without a library
+// (the default material), a material's texture on faces without vt (untextured).
+TEST(Cli, TolerableInputIsDrawnWithAWarningLine) {
+  const std::string dir = tmpdir();
+  const std::string quad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n";
+  { std::ofstream(dir + "/plain.obj") << quad << "f 1 2 3 4\n"; }
+  { std::ofstream(dir + "/nolib.obj") << quad << "usemtl red\nf 1 2 3 4\n"; }
+  {
+    std::ofstream(dir + "/tex.mtl")
+        << "newmtl t\nKd 0.8 0.8 0.8\nmap_Kd " << kData << "checker.png\n";
+    std::ofstream(dir + "/plainmtl.mtl") << "newmtl t\nKd 0.8 0.8 0.8\n";
+    std::ofstream(dir + "/novt.obj") << "mtllib tex.mtl\n" << quad << "usemtl t\nf 1 2 3 4\n";
+    std::ofstream(dir + "/novt_plain.obj") << "mtllib plainmtl.mtl\n"
+                                           << quad << "usemtl t\nf 1 2 3 4\n";
+  }
+  auto image = [&](const std::string& obj, Outcome& r) {
+    const std::string out = dir + "/" + obj + ".png";
+    r = run("--obj " + dir + "/" + obj + " --width 64 --height 64 --out " + out);
+    lr::host::ImageRgb8 img;
+    std::string err;
+    EXPECT_TRUE(lr::host::read_png(out, img, err)) << err;
+    return img.rgb;
+  };
+  Outcome plain, nolib, novt, novt_plain;
+  const auto want = image("plain.obj", plain);
+  EXPECT_EQ(image("nolib.obj", nolib), want);
+  EXPECT_EQ(nolib.status, 0);
+  EXPECT_EQ(nolib.err, "lineraster-sim: warning: " + dir +
+                           "/nolib.obj:5: usemtl 'red' without a material library: the default "
+                           "material is used\n");
+  const auto untextured = image("novt_plain.obj", novt_plain);
+  EXPECT_EQ(image("novt.obj", novt), untextured);
+  EXPECT_EQ(novt.status, 0);
+  EXPECT_EQ(novt.err, "lineraster-sim: warning: " + kData +
+                          "checker.png: the faces of its material have no texture coordinates "
+                          "(vt): drawn untextured\n");
+  EXPECT_EQ(plain.err + novt_plain.err, "");
 }
 
 TEST(Cli, PpmByExtensionAndStatsJson) {
@@ -258,8 +298,6 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
 }
-
-const std::string kData = std::string(LR_SOURCE_DIR) + "/tests/host/data/";
 
 size_t distinct_colours(const lr::host::ImageRgb8& img) {
   std::vector<uint32_t> c;

@@ -462,9 +462,35 @@ TEST(ObjLoaderErrors, FaceWithTwoVertices) {
   expect_error(std::string(kTri) + "f\n", "t.obj:4: face needs at least 3 vertices, got 0");
 }
 
-TEST(ObjLoaderErrors, UnknownMaterial) {
-  expect_error(std::string(kTri) + "usemtl nope\nf 1 2 3\n", "t.obj:4: unknown material 'nope'");
-  expect_error(std::string(kTri) + "usemtl\n", "t.obj:4: usemtl needs a material name");
+// Accepted as other loaders accept them, each with one warning line "FILE:LINE: what was done".
+TEST(ObjLoaderTolerance, UsemtlWithoutALibraryOrAnUnknownNameGetsTheDefaultMaterial) {
+  const HostMesh a = parse_ok(std::string(kTri) + "usemtl nope\nf 1 2 3\n");
+  ASSERT_EQ(a.triangle_material.size(), 1u);
+  EXPECT_EQ(a.triangle_material[0], -1);
+  EXPECT_EQ(a.warnings, std::vector<std::string>{
+                            "t.obj:4: usemtl 'nope' without a material library: the default "
+                            "material is used"});
+  TmpDir dir("lr_obj_test");
+  dir.write("m.mtl", "newmtl red\nKd 1 0 0\n");
+  const HostMesh b =
+      parse_ok("mtllib m.mtl\n" + std::string(kTri) + "usemtl red\nf 1 2 3\nusemtl blue\nf 1 2 3\n",
+               dir.path());
+  ASSERT_EQ(b.triangle_material.size(), 2u);
+  EXPECT_EQ(b.triangle_material[0], 0);
+  EXPECT_EQ(b.triangle_material[1], -1);  // after the unknown name: the default again
+  EXPECT_EQ(b.warnings, std::vector<std::string>{
+                            "t.obj:7: unknown material 'blue': the default material is used"});
+  // A material without a name (Blender writes them) is selected by a usemtl without a name.
+  dir.write("e.mtl", "newmtl\nKd 0 1 0\n");
+  const HostMesh c =
+      parse_ok("mtllib e.mtl\n" + std::string(kTri) + "usemtl\nf 1 2 3\n", dir.path());
+  ASSERT_EQ(c.materials.size(), 1u);
+  EXPECT_EQ(c.materials[0].name, "");
+  EXPECT_EQ(c.materials[0].diffuse, (Vec3d{0, 1, 0}));
+  EXPECT_EQ(c.triangle_material[0], 0);
+  EXPECT_EQ(c.warnings,
+            std::vector<std::string>{dir.path() + "/e.mtl:1: newmtl without a name: the material "
+                                                  "is named ''"});
 }
 
 TEST(ObjLoaderErrors, MissingMaterialLibrary) {
@@ -503,8 +529,15 @@ TEST(ObjLoaderErrors, NotFiniteOrTooLarge) {
   expect_error("v 0 0 0\nv 0 0 0 0 0 NaN\n", "t.obj:2: number is not finite 'NaN'");
 }
 
-TEST(ObjLoaderErrors, ZeroLengthNormal) {
-  expect_error(std::string(kTri) + "vn 0 0 0\n", "t.obj:4: vn has zero length");
+// A zero-length vn: its corners get the smooth normal of their faces, the others keep theirs.
+TEST(ObjLoaderTolerance, AZeroLengthNormalIsReplacedByTheFacesNormal) {
+  const HostMesh m = parse_ok(std::string(kTri) + "vn 0 0 0\nvn 1 0 0\nf 1//1 2//1 3//2\n");
+  ASSERT_EQ(m.normals.size(), 3u);
+  expect_near3(m.normals[0], {0, 0, 1});  // the face's normal (counter-clockwise in xy)
+  expect_near3(m.normals[1], {0, 0, 1});
+  expect_near3(m.normals[2], {1, 0, 0});
+  EXPECT_EQ(m.warnings, std::vector<std::string>{
+                            "t.obj:4: vn has zero length: its corners get the faces' normal"});
 }
 
 TEST(ObjLoaderErrors, NoFaces) {
