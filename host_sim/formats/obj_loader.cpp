@@ -2,6 +2,8 @@
 // reported.
 #include "host_sim/formats/obj_loader.hpp"
 
+#include "host_sim/formats/polygon_triangulation.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -615,9 +617,17 @@ class ObjParser {
       }
       face_corners_.push_back(vi);
     }
-    // Fan (v0, vi, vi+1).
-    for (size_t i = 1; i + 1 < face_corners_.size(); ++i) {
-      triangles_.push_back({face_corners_[0], face_corners_[i], face_corners_[i + 1]});
+    // The face's triangles in its plane (a fan when it is convex).
+    face_points_.clear();
+    for (const uint32_t vi : face_corners_) face_points_.push_back(positions_[corners_[vi].p]);
+    face_triangles_.clear();
+    if (!triangulate_polygon(face_points_, face_triangles_))
+      warn(warnings_, w,
+           "a concave face of " + std::to_string(face_points_.size()) +
+               " corners: fanned from its first corner (ear clipping stops at " +
+               std::to_string(kMaxEarClippedCorners) + " corners), its triangles may leave it");
+    for (const auto& t : face_triangles_) {
+      triangles_.push_back({face_corners_[t[0]], face_corners_[t[1]], face_corners_[t[2]]});
       triangle_material_.push_back(current_material_);
     }
     // Remember the face (its corners' vertices) for the smooth normals.
@@ -776,6 +786,8 @@ class ObjParser {
   std::vector<int32_t> triangle_material_;
   std::vector<std::string> mtl_files_;  // the MTL files read
   std::vector<std::string> warnings_;
+  std::vector<Vec3d> face_points_;                       // the current face's corner positions
+  std::vector<std::array<uint32_t, 3>> face_triangles_;  // and its triangles
   std::vector<HostMaterial> materials_;
   int32_t current_material_ = -1;
 };

@@ -7,16 +7,18 @@
 //   v x y z r g b      position with a linear vertex colour; colours are clamped to [0, 1]; if any
 //                      `v` has a colour, every `v` must have one (else an error)
 //   vt u v [w]         texture coordinate (w ignored)
-//   vn x y z           normal; normalized on reading; a zero-length normal is an error
+//   vn x y z           normal; normalized on reading; a zero-length normal: see below
 //   f a b c ...        face; corners `v`, `v/vt`, `v//vn`, `v/vt/vn` (forms may be mixed; an empty
 //                      vt or vn field counts as absent); negative indices are relative to the
 //                      elements defined so far; indices must refer to elements defined before the
-//                      face (the OBJ rule); faces with more than 3 corners are fanned
-//                      (v0, vi, vi+1); faces with repeated corners are kept. `fo` = `f`.
+//                      face (the OBJ rule); convex faces with more than 3 corners are fanned
+//                      (v0, vi, vi+1), concave ones ear-clipped in their plane
+//                      (polygon_triangulation.hpp); faces with repeated corners are kept.
+//                      `fo` = `f`.
 //   mtllib a.mtl ...   one or more MTL files, relative to the OBJ's folder (a name with spaces is
 //                      accepted when the whole rest of the line names an existing file); read at
 //                      once, so mtllib must come before the usemtl that uses its materials
-//   usemtl name        current material for the following faces (unknown name: error)
+//   usemtl name        current material for the following faces (unknown name: see below)
 //   o, g, s            accepted and ignored (names and smoothing groups are not kept)
 //   # comment          anywhere on a line; blank lines; CRLF line ends; a UTF-8 BOM; a line ending
 //                      in a backslash continues on the next line (errors name the first line)

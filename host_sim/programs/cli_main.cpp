@@ -64,7 +64,7 @@ void report_empty(const RenderResult& r, const SimOptions& o) {
   if (s.culled_backface == s.triangles_in)
     why = "every triangle faces away and back faces are culled";
   else if (s.culled_offscreen + s.clipped_away + s.culled_backface >= s.triangles_in)
-    why = "the model is outside the view";
+    why = "the model is outside the view, or too small to cover a pixel centre";
   std::fprintf(stderr, "lineraster-sim: warning: nothing of the model is visible: %s%s\n", why,
                o.scene.fit ? "" : " (--fit puts it in view)");
 }

@@ -141,7 +141,7 @@ TEST(Cli, NothingVisibleGivesAHint) {
   EXPECT_EQ(away.status, 0);
   EXPECT_EQ(away.err,
             "lineraster-sim: warning: nothing of the model is visible: the model is outside the "
-            "view (--fit puts it in view)\n");
+            "view, or too small to cover a pixel centre (--fit puts it in view)\n");
   EXPECT_TRUE(fs::exists(out));
   const Outcome seen = run("--obj " + kMesh + " --fit --out " + out);
   EXPECT_EQ(seen.status, 0);
