@@ -41,6 +41,10 @@ struct HostMesh {
   std::vector<HostMaterial> materials;
   std::vector<std::string> material_libraries;  // the MTL files read, as their paths were opened
   std::vector<std::string> warnings;  // "FILE:LINE: what was done" for each input accepted as is
+  // For messages: the OBJ's name as given, and per vertex the line of its `v` (0: made here, a
+  // subdivision's midpoint; empty: not from a file).
+  std::string source;
+  std::vector<uint32_t> lines;
 
   bool has_colors() const { return !colors.empty(); }
   bool has_uvs() const { return !uvs.empty(); }

@@ -513,6 +513,7 @@ class ObjParser {
     }
     if (positions_.size() >= kNone - 1) return fail(error_, w, "too many positions");
     positions_.push_back({v[0], v[1], v[2]});
+    position_lines_.push_back(static_cast<uint32_t>(w.line));
     if (has_colour) colors_.push_back({clamp01(v[3]), clamp01(v[4]), clamp01(v[5])});
     return true;
   }
@@ -723,6 +724,9 @@ class ObjParser {
     mesh.materials = std::move(materials_);
     mesh.material_libraries = std::move(mtl_files_);
     mesh.warnings = std::move(warnings_);
+    mesh.source = name_;
+    mesh.lines.resize(nv);
+    for (size_t i = 0; i < nv; ++i) mesh.lines[i] = position_lines_[corners_[i].p];
     out = std::move(mesh);
     return true;
   }
@@ -786,6 +790,7 @@ class ObjParser {
   std::vector<int32_t> triangle_material_;
   std::vector<std::string> mtl_files_;  // the MTL files read
   std::vector<std::string> warnings_;
+  std::vector<uint32_t> position_lines_;                 // per `v`: its line
   std::vector<Vec3d> face_points_;                       // the current face's corner positions
   std::vector<std::array<uint32_t, 3>> face_triangles_;  // and its triangles
   std::vector<HostMaterial> materials_;

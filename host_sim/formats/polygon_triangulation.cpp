@@ -27,8 +27,8 @@ bool project(std::span<const Vec3d> c, std::vector<P2>& out) {
     n[1] += (p[2] - q[2]) * (p[0] + q[0]);
     n[2] += (p[0] - q[0]) * (p[1] + q[1]);
   }
-  const auto* big = std::max_element(n.begin(), n.end(),
-                                     [](double x, double y) { return std::fabs(x) < std::fabs(y); });
+  const auto* big = std::max_element(
+      n.begin(), n.end(), [](double x, double y) { return std::fabs(x) < std::fabs(y); });
   if (!(std::fabs(*big) > 0)) return false;
   const size_t k = static_cast<size_t>(big - n.begin());
   // The two other axes in cyclic order keep the orientation of n's component k.

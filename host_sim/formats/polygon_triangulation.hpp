@@ -23,7 +23,6 @@ inline constexpr size_t kMaxEarClippedCorners = 4096;
 // Appends the triangles of the polygon `corners` (in order, at least 3) to `out`, as indices into
 // `corners`, wound as the polygon is. False when a concave face was fanned all the same (more
 // than kMaxEarClippedCorners corners): its triangles may leave it.
-bool triangulate_polygon(std::span<const Vec3d> corners,
-                         std::vector<std::array<uint32_t, 3>>& out);
+bool triangulate_polygon(std::span<const Vec3d> corners, std::vector<std::array<uint32_t, 3>>& out);
 
 }  // namespace lr::host

@@ -276,7 +276,7 @@ bool load_asset(const AssetOptions& o, AssetData& out, std::string& error) {
   so.use_mesh_materials = true;
   AssetData d;
   if (!build_fixed_draws(mesh, so, d.draws, error)) {
-    error = o.obj_path + ": " + error;
+    if (error.rfind(o.obj_path + ":", 0) != 0) error = o.obj_path + ": " + error;
     return false;
   }
   std::string tex = o.texture_path;

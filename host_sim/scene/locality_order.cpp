@@ -106,6 +106,7 @@ void sort_for_locality(HostMesh& mesh) {
   permute(mesh.colors, new_to_old);
   permute(mesh.uvs, new_to_old);
   permute(mesh.tangents, new_to_old);
+  permute(mesh.lines, new_to_old);
 }
 
 }  // namespace lr::host

@@ -276,6 +276,8 @@ HostMesh subdivide(const HostMesh& mesh, int levels) {
     out.colors = m.colors;
     out.uvs = m.uvs;
     out.materials = m.materials;
+    out.source = m.source;
+    out.lines = m.lines.size() == m.positions.size() ? m.lines : std::vector<uint32_t>{};
     out.triangles.reserve(4 * m.triangles.size());
     out.triangle_material.reserve(4 * m.triangles.size());
     std::unordered_map<uint64_t, uint32_t> midpoints;
@@ -305,6 +307,7 @@ HostMesh subdivide(const HostMesh& mesh, int levels) {
         const Vec2d& ub = m.uvs[b];
         out.uvs.push_back({(ua[0] + ub[0]) * 0.5, (ua[1] + ub[1]) * 0.5});
       }
+      if (!out.lines.empty()) out.lines.push_back(0);  // a midpoint: no line of its own
       return it->second;
     };
     for (size_t t = 0; t < m.triangles.size(); ++t) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <unordered_map>
 
@@ -41,6 +42,17 @@ Material to_core_material(const Vec3d& ka, const Vec3d& kd, const Vec3d& ks, con
 
 bool fixed_vec(const Vec3d& v, Vec3& out) {
   return to_fixed(v[0], out.x) && to_fixed(v[1], out.y) && to_fixed(v[2], out.z);
+}
+
+// "FILE:LINE: v (x, y, z) " for a vertex read from a file, else "mesh: vertex N (x, y, z) ".
+std::string vertex_place(const HostMesh& mesh, uint32_t vi) {
+  const Vec3d& p = mesh.positions[vi];
+  char xyz[96];
+  std::snprintf(xyz, sizeof xyz, "(%.9g, %.9g, %.9g) ", p[0], p[1], p[2]);
+  const uint32_t line = vi < mesh.lines.size() ? mesh.lines[vi] : 0;
+  if (!mesh.source.empty() && line != 0)
+    return mesh.source + ":" + std::to_string(line) + ": v " + xyz;
+  return "mesh: vertex " + std::to_string(vi) + " " + xyz;
 }
 
 }  // namespace
@@ -109,8 +121,9 @@ bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<
                   (p[2] - mt.fit_center[2]) * mt.fit_scale};
           Vec3 fp;
           if (!fixed_vec(q, fp)) {
-            error = "mesh: vertex " + std::to_string(vi) +
-                    " is not finite or outside the core's range (|x| < 32768); try --fit";
+            error = vertex_place(mesh, vi) + "is not finite or outside the core's range " +
+                    "(|x| < 32768" + (o.fit ? " after --fit" : "") + ")" +
+                    (o.fit ? "" : "; try --fit");
             return false;
           }
           d.positions.push_back(fp);

@@ -253,6 +253,8 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
   {
     std::ofstream bad(dir + "/bad.obj");
     bad << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
+    std::ofstream far(dir + "/far.obj");
+    far << "v 0 0 0\n# a vertex out of the core's range\nv 40000 0 0\nv 0 1 0\nf 1 2 3\n";
   }
   const BadCase cases[] = {
       {"", "--obj FILE is required"},
@@ -283,6 +285,10 @@ TEST(Cli, BadInputsFailCleanlyWithoutOutput) {
       {"--obj " + kMesh + " --out x.jpg", "must end in .png or .ppm"},
       {"--obj " + dir + "/missing.obj", "missing.obj"},
       {"--obj " + dir + "/bad.obj", "bad.obj:4:"},
+      {"--obj " + dir + "/far.obj",
+       dir + "/far.obj:3: v (40000, 0, 0) is not finite or outside the core's range (|x| < "
+             "32768); try --fit"},
+      {"--obj " + dir + "/far.obj --subdivide 1", dir + "/far.obj:3: v (40000, 0, 0) is"},
       {"--obj " + kMesh + " --eye 0,0,0 --target 0,0,0", "camera:"},
       {"--obj " + kMesh + " --eye 1e9,0,0", "camera:"},
       {"--obj " + kMesh + " --light-dir 0,0,0", "--light-dir: bad value"},

@@ -108,8 +108,18 @@ TEST(PolygonTriangulation, ConcaveFacesCoverThemselvesExactly) {
   expect_exact_cover({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, "L");
   // The L from another corner: a fan from its first corner leaves the polygon.
   expect_exact_cover({{2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}, {0, 0}}, "L from (2, 0)");
-  expect_exact_cover({{0, 0}, {5, 0}, {5, 3}, {4, 3}, {4, 1}, {3, 1}, {3, 3}, {2, 3}, {2, 1},
-                      {1, 1}, {1, 3}, {0, 3}},
+  expect_exact_cover({{0, 0},
+                      {5, 0},
+                      {5, 3},
+                      {4, 3},
+                      {4, 1},
+                      {3, 1},
+                      {3, 3},
+                      {2, 3},
+                      {2, 1},
+                      {1, 1},
+                      {1, 3},
+                      {0, 3}},
                      "comb");
   Poly2 star;
   for (int k = 0; k < 10; ++k) {
@@ -135,8 +145,18 @@ TEST(PolygonTriangulation, AKeyholeRingKeepsItsHole) {
 
 TEST(PolygonTriangulation, ATiltedSlightlyNonPlanarFaceIsTriangulatedInItsPlane) {
   // The comb in the plane x + y + z = 1, each corner off it by up to 1 % of its size.
-  expect_exact_cover({{0, 0}, {5, 0}, {5, 3}, {4, 3}, {4, 1}, {3, 1}, {3, 3}, {2, 3}, {2, 1},
-                      {1, 1}, {1, 3}, {0, 3}},
+  expect_exact_cover({{0, 0},
+                      {5, 0},
+                      {5, 3},
+                      {4, 3},
+                      {4, 1},
+                      {3, 1},
+                      {3, 3},
+                      {2, 3},
+                      {2, 1},
+                      {1, 1},
+                      {1, 3},
+                      {0, 3}},
                      "tilted comb", [](double u, double v) {
                        const double off = 0.05 * std::sin(7 * u + 3 * v);
                        return Vec3d{u, v, 1 - u - v + off};
