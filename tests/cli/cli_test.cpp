@@ -699,3 +699,89 @@ TEST(CliPhong, NormalMapOnAMeshWithoutTangentsUsesComputedOnes) {
 }
 
 }  // namespace
+
+// ---- The corpus of real-world quirks (tests/host/data/quirks/) ----
+//
+// Each quirk file is drawn and must give the image of the plain file it stands for, byte for
+// byte; warnings are checked where the file is tolerated rather than read as written.
+
+const std::string kQuirks = kData + "quirks/";
+const std::string kQuirkView = " --eye 0.7,-1.1,2.6 --width 160 --height 120";
+
+lr::host::ImageRgb8 quirk_image(const std::string& obj, const std::string& options,
+                                std::string& warnings) {
+  const std::string out = tmpdir() + "/quirk.png";
+  std::filesystem::remove(out);
+  const Outcome r = run("--obj " + kQuirks + obj + options + " --out " + out);
+  EXPECT_EQ(r.status, 0) << obj << ": " << r.err;
+  warnings = r.err;
+  lr::host::ImageRgb8 img;
+  std::string err;
+  EXPECT_TRUE(lr::host::read_png(out, img, err)) << obj << ": " << err;
+  return img;
+}
+
+TEST(QuirksCorpus, EachQuirkDrawsTheImageOfItsPlainFile) {
+  struct Case {
+    const char *quirk, *plain, *options, *warning;  // warning: a part of stderr, or ""
+  };
+  const Case cases[] = {
+      {"crlf.obj", "plain.obj", "", ""},
+      {"tabs.obj", "plain.obj", "", ""},
+      {"continuation.obj", "plain.obj", "", ""},
+      {"negative.obj", "plain.obj", "", ""},
+      {"missing_normals.obj", "plain.obj", "", ""},
+      {"ngon.obj", "plain.obj", "", ""},
+      {"concave.obj", "concave_quads.obj", "", ""},
+      {"empty_name.obj", "plain.obj", "", "unnamed.mtl:2: newmtl without a name"},
+      {"usemtl_no_library.obj", "no_material.obj", "",
+       "usemtl_no_library.obj:21: usemtl 'left' without a material library"},
+      {"unknown_material.obj", "left_only_material.obj", "",
+       "unknown_material.obj:25: unknown material 'purple': the default material is used"},
+      {"missing_uvs.obj", "untextured.obj", "",
+       "checker.png: the faces of its material have no texture coordinates (vt)"},
+      // Z-up: the camera and the light turned with the model ((x, y, z) -> (x, -z, y)).
+      {"z_up.obj", "plain.obj", " --eye 0.7,-2.6,-1.1 --up 0,0,1 --light-dir 1,-1,1", ""},
+  };
+  for (const Case& c : cases) {
+    std::string plain_warnings, warnings;
+    const lr::host::ImageRgb8 want = quirk_image(c.plain, kQuirkView, plain_warnings);
+    const std::string options = *c.options ? " --eye 0.7,-2.6,-1.1 --up 0,0,1 --light-dir 1,-1,1 "
+                                             "--width 160 --height 120"
+                                           : kQuirkView;
+    const lr::host::ImageRgb8 got = quirk_image(c.quirk, options, warnings);
+    EXPECT_EQ(plain_warnings, "") << c.plain;
+    EXPECT_GT(drawn(want, 0, 0, 0), 4000u) << c.plain;
+    EXPECT_TRUE(got.rgb == want.rgb) << c.quirk << " does not draw " << c.plain << "'s image";
+    if (*c.warning)
+      EXPECT_NE(warnings.find(c.warning), std::string::npos) << c.quirk << ": " << warnings;
+    else
+      EXPECT_EQ(warnings, "") << c.quirk;
+  }
+}
+
+// Two materials with a texture each: every pixel is the one of its half drawn alone.
+TEST(QuirksCorpus, SeveralMaterialsKeepTheirOwnTextures) {
+  std::string w;
+  const lr::host::ImageRgb8 both = quirk_image("two_textures.obj", kQuirkView, w);
+  const lr::host::ImageRgb8 left = quirk_image("left_texture.obj", kQuirkView, w);
+  const lr::host::ImageRgb8 right = quirk_image("right_texture.obj", kQuirkView, w);
+  const lr::host::ImageRgb8 white = quirk_image("untextured.obj", kQuirkView, w);
+  ASSERT_EQ(both.rgb.size(), left.rgb.size());
+  size_t from_left = 0, from_right = 0, mismatched = 0;
+  for (size_t p = 0; p < both.rgb.size() / 3; ++p) {
+    const bool in_left = left.rgb[3 * p] + left.rgb[3 * p + 1] + left.rgb[3 * p + 2] != 0;
+    const bool in_right = right.rgb[3 * p] + right.rgb[3 * p + 1] + right.rgb[3 * p + 2] != 0;
+    const lr::host::ImageRgb8& from = in_left ? left : right;
+    if (!in_left && !in_right) continue;
+    from_left += in_left ? 1 : 0;
+    from_right += in_left ? 0 : 1;
+    for (size_t k = 0; k < 3; ++k)
+      mismatched += both.rgb[3 * p + k] != from.rgb[3 * p + k] ? 1u : 0u;
+  }
+  EXPECT_GT(from_left, 2000u);
+  EXPECT_GT(from_right, 2000u);
+  EXPECT_EQ(mismatched, 0u);
+  EXPECT_FALSE(both.rgb == white.rgb);
+  EXPECT_GT(distinct_colours(both), distinct_colours(left));
+}
