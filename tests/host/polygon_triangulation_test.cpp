@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -217,6 +218,26 @@ TEST(PolygonTriangulation, ConcaveFacesBeyondTheLimitAreFannedWithAWarning) {
                             std::to_string(4 * below + 6) +
                             " corners: fanned from its first corner (ear clipping stops at 4096 "
                             "corners), its triangles may leave it"});
+}
+
+// A circle of 100,000 corners written with 7 decimals (rounding bends corners either way) is
+// convex: fanned, no warning.
+TEST(PolygonTriangulation, AHugeRoundedCircleIsFanned) {
+  constexpr int kCorners = 100000;
+  std::string obj, f = "f";
+  char line[64];
+  for (int k = 0; k < kCorners; ++k) {
+    const double a = 2 * M_PI * k / kCorners;
+    std::snprintf(line, sizeof line, "v %.7f %.7f 0\n", std::cos(a), std::sin(a));
+    obj += line;
+    f += " " + std::to_string(k + 1);
+  }
+  HostMesh m;
+  std::string error;
+  ASSERT_TRUE(parse_obj(obj + f + "\n", "disc.obj", "", m, error)) << error;
+  EXPECT_TRUE(m.warnings.empty()) << m.warnings.front();
+  ASSERT_EQ(m.triangles.size(), static_cast<size_t>(kCorners - 2));
+  EXPECT_EQ(m.triangles[0][0], m.triangles.back()[0]);  // all from the first corner
 }
 
 }  // namespace
