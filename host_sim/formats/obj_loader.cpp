@@ -605,6 +605,8 @@ class ObjParser {
       }
       if (nf > 2 && !fields[2].empty()) {
         if (!resolve(fields[2], normals_.size(), "normal", w, k.n)) return false;
+        // A zero-length vn is no normal: the corner is the one without it (smooth normal).
+        if (normals_[k.n] == Vec3d{0, 0, 0}) k.n = kNone;
       }
       uint32_t vi = 0;
       const auto it = corner_map_.find(k);
@@ -693,7 +695,27 @@ class ObjParser {
     return true;
   }
 
+  // Vertices numbered in order of first use by the triangles (as a file of those triangles
+  // reads back): a face's corners are numbered as read, but its ear-clipped triangles may use
+  // them in another order.
+  void number_by_first_use() {
+    std::vector<uint32_t> to_new(corners_.size(), kNone);
+    uint32_t next = 0;
+    for (const auto& t : triangles_)
+      for (const uint32_t v : t)
+        if (to_new[v] == kNone) to_new[v] = next++;
+    for (uint32_t& v : to_new)
+      if (v == kNone) v = next++;  // a corner no triangle uses (none: kept for safety)
+    std::vector<CornerKey> corners(corners_.size());
+    for (size_t i = 0; i < corners_.size(); ++i) corners[to_new[i]] = corners_[i];
+    corners_ = std::move(corners);
+    for (auto& t : triangles_)
+      for (uint32_t& v : t) v = to_new[v];
+    for (uint32_t& v : face_vertices_) v = to_new[v];
+  }
+
   bool build(HostMesh& out) {
+    number_by_first_use();
     HostMesh mesh;
     const size_t nv = corners_.size();
     mesh.positions.resize(nv);
@@ -706,7 +728,7 @@ class ObjParser {
       mesh.positions[i] = positions_[k.p];
       if (colour_state_ == 1) mesh.colors[i] = colors_[k.p];
       if (any_uv_) mesh.uvs[i] = k.t != kNone ? uvs_[k.t] : Vec2d{0.0, 0.0};
-      if (k.n != kNone && normals_[k.n] != Vec3d{0, 0, 0}) {
+      if (k.n != kNone) {
         mesh.normals[i] = normals_[k.n];
       } else {
         need_smooth = true;
@@ -715,8 +737,7 @@ class ObjParser {
     if (need_smooth) {
       const std::vector<Vec3d> smooth = smooth_normals();
       for (size_t i = 0; i < nv; ++i) {
-        if (corners_[i].n == kNone || normals_[corners_[i].n] == Vec3d{0, 0, 0})
-          mesh.normals[i] = smooth[corners_[i].p];
+        if (corners_[i].n == kNone) mesh.normals[i] = smooth[corners_[i].p];
       }
     }
     mesh.triangles = std::move(triangles_);
