@@ -5,6 +5,7 @@
 #endif
 #include "host_sim/programs/asset_writer.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -87,6 +88,11 @@ bool fail(std::string& error, const std::string& what) {
   return false;
 }
 
+// The header's name of texture k: `texture`, then `texture_1` ...
+std::string texture_name(size_t k) {
+  return k == 0 ? "texture" : "texture_" + std::to_string(k);
+}
+
 // The header's comment (what it was made from) and its includes.
 void write_preamble(std::string& s, const AssetOptions& o, const AssetData& d) {
   size_t vertices = 0, triangles = 0;
@@ -103,11 +109,14 @@ void write_preamble(std::string& s, const AssetOptions& o, const AssetData& d) {
        (o.subdivide > 0 ? ", subdivided " + std::to_string(o.subdivide) + "x (--subdivide)" : "") +
        (o.locality ? ", in spatial order (--locality)" : "") + "\n";
   if (d.has_texture) {
-    const Texture& t = d.texture.texture;
-    s += "//   texture: " + comment_safe(d.texture_path) + ": " +
-         std::to_string(t.levels[0].width) + "x" + std::to_string(t.levels[0].height) + " " +
-         texel_format_name(t.format) + ", " + std::to_string(t.level_count) + " level(s)" +
-         (o.mipmaps ? " (mip chain)" : "") + "\n";
+    for (size_t k = 0; k <= d.more_textures.size(); ++k) {
+      const Texture& t = k == 0 ? d.texture.texture : d.more_textures[k - 1].texture;
+      const std::string& path = k == 0 ? d.texture_path : d.more_texture_paths[k - 1];
+      s += "//   " + texture_name(k) + ": " + comment_safe(path) + ": " +
+           std::to_string(t.levels[0].width) + "x" + std::to_string(t.levels[0].height) + " " +
+           texel_format_name(t.format) + ", " + std::to_string(t.level_count) + " level(s)" +
+           (o.mipmaps ? " (mip chain)" : "") + "\n";
+    }
   } else {
     s += "//   texture: none\n";
   }
@@ -200,8 +209,21 @@ void write_draw_tables(std::string& s, const AssetData& d) {
   s += "};\n";
 }
 
-// The texture's levels, palette and lr::Texture.
-void write_texture(std::string& s, const Texture& t) {
+// Each draw's own texture (its material's map_Kd, or --texture), nullptr for none.
+void write_draw_textures(std::string& s, const AssetData& d) {
+  s += "\n// Each draw's texture: its material's map_Kd (or --texture), nullptr for none.\n";
+  s += "inline constexpr std::array<const lr::Texture*, " + std::to_string(d.draws.size()) +
+       "> draw_textures{";
+  for (size_t i = 0; i < d.draw_texture.size(); ++i) {
+    const int k = d.draw_texture[i];
+    s += std::string(i ? ", " : "") +
+         (k < 0 ? std::string("nullptr") : "&" + texture_name(static_cast<size_t>(k)));
+  }
+  s += "};\n";
+}
+
+// The texture's levels, palette and lr::Texture, named `name` (name_level_0 ...).
+void write_texture(std::string& s, const Texture& t, const std::string& name) {
   const bool is565 = t.format == TexelFormat::kRgb565;
   s += "\n";
   for (int l = 0; l < t.level_count; ++l) {
@@ -209,8 +231,8 @@ void write_texture(std::string& s, const Texture& t) {
     const std::string id = std::to_string(l);
     s += "// Level " + id + ": " + std::to_string(lv.width) + "x" + std::to_string(lv.height) +
          ", rows bottom first.\n";
-    s += std::string("inline constexpr ") + (is565 ? "uint16_t" : "uint8_t") + " texture_level_" +
-         id + "[] = {\n";
+    s += std::string("inline constexpr ") + (is565 ? "uint16_t" : "uint8_t") + " " + name +
+         "_level_" + id + "[] = {\n";
     {
       ListWriter w(s, 12);
       if (is565) {
@@ -222,7 +244,7 @@ void write_texture(std::string& s, const Texture& t) {
     s += "};\n";
   }
   if (t.format == TexelFormat::kPalette8) {
-    s += "inline constexpr uint16_t texture_palette[] = {\n";
+    s += "inline constexpr uint16_t " + name + "_palette[] = {\n";
     {
       ListWriter w(s, 12);
       for (uint16_t v : t.palette) w.add(hex16(v));
@@ -230,12 +252,13 @@ void write_texture(std::string& s, const Texture& t) {
     s += "};\n";
   }
   static const char* const kFormatEnum[] = {"kRgb565", "kRgb888", "kL8", "kPalette8"};
-  s += "inline constexpr lr::Texture texture{\n    lr::TexelFormat::" +
-       std::string(kFormatEnum[static_cast<int>(t.format)]) + ",\n    {{\n";
+  s += "inline constexpr lr::Texture " + name +
+       "{\n    lr::TexelFormat::" + std::string(kFormatEnum[static_cast<int>(t.format)]) +
+       ",\n    {{\n";
   for (int l = 0; l < kMaxMipLevels; ++l) {
     const TextureLevel& lv = t.levels[static_cast<size_t>(l)];
     if (l < t.level_count) {
-      const std::string arr = "texture_level_" + std::to_string(l);
+      const std::string arr = name + "_level_" + std::to_string(l);
       s += "        {" + (is565 ? arr + ", {}" : "{}, " + arr) + ", " + std::to_string(lv.width) +
            ", " + std::to_string(lv.height) + "},\n";
     } else {
@@ -243,7 +266,7 @@ void write_texture(std::string& s, const Texture& t) {
     }
   }
   s += "    }},\n    " + std::to_string(t.level_count) + ",\n    " +
-       (t.format == TexelFormat::kPalette8 ? "texture_palette" : "{}") + "};\n";
+       (t.format == TexelFormat::kPalette8 ? name + "_palette" : std::string("{}")) + "};\n";
 }
 
 }  // namespace
@@ -279,40 +302,48 @@ bool load_asset(const AssetOptions& o, AssetData& out, std::string& error) {
     if (error.rfind(o.obj_path + ":", 0) != 0) error = o.obj_path + ": " + error;
     return false;
   }
-  std::string tex = o.texture_path;
-  const bool explicit_texture = !tex.empty();
-  if (!explicit_texture) {
-    for (const HostMaterial& m : mesh.materials) {
-      if (!m.map_kd.empty()) {
-        tex = m.map_kd;
-        break;
-      }
-    }
-  }
   d.warnings = mesh.warnings;
-  if (!tex.empty() && !explicit_texture && !mesh.has_uvs()) {
-    d.warnings.push_back(tex + ": the mesh has no texture coordinates (vt): drawn untextured");
-    tex.clear();
-  }
-  if (!tex.empty()) {
-    if (!mesh.has_uvs())
-      return fail(error, o.obj_path + ": no texture coordinates (vt) for the texture " + tex);
-    if (!load_texture(tex, o.format, o.mipmaps, d.texture, error)) return false;
-    d.has_texture = true;
-    d.texture_path = tex;
-  }
   d.inputs.push_back(o.obj_path);
   d.inputs.insert(d.inputs.end(), mesh.material_libraries.begin(), mesh.material_libraries.end());
-  if (d.has_texture) d.inputs.push_back(tex);
+  // --texture: every draw with uvs takes it. Else each draw its material's map_Kd, each file
+  // loaded once: the first as `texture`, the others as `texture_1` ...
+  std::vector<std::string> paths;  // index k: draw_texture k
   for (const FixedDraw& fd : d.draws) {
-    bool t = d.has_texture && !fd.uvs.empty();
-    if (t && !explicit_texture) {
-      t = fd.material_index >= 0 &&
-          static_cast<size_t>(fd.material_index) < mesh.materials.size() &&
-          mesh.materials[static_cast<size_t>(fd.material_index)].map_kd == tex;
+    std::string tex = o.texture_path;
+    if (tex.empty() && fd.material_index >= 0 &&
+        static_cast<size_t>(fd.material_index) < mesh.materials.size())
+      tex = mesh.materials[static_cast<size_t>(fd.material_index)].map_kd;
+    int index = -1;
+    if (!tex.empty() && fd.uvs.empty()) {
+      if (!o.texture_path.empty())
+        return fail(error, o.obj_path + ": no texture coordinates (vt) for the texture " + tex);
+      const std::string w = tex + ": the mesh has no texture coordinates (vt): drawn untextured";
+      if (std::find(d.warnings.begin(), d.warnings.end(), w) == d.warnings.end())
+        d.warnings.push_back(w);
+    } else if (!tex.empty()) {
+      const auto it = std::find(paths.begin(), paths.end(), tex);
+      index = static_cast<int>(it - paths.begin());
+      if (it == paths.end()) {
+        HostTexture t;
+        if (!load_texture(tex, o.format, o.mipmaps, index == 0 ? d.texture : t, error))
+          return false;
+        if (index > 0) {
+          d.more_textures.push_back(std::move(t));
+          d.more_texture_paths.push_back(tex);
+        }
+        paths.push_back(tex);
+        d.inputs.push_back(tex);
+      }
     }
-    d.textured.push_back(t);
+    d.draw_texture.push_back(index);
+    d.textured.push_back(index == 0);
   }
+  // --texture on a mesh without any uvs: refused, as before (nothing would show it).
+  if (!o.texture_path.empty() && paths.empty())
+    return fail(error,
+                o.obj_path + ": no texture coordinates (vt) for the texture " + o.texture_path);
+  d.has_texture = !paths.empty();
+  if (d.has_texture) d.texture_path = paths[0];
   out = std::move(d);
   return true;
 }
@@ -325,7 +356,10 @@ std::string asset_header_text(const AssetOptions& o, const AssetData& d) {
   s += "inline constexpr std::size_t draw_count = " + std::to_string(d.draws.size()) + ";\n\n";
   for (size_t i = 0; i < d.draws.size(); ++i) write_draw(s, i, d.draws[i]);
   write_draw_tables(s, d);
-  if (d.has_texture) write_texture(s, d.texture.texture);
+  if (d.has_texture) write_texture(s, d.texture.texture, texture_name(0));
+  for (size_t k = 0; k < d.more_textures.size(); ++k)
+    write_texture(s, d.more_textures[k].texture, texture_name(k + 1));
+  write_draw_textures(s, d);
   s += "\n}  // namespace " + n + "\n";
   return s;
 }

@@ -46,10 +46,15 @@ struct AssetOptions {
 // The loaded and converted inputs of a header.
 struct AssetData {
   std::vector<FixedDraw> draws;
-  std::vector<bool> textured;  // per draw
+  std::vector<bool> textured;  // per draw: it takes `texture` (draw_texture 0)
   bool has_texture = false;
   std::string texture_path;  // the file the texture came from
   HostTexture texture;
+  // Each material's own texture: the second and later distinct ones (`texture_1` ...), and per
+  // draw which it takes: -1 none, 0 `texture`, k `more_textures[k - 1]`.
+  std::vector<HostTexture> more_textures;
+  std::vector<std::string> more_texture_paths;
+  std::vector<int> draw_texture;
   std::vector<std::string> inputs;    // every file read: the OBJ, its MTL files, the texture
   std::vector<std::string> warnings;  // what the files asked for and was left out or replaced
 };

@@ -28,6 +28,7 @@
 #include "knot_palette8.hpp"
 #include "tests/support/core_harness.hpp"
 #include "tests/support/tmp_dir.hpp"
+#include "two_textures.hpp"
 
 namespace lr::host {
 namespace {
@@ -173,10 +174,10 @@ struct Frame {
   size_t textured_draws = 0;
 };
 
-// Renders meshes[i] with materials[i] (textured where textured[i]) at 160x120 from a corner,
-// the model scaled by `scale`.
-Frame render(std::span<const Mesh> meshes, std::span<const Material> materials,
-             std::span<const bool> textured, const Texture* texture, Fixed scale) {
+// Renders meshes[i] with materials[i] and textures[i] (nullptr: untextured) at 160x120 from a
+// corner, the model scaled by `scale`.
+Frame render_each(std::span<const Mesh> meshes, std::span<const Material> materials,
+                  std::span<const Texture* const> textures, Fixed scale) {
   constexpr int kW = 160, kH = 120;
   test::CoreHarness<8> h(kW, kH);
   EXPECT_EQ(h.configured(), Status::kOk);
@@ -193,7 +194,7 @@ Frame render(std::span<const Mesh> meshes, std::span<const Material> materials,
   Frame f;
   for (size_t i = 0; i < meshes.size(); ++i) {
     DrawState st;
-    if (textured[i] && texture) {
+    if (const Texture* texture = textures[i]) {
       st.texture = texture;
       st.sampler.filter = Filter::kNearest;
       st.sampler.mip = texture->level_count > 1 ? MipMode::kNearest : MipMode::kNone;
@@ -206,6 +207,14 @@ Frame render(std::span<const Mesh> meshes, std::span<const Material> materials,
   EXPECT_EQ(s, Status::kOk);
   for (size_t p = 0; p < h.depth().size(); ++p) f.covered += h.depth()[p] != 0xFFFF;
   return f;
+}
+
+// The same with `texture` where textured[i].
+Frame render(std::span<const Mesh> meshes, std::span<const Material> materials,
+             std::span<const bool> textured, const Texture* texture, Fixed scale) {
+  std::vector<const Texture*> each;
+  for (size_t i = 0; i < meshes.size(); ++i) each.push_back(textured[i] ? texture : nullptr);
+  return render_each(meshes, materials, each, scale);
 }
 
 Frame render_loaded(const Loaded& l, std::span<const bool> textured, Fixed scale) {
@@ -262,6 +271,46 @@ TEST(AssetRoundTripFrames, KnotL8RendersTheSameFrameAsTheLoadedFiles) {
   expect_same_frame(LR_ASSET_VIEW(knot_l8),
                     load("torus_knot.obj", "checker.png", TexelFormat::kL8, true, false), false,
                     knot_l8::draw_count);
+}
+
+// Two materials with a texture each (quirks/two_textures.obj): the header keeps both, each draw
+// takes its own, and its frame is the one of the simulator's conversion of the files, textures
+// loaded per material.
+TEST(AssetRoundTripFrames, EachMaterialKeepsItsOwnTextureAsTheSimulatorDraws) {
+  HostMesh mesh;
+  std::string error;
+  ASSERT_TRUE(load_obj(kData + "quirks/two_textures.obj", mesh, error)) << error;
+  SceneOptions o;
+  o.use_mesh_materials = true;
+  std::vector<FixedDraw> draws;
+  ASSERT_TRUE(build_fixed_draws(mesh, o, draws, error)) << error;
+  ASSERT_EQ(draws.size(), two_textures::draw_count);
+  std::vector<HostTexture> loaded(draws.size());
+  std::vector<const Texture*> each;
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  for (size_t i = 0; i < draws.size(); ++i) {
+    const std::string& map = mesh.materials[static_cast<size_t>(draws[i].material_index)].map_kd;
+    ASSERT_TRUE(load_texture(map, TexelFormat::kRgb565, false, loaded[i], error)) << error;
+    ASSERT_NE(two_textures::draw_textures[i], nullptr);
+    expect_same_texture(*two_textures::draw_textures[i], loaded[i].texture);
+    each.push_back(&loaded[i].texture);
+    meshes.push_back(draws[i].mesh());
+    materials.push_back(draws[i].material);
+    expect_same(two_textures::meshes[i].positions, draws[i].positions, "position", i);
+  }
+  EXPECT_NE(two_textures::draw_textures[0], two_textures::draw_textures[1]);
+  const Fixed scale = Fixed::from_double(1.2);
+  const Frame header = render_each(two_textures::meshes, two_textures::materials,
+                                   two_textures::draw_textures, scale);
+  const Frame files = render_each(meshes, materials, each, scale);
+  EXPECT_EQ(header.textured_draws, 2u);
+  EXPECT_GT(header.covered, 160u * 120u / 20);
+  EXPECT_TRUE(header.image.rgb == files.image.rgb);
+  // Both textures show: one texture on both draws gives another frame.
+  const std::array<const Texture*, 2> first{&two_textures::texture, &two_textures::texture};
+  EXPECT_FALSE(render_each(two_textures::meshes, two_textures::materials, first, scale).image.rgb ==
+               header.image.rgb);
 }
 
 // ---- The tool's command line
