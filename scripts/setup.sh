@@ -3,7 +3,7 @@
 # Usage: scripts/setup.sh [demo|test]   (demo: what rendering needs; test: everything)
 set -euo pipefail
 what=${1:-test}
-pkgs=(g++ make cmake libpng-dev)
+pkgs=(g++ make cmake libpng-dev libjpeg-dev)
 if [ "$what" = test ]; then
   pkgs+=(libgtest-dev libbenchmark-dev valgrind libosmesa6-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
          libstdc++-arm-none-eabi-newlib qemu-system-arm

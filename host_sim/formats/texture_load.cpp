@@ -1,5 +1,7 @@
 #include "host_sim/formats/texture_load.hpp"
 
+#include "host_sim/formats/jpeg_io.hpp"
+
 #include <utility>
 
 #include "core/texture/mipmap.hpp"
@@ -184,7 +186,8 @@ void HostTexture::repoint() {
 bool load_texture(const std::string& png_path, TexelFormat format, bool mipmaps, HostTexture& out,
                   std::string& error) {
   ImageRgb8 img;
-  if (!read_png(png_path, img, error)) return false;
+  if (!(is_jpeg_name(png_path) ? read_jpeg(png_path, img, error) : read_png(png_path, img, error)))
+    return false;
   return convert(img, format, mipmaps, png_path, out, error);
 }
 
