@@ -67,6 +67,7 @@ bool decode(std::FILE* f, std::vector<uint8_t>& rgb, std::vector<uint8_t>& cmyk,
     return false;
   }
   jpeg_create_decompress(&cinfo);
+  cinfo.mem->max_memory_to_use = 512L << 20;  // a corrupt progressive header's buffers
   jpeg_stdio_src(&cinfo, f);
   jpeg_read_header(&cinfo, TRUE);
   if (cinfo.image_width < 1 || cinfo.image_height < 1 || cinfo.image_width > kMaxSide ||
@@ -138,8 +139,9 @@ bool jpeg_supported() {
 }
 
 bool read_jpeg(const std::string& path, ImageRgb8& /*out*/, std::string& error) {
-  error = path + ": JPEG textures need libjpeg, which this build was made without (install "
-                 "libjpeg-dev and configure again)";
+  error = path +
+          ": JPEG textures need libjpeg, which this build was made without (install "
+          "libjpeg-dev and configure again)";
   return false;
 }
 

@@ -1,10 +1,12 @@
-// Fuzz target: the image readers and texture loading (see fuzz_targets.hpp).
+// Fuzz target: the image readers (PNG, PPM / PGM, JPEG) and texture loading (see
+// fuzz_targets.hpp).
 #include <string>
 #include <utility>
 
 #include "core/texture/mipmap.hpp"
 #include "core/texture/texture.hpp"
 #include "host_sim/formats/image_io.hpp"
+#include "host_sim/formats/jpeg_io.hpp"
 #include "host_sim/formats/texture_load.hpp"
 #include "tests/fuzz/fuzz_files.hpp"
 #include "tests/fuzz/fuzz_targets.hpp"
@@ -38,9 +40,19 @@ void check_texture(const host::HostTexture& t, const host::ImageRgb8& img, Texel
 int png_target(const uint8_t* data, size_t size) {
   static MemFile file;
   file.set(data, size);
-  // read_image picks the reader by content (PNG signature, else PPM / PGM magic).
+  // read_image picks the reader by content (PNG signature, else PPM / PGM magic); JPEG's reader
+  // is chosen by name, so it reads every input too.
   std::string error;
   host::ImageRgb8 src;
+  {
+    host::ImageRgb8 jpeg;
+    if (host::read_jpeg(file.path(), jpeg, error)) {
+      check_image(jpeg);
+    } else {
+      LR_FUZZ_CHECK(!error.empty() && jpeg.rgb.empty());
+    }
+    error.clear();
+  }
   const bool ok = host::read_image(file.path(), src, error);
   if (!ok) {
     LR_FUZZ_CHECK(!error.empty() && src.rgb.empty());

@@ -32,11 +32,13 @@ void write_jpeg(const std::string& path, const ImageRgb8& img, int quality, bool
   c.in_color_space = grey ? JCS_GRAYSCALE : JCS_RGB;
   jpeg_set_defaults(&c);
   jpeg_set_quality(&c, quality, TRUE);
-  for (int i = 0; i < c.num_components; ++i) c.comp_info[i].h_samp_factor = c.comp_info[i].v_samp_factor = 1;
+  for (int i = 0; i < c.num_components; ++i)
+    c.comp_info[i].h_samp_factor = c.comp_info[i].v_samp_factor = 1;
   jpeg_start_compress(&c, TRUE);
   std::vector<uint8_t> row(static_cast<size_t>(img.width) * 3);
   while (c.next_scanline < c.image_height) {
-    const uint8_t* src = img.rgb.data() + size_t{c.next_scanline} * static_cast<size_t>(img.width) * 3;
+    const uint8_t* src =
+        img.rgb.data() + size_t{c.next_scanline} * static_cast<size_t>(img.width) * 3;
     for (size_t x = 0; x < static_cast<size_t>(img.width); ++x)
       for (size_t k = 0; k < 3; ++k) row[grey ? x : 3 * x + k] = src[3 * x + (grey ? 0 : k)];
     JSAMPROW r = row.data();
