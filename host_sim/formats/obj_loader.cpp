@@ -480,8 +480,16 @@ class ObjParser {
         ok = on_mtllib(line, w);
       } else if (kw == "usemtl") {
         ok = on_usemtl(line, w);
+      } else if (kw != "o" && kw != "g" && kw != "s" && kw != "vp") {
+        // Names, groups, smoothing and parameter vertices are of no use here and silent; any
+        // other statement (lines, points, curves, surfaces...) is ignored with one warning per
+        // keyword.
+        const std::string key(kw.substr(0, 32));
+        if (std::find(ignored_.begin(), ignored_.end(), key) == ignored_.end()) {
+          ignored_.push_back(key);
+          warn(warnings_, w, "'" + key + "' statements are not drawn: ignored");
+        }
       }
-      // o, g, s and every other statement: ignored.
       if (!ok) return false;
     }
     if (triangles_.empty()) {
@@ -811,8 +819,9 @@ class ObjParser {
   std::vector<int32_t> triangle_material_;
   std::vector<std::string> mtl_files_;  // the MTL files read
   std::vector<std::string> warnings_;
-  std::vector<uint32_t> position_lines_;                 // per `v`: its line
-  std::vector<Vec3d> face_points_;                       // the current face's corner positions
+  std::vector<uint32_t> position_lines_;  // per `v`: its line
+  std::vector<std::string> ignored_;      // the keywords ignored so far (one warning each)
+  std::vector<Vec3d> face_points_;        // the current face's corner positions
   std::vector<std::array<uint32_t, 3>> face_triangles_;  // and its triangles
   std::vector<HostMaterial> materials_;
   int32_t current_material_ = -1;

@@ -19,7 +19,8 @@
 //                      accepted when the whole rest of the line names an existing file); read at
 //                      once, so mtllib must come before the usemtl that uses its materials
 //   usemtl name        current material for the following faces (unknown name: see below)
-//   o, g, s            accepted and ignored (names and smoothing groups are not kept)
+//   o, g, s, vp        accepted and ignored (names and smoothing groups are not kept); any other
+//                      statement (l, p, curv, cstype ...) is ignored with one warning per keyword
 //   # comment          anywhere on a line; blank lines; CRLF line ends; a UTF-8 BOM; a line ending
 //                      in a backslash continues on the next line (errors name the first line)
 // Ignored without error: any other statement (vp, l, p, cstype, deg, bmat, step, curv, curv2, surf,

@@ -529,6 +529,17 @@ TEST(ObjLoaderErrors, NotFiniteOrTooLarge) {
   expect_error("v 0 0 0\nv 0 0 0 0 0 NaN\n", "t.obj:2: number is not finite 'NaN'");
 }
 
+// Statements the loader does not draw: o, g, s and vp silently, any other with one warning per
+// keyword (its first line).
+TEST(ObjLoaderTolerance, UnknownStatementsAreIgnoredWithOneWarningPerKeyword) {
+  const HostMesh m = parse_ok("o a\ng b\ns 1\nvp 0.5\ncstype bspline\n" + std::string(kTri) +
+                              "l 1 2\nl 2 3\nf 1 2 3\ncstype rat bspline\n");
+  EXPECT_EQ(m.triangles.size(), 1u);
+  EXPECT_EQ(m.warnings,
+            (std::vector<std::string>{"t.obj:5: 'cstype' statements are not drawn: ignored",
+                                      "t.obj:9: 'l' statements are not drawn: ignored"}));
+}
+
 // A zero-length vn: its corners get the smooth normal of their faces, the others keep theirs.
 TEST(ObjLoaderTolerance, AZeroLengthNormalIsReplacedByTheFacesNormal) {
   const HostMesh m = parse_ok(std::string(kTri) + "vn 0 0 0\nvn 1 0 0\nf 1//1 2//1 3//2\n");
