@@ -184,15 +184,26 @@ TEST(PolygonTriangulation, TheObjLoaderTriangulatesConcaveFacesSo) {
 
 // A comb of `teeth` teeth: 2 + 4 teeth corners, concave.
 std::string comb_obj(int teeth) {
-  std::string obj = "v 0 0 0\nv " + std::to_string(2 * teeth) + " 0 0\n";
+  // Appended piece by piece: GCC 12 (armhf, -O2) warns falsely (-Wrestrict) on
+  // "literal" + std::to_string(...) here.
+  std::string obj;
+  char line[64];
+  std::snprintf(line, sizeof line, "v 0 0 0\nv %d 0 0\n", 2 * teeth);
+  obj += line;
   for (int k = 0; k < teeth; ++k) {
     const int x = 2 * teeth - 2 * k;
-    for (const auto& [u, v] : {std::pair{x, 3}, {x - 1, 3}, {x - 1, 1}, {x - 2, 1}})
-      obj += "v " + std::to_string(u) + " " + std::to_string(v) + " 0\n";
+    for (const auto& [u, v] : {std::pair{x, 3}, {x - 1, 3}, {x - 1, 1}, {x - 2, 1}}) {
+      std::snprintf(line, sizeof line, "v %d %d 0\n", u, v);
+      obj += line;
+    }
   }
   obj += "f";
-  for (int i = 1; i <= 2 + 4 * teeth; ++i) obj += " " + std::to_string(i);
-  return obj + "\n";
+  for (int i = 1; i <= 2 + 4 * teeth; ++i) {
+    std::snprintf(line, sizeof line, " %d", i);
+    obj += line;
+  }
+  obj += "\n";
+  return obj;
 }
 
 // Ear clipping is quadratic: up to kMaxEarClippedCorners a concave face is clipped (its area
