@@ -241,7 +241,8 @@ TEST(PolygonTriangulation, AHugeRoundedCircleIsFanned) {
     const double a = 2 * M_PI * k / kCorners;
     std::snprintf(line, sizeof line, "v %.7f %.7f 0\n", std::cos(a), std::sin(a));
     obj += line;
-    f += " " + std::to_string(k + 1);
+    std::snprintf(line, sizeof line, " %d", k + 1);
+    f += line;
   }
   HostMesh m;
   std::string error;
