@@ -217,7 +217,7 @@ void print_stats(const SimOptions& o, const RenderResult& result) {
       "\"pixels_tested\":%u,\"pixels_written\":%u,\"max_active\":%u,\"bytes_sent\":%llu,"
       "\"bytes_per_vertex\":%u,\"bytes_per_binned_triangle\":%u,\"bytes_per_active_triangle\":%u,"
       "\"bytes_per_strip\":%u}\n",
-      o.scene.width, o.scene.height, o.scene.strip_height, s.triangles_in, s.binned_inputs,
+      o.scene.width, o.scene.height, result.strip_height, s.triangles_in, s.binned_inputs,
       s.culled_backface, s.culled_zero_area, s.culled_offscreen, s.clipped, s.clipped_away,
       s.rejected_invalid, s.dropped_vertex_capacity, s.dropped_triangle_capacity,
       s.triangles_binned, s.vertices_transformed, s.strips, s.empty_strips, s.strip_passes,

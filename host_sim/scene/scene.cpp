@@ -480,23 +480,35 @@ bool render_scene(const HostMesh& mesh, const SceneOptions& o, RenderResult& out
       return false;
     textures.has_normal_map = true;
   }
-  switch (o.strip_height) {
-    case 1:
-      return render_k<1>(draws, textures, o, out, error);
-    case 2:
-      return render_k<2>(draws, textures, o, out, error);
-    case 4:
-      return render_k<4>(draws, textures, o, out, error);
-    case 8:
-      return render_k<8>(draws, textures, o, out, error);
-    case 16:
-      return render_k<16>(draws, textures, o, out, error);
-    case 32:
-      return render_k<32>(draws, textures, o, out, error);
-    default:
-      error = "strip height must be 1, 2, 4, 8, 16 or 32";
-      return false;
+  auto render_with = [&](const SceneOptions& so) {
+    switch (so.strip_height) {
+      case 1:
+        return render_k<1>(draws, textures, so, out, error);
+      case 2:
+        return render_k<2>(draws, textures, so, out, error);
+      case 4:
+        return render_k<4>(draws, textures, so, out, error);
+      case 8:
+        return render_k<8>(draws, textures, so, out, error);
+      case 16:
+        return render_k<16>(draws, textures, so, out, error);
+      case 32:
+        return render_k<32>(draws, textures, so, out, error);
+      default:
+        error = "strip height must be 1, 2, 4, 8, 16 or 32";
+        return false;
+    }
+  };
+  SceneOptions so = o;
+  if (!render_with(so)) return false;
+  // A strip touching more triangles than the binned store holds is the one thing bands cannot
+  // split: narrower strips touch fewer, and the frame is the same at every strip height.
+  while (out.incomplete && out.stats.dropped_triangle_capacity > 0 && so.strip_height > 1) {
+    so.strip_height /= 2;
+    if (!render_with(so)) return false;
   }
+  out.strip_height = so.strip_height;
+  return true;
 }
 
 }  // namespace lr::host

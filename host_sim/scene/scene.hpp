@@ -92,6 +92,9 @@ struct RenderResult {
   // Work dropped for lack of store space (a draw refused with kCapacity, or render() reporting a
   // strip that did not fit): the image is what fit. The statistics count the triangles.
   bool incomplete = false;
+  // The strip height drawn with: the options' unless a strip overflowed the binned store, then
+  // halved until none does (or 1).
+  int strip_height = 0;
   std::vector<std::string> warnings;  // what the scene's files asked for and was left out
 };
 

@@ -99,24 +99,32 @@ TEST(Cli, DecimalNumbersInTheirUsualFormsAreAccepted) {
   EXPECT_TRUE(x.rgb == y.rgb);
 }
 
-// Stores smaller than the frame: it is drawn in bands, the same image (exit 0); below the
-// minimum (a strip touching more triangles than the binned store holds) the image is written
-// with what fit, one warning line says what was dropped, and the exit status is 3.
+// Stores smaller than the frame: it is drawn in bands, the same image (exit 0); a strip that
+// touches more triangles than the binned store holds is drawn in narrower strips, the same image
+// again; below even that (one row too many) the image is written with what fit, one warning line
+// says what was dropped, and the exit status is 3.
 TEST(Cli, WorkDroppedForLackOfStoreSpaceIsAWarningAndExitStatusThree) {
   const std::string full = tmpdir() + "/s0.png", banded = tmpdir() + "/s1.png",
                     cut = tmpdir() + "/s2.png";
   ASSERT_EQ(run("--obj " + kMesh + " --fit --out " + full).status, 0);
-  const Outcome b = run("--obj " + kMesh + " --fit --stores 2000,1000,16 --stats --out " + banded);
-  ASSERT_EQ(b.status, 0) << b.err;
-  EXPECT_EQ(b.err, "");
-  EXPECT_NE(b.out.find("\"dropped_triangle_capacity\":0,"), std::string::npos) << b.out;
   lr::host::ImageRgb8 want, got;
   std::string err;
   ASSERT_TRUE(lr::host::read_png(full, want, err)) << err;
-  ASSERT_TRUE(lr::host::read_png(banded, got, err)) << err;
-  EXPECT_TRUE(want.rgb == got.rgb);
+  for (const std::string stores : {"2000,1000,16", "400,300,8"}) {
+    const Outcome b =
+        run("--obj " + kMesh + " --fit --stores " + stores + " --stats --out " + banded);
+    ASSERT_EQ(b.status, 0) << stores << ": " << b.err;
+    EXPECT_EQ(b.err, "") << stores;
+    EXPECT_NE(b.out.find("\"dropped_triangle_capacity\":0,"), std::string::npos) << b.out;
+    ASSERT_TRUE(lr::host::read_png(banded, got, err)) << err;
+    EXPECT_TRUE(want.rgb == got.rgb) << stores;
+  }
+  // 300 binned triangles are too few for strips of 8 rows here: the frame took rows of one.
+  const Outcome narrow =
+      run("--obj " + kMesh + " --fit --stores 400,300,8 --stats --out " + banded);
+  EXPECT_NE(narrow.out.find("\"strip_height\":1,"), std::string::npos) << narrow.out;
 
-  const Outcome c = run("--obj " + kMesh + " --fit --stores 400,300,8 --stats --out " + cut);
+  const Outcome c = run("--obj " + kMesh + " --fit --stores 200,100,4 --stats --out " + cut);
   EXPECT_EQ(c.status, 3) << c.err;
   EXPECT_EQ(lines(c.err), 1u) << c.err;
   EXPECT_EQ(c.err.rfind("lineraster-sim: warning: 1 frame(s) incomplete for lack of store space: "
@@ -124,12 +132,12 @@ TEST(Cli, WorkDroppedForLackOfStoreSpaceIsAWarningAndExitStatusThree) {
                         0),
             0u)
       << c.err;
-  EXPECT_NE(c.err.find("for the binned-triangle store (--stores 400,300,8)"), std::string::npos);
+  EXPECT_NE(c.err.find("for the binned-triangle store (--stores 200,100,4)"), std::string::npos);
   EXPECT_EQ(c.out.find("\"dropped_triangle_capacity\":0,"), std::string::npos) << c.out;
   ASSERT_TRUE(lr::host::read_png(cut, got, err)) << err;
   EXPECT_FALSE(want.rgb == got.rgb);
   // --frames counts the incomplete frames.
-  const Outcome f = run("--obj " + kMesh + " --fit --stores 400,300,8 --frames 2 --out " + cut);
+  const Outcome f = run("--obj " + kMesh + " --fit --stores 200,100,4 --frames 2 --out " + cut);
   EXPECT_EQ(f.status, 3);
   EXPECT_NE(f.err.find("warning: 2 frame(s) incomplete"), std::string::npos) << f.err;
 }
