@@ -427,7 +427,7 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
     return;
   vertex_count_ += static_cast<size_t>(m);
   bool binned = false;
-  Outcome last = Outcome::kClippedAway;
+  Outcome last = Outcome::kClippedAway, dropped = Outcome::kBinned;
   for (int k = 1; k + 1 < m; ++k) {
     const Outcome r =
         bin<false>(first, static_cast<uint16_t>(first + k), static_cast<uint16_t>(first + k + 1),
@@ -436,8 +436,14 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
       binned = true;
     else
       last = r;
+    if (r == Outcome::kCapacity || r == Outcome::kVertexCapacity) dropped = r;
   }
-  count_outcome(stats_, binned, last);
+  // A clipped triangle binned in part and dropped in part counts as dropped (found by the
+  // pipeline fuzzer: render() reported kCapacity with nothing counted).
+  if (dropped != Outcome::kBinned)
+    count_outcome(stats_, false, dropped);
+  else
+    count_outcome(stats_, binned, last);
 }
 Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& material,
                       const DrawState& state) {
