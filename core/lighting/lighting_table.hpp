@@ -71,8 +71,11 @@ inline void octahedral_q8(int32_t x, int32_t y, int32_t z, uint32_t size, uint32
   }
   const uint32_t rcp = (1u << 30) / l1;  // |p| * rcp <= 2^30
   const int32_t sx = static_cast<int32_t>(px * rcp), sy = static_cast<int32_t>(py * rcp);
-  const uint32_t ux = static_cast<uint32_t>((x < 0 ? -sx : sx) + (1 << 30));  // [0, 2^31]
-  const uint32_t uy = static_cast<uint32_t>((y < 0 ? -sy : sy) + (1 << 30));
+  // In uint32 (sx = 2^30 gives 2^31, which int32 cannot hold: found by the pipeline fuzzer).
+  const uint32_t ux = x < 0 ? (1u << 30) - static_cast<uint32_t>(sx)
+                            : (1u << 30) + static_cast<uint32_t>(sx);  // [0, 2^31]
+  const uint32_t uy =
+      y < 0 ? (1u << 30) - static_cast<uint32_t>(sy) : (1u << 30) + static_cast<uint32_t>(sy);
   // g = (p + 1) / 2 * size in Q.8 = u * size / 2^23; (u >> 8) * size < 2^31.
   gx = ((ux >> 8) * size) >> 15;
   gy = ((uy >> 8) * size) >> 15;
