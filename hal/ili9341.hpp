@@ -19,7 +19,7 @@
 
 #include <array>
 
-#include "hal/mipi_dbi.hpp"
+#include "lineraster/hal/mipi_dbi.hpp"
 
 namespace lr::ili9341 {
 

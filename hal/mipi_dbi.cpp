@@ -1,4 +1,4 @@
-#include "hal/mipi_dbi.hpp"
+#include "lineraster/hal/mipi_dbi.hpp"
 
 namespace lr {
 

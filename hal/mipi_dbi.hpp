@@ -21,8 +21,8 @@
 #include <initializer_list>
 #include <span>
 
-#include "core/output/status.hpp"
-#include "hal/panel_bus.hpp"
+#include "lineraster/core/output/status.hpp"
+#include "lineraster/hal/panel_bus.hpp"
 
 namespace lr {
 

@@ -1,4 +1,4 @@
-#include "hal/panel.hpp"
+#include "lineraster/hal/panel.hpp"
 
 namespace lr {
 

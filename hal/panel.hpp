@@ -20,13 +20,13 @@
 
 #include <cstdint>
 
-#include "core/output/status.hpp"
-#include "core/output/strip_sink.hpp"
-#include "hal/ili9341.hpp"
-#include "hal/mipi_dbi.hpp"
-#include "hal/panel_bus.hpp"
-#include "hal/panel_config.hpp"
-#include "hal/st7789.hpp"
+#include "lineraster/core/output/status.hpp"
+#include "lineraster/core/output/strip_sink.hpp"
+#include "lineraster/hal/ili9341.hpp"
+#include "lineraster/hal/mipi_dbi.hpp"
+#include "lineraster/hal/panel_bus.hpp"
+#include "lineraster/hal/panel_config.hpp"
+#include "lineraster/hal/st7789.hpp"
 
 namespace lr {
 

@@ -1,4 +1,4 @@
-#include "hal/panel_sink.hpp"
+#include "lineraster/hal/panel_sink.hpp"
 
 #include <cstring>
 

@@ -39,11 +39,11 @@
 #include <cstdint>
 #include <span>
 
-#include "core/output/pixel_format.hpp"
-#include "core/output/status.hpp"
-#include "core/output/strip_sink.hpp"
-#include "hal/panel.hpp"
-#include "hal/strip_signature.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/output/status.hpp"
+#include "lineraster/core/output/strip_sink.hpp"
+#include "lineraster/hal/panel.hpp"
+#include "lineraster/hal/strip_signature.hpp"
 
 namespace lr {
 

@@ -17,7 +17,7 @@
 
 #include <array>
 
-#include "hal/mipi_dbi.hpp"
+#include "lineraster/hal/mipi_dbi.hpp"
 
 namespace lr::st7789 {
 

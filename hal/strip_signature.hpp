@@ -17,9 +17,9 @@
 #include <cstdint>
 #include <span>
 
-#include "core/math/hash.hpp"
-#include "core/output/pixel_format.hpp"
-#include "core/output/strip_sink.hpp"
+#include "lineraster/core/math/hash.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/output/strip_sink.hpp"
 
 namespace lr {
 

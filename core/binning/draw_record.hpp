@@ -9,15 +9,15 @@
 #include <cstdint>
 #include <span>
 
-#include "core/lighting/lighting.hpp"
-#include "core/lighting/lighting_table.hpp"
-#include "core/math/mat4.hpp"
-#include "core/scene/draw_state.hpp"
-#include "core/scene/material.hpp"
-#include "core/scene/mesh.hpp"
-#include "core/texture/texel_fetch.hpp"
-#include "core/texture/texture.hpp"
-#include "core/vertex/screen_vertex.hpp"
+#include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/lighting/lighting_table.hpp"
+#include "lineraster/core/math/mat4.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
+#include "lineraster/core/scene/material.hpp"
+#include "lineraster/core/scene/mesh.hpp"
+#include "lineraster/core/texture/texel_fetch.hpp"
+#include "lineraster/core/texture/texture.hpp"
+#include "lineraster/core/vertex/screen_vertex.hpp"
 
 namespace lr {
 

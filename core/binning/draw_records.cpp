@@ -1,6 +1,6 @@
 // The front end's draw records: one per draw, from its state; per-pixel lighting shared between
 // draws of equal materials; the record's signature for skipping unchanged strips.
-#include "core/binning/front_end.hpp"
+#include "lineraster/core/binning/front_end.hpp"
 
 namespace lr {
 

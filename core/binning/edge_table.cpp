@@ -1,4 +1,4 @@
-#include "core/binning/edge_table.hpp"
+#include "lineraster/core/binning/edge_table.hpp"
 
 namespace lr {
 

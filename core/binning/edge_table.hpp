@@ -10,11 +10,11 @@
 #include <cstdint>
 #include <span>
 
-#include "core/binning/binned_triangle.hpp"
-#include "core/binning/outcome.hpp"
-#include "core/binning/strip_inputs.hpp"
-#include "core/scene/draw_state.hpp"
-#include "core/vertex/screen_vertex.hpp"
+#include "lineraster/core/binning/binned_triangle.hpp"
+#include "lineraster/core/binning/outcome.hpp"
+#include "lineraster/core/binning/strip_inputs.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
+#include "lineraster/core/vertex/screen_vertex.hpp"
 
 namespace lr {
 

@@ -1,7 +1,7 @@
-#include "core/binning/front_end.hpp"
+#include "lineraster/core/binning/front_end.hpp"
 
-#include "core/lighting/lighting_table.hpp"
-#include "core/vertex/vertex_stage.hpp"
+#include "lineraster/core/lighting/lighting_table.hpp"
+#include "lineraster/core/vertex/vertex_stage.hpp"
 
 namespace lr {
 

@@ -11,22 +11,22 @@
 #include <cstdint>
 #include <span>
 
-#include "core/binning/binned_triangle.hpp"
-#include "core/binning/draw_record.hpp"
-#include "core/binning/edge_table.hpp"
-#include "core/binning/outcome.hpp"
-#include "core/lighting/lighting.hpp"
-#include "core/math/mat4.hpp"
-#include "core/output/color.hpp"
-#include "core/output/frame_stats.hpp"
-#include "core/output/status.hpp"
-#include "core/scene/camera.hpp"
-#include "core/scene/draw_state.hpp"
-#include "core/scene/material.hpp"
-#include "core/scene/mesh.hpp"
-#include "core/vertex/clip.hpp"
-#include "core/vertex/screen_vertex.hpp"
-#include "core/vertex/surface_vertex.hpp"
+#include "lineraster/core/binning/binned_triangle.hpp"
+#include "lineraster/core/binning/draw_record.hpp"
+#include "lineraster/core/binning/edge_table.hpp"
+#include "lineraster/core/binning/outcome.hpp"
+#include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/math/mat4.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/output/frame_stats.hpp"
+#include "lineraster/core/output/status.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
+#include "lineraster/core/scene/material.hpp"
+#include "lineraster/core/scene/mesh.hpp"
+#include "lineraster/core/vertex/clip.hpp"
+#include "lineraster/core/vertex/screen_vertex.hpp"
+#include "lineraster/core/vertex/surface_vertex.hpp"
 
 namespace lr {
 

@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "core/output/frame_stats.hpp"
+#include "lineraster/core/output/frame_stats.hpp"
 
 namespace lr {
 

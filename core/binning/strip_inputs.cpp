@@ -1,12 +1,12 @@
-#include "core/binning/strip_inputs.hpp"
+#include "lineraster/core/binning/strip_inputs.hpp"
 
-#include "core/binning/draw_record.hpp"
-#include "core/lighting/lighting.hpp"
-#include "core/scene/camera.hpp"
-#include "core/scene/material.hpp"
-#include "core/texture/texture.hpp"
-#include "core/vertex/screen_vertex.hpp"
-#include "core/vertex/surface_vertex.hpp"
+#include "lineraster/core/binning/draw_record.hpp"
+#include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/scene/material.hpp"
+#include "lineraster/core/texture/texture.hpp"
+#include "lineraster/core/vertex/screen_vertex.hpp"
+#include "lineraster/core/vertex/surface_vertex.hpp"
 
 namespace lr {
 

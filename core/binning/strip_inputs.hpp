@@ -22,11 +22,11 @@
 
 #include <cstdint>
 
-#include "core/math/fixed.hpp"
-#include "core/math/hash.hpp"
-#include "core/math/mat4.hpp"
-#include "core/math/vec.hpp"
-#include "core/output/color.hpp"
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/math/hash.hpp"
+#include "lineraster/core/math/mat4.hpp"
+#include "lineraster/core/math/vec.hpp"
+#include "lineraster/core/output/color.hpp"
 
 namespace lr {
 

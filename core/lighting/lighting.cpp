@@ -1,4 +1,4 @@
-#include "core/lighting/lighting.hpp"
+#include "lineraster/core/lighting/lighting.hpp"
 
 namespace lr {
 namespace {

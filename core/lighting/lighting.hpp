@@ -13,10 +13,10 @@
 #include <array>
 #include <cstdint>
 
-#include "core/math/pow_table.hpp"
-#include "core/math/vec.hpp"
-#include "core/output/color.hpp"
-#include "core/scene/material.hpp"
+#include "lineraster/core/math/pow_table.hpp"
+#include "lineraster/core/math/vec.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/scene/material.hpp"
 
 namespace lr {
 

@@ -1,6 +1,6 @@
-#include "core/lighting/lighting_table.hpp"
+#include "lineraster/core/lighting/lighting_table.hpp"
 
-#include "core/math/inv_sqrt.hpp"
+#include "lineraster/core/math/inv_sqrt.hpp"
 
 namespace lr {
 

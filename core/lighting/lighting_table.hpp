@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <span>
 
-#include "core/lighting/lighting.hpp"
-#include "core/output/color.hpp"
+#include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/output/color.hpp"
 
 namespace lr {
 

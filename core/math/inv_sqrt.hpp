@@ -13,8 +13,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/math/fixed.hpp"
-#include "core/math/vec.hpp"
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/math/vec.hpp"
 
 namespace lr {
 

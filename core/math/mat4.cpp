@@ -1,6 +1,6 @@
-#include "core/math/mat4.hpp"
+#include "lineraster/core/math/mat4.hpp"
 
-#include "core/math/trig.hpp"
+#include "lineraster/core/math/trig.hpp"
 
 namespace lr {
 

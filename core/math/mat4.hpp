@@ -7,8 +7,8 @@
 
 #include <cstdint>
 
-#include "core/math/fixed.hpp"
-#include "core/math/vec.hpp"
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/math/vec.hpp"
 
 namespace lr {
 

@@ -11,7 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/math/fixed.hpp"
+#include "lineraster/core/math/fixed.hpp"
 
 namespace lr {
 

@@ -1,4 +1,4 @@
-#include "core/math/rigid.hpp"
+#include "lineraster/core/math/rigid.hpp"
 
 namespace lr {
 

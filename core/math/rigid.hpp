@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "core/math/mat4.hpp"
-#include "core/math/vec.hpp"
+#include "lineraster/core/math/mat4.hpp"
+#include "lineraster/core/math/vec.hpp"
 
 namespace lr {
 

@@ -1,4 +1,4 @@
-#include "core/math/trig.hpp"
+#include "lineraster/core/math/trig.hpp"
 
 namespace lr {
 namespace {

@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/math/fixed.hpp"
+#include "lineraster/core/math/fixed.hpp"
 
 namespace lr {
 

@@ -1,4 +1,4 @@
-#include "core/math/vec.hpp"
+#include "lineraster/core/math/vec.hpp"
 
 namespace lr {
 

@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "core/math/fixed.hpp"
-#include "core/math/sqrt.hpp"
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/math/sqrt.hpp"
 
 namespace lr {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <span>
 
-#include "core/output/strip_sink.hpp"
+#include "lineraster/core/output/strip_sink.hpp"
 
 namespace lr {
 

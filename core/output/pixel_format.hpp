@@ -11,7 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/output/color.hpp"
+#include "lineraster/core/output/color.hpp"
 
 namespace lr {
 

@@ -14,7 +14,7 @@
 #include <span>
 #include <utility>
 
-#include "core/output/status.hpp"
+#include "lineraster/core/output/status.hpp"
 
 namespace lr {
 

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <span>
 
-#include "core/binning/front_end.hpp"
-#include "core/raster/strip_loop.hpp"
+#include "lineraster/core/binning/front_end.hpp"
+#include "lineraster/core/raster/strip_loop.hpp"
 
 namespace lr {
 

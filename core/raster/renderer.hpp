@@ -13,15 +13,15 @@
 #include <cstdint>
 #include <span>
 
-#include "core/binning/front_end.hpp"
-#include "core/output/depth_sink.hpp"
-#include "core/output/pixel_format.hpp"
-#include "core/output/status.hpp"
-#include "core/output/strip_sink.hpp"
-#include "core/raster/frame_storage.hpp"
-#include "core/raster/strip_loop.hpp"
-#include "core/span/admission.hpp"
-#include "core/span/span_state.hpp"
+#include "lineraster/core/binning/front_end.hpp"
+#include "lineraster/core/output/depth_sink.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/output/status.hpp"
+#include "lineraster/core/output/strip_sink.hpp"
+#include "lineraster/core/raster/frame_storage.hpp"
+#include "lineraster/core/raster/strip_loop.hpp"
+#include "lineraster/core/span/admission.hpp"
+#include "lineraster/core/span/span_state.hpp"
 
 namespace lr {
 

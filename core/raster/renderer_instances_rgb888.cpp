@@ -2,7 +2,7 @@
 // lineraster-sim offers: compiled here once, with the strict flags of core/ (-Wconversion,
 // -Werror, no exceptions, no RTTI), and linked by hosted programs (renderer.hpp). One file per
 // pixel format, so that the two compile in parallel.
-#include "core/raster/renderer.hpp"
+#include "lineraster/core/raster/renderer.hpp"
 
 namespace lr {
 template class Renderer<Rgb888, 1>;

@@ -16,18 +16,18 @@
 #include <cstdint>
 #include <span>
 
-#include "core/binning/front_end.hpp"
-#include "core/output/depth_sink.hpp"
-#include "core/output/frame_stats.hpp"
-#include "core/output/status.hpp"
-#include "core/output/strip_sink.hpp"
-#include "core/raster/strip_fill.hpp"
-#include "core/setup/active_triangle.hpp"
-#include "core/setup/triangle_setup.hpp"
-#include "core/span/phong_span.hpp"
-#include "core/span/span.hpp"
-#include "core/span/span_state.hpp"
-#include "core/span/tex_span.hpp"
+#include "lineraster/core/binning/front_end.hpp"
+#include "lineraster/core/output/depth_sink.hpp"
+#include "lineraster/core/output/frame_stats.hpp"
+#include "lineraster/core/output/status.hpp"
+#include "lineraster/core/output/strip_sink.hpp"
+#include "lineraster/core/raster/strip_fill.hpp"
+#include "lineraster/core/setup/active_triangle.hpp"
+#include "lineraster/core/setup/triangle_setup.hpp"
+#include "lineraster/core/span/phong_span.hpp"
+#include "lineraster/core/span/span.hpp"
+#include "lineraster/core/span/span_state.hpp"
+#include "lineraster/core/span/tex_span.hpp"
 
 namespace lr {
 

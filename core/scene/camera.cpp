@@ -1,6 +1,6 @@
-#include "core/scene/camera.hpp"
+#include "lineraster/core/scene/camera.hpp"
 
-#include "core/math/trig.hpp"
+#include "lineraster/core/math/trig.hpp"
 
 namespace lr {
 

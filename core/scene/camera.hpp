@@ -2,8 +2,8 @@
 // (docs/conventions.md#coordinates).
 #pragma once
 
-#include "core/math/mat4.hpp"
-#include "core/math/vec.hpp"
+#include "lineraster/core/math/mat4.hpp"
+#include "lineraster/core/math/vec.hpp"
 
 namespace lr {
 

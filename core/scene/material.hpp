@@ -5,8 +5,8 @@
 #include <span>
 #include <string_view>
 
-#include "core/math/fixed.hpp"
-#include "core/output/color.hpp"
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/output/color.hpp"
 
 namespace lr {
 

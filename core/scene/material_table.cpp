@@ -1,6 +1,6 @@
 // The classic OpenGL material table (as published with the "teapots" example and reproduced in
 // course notes): ambient, diffuse, specular RGB and shininess as a fraction of 128.
-#include "core/scene/material.hpp"
+#include "lineraster/core/scene/material.hpp"
 
 #include <array>
 

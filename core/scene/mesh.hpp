@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <span>
 
-#include "core/math/vec.hpp"
-#include "core/output/color.hpp"
-#include "core/texture/texture.hpp"
+#include "lineraster/core/math/vec.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/texture/texture.hpp"
 
 namespace lr {
 

@@ -5,9 +5,9 @@
 
 #include <cstdint>
 
-#include "core/output/color.hpp"
-#include "core/scene/draw_state.hpp"
-#include "core/setup/edge.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
+#include "lineraster/core/setup/edge.hpp"
 
 namespace lr {
 

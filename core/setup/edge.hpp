@@ -10,8 +10,8 @@
 
 #include <cstdint>
 
-#include "core/math/fixed.hpp"
-#include "core/vertex/screen_vertex.hpp"
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/vertex/screen_vertex.hpp"
 
 namespace lr {
 

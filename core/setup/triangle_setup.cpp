@@ -1,7 +1,7 @@
-#include "core/setup/triangle_setup.hpp"
+#include "lineraster/core/setup/triangle_setup.hpp"
 
-#include "core/math/divide.hpp"
-#include "core/math/reciprocal.hpp"
+#include "lineraster/core/math/divide.hpp"
+#include "lineraster/core/math/reciprocal.hpp"
 
 #include <utility>
 

@@ -20,11 +20,11 @@
 
 #include <cstdint>
 
-#include "core/output/color.hpp"
-#include "core/setup/active_triangle.hpp"
-#include "core/texture/texture.hpp"
-#include "core/vertex/screen_vertex.hpp"
-#include "core/vertex/surface_vertex.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/setup/active_triangle.hpp"
+#include "lineraster/core/texture/texture.hpp"
+#include "lineraster/core/vertex/screen_vertex.hpp"
+#include "lineraster/core/vertex/surface_vertex.hpp"
 
 namespace lr {
 

@@ -1,4 +1,4 @@
-#include "core/span/admission.hpp"
+#include "lineraster/core/span/admission.hpp"
 
 namespace lr {
 

@@ -4,9 +4,9 @@
 // renderer never reaches a routine it did not link.
 #pragma once
 
-#include "core/binning/draw_record.hpp"
-#include "core/scene/draw_state.hpp"
-#include "core/span/span_state.hpp"
+#include "lineraster/core/binning/draw_record.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
+#include "lineraster/core/span/span_state.hpp"
 
 namespace lr {
 

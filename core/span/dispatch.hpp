@@ -19,7 +19,7 @@
 #include <cstddef>
 #include <utility>
 
-#include "core/span/span_state.hpp"
+#include "lineraster/core/span/span_state.hpp"
 
 namespace lr {
 

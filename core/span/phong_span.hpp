@@ -27,15 +27,15 @@
 #include <cstdint>
 #include <utility>
 
-#include "core/binning/draw_record.hpp"
-#include "core/lighting/lighting.hpp"
-#include "core/lighting/lighting_table.hpp"
-#include "core/math/inv_sqrt.hpp"
-#include "core/output/color.hpp"
-#include "core/setup/active_triangle.hpp"
-#include "core/span/sampler.hpp"
-#include "core/span/span.hpp"
-#include "core/span/tex_span.hpp"
+#include "lineraster/core/binning/draw_record.hpp"
+#include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/lighting/lighting_table.hpp"
+#include "lineraster/core/math/inv_sqrt.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/setup/active_triangle.hpp"
+#include "lineraster/core/span/sampler.hpp"
+#include "lineraster/core/span/span.hpp"
+#include "lineraster/core/span/tex_span.hpp"
 
 namespace lr {
 

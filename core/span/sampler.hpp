@@ -19,10 +19,10 @@
 #include <cstdint>
 #include <utility>
 
-#include "core/span/dispatch.hpp"
-#include "core/span/span_state.hpp"
-#include "core/texture/texel_fetch.hpp"
-#include "core/texture/texture.hpp"
+#include "lineraster/core/span/dispatch.hpp"
+#include "lineraster/core/span/span_state.hpp"
+#include "lineraster/core/texture/texel_fetch.hpp"
+#include "lineraster/core/texture/texture.hpp"
 
 namespace lr {
 

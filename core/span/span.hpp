@@ -11,11 +11,11 @@
 #include <cstdint>
 #include <utility>
 
-#include "core/math/saturate.hpp"
-#include "core/output/color.hpp"
-#include "core/setup/active_triangle.hpp"
-#include "core/span/dispatch.hpp"
-#include "core/span/span_state.hpp"
+#include "lineraster/core/math/saturate.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/setup/active_triangle.hpp"
+#include "lineraster/core/span/dispatch.hpp"
+#include "lineraster/core/span/span_state.hpp"
 
 namespace lr {
 

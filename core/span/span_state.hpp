@@ -31,9 +31,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/scene/draw_state.hpp"
-#include "core/span/index_layout.hpp"
-#include "core/texture/texture.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
+#include "lineraster/core/span/index_layout.hpp"
+#include "lineraster/core/texture/texture.hpp"
 
 namespace lr {
 

@@ -15,13 +15,13 @@
 
 #include <cstdint>
 
-#include "core/math/fixed.hpp"
-#include "core/math/reciprocal.hpp"
-#include "core/output/pixel_format.hpp"
-#include "core/setup/active_triangle.hpp"
-#include "core/span/sampler.hpp"
-#include "core/span/span.hpp"
-#include "core/texture/texture.hpp"
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/math/reciprocal.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/setup/active_triangle.hpp"
+#include "lineraster/core/span/sampler.hpp"
+#include "lineraster/core/span/span.hpp"
+#include "lineraster/core/texture/texture.hpp"
 
 namespace lr {
 

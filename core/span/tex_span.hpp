@@ -23,13 +23,13 @@
 #include <cstdint>
 #include <utility>
 
-#include "core/binning/draw_record.hpp"
-#include "core/math/pow_table.hpp"
-#include "core/output/color.hpp"
-#include "core/setup/active_triangle.hpp"
-#include "core/span/sampler.hpp"
-#include "core/span/span.hpp"
-#include "core/span/tex_exact_span.hpp"
+#include "lineraster/core/binning/draw_record.hpp"
+#include "lineraster/core/math/pow_table.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/setup/active_triangle.hpp"
+#include "lineraster/core/span/sampler.hpp"
+#include "lineraster/core/span/span.hpp"
+#include "lineraster/core/span/tex_exact_span.hpp"
 
 namespace lr {
 

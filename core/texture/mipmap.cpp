@@ -1,4 +1,4 @@
-#include "core/texture/mipmap.hpp"
+#include "lineraster/core/texture/mipmap.hpp"
 
 namespace lr {
 namespace {

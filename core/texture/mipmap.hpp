@@ -19,8 +19,8 @@
 #include <cstdint>
 #include <span>
 
-#include "core/output/status.hpp"
-#include "core/texture/texture.hpp"
+#include "lineraster/core/output/status.hpp"
+#include "lineraster/core/texture/texture.hpp"
 
 namespace lr {
 

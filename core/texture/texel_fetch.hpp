@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "core/texture/texture.hpp"
+#include "lineraster/core/texture/texture.hpp"
 
 namespace lr {
 

@@ -1,4 +1,4 @@
-#include "core/texture/texture.hpp"
+#include "lineraster/core/texture/texture.hpp"
 
 namespace lr {
 

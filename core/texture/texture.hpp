@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <span>
 
-#include "core/output/status.hpp"
+#include "lineraster/core/output/status.hpp"
 
 namespace lr {
 

@@ -1,4 +1,4 @@
-#include "core/vertex/clip.hpp"
+#include "lineraster/core/vertex/clip.hpp"
 
 namespace lr {
 namespace {

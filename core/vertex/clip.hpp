@@ -11,9 +11,9 @@
 #include <cstdint>
 #include <span>
 
-#include "core/math/mat4.hpp"
-#include "core/output/color.hpp"
-#include "core/vertex/surface_vertex.hpp"
+#include "lineraster/core/math/mat4.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/vertex/surface_vertex.hpp"
 
 namespace lr {
 

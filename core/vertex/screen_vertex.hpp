@@ -6,8 +6,8 @@
 
 #include <cstdint>
 
-#include "core/math/fixed.hpp"
-#include "core/output/color.hpp"
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/output/color.hpp"
 
 namespace lr {
 

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "core/math/vec.hpp"
+#include "lineraster/core/math/vec.hpp"
 
 namespace lr {
 

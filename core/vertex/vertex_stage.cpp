@@ -1,6 +1,6 @@
-#include "core/vertex/vertex_stage.hpp"
+#include "lineraster/core/vertex/vertex_stage.hpp"
 
-#include "core/math/reciprocal.hpp"
+#include "lineraster/core/math/reciprocal.hpp"
 
 namespace lr {
 // A model-space tangent (Q1.14) to world space (the model's upper 3x3), unit Q1.14.

@@ -10,16 +10,16 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/lighting/lighting.hpp"
-#include "core/math/fixed.hpp"
-#include "core/math/mat4.hpp"
-#include "core/math/rigid.hpp"
-#include "core/math/vec.hpp"
-#include "core/scene/camera.hpp"
-#include "core/scene/mesh.hpp"
-#include "core/vertex/clip.hpp"
-#include "core/vertex/screen_vertex.hpp"
-#include "core/vertex/surface_vertex.hpp"
+#include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/math/mat4.hpp"
+#include "lineraster/core/math/rigid.hpp"
+#include "lineraster/core/math/vec.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/scene/mesh.hpp"
+#include "lineraster/core/vertex/clip.hpp"
+#include "lineraster/core/vertex/screen_vertex.hpp"
+#include "lineraster/core/vertex/surface_vertex.hpp"
 
 namespace lr {
 

@@ -23,11 +23,11 @@
 #include "bench_ground_asset.hpp"   // lineraster-asset --obj ground.obj --mipmaps
 #include "bench_knot64k_asset.hpp"  // lineraster-asset --obj torus_knot.obj --fit --subdivide 2
 #include "bench_knot_asset.hpp"     // lineraster-asset --obj torus_knot.obj --fit
-#include "core/math/mat4.hpp"
-#include "core/scene/material.hpp"
-#include "core/scene/mesh.hpp"
 #include "firmware/bench/knot_view.hpp"
 #include "firmware/demo/scene.hpp"
+#include "lineraster/core/math/mat4.hpp"
+#include "lineraster/core/scene/material.hpp"
+#include "lineraster/core/scene/mesh.hpp"
 
 namespace lr::fw::bench {
 

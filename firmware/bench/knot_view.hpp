@@ -4,8 +4,8 @@
 // in "gold", back faces culled.
 #pragma once
 
-#include "core/scene/draw_state.hpp"
 #include "firmware/demo/scene.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
 
 namespace lr::fw::bench {
 

@@ -12,11 +12,11 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/raster/renderer.hpp"
 #include "firmware/bench/cases.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
+#include "lineraster/core/raster/renderer.hpp"
 
 extern "C" {
 // The marker: entered right before and right after each measured frame. Its body is one

@@ -10,12 +10,12 @@
 #include <cstdint>
 #include <span>
 
-#include "core/math/hash.hpp"
-#include "core/output/pixel_format.hpp"
-#include "core/output/status.hpp"
-#include "core/output/strip_sink.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/semihost.hpp"
+#include "lineraster/core/math/hash.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/output/status.hpp"
+#include "lineraster/core/output/strip_sink.hpp"
 
 namespace lr::fw {
 

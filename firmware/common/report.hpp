@@ -3,8 +3,8 @@
 
 #include <cstdint>
 
-#include "core/output/status.hpp"
 #include "firmware/common/semihost.hpp"
+#include "lineraster/core/output/status.hpp"
 
 namespace lr::fw {
 

@@ -7,10 +7,10 @@
 
 #include <cstddef>
 
-#include "core/scene/mesh.hpp"
-#include "core/span/span_state.hpp"
 #include "cube_asset.hpp"  // generated at build time: lineraster-asset --obj cube.obj --fit
 #include "firmware/demo/scene.hpp"
+#include "lineraster/core/scene/mesh.hpp"
+#include "lineraster/core/span/span_state.hpp"
 
 namespace lr::fw::demo::cube {
 

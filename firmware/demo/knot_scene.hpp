@@ -6,11 +6,11 @@
 
 #include <cstddef>
 
-#include "core/scene/material.hpp"
-#include "core/scene/mesh.hpp"
-#include "core/span/span_state.hpp"
 #include "firmware/demo/scene.hpp"
 #include "knot_asset.hpp"  // generated at build time: lineraster-asset --obj torus_knot.obj --fit
+#include "lineraster/core/scene/material.hpp"
+#include "lineraster/core/scene/mesh.hpp"
+#include "lineraster/core/span/span_state.hpp"
 
 namespace lr::fw::demo::knot {
 

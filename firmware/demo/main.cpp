@@ -12,11 +12,11 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/raster/renderer.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/ppm_file.hpp"
 #include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
+#include "lineraster/core/raster/renderer.hpp"
 #include LR_DEMO_SCENE
 
 namespace {

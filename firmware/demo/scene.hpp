@@ -10,10 +10,10 @@
 
 #include <cstdint>
 
-#include "core/lighting/lighting.hpp"
-#include "core/math/fixed.hpp"
-#include "core/math/vec.hpp"
-#include "core/scene/camera.hpp"
+#include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/math/vec.hpp"
+#include "lineraster/core/scene/camera.hpp"
 
 namespace lr::fw::demo {
 

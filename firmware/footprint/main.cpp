@@ -32,14 +32,14 @@
 #include <span>
 #include <utility>
 
-#include "core/raster/renderer.hpp"
-#include "core/scene/camera.hpp"
-#include "core/scene/material.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
 #include "firmware/footprint/scene.hpp"
 #include "firmware/footprint/stack_probe.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/scene/material.hpp"
 
 #ifndef LR_FOOTPRINT_CONFIG
 #error "LR_FOOTPRINT_CONFIG (1 unlit .. 8) is set by firmware/footprint/CMakeLists.txt"

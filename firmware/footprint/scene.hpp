@@ -9,10 +9,10 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/math/vec.hpp"
-#include "core/output/color.hpp"
-#include "core/scene/mesh.hpp"
-#include "core/texture/texture.hpp"
+#include "lineraster/core/math/vec.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/scene/mesh.hpp"
+#include "lineraster/core/texture/texture.hpp"
 
 namespace lr::fw::footprint {
 

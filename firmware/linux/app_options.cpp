@@ -2,8 +2,8 @@
 
 #include <string_view>
 
-#include "hal/host/display_spec.hpp"
-#include "hal/host/parse_number.hpp"
+#include "lineraster/hal/host/display_spec.hpp"
+#include "lineraster/hal/host/parse_number.hpp"
 
 namespace lr::app {
 

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <string>
 
-#include "hal/host/linux/spidev_bus.hpp"
-#include "hal/panel_config.hpp"
+#include "lineraster/hal/host/linux/spidev_bus.hpp"
+#include "lineraster/hal/panel_config.hpp"
 
 namespace lr::app {
 

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-#include "core/scene/camera.hpp"
-#include "core/scene/material.hpp"
 #include "demo_knot.hpp"  // generated at build time: lineraster-asset --obj torus_knot.obj --fit
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/scene/material.hpp"
 
 namespace lr::app {
 namespace {

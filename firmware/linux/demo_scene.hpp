@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "core/output/frame_stats.hpp"
-#include "core/raster/renderer.hpp"
+#include "lineraster/core/output/frame_stats.hpp"
+#include "lineraster/core/raster/renderer.hpp"
 
 namespace lr::app {
 

@@ -18,8 +18,8 @@
 
 #include "firmware/linux/app_options.hpp"
 #include "firmware/linux/panel_app.hpp"
-#include "hal/host/display_spec.hpp"
-#include "hal/host/linux/spidev_bus.hpp"
+#include "lineraster/hal/host/display_spec.hpp"
+#include "lineraster/hal/host/linux/spidev_bus.hpp"
 
 namespace {
 

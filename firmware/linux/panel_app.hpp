@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "core/output/frame_stats.hpp"
 #include "firmware/linux/demo_scene.hpp"
-#include "hal/panel.hpp"
-#include "hal/panel_sink.hpp"
+#include "lineraster/core/output/frame_stats.hpp"
+#include "lineraster/hal/panel.hpp"
+#include "lineraster/hal/panel_sink.hpp"
 
 namespace lr::app {
 

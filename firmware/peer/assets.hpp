@@ -3,9 +3,9 @@
 
 #include <span>
 
-#include "core/scene/mesh.hpp"
-#include "core/texture/texture.hpp"
 #include "firmware/peer/scenes.hpp"
+#include "lineraster/core/scene/mesh.hpp"
+#include "lineraster/core/texture/texture.hpp"
 #include "peer_bunny_asset.hpp"   // lineraster-asset --obj bunny.obj --fit-box
 #include "peer_bunnyx_asset.hpp"  // lineraster-asset --obj bunny.obj --fit-box --subdivide 2
 #include "peer_cube_asset.hpp"    // lineraster-asset --obj cube.obj --texture baboon.png

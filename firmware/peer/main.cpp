@@ -15,14 +15,14 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/output/depth_sink.hpp"
-#include "core/raster/renderer.hpp"
 #include "firmware/common/bench_case.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
 #include "firmware/peer/assets.hpp"
 #include "firmware/peer/scenes.hpp"
+#include "lineraster/core/output/depth_sink.hpp"
+#include "lineraster/core/raster/renderer.hpp"
 
 namespace {
 

@@ -14,15 +14,15 @@
 #include <array>
 #include <cstdint>
 
-#include "core/lighting/lighting.hpp"
-#include "core/math/fixed.hpp"
-#include "core/math/mat4.hpp"
-#include "core/math/vec.hpp"
-#include "core/output/color.hpp"
-#include "core/scene/camera.hpp"
-#include "core/scene/draw_state.hpp"
-#include "core/scene/material.hpp"
 #include "firmware/demo/scene.hpp"
+#include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/math/mat4.hpp"
+#include "lineraster/core/math/vec.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
+#include "lineraster/core/scene/material.hpp"
 
 namespace lr::fw::peer {
 

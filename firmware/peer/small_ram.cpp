@@ -18,7 +18,6 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/raster/renderer.hpp"
 #include "firmware/bench/knot_view.hpp"
 #include "firmware/common/bench_case.hpp"
 #include "firmware/common/ordered_sink.hpp"
@@ -27,6 +26,7 @@
 #include "firmware/common/semihost.hpp"
 #include "firmware/peer/scenes.hpp"
 #include "firmware/peer/small_ram_cases.hpp"
+#include "lineraster/core/raster/renderer.hpp"
 #if LR_SMALL_RAM_CASE == 2
 #include "knot64k_local_asset.hpp"  // lineraster-asset --fit --subdivide 2 --locality
 namespace asset = ::knot64k_local_asset;

@@ -8,10 +8,10 @@
 #include <cstdint>
 #include <span>
 
-#include "core/raster/renderer.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
+#include "lineraster/core/raster/renderer.hpp"
 #include "quality_cases.hpp"
 
 extern "C" {

@@ -4,13 +4,13 @@
 
 #include <cstdint>
 
-#include "core/lighting/lighting.hpp"
-#include "core/math/mat4.hpp"
-#include "core/output/color.hpp"
-#include "core/scene/camera.hpp"
-#include "core/scene/draw_state.hpp"
-#include "core/scene/mesh.hpp"
-#include "core/texture/texture.hpp"
+#include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/math/mat4.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
+#include "lineraster/core/scene/mesh.hpp"
+#include "lineraster/core/texture/texture.hpp"
 
 namespace lr::fw::quality_gen {
 

@@ -21,12 +21,12 @@
 #include <cstdint>
 #include <span>
 
-#include "core/raster/renderer.hpp"
-#include "core/scene/camera.hpp"
-#include "core/scene/material.hpp"
 #include "firmware/common/ordered_sink.hpp"
 #include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/scene/material.hpp"
 
 extern "C" {
 volatile uint32_t g_smoke_checksum = 0;

@@ -1,4 +1,4 @@
-#include "hal/host/display_spec.hpp"
+#include "lineraster/hal/host/display_spec.hpp"
 
 namespace lr::host {
 namespace {

@@ -16,7 +16,7 @@
 #include <string>
 #include <string_view>
 
-#include "hal/panel_config.hpp"
+#include "lineraster/hal/panel_config.hpp"
 
 namespace lr::host {
 

@@ -25,7 +25,7 @@
 #include <string>
 #include <thread>
 
-#include "core/output/status.hpp"
+#include "lineraster/core/output/status.hpp"
 
 namespace lr::backend {
 

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "core/output/pixel_format.hpp"
-#include "core/output/strip_sink.hpp"
-#include "core/raster/renderer.hpp"
-#include "host_sim/formats/image_io.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/output/strip_sink.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
 
 namespace lr::host {
 

@@ -22,8 +22,8 @@
 #include <utility>
 #include <vector>
 
-#include "hal/panel_bus.hpp"
-#include "host_sim/emulator/panel_emulator.hpp"
+#include "lineraster/hal/panel_bus.hpp"
+#include "lineraster/host_sim/emulator/panel_emulator.hpp"
 
 namespace lr::host {
 

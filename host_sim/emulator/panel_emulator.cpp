@@ -1,9 +1,9 @@
-#include "host_sim/emulator/panel_emulator.hpp"
+#include "lineraster/host_sim/emulator/panel_emulator.hpp"
 
 #include <cstdio>
 #include <utility>
 
-#include "core/output/pixel_format.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
 
 namespace lr::host {
 namespace {

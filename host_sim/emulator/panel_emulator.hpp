@@ -72,8 +72,8 @@
 #include <string>
 #include <vector>
 
-#include "hal/panel_config.hpp"
-#include "host_sim/formats/image_io.hpp"
+#include "lineraster/hal/panel_config.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
 
 namespace lr::host {
 

@@ -4,7 +4,7 @@
 // png_read_header, png_read_pixels) has only trivially destructible locals, keeps its state in a
 // context struct owned by its caller, and calls only C functions and callbacks that have no C++
 // objects either; the png structs are destroyed by the caller whatever happened.
-#include "host_sim/formats/image_io.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
 
 #include <png.h>
 

@@ -1,4 +1,4 @@
-#include "host_sim/formats/jpeg_io.hpp"
+#include "lineraster/host_sim/formats/jpeg_io.hpp"
 
 #include <cerrno>
 #include <csetjmp>

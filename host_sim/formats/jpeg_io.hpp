@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "host_sim/formats/image_io.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
 
 namespace lr::host {
 

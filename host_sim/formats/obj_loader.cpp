@@ -1,8 +1,8 @@
 // Wavefront OBJ + MTL loader: see obj_loader.hpp for what is understood and how errors are
 // reported.
-#include "host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
 
-#include "host_sim/formats/polygon_triangulation.hpp"
+#include "lineraster/host_sim/formats/polygon_triangulation.hpp"
 
 #include <algorithm>
 #include <cerrno>

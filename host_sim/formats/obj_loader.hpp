@@ -58,7 +58,7 @@
 #include <string_view>
 #include <vector>
 
-#include "host_sim/formats/host_mesh.hpp"
+#include "lineraster/host_sim/formats/host_mesh.hpp"
 
 namespace lr::host {
 

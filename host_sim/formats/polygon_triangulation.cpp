@@ -1,4 +1,4 @@
-#include "host_sim/formats/polygon_triangulation.hpp"
+#include "lineraster/host_sim/formats/polygon_triangulation.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -14,7 +14,7 @@
 #include <span>
 #include <vector>
 
-#include "host_sim/formats/host_mesh.hpp"
+#include "lineraster/host_sim/formats/host_mesh.hpp"
 
 namespace lr::host {
 

@@ -1,10 +1,10 @@
-#include "host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
 
-#include "host_sim/formats/jpeg_io.hpp"
+#include "lineraster/host_sim/formats/jpeg_io.hpp"
 
 #include <utility>
 
-#include "core/texture/mipmap.hpp"
+#include "lineraster/core/texture/mipmap.hpp"
 
 namespace lr::host {
 namespace {

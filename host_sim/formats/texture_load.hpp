@@ -9,9 +9,9 @@
 #include <string_view>
 #include <vector>
 
-#include "core/output/color.hpp"
-#include "core/texture/texture.hpp"
-#include "host_sim/formats/image_io.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/texture/texture.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
 
 namespace lr::host {
 

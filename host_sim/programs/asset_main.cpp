@@ -6,8 +6,8 @@
 #include <string_view>
 #include <vector>
 
-#include "host_sim/programs/asset_writer.hpp"
-#include "host_sim/programs/option_table.hpp"
+#include "lineraster/host_sim/programs/asset_writer.hpp"
+#include "lineraster/host_sim/programs/option_table.hpp"
 
 namespace {
 

@@ -3,7 +3,7 @@
 #if defined(__GNUC__) && !defined(__clang__) && __GNUC__ == 12
 #pragma GCC diagnostic ignored "-Wrestrict"
 #endif
-#include "host_sim/programs/asset_writer.hpp"
+#include "lineraster/host_sim/programs/asset_writer.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -13,9 +13,9 @@
 #include <filesystem>
 #include <limits>
 
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/scene/locality_order.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/scene/locality_order.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 
 namespace lr::host {
 namespace {
@@ -126,7 +126,8 @@ void write_preamble(std::string& s, const AssetOptions& o, const AssetData& d) {
        "first.\n"
        "#pragma once\n\n"
        "#include <array>\n#include <cstddef>\n#include <cstdint>\n\n"
-       "#include \"core/scene/material.hpp\"\n#include \"core/scene/mesh.hpp\"\n#include "
+       "#include \"lineraster/core/scene/material.hpp\"\n#include "
+       "\"lineraster/core/scene/mesh.hpp\"\n#include "
        "\"core/texture/texture.hpp\"\n\n";
 }
 

@@ -24,9 +24,9 @@
 #include <string_view>
 #include <vector>
 
-#include "core/texture/texture.hpp"
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/core/texture/texture.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 
 namespace lr::host {
 

@@ -9,15 +9,15 @@
 #include <utility>
 #include <vector>
 
-#include "hal/panel_sink.hpp"
-#include "host_sim/emulator/emulator_bus.hpp"
-#include "host_sim/emulator/panel_emulator.hpp"
-#include "host_sim/formats/image_io.hpp"
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/programs/panel_output.hpp"
-#include "host_sim/programs/sim_options.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/hal/panel_sink.hpp"
+#include "lineraster/host_sim/emulator/emulator_bus.hpp"
+#include "lineraster/host_sim/emulator/panel_emulator.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/programs/panel_output.hpp"
+#include "lineraster/host_sim/programs/sim_options.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 
 namespace {
 

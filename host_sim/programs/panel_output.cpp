@@ -1,14 +1,14 @@
-#include "host_sim/programs/panel_output.hpp"
+#include "lineraster/host_sim/programs/panel_output.hpp"
 
 #include <algorithm>
 #include <span>
 #include <utility>
 
 #ifdef LR_HAVE_SPIDEV
-#include "hal/host/linux/spidev_bus.hpp"
+#include "lineraster/hal/host/linux/spidev_bus.hpp"
 #endif
 #ifdef LR_HAVE_FT232H
-#include "hal/host/usb/ft232h_bus.hpp"
+#include "lineraster/hal/host/usb/ft232h_bus.hpp"
 #endif
 
 namespace lr::host {

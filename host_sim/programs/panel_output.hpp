@@ -8,14 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "core/output/pixel_format.hpp"
-#include "core/output/strip_sink.hpp"
-#include "hal/host/display_spec.hpp"
-#include "hal/panel.hpp"
-#include "hal/panel_sink.hpp"
-#include "host_sim/emulator/emulator_bus.hpp"
-#include "host_sim/emulator/panel_emulator.hpp"
-#include "host_sim/formats/image_io.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/output/strip_sink.hpp"
+#include "lineraster/hal/host/display_spec.hpp"
+#include "lineraster/hal/panel.hpp"
+#include "lineraster/hal/panel_sink.hpp"
+#include "lineraster/host_sim/emulator/emulator_bus.hpp"
+#include "lineraster/host_sim/emulator/panel_emulator.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
 
 namespace lr::host {
 

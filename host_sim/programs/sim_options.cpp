@@ -1,4 +1,4 @@
-#include "host_sim/programs/sim_options.hpp"
+#include "lineraster/host_sim/programs/sim_options.hpp"
 
 #include <cctype>
 #include <charconv>
@@ -9,10 +9,10 @@
 #include <string_view>
 #include <vector>
 
-#include "core/lighting/lighting.hpp"
-#include "core/scene/material.hpp"
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/programs/option_table.hpp"
+#include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/scene/material.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/programs/option_table.hpp"
 
 namespace lr::host {
 namespace {

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "hal/host/display_spec.hpp"
-#include "hal/panel_config.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/hal/host/display_spec.hpp"
+#include "lineraster/hal/panel_config.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 
 namespace lr::host {
 

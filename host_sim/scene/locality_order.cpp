@@ -1,4 +1,4 @@
-#include "host_sim/scene/locality_order.hpp"
+#include "lineraster/host_sim/scene/locality_order.hpp"
 
 #include <algorithm>
 #include <array>

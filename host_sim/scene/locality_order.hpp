@@ -3,7 +3,7 @@
 // (docs/bands.md). Host only (uses the heap).
 #pragma once
 
-#include "host_sim/formats/host_mesh.hpp"
+#include "lineraster/host_sim/formats/host_mesh.hpp"
 
 namespace lr::host {
 

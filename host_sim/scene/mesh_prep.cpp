@@ -1,6 +1,6 @@
 // Mesh preparation: bounds, --fit, procedural meshes, OBJ writer (see mesh_prep.hpp).
-#include "host_sim/scene/mesh_prep.hpp"
-#include "host_sim/scene/vec3d.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/vec3d.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -10,7 +10,7 @@
 #include <unordered_map>
 #include <utility>
 
-#include "host_sim/scene/tangents.hpp"
+#include "lineraster/host_sim/scene/tangents.hpp"
 
 namespace lr::host {
 namespace {

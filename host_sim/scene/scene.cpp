@@ -1,4 +1,4 @@
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,13 +6,13 @@
 #include <memory>
 #include <unordered_map>
 
-#include "core/lighting/lighting_table.hpp"
-#include "core/raster/renderer.hpp"
-#include "core/scene/camera.hpp"
-#include "host_sim/emulator/capture_display.hpp"
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
-#include "host_sim/scene/tangents.hpp"
+#include "lineraster/core/lighting/lighting_table.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/host_sim/emulator/capture_display.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/tangents.hpp"
 
 namespace lr::host {
 namespace {

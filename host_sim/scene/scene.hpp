@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "core/output/frame_stats.hpp"
-#include "core/scene/draw_state.hpp"
-#include "core/scene/material.hpp"
-#include "core/scene/mesh.hpp"
-#include "core/texture/texture.hpp"
-#include "host_sim/formats/host_mesh.hpp"
-#include "host_sim/formats/image_io.hpp"
+#include "lineraster/core/output/frame_stats.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
+#include "lineraster/core/scene/material.hpp"
+#include "lineraster/core/scene/mesh.hpp"
+#include "lineraster/core/texture/texture.hpp"
+#include "lineraster/host_sim/formats/host_mesh.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
 
 namespace lr::host {
 

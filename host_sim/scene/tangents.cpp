@@ -1,6 +1,6 @@
 // Per-vertex tangents from positions and uvs (see tangents.hpp).
-#include "host_sim/scene/tangents.hpp"
-#include "host_sim/scene/vec3d.hpp"
+#include "lineraster/host_sim/scene/tangents.hpp"
+#include "lineraster/host_sim/scene/vec3d.hpp"
 
 #include <cmath>
 #include <cstddef>

@@ -2,7 +2,7 @@
 // coordinates. Host only (uses the heap).
 #pragma once
 
-#include "host_sim/formats/host_mesh.hpp"
+#include "lineraster/host_sim/formats/host_mesh.hpp"
 
 namespace lr::host {
 

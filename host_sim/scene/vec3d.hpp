@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "host_sim/formats/host_mesh.hpp"
+#include "lineraster/host_sim/formats/host_mesh.hpp"
 
 namespace lr::host {
 

@@ -17,15 +17,15 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/camera.hpp"
 #include "cube_rgb565.hpp"
 #include "cube_rgb888.hpp"
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/programs/asset_writer.hpp"
-#include "host_sim/scene/scene.hpp"
 #include "knot_l8.hpp"
 #include "knot_palette8.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/programs/asset_writer.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 #include "tests/support/core_harness.hpp"
 #include "tests/support/tmp_dir.hpp"
 #include "two_textures.hpp"

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "core/raster/renderer.hpp"
-#include "core/scene/camera.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 
 namespace lr::bench {
 

@@ -9,9 +9,9 @@
 #include <memory>
 #include <vector>
 
-#include "core/raster/renderer.hpp"
-#include "core/scene/camera.hpp"
-#include "host_sim/formats/obj_loader.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
 #include "tests/bench/null_sink.hpp"
 
 namespace {

@@ -29,8 +29,8 @@
 #include <string>
 #include <vector>
 
-#include "core/raster/renderer.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 #include "tests/bench/bench_common.hpp"
 #include "tests/bench/null_sink.hpp"
 #include "tests/support/scene_compare.hpp"

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "core/output/strip_sink.hpp"
+#include "lineraster/core/output/strip_sink.hpp"
 
 namespace lr::bench {
 

@@ -51,12 +51,12 @@
 #include <string>
 #include <vector>
 
-#include "core/raster/renderer.hpp"
-#include "core/scene/camera.hpp"
-#include "host_sim/emulator/capture_display.hpp"
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/host_sim/emulator/capture_display.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 #include "tests/bench/bench_common.hpp"
 #include "tests/bench/null_sink.hpp"
 #include "tests/bench/quality_configs.hpp"

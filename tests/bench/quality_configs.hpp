@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 #include "tests/bench/bench_common.hpp"
 #include "tests/support/scene_compare.hpp"
 #include "tests/support/scenes.hpp"

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "core/raster/renderer.hpp"
 #include "firmware/common/ordered_sink.hpp"
-#include "host_sim/programs/asset_writer.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/host_sim/programs/asset_writer.hpp"
 #include "tests/bench/quality_configs.hpp"
 
 namespace {

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "core/output/pixel_format.hpp"
-#include "host_sim/formats/image_io.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
 #include "tests/support/tmp_dir.hpp"
 
 namespace {

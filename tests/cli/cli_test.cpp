@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "host_sim/formats/image_io.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
 #include "tests/support/tmp_dir.hpp"
 
 namespace {

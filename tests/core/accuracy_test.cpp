@@ -1,8 +1,8 @@
 // Fixed point against the double reference on whole scenes: lit meshes made by the project.
 #include <gtest/gtest.h>
 
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 #include "tests/support/scene_compare.hpp"
 #include "tests/support/scenes.hpp"
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 #include "tests/support/core_harness.hpp"
 #include "tests/support/scenes.hpp"
 

@@ -4,9 +4,9 @@
 #include <array>
 #include <set>
 
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr {

@@ -21,12 +21,12 @@
 #include <utility>
 #include <vector>
 
-#include "core/raster/renderer.hpp"
-#include "core/scene/camera.hpp"
-#include "core/span/admission.hpp"
-#include "core/span/span_state.hpp"
-#include "core/texture/mipmap.hpp"
-#include "host_sim/emulator/capture_display.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/span/admission.hpp"
+#include "lineraster/core/span/span_state.hpp"
+#include "lineraster/core/texture/mipmap.hpp"
+#include "lineraster/host_sim/emulator/capture_display.hpp"
 
 namespace lr {
 namespace {

@@ -13,11 +13,11 @@
 #include <cstdio>
 #include <string>
 
-#include "core/math/hash.hpp"
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/core/math/hash.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 #include "tests/support/scene_compare.hpp"
 #include "tests/support/scenes.hpp"
 

@@ -1,7 +1,7 @@
 // The frame-storage helpers: every store sized from FrameCapacities, the stores apart from one
 // another, accepted by the renderer they are sized for and refused (or reported full) where
 // they are too small; the static form all zero bytes, as firmware needs it to stay in .bss.
-#include "core/raster/frame_storage.hpp"
+#include "lineraster/core/raster/frame_storage.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/raster/renderer.hpp"
-#include "core/scene/camera.hpp"
-#include "host_sim/emulator/capture_display.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/host_sim/emulator/capture_display.hpp"
 
 namespace lr {
 namespace {

@@ -11,10 +11,10 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "host_sim/formats/image_io.hpp"
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 #include "tests/support/scene_compare.hpp"
 
 namespace lr {

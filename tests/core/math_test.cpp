@@ -6,18 +6,18 @@
 #include <cmath>
 #include <vector>
 
-#include "core/math/divide.hpp"
-#include "core/math/pow_table.hpp"
-#include "core/math/reciprocal.hpp"
-#include "core/math/saturate.hpp"
-#include "core/math/trig.hpp"
-#include "core/math/vec.hpp"
-#include "core/output/color.hpp"
-#include "core/output/pixel_format.hpp"
-#include "core/raster/strip_fill.hpp"
-#include "core/scene/camera.hpp"
-#include "core/scene/material.hpp"
-#include "core/setup/edge.hpp"
+#include "lineraster/core/math/divide.hpp"
+#include "lineraster/core/math/pow_table.hpp"
+#include "lineraster/core/math/reciprocal.hpp"
+#include "lineraster/core/math/saturate.hpp"
+#include "lineraster/core/math/trig.hpp"
+#include "lineraster/core/math/vec.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/raster/strip_fill.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/scene/material.hpp"
+#include "lineraster/core/setup/edge.hpp"
 
 namespace lr {
 namespace {

@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <string>
 
-#include "host_sim/formats/image_io.hpp"
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 #include "tests/support/scene_compare.hpp"
 #include "tests/support/scenes.hpp"
 #include "tests/support/tmp_dir.hpp"

@@ -8,12 +8,12 @@
 #include <random>
 #include <vector>
 
-#include "core/lighting/lighting.hpp"
-#include "core/lighting/lighting_table.hpp"
-#include "core/math/inv_sqrt.hpp"
-#include "core/scene/camera.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/lighting/lighting_table.hpp"
+#include "lineraster/core/math/inv_sqrt.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr {

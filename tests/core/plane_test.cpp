@@ -14,9 +14,9 @@
 #include <cstdint>
 #include <random>
 
-#include "core/math/fixed.hpp"
-#include "core/setup/triangle_setup.hpp"
-#include "core/vertex/screen_vertex.hpp"
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/setup/triangle_setup.hpp"
+#include "lineraster/core/vertex/screen_vertex.hpp"
 #include "tests/reference/int128.hpp"
 
 namespace lr {

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "core/vertex/vertex_stage.hpp"
+#include "lineraster/core/vertex/vertex_stage.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr {

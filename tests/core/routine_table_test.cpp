@@ -8,13 +8,13 @@
 #include <cstddef>
 #include <utility>
 
-#include "core/output/pixel_format.hpp"
-#include "core/span/index_layout.hpp"
-#include "core/span/phong_span.hpp"
-#include "core/span/sampler.hpp"
-#include "core/span/span.hpp"
-#include "core/span/span_state.hpp"
-#include "core/span/tex_span.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/span/index_layout.hpp"
+#include "lineraster/core/span/phong_span.hpp"
+#include "lineraster/core/span/sampler.hpp"
+#include "lineraster/core/span/span.hpp"
+#include "lineraster/core/span/span_state.hpp"
+#include "lineraster/core/span/tex_span.hpp"
 
 namespace lr {
 namespace {

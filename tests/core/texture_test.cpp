@@ -5,8 +5,8 @@
 #include <cmath>
 #include <set>
 
-#include "core/span/tex_exact_span.hpp"
-#include "host_sim/formats/texture_load.hpp"
+#include "lineraster/core/span/tex_exact_span.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
 #include "tests/support/core_harness.hpp"
 #include "tests/support/scene_compare.hpp"
 #include "tests/support/scenes.hpp"

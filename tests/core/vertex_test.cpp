@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <random>
 
-#include "core/math/mat4.hpp"
-#include "core/math/rigid.hpp"
-#include "core/vertex/vertex_stage.hpp"
+#include "lineraster/core/math/mat4.hpp"
+#include "lineraster/core/math/rigid.hpp"
+#include "lineraster/core/vertex/vertex_stage.hpp"
 
 namespace lr {
 namespace {

@@ -3,8 +3,8 @@
 // convex closed mesh with back faces culled is covered exactly once inside its silhouette.
 #include <gtest/gtest.h>
 
-#include "core/scene/camera.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr {

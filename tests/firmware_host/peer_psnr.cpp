@@ -16,14 +16,14 @@
 #include <memory>
 #include <string>
 
-#include "core/raster/frame_storage.hpp"
-#include "core/raster/renderer.hpp"
 #include "firmware/peer/assets.hpp"
 #include "firmware/peer/scenes.hpp"
-#include "host_sim/emulator/capture_display.hpp"
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/core/raster/frame_storage.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/host_sim/emulator/capture_display.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 #include "tests/reference/ref_math.hpp"
 #include "tests/reference/ref_renderer.hpp"
 #include "tests/reference/ref_texture_core.hpp"

@@ -3,8 +3,8 @@
 #include <string>
 #include <string_view>
 
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 #include "tests/fuzz/fuzz_files.hpp"
 #include "tests/fuzz/fuzz_targets.hpp"
 

@@ -36,10 +36,10 @@
 #include <memory>
 #include <vector>
 
-#include "core/raster/renderer.hpp"
-#include "core/scene/camera.hpp"
-#include "host_sim/emulator/capture_display.hpp"
-#include "host_sim/formats/texture_load.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/host_sim/emulator/capture_display.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
 #include "tests/fuzz/fuzz_targets.hpp"
 
 namespace lr::fuzz {

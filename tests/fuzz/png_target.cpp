@@ -3,11 +3,11 @@
 #include <string>
 #include <utility>
 
-#include "core/texture/mipmap.hpp"
-#include "core/texture/texture.hpp"
-#include "host_sim/formats/image_io.hpp"
-#include "host_sim/formats/jpeg_io.hpp"
-#include "host_sim/formats/texture_load.hpp"
+#include "lineraster/core/texture/mipmap.hpp"
+#include "lineraster/core/texture/texture.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
+#include "lineraster/host_sim/formats/jpeg_io.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
 #include "tests/fuzz/fuzz_files.hpp"
 #include "tests/fuzz/fuzz_targets.hpp"
 

@@ -14,10 +14,10 @@
 #include <cstdlib>
 #include <string>
 
-#include "host_sim/formats/image_io.hpp"
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 #include "tests/glcheck/osmesa_scene.hpp"
 #include "tests/support/scene_compare.hpp"
 #include "tests/support/scenes.hpp"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
 #include "tests/support/scene_compare.hpp"
 
 namespace lr::glcheck {

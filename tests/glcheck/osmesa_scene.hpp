@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "host_sim/formats/host_mesh.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/host_sim/formats/host_mesh.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 
 namespace lr::glcheck {
 

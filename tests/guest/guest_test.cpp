@@ -32,8 +32,8 @@
 #include <string>
 #include <vector>
 
-#include "hal/host/linux/spidev_bus.hpp"
-#include "hal/host/usb/usb_bulk.hpp"
+#include "lineraster/hal/host/linux/spidev_bus.hpp"
+#include "lineraster/hal/host/usb/usb_bulk.hpp"
 
 namespace {
 

@@ -9,8 +9,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/math/hash.hpp"
-#include "hal/panel_sink.hpp"
+#include "lineraster/core/math/hash.hpp"
+#include "lineraster/hal/panel_sink.hpp"
 #include "tests/hal/recording_bus.hpp"
 
 namespace lr {

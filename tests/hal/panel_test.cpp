@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "hal/panel.hpp"
+#include "lineraster/hal/panel.hpp"
 #include "tests/hal/recording_bus.hpp"
 
 namespace lr {

@@ -23,9 +23,9 @@
 #include <string>
 #include <vector>
 
-#include "core/output/pixel_format.hpp"
-#include "hal/panel_bus.hpp"
-#include "hal/panel_config.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/hal/panel_bus.hpp"
+#include "lineraster/hal/panel_config.hpp"
 
 namespace lr::test {
 

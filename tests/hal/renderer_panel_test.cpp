@@ -8,11 +8,11 @@
 #include <memory>
 #include <vector>
 
-#include "core/raster/renderer.hpp"
-#include "core/scene/camera.hpp"
-#include "core/scene/material.hpp"
-#include "hal/panel_sink.hpp"
-#include "host_sim/emulator/capture_display.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/scene/material.hpp"
+#include "lineraster/hal/panel_sink.hpp"
+#include "lineraster/host_sim/emulator/capture_display.hpp"
 #include "tests/hal/recording_bus.hpp"
 
 namespace lr {

@@ -1,12 +1,12 @@
 // Ft232hBus and UsbBulk without hardware: the "ft232h[:serial]" spec and opening a device that
 // is not plugged in (ffff:ffff), which must fail with the one line that says so.
-#include "hal/host/usb/ft232h_bus.hpp"
+#include "lineraster/hal/host/usb/ft232h_bus.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "hal/host/usb/usb_bulk.hpp"
+#include "lineraster/hal/host/usb/usb_bulk.hpp"
 
 namespace lr {
 namespace {

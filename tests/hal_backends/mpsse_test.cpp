@@ -1,6 +1,6 @@
 // The FT232H MPSSE byte stream, byte for byte, for each bus operation (opcodes: FTDI AN_108;
 // hal/host/usb/mpsse.hpp lists them).
-#include "hal/host/usb/mpsse.hpp"
+#include "lineraster/hal/host/usb/mpsse.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // SpidevBus without hardware: the spec parser (good and bad specs, exact one-line errors) and
 // opening what is not there (/dev/spidev9.9, gpiochip99), which must fail with the one line
 // that says what is missing and how to fix it.
-#include "hal/host/linux/spidev_bus.hpp"
+#include "lineraster/hal/host/linux/spidev_bus.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The worker behind the host buses' asynchronous pixel transfers: pieces in order, failures,
 // the bounded wait, abandoning on timeout (the piece in flight completes, the rest is skipped,
 // finish() still runs, the bus is usable again) and the calls that are refused meanwhile.
-#include "hal/host/transfer_worker.hpp"
+#include "lineraster/hal/host/transfer_worker.hpp"
 
 #include <gtest/gtest.h>
 

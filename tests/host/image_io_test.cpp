@@ -1,7 +1,7 @@
 // Image files: exact round trips, every PNG colour type (files made here with libpng directly),
 // PPM/PGM variants, and failures (truncated, corrupt, garbage, unwritable) that return an error,
 // never crash and never leave a partial file.
-#include "host_sim/formats/image_io.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
 
 #include <gtest/gtest.h>
 #include <png.h>

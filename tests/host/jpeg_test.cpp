@@ -1,6 +1,6 @@
 // JPEG textures: images written here with libjpeg read back within the codec's error, as RGB top
 // row first; bad files give one line "PATH: ..." and leave the image untouched.
-#include "host_sim/formats/jpeg_io.hpp"
+#include "lineraster/host_sim/formats/jpeg_io.hpp"
 
 #include <gtest/gtest.h>
 #include <jpeglib.h>
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
 #include "tests/support/tmp_dir.hpp"
 
 namespace lr::host {

@@ -1,6 +1,6 @@
 // The locality order (lineraster-asset --locality): the same triangles with the same windings and
 // attributes, in Z-order of their centroids, vertices numbered by first use.
-#include "host_sim/scene/locality_order.hpp"
+#include "lineraster/host_sim/scene/locality_order.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 
 namespace lr::host {
 namespace {

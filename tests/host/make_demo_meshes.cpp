@@ -16,8 +16,8 @@
 #include <cstdio>
 #include <string>
 
-#include "host_sim/formats/image_io.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 
 namespace {
 

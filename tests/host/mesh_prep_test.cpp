@@ -1,6 +1,6 @@
 // Mesh preparation: procedural meshes are closed, consistently oriented and face outwards; bounds,
 // the --fit transform and the OBJ writer do what they say.
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <string>
 #include <utility>
 
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/scene/vec3d.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/scene/vec3d.hpp"
 
 namespace lr::host {
 namespace {

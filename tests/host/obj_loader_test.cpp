@@ -1,6 +1,6 @@
 // OBJ/MTL loader: every index form, fanning, unification, colours, materials, smooth normals, and
 // the exact "FILE:LINE: ..." errors for malformed input (which must leave the output untouched).
-#include "host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
 
 #include <gtest/gtest.h>
 

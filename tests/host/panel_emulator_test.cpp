@@ -2,15 +2,15 @@
 // MADCTL (every MY/MX/MV combination, each rotation on the common modules with their known
 // offsets), BGR, inversion, sleep and display off, pixel formats, chip-select pauses, malformed
 // streams and timing; then EmulatorBus (transactions, deferred transfers, misuse).
-#include "host_sim/emulator/panel_emulator.hpp"
+#include "lineraster/host_sim/emulator/panel_emulator.hpp"
 
 #include <gtest/gtest.h>
 
 #include <initializer_list>
 #include <vector>
 
-#include "core/output/pixel_format.hpp"
-#include "host_sim/emulator/emulator_bus.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/host_sim/emulator/emulator_bus.hpp"
 
 namespace {
 

@@ -10,16 +10,16 @@
 #include <string>
 #include <vector>
 
-#include "core/raster/renderer.hpp"
-#include "core/scene/camera.hpp"
-#include "core/scene/material.hpp"
-#include "hal/panel.hpp"
-#include "hal/panel_sink.hpp"
-#include "host_sim/emulator/capture_display.hpp"
-#include "host_sim/emulator/emulator_bus.hpp"
-#include "host_sim/emulator/panel_emulator.hpp"
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/scene/material.hpp"
+#include "lineraster/hal/panel.hpp"
+#include "lineraster/hal/panel_sink.hpp"
+#include "lineraster/host_sim/emulator/capture_display.hpp"
+#include "lineraster/host_sim/emulator/emulator_bus.hpp"
+#include "lineraster/host_sim/emulator/panel_emulator.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // OBJ faces triangulated as the file means them: checked by coverage against the polygon itself
 // (every sample point inside the polygon in exactly one triangle, every point outside in none),
 // by area and by winding, on concave, keyhole, star, tilted and clockwise polygons.
-#include "host_sim/formats/polygon_triangulation.hpp"
+#include "lineraster/host_sim/formats/polygon_triangulation.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
 
 namespace lr::host {
 namespace {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "host_sim/formats/image_io.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 #include "tests/support/tmp_dir.hpp"
 
 namespace lr::host {

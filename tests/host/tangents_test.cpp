@@ -1,14 +1,14 @@
 // Tangents for normal mapping: along increasing u, orthogonal to the normal, handedness so that
 // w * cross(normal, tangent) points along increasing v; degenerate input gets a valid frame.
-#include "host_sim/scene/tangents.hpp"
-#include "host_sim/scene/vec3d.hpp"
+#include "lineraster/host_sim/scene/tangents.hpp"
+#include "lineraster/host_sim/scene/vec3d.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 
 namespace lr::host {
 namespace {

@@ -2,7 +2,7 @@
 // in every texel format, rows are flipped (storage row 0 = the file's bottom row), palettes (<= 256
 // and > 256 colours), the L8 weights, NPOT sizes with a mip chain that validates, the size limit,
 // copies and moves that keep their spans valid, and errors that name the file.
-#include "host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
 
 #include <gtest/gtest.h>
 #include <png.h>
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/texture/mipmap.hpp"
+#include "lineraster/core/texture/mipmap.hpp"
 #include "tests/support/file_bytes.hpp"
 #include "tests/support/raw_png.hpp"
 #include "tests/support/tmp_dir.hpp"

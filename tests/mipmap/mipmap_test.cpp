@@ -1,7 +1,7 @@
 // Mip chains built by core/mipmap: exact texels of small hand-made cases in every format (even
 // sizes, odd sizes whose last row/column folds into the last box, 1 x N), GL chain sizes, a
 // brute-force cross-check on random NPOT textures, and the errors (capacity, invalid level 0).
-#include "core/texture/mipmap.hpp"
+#include "lineraster/core/texture/mipmap.hpp"
 
 #include <gtest/gtest.h>
 

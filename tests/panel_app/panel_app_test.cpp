@@ -17,12 +17,12 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/material.hpp"
 #include "firmware/linux/app_options.hpp"
 #include "firmware/linux/panel_app.hpp"
-#include "hal/host/display_spec.hpp"
-#include "host_sim/formats/obj_loader.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/core/scene/material.hpp"
+#include "lineraster/hal/host/display_spec.hpp"
+#include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 #include "tests/hal/recording_bus.hpp"
 #include "tests/support/tmp_dir.hpp"
 

@@ -27,7 +27,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "host_sim/formats/host_mesh.hpp"
+#include "lineraster/host_sim/formats/host_mesh.hpp"
 #include "tests/reference/ref_math.hpp"
 
 namespace lr::ref {

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <utility>
 
-#include "core/texture/texture.hpp"
+#include "lineraster/core/texture/texture.hpp"
 #include "tests/reference/ref_renderer.hpp"
 
 namespace lr::ref {

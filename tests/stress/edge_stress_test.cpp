@@ -18,8 +18,8 @@
 #include <random>
 #include <vector>
 
-#include "core/setup/edge.hpp"
-#include "core/setup/triangle_setup.hpp"
+#include "lineraster/core/setup/edge.hpp"
+#include "lineraster/core/setup/triangle_setup.hpp"
 
 namespace lr {
 namespace {

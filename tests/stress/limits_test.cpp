@@ -7,8 +7,8 @@
 #include <limits>
 #include <random>
 
-#include "core/scene/camera.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 #include "tests/stress/random_stress.hpp"
 
 namespace lr {

@@ -26,7 +26,7 @@
 #include <random>
 #include <vector>
 
-#include "core/scene/camera.hpp"
+#include "lineraster/core/scene/camera.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr::stress {

@@ -17,8 +17,8 @@
 #include <map>
 #include <random>
 
-#include "core/scene/camera.hpp"
-#include "host_sim/scene/mesh_prep.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/host_sim/scene/mesh_prep.hpp"
 #include "tests/support/core_harness.hpp"
 
 namespace lr {

@@ -6,8 +6,8 @@
 #include <memory>
 #include <vector>
 
-#include "core/raster/renderer.hpp"
-#include "host_sim/emulator/capture_display.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/host_sim/emulator/capture_display.hpp"
 #include "tests/reference/ref_renderer.hpp"
 
 namespace lr::test {

@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <string>
 
-#include "host_sim/formats/texture_load.hpp"
-#include "host_sim/scene/scene.hpp"
-#include "host_sim/scene/tangents.hpp"
+#include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
+#include "lineraster/host_sim/scene/tangents.hpp"
 #include "tests/reference/ref_renderer.hpp"
 #include "tests/reference/ref_texture_core.hpp"
 

@@ -6,9 +6,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "host_sim/formats/host_mesh.hpp"
-#include "host_sim/formats/image_io.hpp"
-#include "host_sim/scene/scene.hpp"
+#include "lineraster/host_sim/formats/host_mesh.hpp"
+#include "lineraster/host_sim/formats/image_io.hpp"
+#include "lineraster/host_sim/scene/scene.hpp"
 
 namespace lr::test {
 

@@ -1,4 +1,4 @@
-#include "hal/host/linux/gpio_line.hpp"
+#include "lineraster/hal/host/linux/gpio_line.hpp"
 
 #include <dirent.h>
 #include <gpiod.h>

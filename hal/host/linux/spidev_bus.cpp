@@ -1,6 +1,6 @@
-#include "hal/host/linux/spidev_bus.hpp"
+#include "lineraster/hal/host/linux/spidev_bus.hpp"
 
-#include "hal/host/parse_number.hpp"
+#include "lineraster/hal/host/parse_number.hpp"
 
 #include <fcntl.h>
 #include <linux/spi/spidev.h>

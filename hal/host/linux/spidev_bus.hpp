@@ -24,9 +24,9 @@
 #include <string_view>
 #include <vector>
 
-#include "hal/host/linux/gpio_line.hpp"
-#include "hal/host/transfer_worker.hpp"
-#include "hal/panel_bus.hpp"
+#include "lineraster/hal/host/linux/gpio_line.hpp"
+#include "lineraster/hal/host/transfer_worker.hpp"
+#include "lineraster/hal/panel_bus.hpp"
 
 namespace lr {
 

@@ -1,6 +1,6 @@
-#include "hal/host/usb/ft232h_bus.hpp"
+#include "lineraster/hal/host/usb/ft232h_bus.hpp"
 
-#include "hal/host/parse_number.hpp"
+#include "lineraster/hal/host/parse_number.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -22,10 +22,10 @@
 #include <string_view>
 #include <vector>
 
-#include "hal/host/transfer_worker.hpp"
-#include "hal/host/usb/mpsse.hpp"
-#include "hal/host/usb/usb_bulk.hpp"
-#include "hal/panel_bus.hpp"
+#include "lineraster/hal/host/transfer_worker.hpp"
+#include "lineraster/hal/host/usb/mpsse.hpp"
+#include "lineraster/hal/host/usb/usb_bulk.hpp"
+#include "lineraster/hal/panel_bus.hpp"
 
 namespace lr {
 

@@ -1,4 +1,4 @@
-#include "hal/host/usb/mpsse.hpp"
+#include "lineraster/hal/host/usb/mpsse.hpp"
 
 #include <algorithm>
 

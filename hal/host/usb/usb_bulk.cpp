@@ -1,4 +1,4 @@
-#include "hal/host/usb/usb_bulk.hpp"
+#include "lineraster/hal/host/usb/usb_bulk.hpp"
 
 #include <libusb.h>
 

@@ -13,7 +13,7 @@
 #include <span>
 #include <string>
 
-#include "core/output/status.hpp"
+#include "lineraster/core/output/status.hpp"
 
 struct libusb_context;
 struct libusb_device_handle;
