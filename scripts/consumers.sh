@@ -6,6 +6,10 @@
 #   fetchcontent  FetchContent from this repository at HEAD (commit first: the working tree's
 #                 changes are not fetched)
 #   package       find_package(lineraster) on a prefix installed from this checkout
+#   bare_metal    examples/bare_metal cross-built for Cortex-M4F with its own toolchain file
+#                 (examples/bare_metal/cortex-m4f.cmake) on a prefix installed with the same
+#                 file, run under QEMU (mps2-an386): it checks its own pixels and exits non-zero
+#                 through semihosting when they are wrong
 # Every configure disables GoogleTest, Google Benchmark, libpng and libjpeg
 # (CMAKE_DISABLE_FIND_PACKAGE_*): a consumer of the core needs none of them.
 #   scripts/consumers.sh [WORK_DIR]   (default build/consumers)
@@ -60,4 +64,26 @@ done
 [ ! -e "$work/prefix/include/lineraster/core/CMakeLists.txt" ] || fail "install: sources installed"
 consumer package -DCMAKE_PREFIX_PATH="$work/prefix" \
   -DLINERASTER_EXAMPLE="$root/examples/host/minimal.cpp"
-echo "consumers: all three ways build and draw the example's frame"
+
+# Bare metal: the library cross-built and installed as a firmware project would, with nothing of
+# the project's toolchain files or presets.
+tc=$root/examples/bare_metal/cortex-m4f.cmake
+cmake -S . -B "$work/bm-lib" -DCMAKE_TOOLCHAIN_FILE="$tc" -DCMAKE_BUILD_TYPE=Release \
+  > "$work/bare_metal.log" 2>&1 || { cat "$work/bare_metal.log"; fail "bare_metal: library configure failed"; }
+cmake --build "$work/bm-lib" -j"$jobs" >> "$work/bare_metal.log" 2>&1 \
+  || { cat "$work/bare_metal.log"; fail "bare_metal: library build failed"; }
+if grep "Built target" "$work/bare_metal.log" | grep -qvE "Built target (lr_core|lr_hal)$"; then
+  fail "bare_metal: built more than the library (see $work/bare_metal.log)"
+fi
+cmake --install "$work/bm-lib" --prefix "$work/bm-prefix" >> "$work/bare_metal.log" 2>&1 \
+  || { cat "$work/bare_metal.log"; fail "bare_metal: install failed"; }
+cmake -S examples/bare_metal -B "$work/bare_metal" -DCMAKE_TOOLCHAIN_FILE="$tc" \
+  -DCMAKE_PREFIX_PATH="$work/bm-prefix" -DCMAKE_BUILD_TYPE=Release >> "$work/bare_metal.log" 2>&1 \
+  || { cat "$work/bare_metal.log"; fail "bare_metal: configure failed"; }
+cmake --build "$work/bare_metal" >> "$work/bare_metal.log" 2>&1 \
+  || { cat "$work/bare_metal.log"; fail "bare_metal: build failed"; }
+out=$(timeout 120 qemu-system-arm -M mps2-an386 -nographic -monitor none -semihosting \
+  -kernel "$work/bare_metal/minimal.elf") || fail "bare_metal: the example failed under QEMU: $out"
+[[ $out == *"pixels as expected"* ]] || fail "bare_metal: unexpected output: $out"
+echo "consumers: bare_metal: ok ($out)"
+echo "consumers: the three ways and the bare-metal package build and draw the examples' frames"

@@ -5,8 +5,9 @@
 # M33 run under QEMU (smoke, fault, demo frames against lineraster-sim, the bunny in the
 # micro:bit's 16 KB, instruction-count check, footprint with its link and stack guards), the
 # 32-bit ARM Linux build run under qemu-arm, the ARM Linux guest, the 64-bit ARM Linux core
-# tests, the fuzzers' fixed runs, and the benchmarks' figures (printed, never asserted). Each
-# step prints its duration.
+# tests, the consumer projects (examples/ built by add_subdirectory, FetchContent, find_package
+# and cross-built from an installed package), the fuzzers' fixed runs, and the benchmarks'
+# figures (printed, never asserted). Each step prints its duration.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh test
@@ -68,6 +69,9 @@ step "bare metal: footprint (flash, RAM, worst-case and measured stack) for M0+ 
 # -O3 images' (footprint.sh compares the checksums across every tree it is given).
 cmake --preset cortex-m4f-size -DLR_HOST_TOOLS_DIR="$LR_HOST_TOOLS_DIR" >/dev/null
 bash scripts/footprint.sh build/cortex-m0plus build/cortex-m4f build/cortex-m4f-size
+
+step "consumers: add_subdirectory, FetchContent, find_package and a Cortex-M4F package under QEMU, each drawing the examples' frame"
+bash scripts/consumers.sh build/consumers
 
 step "32-bit ARM Linux build + tests under qemu-arm, frames hashed against x86-64's"
 bash scripts/ci_armhf.sh
