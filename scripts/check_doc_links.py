@@ -2,7 +2,9 @@
 """Checks the links of the project's Markdown files: every relative link must name a file of the
 repository, and every #anchor a heading of its target (GitHub's slugs: lower case, punctuation
 dropped, spaces to hyphens). Also flags `tests/...::Suite.Name` references whose test does not
-exist in that file, so that docs/raster-rules.md keeps naming real tests.
+exist in that file, so that docs/raster-rules.md keeps naming real tests, and checks that a fenced
+code block announced by `<!-- file: PATH -->` on the line before it is that file, byte for byte
+(the README's example cannot drift from examples/).
 
 Usage: scripts/check_doc_links.py [FILE.md ...]   (default: README.md and docs/**/*.md)
 Exit status 1 on any broken link or test reference, with one line per problem.
@@ -14,6 +16,7 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LINK = re.compile(r"(?<!!)\[[^\]]*\]\(([^)\s]+)\)|!\[[^\]]*\]\(([^)\s]+)\)")
+INCLUDED = re.compile(r"<!-- file: ([\w/.-]+) -->\n```\w*\n(.*?)^```$", re.S | re.M)
 TEST_REF = re.compile(r"`(tests/[\w/.-]+\.cpp)::(\w+)\.(\w+)`|`::(\w+)\.(\w+)`")
 
 
@@ -83,12 +86,28 @@ def check(md):
     return problems
 
 
+def check_included(md):
+    problems = []
+    with open(md, encoding="utf-8") as f:
+        text = f.read()
+    for m in INCLUDED.finditer(text):
+        path = os.path.join(ROOT, m.group(1))
+        if not os.path.isfile(path):
+            problems.append(f"{os.path.relpath(md, ROOT)}: no file {m.group(1)} for its code block")
+            continue
+        with open(path, encoding="utf-8") as f:
+            if f.read() != m.group(2):
+                problems.append(f"{os.path.relpath(md, ROOT)}: the code block differs from "
+                                f"{m.group(1)} (copy the file into it)")
+    return problems
+
+
 def main():
     files = sys.argv[1:] or [os.path.join(ROOT, "README.md")] + sorted(
         glob.glob(os.path.join(ROOT, "docs", "**", "*.md"), recursive=True))
     problems = []
     for md in files:
-        problems += check(os.path.abspath(md))
+        problems += check(os.path.abspath(md)) + check_included(os.path.abspath(md))
     for p in problems:
         print(p)
     print(f"check_doc_links: {len(files)} files, {len(problems)} problems")

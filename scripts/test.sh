@@ -26,12 +26,13 @@ step() {
 # Source checks first (they need only the debug tree's compile_commands.json). A failure is
 # reported here and fails the run at the end, after every test has run: a formatting slip does
 # not hide the test results.
-step "source checks: clang-format, clang-tidy (core/, hal/), include layers"
+step "source checks: clang-format, clang-tidy (core/, hal/), include layers, documentation links"
 cmake --preset debug >/dev/null
 source_failures=()
 bash scripts/format.sh --check || source_failures+=("clang-format (bash scripts/format.sh)")
 bash scripts/tidy.sh build/debug || source_failures+=("clang-tidy (bash scripts/tidy.sh)")
 python3 scripts/check_layers.py || source_failures+=("include layers (python3 scripts/check_layers.py --matrix)")
+python3 scripts/check_doc_links.py || source_failures+=("documentation links and included examples (python3 scripts/check_doc_links.py)")
 
 step "debug build + tests"
 cmake --build --preset debug -j"$jobs"

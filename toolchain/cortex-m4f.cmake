@@ -2,7 +2,8 @@
 # Images run on QEMU's mps2-an386 (Cortex-M4 with FPU) by default: LR_FW_BOARD below.
 #
 #   cmake --preset cortex-m4f && cmake --build --preset cortex-m4f
-#   (or: cmake -S . -B build/m4f -DCMAKE_TOOLCHAIN_FILE=toolchain/cortex-m4f.cmake -DLR_HOST=OFF)
+#   (or: cmake -S . -B build/m4f -DCMAKE_TOOLCHAIN_FILE=toolchain/cortex-m4f.cmake: host tools
+#   are off when cross-compiling)
 #
 # The other Cortex-M files (cortex-m0plus.cmake, cortex-m7.cmake, cortex-m33.cmake) work the same
 # way; what follows about flags holds for all of them.
