@@ -7,6 +7,8 @@
 // wait() has returned kOk for it. A bus never holds more than one transfer in flight. Every
 // wait is bounded: wait() returns kTimeout when the transfer did not finish in time, kDisplayError
 // when it failed; after either the bus is idle again (the transfer is abandoned) and usable.
+// Before each pixel transfer the sender calls clean_dcache() with exactly the bytes it is about
+// to pass to start_pixels(), after its last write to them (the DMA contract: docs/dma.md).
 // Implementations: hal/host/linux/spidev_bus (spidev + libgpiod), hal/host/usb/ft232h_bus (libusb,
 // FT232H MPSSE), a board's own (bare metal: its SPI/DMA registers), and recording buses in the
 // tests and the panel emulator.
@@ -27,6 +29,11 @@ class PanelBus {
   // Starts sending `pixels` as data (D/C high) right after a RAMWR command (CS still asserted
   // for the data, released at the end). The buffer belongs to the bus until wait() returns.
   virtual Status start_pixels(std::span<const uint8_t> pixels) = 0;
+  // Cache maintenance for a DMA that reads memory behind a data cache (Cortex-M7): writes back
+  // the lines holding `bytes` (SCB_CleanDCache_by_Addr, which works by whole lines). PanelSink
+  // calls it right before start_pixels() with the same span. A bus that copies the bytes (spidev,
+  // USB) or a core without a data cache has nothing to do, which is what the default does.
+  virtual void clean_dcache(std::span<const uint8_t> bytes) { (void)bytes; }
   // Waits at most timeout_ms for the transfer started last (kOk at once when none is pending).
   virtual Status wait(uint32_t timeout_ms) = 0;
   // Hardware reset line, active low on the panel: asserted = held in reset. kOk without one.

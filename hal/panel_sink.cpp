@@ -168,7 +168,9 @@ Status PanelSink::start(uint8_t slot) {
   stats_.transactions += kWindowCommands;
   stats_.command_bytes += kWindowCommandBytes;
   const size_t bytes = size_t{b.window.width} * b.window.height * sizeof(Pixel);
-  st = panel_.bus().start_pixels({reinterpret_cast<const uint8_t*>(b.pixels.data()), bytes});
+  const std::span<const uint8_t> wire{reinterpret_cast<const uint8_t*>(b.pixels.data()), bytes};
+  panel_.bus().clean_dcache(wire);  // the gather of a narrowed strip is the last write
+  st = panel_.bus().start_pixels(wire);
   if (st != Status::kOk) {
     b.state = State::kFree;
     return st;

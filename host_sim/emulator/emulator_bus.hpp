@@ -239,6 +239,7 @@ class CountingBus final : public PanelBus {
     totals_.bytes += pixels.size();
     return s;
   }
+  void clean_dcache(std::span<const uint8_t> bytes) override { inner_.clean_dcache(bytes); }
   Status wait(uint32_t timeout_ms) override { return inner_.wait(timeout_ms); }
   Status set_reset(bool asserted) override { return inner_.set_reset(asserted); }
   Status set_backlight(bool on) override { return inner_.set_backlight(on); }

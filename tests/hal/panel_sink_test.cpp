@@ -7,9 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <vector>
 
 #include "lineraster/core/math/hash.hpp"
+#include "lineraster/hal/dma_buffer.hpp"
 #include "lineraster/hal/panel_sink.hpp"
 #include "tests/hal/recording_bus.hpp"
 
@@ -484,6 +487,50 @@ TEST(PanelSinkKeep, KeptStripsSendNothingAndOnlyARetainedFrameMayBeKept) {
   rig.sink.invalidate();
   EXPECT_FALSE(rig.sink.retains_frame());
   EXPECT_EQ(rig.sink.keep({0, 0, 240, 8}), Status::kInvalidArgument);
+}
+
+// The DMA contract: right before each transfer the bus is asked to clean exactly the bytes it is
+// about to send, whole strips and narrowed ones alike.
+TEST(PanelSinkDma, EveryTransferIsCleanedFirstWithExactlyItsBytes) {
+  RecordingBus bus;
+  bus.require_clean = true;
+  Panel panel(bus, st7789_240x240());
+  DmaStripBuffer<240 * 8> strip0, strip1;
+  std::vector<StripSignature> signatures(30);
+  PanelSink sink(panel, strip0.pixels(), strip1.pixels(), signatures, kTimeout);
+  Frame a(240, 240, 0x001F);
+  a.rect(50, 20, 10, 10, 0xF800);
+  ASSERT_EQ(send_frame(sink, bus, a, 8), Status::kOk);
+  Frame b(240, 240, 0x001F);
+  b.rect(53, 20, 10, 10, 0xF800);  // strips 2 and 3 narrowed to columns 30..89
+  ASSERT_EQ(send_frame(sink, bus, b, 8), Status::kOk);
+  ASSERT_EQ(bus.started.size(), 32u);
+  ASSERT_EQ(bus.cleaned.size(), bus.started.size());
+  const auto* base0 = reinterpret_cast<const uint8_t*>(strip0.storage.data());
+  const auto* base1 = reinterpret_cast<const uint8_t*>(strip1.storage.data());
+  for (size_t i = 0; i < bus.started.size(); ++i) {
+    EXPECT_EQ(bus.cleaned[i].data(), bus.started[i].data()) << i;
+    EXPECT_EQ(bus.cleaned[i].size(), bus.started[i].size()) << i;
+    EXPECT_EQ(bus.started[i].data(), i % 2 ? base1 : base0) << i;
+    EXPECT_EQ(bus.started[i].size(), i < 30 ? 240u * 8u * 2u : 60u * 8u * 2u) << i;
+  }
+  EXPECT_TRUE(bus.violations.empty()) << bus.violations.front();
+  EXPECT_EQ(sink.stats().strips_narrowed, 2u);
+}
+
+TEST(DmaStripBuffer, AlignedToTheLineAndPaddedToWholeLines) {
+  static_assert(kDmaAlignment == 32);  // the default: the Cortex-M7 data-cache line
+  static_assert(dma_padded(0) == 0 && dma_padded(1) == 32 && dma_padded(32) == 32 &&
+                dma_padded(33) == 64);
+  static_assert(alignof(DmaStripBuffer<7>) == 32 && sizeof(DmaStripBuffer<7>) == 32);
+  static_assert(sizeof(DmaStripBuffer<17>) == 64 && DmaStripBuffer<17>::kBytes == 64);
+  static_assert(sizeof(DmaStripBuffer<240 * 8>) == 240 * 8 * 2);
+  DmaStripBuffer<17> one;
+  std::array<DmaStripBuffer<17>, 2> two{};
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(one.storage.data()) % kDmaAlignment, 0u);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(two[1].storage.data()) % kDmaAlignment, 0u);
+  EXPECT_EQ(one.pixels().size(), 17u);
+  EXPECT_EQ(one.pixels().data(), one.storage.data());
 }
 
 TEST(StripSignature, BandsAndChangedColumns) {

@@ -4,7 +4,8 @@
 //                 completes pixel transfers asynchronously (at wait()), and can make chosen
 //                 commands, transfers or waits fail or time out. It flags what a real bus would
 //                 not forgive: a command or a second transfer while pixels are in flight, pixels
-//                 not right after RAMWR, and a buffer changed while it was on the wire.
+//                 not right after RAMWR, a buffer changed while it was on the wire, and (with
+//                 require_clean) a transfer not preceded by clean_dcache() of its bytes.
 //   RamModel      the controller's 240 x 320 graphics RAM as the datasheets describe it: CASET,
 //                 RASET, RAMWR and MADCTL (MV exchanges host x and y, then MX / MY count RAM
 //                 columns / rows from the other side); completed transfers land in it.
@@ -205,6 +206,10 @@ class RecordingBus final : public PanelBus {
   std::vector<BusEvent> events;
   RamModel ram;
   std::vector<std::string> violations;
+  // The byte ranges of clean_dcache() and of start_pixels() calls, in call order. With
+  // require_clean, a transfer whose bytes were not the last ones cleaned is a violation.
+  std::vector<std::span<const uint8_t>> cleaned, started;
+  bool require_clean = false;
   // Outcomes by call index (0-based, counted per kind over the bus's life); kOk otherwise.
   std::map<size_t, Status> command_results;
   std::map<size_t, Status> start_results;
@@ -221,7 +226,13 @@ class RecordingBus final : public PanelBus {
     return r;
   }
 
+  void clean_dcache(std::span<const uint8_t> bytes) override { cleaned.push_back(bytes); }
+
   Status start_pixels(std::span<const uint8_t> px) override {
+    started.push_back(px);
+    if (require_clean && (cleaned.empty() || cleaned.back().data() != px.data() ||
+                          cleaned.back().size() != px.size()))
+      violations.push_back("pixels started without clean_dcache() of exactly their bytes");
     if (pending_) violations.push_back("start_pixels while a transfer is in flight");
     if (!last_was_ramwr_) violations.push_back("pixels not right after RAMWR");
     last_was_ramwr_ = false;
