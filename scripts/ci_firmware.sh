@@ -54,6 +54,10 @@ for tree in "${trees[@]}"; do
     [[ $rc -eq 124 ]] && fail "$name ($board) did not finish within ${timeout_s} s under QEMU"
     [[ $rc -eq 0 ]] || { echo "$log" >&2; fail "$name ($board) exited with status $rc"; }
     [[ -f "$out/$name.ppm" ]] || fail "$name ($board) wrote no $out/$name.ppm"
+    # A firmware that sends its frame through a panel (the Cortex-M7 demo: firmware/demo/output.hpp)
+    # names the emulated panel whose image its file must equal.
+    extra="$(sed -n 's/^lr_demo: sim options: //p' <<<"$log")"
+    sim_args+=" $extra"
     # shellcheck disable=SC2086  # sim_args is a list of arguments
     "$sim" $sim_args --out "$out/sim_$scene.ppm" >/dev/null || fail "lineraster-sim $sim_args failed"
     if ! cmp -s "$out/$name.ppm" "$out/sim_$scene.ppm"; then
@@ -70,7 +74,8 @@ for tree in "${trees[@]}"; do
     ((worst <= reserved)) || fail "$name ($board): worst-case stack $worst B > the $reserved B the linker script reserves"
     sum="$(grep -o 'checksum.*' <<<"$log" | awk '{print $NF}')"
     pixels="$(grep -o 'pixels written: [0-9]*' <<<"$log" | awk '{print $NF}')"
-    echo "ci_firmware: $name on $board ($machine): frame identical to lineraster-sim's ($pixels pixels written, FNV-1a $sum); stack: worst case $worst B of $reserved B reserved"
+    via="$(sed -n 's/^lr_demo: DMA: /; DMA: /p' <<<"$log")"
+    echo "ci_firmware: $name on $board ($machine): frame identical to lineraster-sim's${extra:+ ($extra)} ($pixels pixels written, FNV-1a $sum$via); stack: worst case $worst B of $reserved B reserved"
     checked=$((checked + 1))
   done <"$list"
 done

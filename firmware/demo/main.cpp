@@ -2,6 +2,9 @@
 // at build time (lineraster-asset), rendered strip by strip through the HAL's StripSink into a
 // PPM file on the host (semihosting: QEMU -semihosting, or a debugger). scripts/ci_firmware.sh
 // renders the same scene with lineraster-sim on the PC and compares the two files byte for byte.
+// With LR_DEMO_PANEL (the Cortex-M7 build) the strips take a panel firmware's path instead:
+// RGB565 in DMA strip buffers, a PanelSink and a bus that cleans the data cache before each
+// transfer (firmware/demo/output.hpp); the file is then what the panel would show.
 //
 // The scene is chosen at compile time: LR_DEMO_SCENE names its header and LR_DEMO_SCENE_NS its
 // namespace (knot_scene.hpp, knot: the README's demo; cube_scene.hpp, cube: a textured cube that
@@ -12,10 +15,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "firmware/common/ordered_sink.hpp"
-#include "firmware/common/ppm_file.hpp"
 #include "firmware/common/report.hpp"
 #include "firmware/common/semihost.hpp"
+#include "firmware/demo/output.hpp"
 #include "lineraster/core/raster/renderer.hpp"
 #include LR_DEMO_SCENE
 
@@ -23,8 +25,6 @@ namespace {
 
 namespace scene = lr::fw::demo::LR_DEMO_SCENE_NS;
 namespace sh = lr::fw::semihost;
-using PF = lr::Rgb888;  // the format lineraster-sim writes; a panel firmware would use RGB565
-
 constexpr int kWidth = scene::kWidth, kHeight = scene::kHeight, kStripRows = scene::kStripRows;
 constexpr size_t kStrips = (kHeight + kStripRows - 1) / kStripRows;
 constexpr size_t kStripPixels = size_t{kWidth} * kStripRows;
@@ -62,18 +62,20 @@ constexpr lr::FrameCapacities kCapacities{.width = kWidth,
                                           .tex_vertices = any_textured() ? kVertexCapacity : 0,
                                           .active_extra = any_textured() ? kActive : 0};
 lr::StaticFrameStorage<kCapacities> g_store;
-// Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
-alignas(4) std::array<std::array<PF::Storage, kStripPixels>, 2> g_strips{};
+#ifndef LR_DEMO_OUTPUT
+#define LR_DEMO_OUTPUT "lr_demo.ppm"
+#endif
+#if LR_DEMO_PANEL
+lr::fw::demo::PanelOutput<kStripPixels> g_out(LR_DEMO_OUTPUT);
+static_assert(kHeight % kStripRows == 0, "the DMA check counts whole strips");
+#else
+lr::fw::demo::FileOutput<kStripPixels> g_out(LR_DEMO_OUTPUT);
+#endif
+using PF = decltype(g_out)::PF;
 
 // Only the span routines of the scene's draw states are linked (scene::kSpans, an lr::SpanSet:
 // core/span/span_state.hpp); a draw outside them would be refused.
 lr::Renderer<PF, kStripRows, scene::kSpans> g_renderer;
-
-#ifndef LR_DEMO_OUTPUT
-#define LR_DEMO_OUTPUT "lr_demo.ppm"
-#endif
-lr::fw::PpmFile<PF> g_file(LR_DEMO_OUTPUT);
-lr::fw::OrderedStripSink<PF, lr::fw::PpmFile<PF>> g_sink(g_strips[0], g_strips[1], g_file);
 
 bool check(lr::Status st, const char* what) {
   return lr::fw::check("lr_demo", st, what);
@@ -95,35 +97,44 @@ bool render_frame() {
                "draw"))
       return false;
   }
-  return check(g_renderer.render(g_sink), "render");
+  if (!check(g_out.begin(), "panel start")) return false;
+  const bool rendered = check(g_renderer.render(g_out.sink()), "render");
+  return check(g_out.end(), "frame end") && rendered;
 }
 
 }  // namespace
 
 int main() {
+  g_out.start_core();
   sh::write("lr_demo: scene ");
   sh::write(scene::kName);
-  sh::write(", 320x240 RGB888 in strips of ");
+  sh::write(LR_DEMO_PANEL ? ", 320x240 RGB565 to an ST7789 (DMA strips) in strips of "
+                          : ", 320x240 RGB888 in strips of ");
   sh::write_dec(static_cast<uint32_t>(kStripRows));
   sh::write(" rows -> " LR_DEMO_OUTPUT "\n");
   bool ok = render_frame();
   const lr::FrameStats& st = g_renderer.stats();
   report("triangles in:", st.triangles_in);
   report("triangles binned:", st.triangles_binned);
-  report("strips:", g_sink.strips());
+  report("strips:", g_out.strips());
   report("pixels written:", st.pixels_written);
   report("max active:", st.max_active);
   const uint32_t dropped = st.dropped_vertex_capacity + st.dropped_triangle_capacity;
   report("dropped (capacity):", dropped);
-  if (ok && (dropped != 0 || st.pixels_written == 0 ||
-             g_sink.strips() != static_cast<uint32_t>(kStrips) ||
-             g_file.pixel_bytes() != 3u * kWidth * kHeight)) {
+  if (ok &&
+      (dropped != 0 || st.pixels_written == 0 || g_out.strips() != static_cast<uint32_t>(kStrips) ||
+       g_out.pixel_bytes() != 3u * kWidth * kHeight)) {
     sh::write("lr_demo: the frame is incomplete (capacity, or strips missing)\n");
     ok = false;
   }
   sh::write("lr_demo: checksum (FNV-1a of the RGB888 pixels) ");
-  sh::write_hex(g_file.checksum());
+  sh::write_hex(g_out.checksum());
   sh::write("\n");
+  if (!g_out.check(static_cast<uint32_t>(kStripPixels * sizeof(PF::Storage)))) {
+    sh::write("lr_demo: a transfer was not cleaned first, or not exactly\n");
+    ok = false;
+  }
+  if (LR_DEMO_PANEL) sh::write("lr_demo: sim options: --display emulator:st7789:320x240\n");
   sh::write(ok ? "lr_demo: PASS\n" : "lr_demo: FAIL\n");
   return ok ? 0 : 1;
 }
