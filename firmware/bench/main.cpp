@@ -34,7 +34,6 @@ using PF = lr::Rgb565Be;
 using Pixel = PF::Storage;
 
 constexpr int kWidth = 320, kHeight = 240, kStripRows = 8;
-constexpr size_t kStrips = (kHeight + kStripRows - 1) / kStripRows;
 constexpr size_t kStripPixels = size_t{kWidth} * kStripRows;
 
 consteval size_t vertices(std::span<const lr::Mesh> meshes) {
