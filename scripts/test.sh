@@ -1,13 +1,13 @@
 #!/bin/bash
 # Installs what is missing, checks the sources (clang-format, clang-tidy, the include layers),
-# builds and runs every test: the debug build, the same suite under
-# AddressSanitizer + UndefinedBehaviorSanitizer, the bare-metal builds for Cortex-M0+, M4F, M7 and
-# M33 run under QEMU (smoke, fault, demo frames against lineraster-sim, the bunny in the
-# micro:bit's 16 KB, instruction-count check, footprint with its link and stack guards), the
-# 32-bit ARM Linux build run under qemu-arm, the ARM Linux guest, the 64-bit ARM Linux core
-# tests, the consumer projects (examples/ built by add_subdirectory, FetchContent, find_package
-# and cross-built from an installed package), the fuzzers' fixed runs, and the benchmarks'
-# figures (printed, never asserted). Each step prints its duration.
+# builds and runs every test: the debug build (GCC), the same suite under AddressSanitizer +
+# UndefinedBehaviorSanitizer (Clang), the bare-metal builds for Cortex-M0+, M4F, M7 and M33 run
+# under QEMU (smoke, fault, demo frames against lineraster-sim, the bunny in the micro:bit's
+# 16 KB, instruction-count check, footprint with its link and stack guards), the consumer
+# projects (examples/ built by add_subdirectory, FetchContent, find_package and cross-built from
+# an installed package), the 32-bit ARM Linux build run under qemu-arm, the ARM Linux guest, the
+# 64-bit ARM Linux core tests, the fuzzers' fixed runs, a Release build of every target, and the
+# benchmarks' figures (printed, never asserted). Each step prints its duration.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh test
@@ -44,8 +44,9 @@ export LR_HOST_TOOLS_DIR="$PWD/$host" LR_SIM="$host/host_sim/lineraster-sim"
 export LR_ICOUNT_PLUGIN="$PWD/$host/tools/qemu_icount/libqemu_icount.so"
 
 # At -O0 (the asan preset is a Debug build): compiled with optimisation, the sanitizer build took
-# 880 s of a 2-core CI run, -O0 a fraction of that, and the tests stay fast either way.
-step "ASan + UBSan build + tests"
+# 880 s of a 2-core CI run, -O0 a fraction of that, and the tests stay fast either way. Built with
+# Clang: every target then builds with both compilers in CI (GCC: debug here, release below).
+step "ASan + UBSan build (Clang) + tests"
 cmake --preset asan >/dev/null
 cmake --build --preset asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
@@ -86,10 +87,12 @@ bash scripts/ci_aarch64.sh
 step "fuzzing: libFuzzer targets (clang, ASan + UBSan), a fixed number of runs from a fixed seed; crashes become regressions"
 bash scripts/fuzz.sh --ci
 
-step "figures (benchmarks print, they do not pass or fail)"
+step "Release build of every target (warnings are errors), then the figures (benchmarks print, they do not pass or fail)"
 cmake --preset release >/dev/null
-# lr_bench_host: count_instructions.sh's host counts of the Cortex-M budget cases.
-cmake --build --preset release -j"$jobs" --target lr_frame_bench lr_bench_host
+# Every target, not only the benchmarks: GCC at -O3 warns where -O0 does not (a plain Release build
+# of everything must pass). lr_bench_host: count_instructions.sh's host counts of the Cortex-M
+# budget cases.
+cmake --build --preset release -j"$jobs"
 ./build/release/tests/bench/lr_frame_bench --benchmark_min_time=0.2
 bash scripts/count_instructions.sh build/release
 bash scripts/texture_bench.sh
