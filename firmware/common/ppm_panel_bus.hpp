@@ -37,7 +37,9 @@ class PpmPanelBus final : public PanelBus {
   // `file` receives the frame; `config` is the panel's (its address offset maps windows back to
   // image rows and columns).
   PpmPanelBus(PpmFile<Rgb565Be>& file, const PanelConfig& config)
-      : file_(file), offset_(address_offset(config)), width_(config.image_width()),
+      : file_(file),
+        offset_(address_offset(config)),
+        width_(config.image_width()),
         height_(config.image_height()) {}
 
   // Opens the file for one frame (its header) and closes it.
