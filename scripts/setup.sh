@@ -11,7 +11,8 @@ if [ "$what" = test ]; then
          clang libclang-rt-14-dev
          clang-format clang-tidy  # scripts/format.sh, scripts/tidy.sh (Debian 12: version 14)
          pkg-config libgpiod-dev libusb-1.0-0-dev  # display backends (hal/host)
-         device-tree-compiler cpio)  # the ARM Linux guest of scripts/ci_guest.sh
+         device-tree-compiler cpio  # the ARM Linux guest of scripts/ci_guest.sh
+         git)  # scripts/consumers.sh: FetchContent of this checkout
 fi
 missing=()
 for p in "${pkgs[@]}"; do
