@@ -42,7 +42,7 @@ inline void enable_dcache() {
   const uint32_t way_shift = ways > 1 ? static_cast<uint32_t>(__builtin_clz(ways - 1)) : 0;
   for (uint32_t set = 0; set < sets; ++set)
     for (uint32_t way = 0; way < ways; ++way)
-      scb(kDcisw) = (set << 5) | (ways > 1 ? way << way_shift : 0);
+      scb(kDcisw) = (set << 5) | (way << way_shift);  // one way: way is 0
   asm volatile("dsb 0xF" ::: "memory");
   scb(kCcr) = scb(kCcr) | kCcrDc;
   barriers();

@@ -11,7 +11,6 @@
 // fits a 16 KB-RAM Cortex-M0+), LR_DEMO_OUTPUT
 // the file QEMU writes, relative to its working directory. All storage is static and sized from
 // the scene: no heap, no frame buffer (two strips of RGB888 and one strip of depth).
-#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -134,7 +133,11 @@ int main() {
     sh::write("lr_demo: a transfer was not cleaned first, or not exactly\n");
     ok = false;
   }
-  if (LR_DEMO_PANEL) sh::write("lr_demo: sim options: --display emulator:st7789:320x240\n");
+  if (g_out.kSimOptions[0] != '\0') {
+    sh::write("lr_demo: sim options: ");
+    sh::write(g_out.kSimOptions);
+    sh::write("\n");
+  }
   sh::write(ok ? "lr_demo: PASS\n" : "lr_demo: FAIL\n");
   return ok ? 0 : 1;
 }

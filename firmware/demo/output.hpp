@@ -8,7 +8,8 @@
 //                and, having no panel under QEMU, writes what the panel would show to the PPM:
 //                the frame lineraster-sim shows with --display emulator:st7789:320x240.
 //
-// Both give: sink(), begin() / end() around the frame, strips(), checksum() (FNV-1a of the
+// Both give: start_core(), kSimOptions (lineraster-sim's options for the same frame), sink(),
+// begin() / end() around the frame, strips(), checksum() (FNV-1a of the
 // frame's RGB888 bytes), pixel_bytes(), and check(), which says whether the transfers kept to
 // their contract (always true for the file).
 #pragma once
@@ -43,6 +44,7 @@ class FileOutput {
   using PF = Rgb888;  // the format lineraster-sim writes
   explicit FileOutput(const char* path) : file_(path) {}
   static void start_core() {}
+  static constexpr const char* kSimOptions = "";  // lineraster-sim's frame is this file's
 
   StripSink<PF>& sink() { return sink_; }
   Status begin() { return Status::kOk; }  // the sink opens the file at begin_frame
@@ -70,6 +72,8 @@ class PanelOutput {
   explicit PanelOutput(const char* path) : file_(path) {}
   // What a Cortex-M7 firmware's startup does before anything is drawn.
   static void start_core() { m7::enable_dcache(); }
+  // What lineraster-sim needs to show this frame: the emulated panel of kDemoPanel.
+  static constexpr const char* kSimOptions = "--display emulator:st7789:320x240";
 
   StripSink<PF>& sink() { return sink_; }
   Status begin() {
