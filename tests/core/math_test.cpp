@@ -12,6 +12,7 @@
 #include "lineraster/core/math/saturate.hpp"
 #include "lineraster/core/math/trig.hpp"
 #include "lineraster/core/math/vec.hpp"
+#include "lineraster/core/math/wide_mul.hpp"
 #include "lineraster/core/output/color.hpp"
 #include "lineraster/core/output/pixel_format.hpp"
 #include "lineraster/core/raster/strip_fill.hpp"
@@ -292,6 +293,42 @@ TEST(Reciprocal, Recip32AndTheTwoByOneDivisionEqualTheDivisions) {
     check(0xFFFFFFFFu - k);  // the largest
     check(static_cast<uint32_t>(next()) | (1u << 31));
     check(((0x8000u + (k % 0x8000u)) << 16) | (k & 1 ? 0xFFFFu : 0u));  // top-half boundaries
+  }
+}
+
+// The Armv6-M high words (four 16 x 16 products) equal the 64-bit products' for the operands
+// at every boundary of the split (0, +-1, +-2^15, +-2^16, the extremes) and for random ones:
+// what makes a Cortex-M0+ frame the same integers as a Cortex-M4F frame.
+TEST(WideMul, SplitHighWordsEqualTheSixtyFourBitProducts) {
+  XorShift64 next{0x9E3779B97F4A7C15u};
+  std::vector<int32_t> edge;
+  for (int64_t base :
+       {int64_t{0}, int64_t{1} << 15, int64_t{1} << 16, int64_t{1} << 30, int64_t{INT32_MAX}})
+    for (int64_t dv : {-1, 0, 1})
+      for (int64_t sign : {-1, 1}) {
+        const int64_t v = sign * (base + dv);
+        if (v >= INT32_MIN && v <= INT32_MAX) edge.push_back(static_cast<int32_t>(v));
+      }
+  edge.push_back(INT32_MIN);
+  auto check = [](int32_t a, int32_t b) {
+    const int64_t p = int64_t{a} * b;
+    ASSERT_EQ(detail::mul_hi_split(a, b), static_cast<int32_t>(p >> 32)) << a << " * " << b;
+    ASSERT_EQ(mul_hi(a, b), static_cast<int32_t>(p >> 32)) << a << " * " << b;
+    ASSERT_EQ(detail::mul_wide_split(a, b), p) << a << " * " << b;
+    ASSERT_EQ(mla_hi(a, b, 12345), static_cast<int32_t>((p >> 32) + 12345)) << a << " * " << b;
+    const auto ua = static_cast<uint32_t>(a), ub = static_cast<uint32_t>(b);
+    const auto up = static_cast<uint32_t>((uint64_t{ua} * ub) >> 32);
+    ASSERT_EQ(detail::mul_hi_u_split(ua, ub), up) << ua << " * " << ub;
+    ASSERT_EQ(mul_hi_u(ua, ub), up) << ua << " * " << ub;
+  };
+  for (int32_t a : edge)
+    for (int32_t b : edge) check(a, b);
+  for (int i = 0; i < 2000000; ++i) {
+    const uint64_t r = next();
+    // Every magnitude: a random number of significant bits for each operand.
+    const int sa = static_cast<int>(r & 31), sb = static_cast<int>((r >> 5) & 31);
+    check(static_cast<int32_t>(static_cast<uint32_t>(r >> 10)) >> sa,
+          static_cast<int32_t>(static_cast<uint32_t>(r >> 32)) >> sb);
   }
 }
 
