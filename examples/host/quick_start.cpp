@@ -8,23 +8,15 @@
 using lr::Fixed;  // Q16.16; from_int(n) and ratio(n, d) at run time, from_double at compile time
 constexpr int kW = 160, kH = 120, kStrip = 8;
 constexpr Fixed P = Fixed::from_int(1), N = -P;
-// A cube from -1 to 1: corner i has x, y, z = P where bit 0, 1, 2 of i is set.
+// A cube from -1 to 1: corner i has x = P if bit 0 of i is set (else N), y bit 1, z bit 2.
 constexpr std::array<lr::Vec3, 8> kCorners{
     {{N, N, N}, {P, N, N}, {N, P, N}, {P, P, N}, {N, N, P}, {P, N, P}, {N, P, P}, {P, P, P}}};
 // Two triangles per face (+x, -x, +y, -y, +z, -z), counter-clockwise seen from outside: GL's
 // front faces, the ones back-face culling keeps.
-constexpr std::array<std::array<uint16_t, 3>, 12> kTriangles{{{1, 3, 7},
-                                                              {1, 7, 5},
-                                                              {2, 0, 4},
-                                                              {2, 4, 6},
-                                                              {2, 6, 7},
-                                                              {2, 7, 3},
-                                                              {4, 0, 1},
-                                                              {4, 1, 5},
-                                                              {4, 5, 7},
-                                                              {4, 7, 6},
-                                                              {1, 0, 2},
-                                                              {1, 2, 3}}};
+using Tri = std::array<uint16_t, 3>;  // indices into kCorners
+constexpr std::array<Tri, 12> kTriangles{Tri{1, 3, 7}, Tri{1, 7, 5}, Tri{2, 0, 4}, Tri{2, 4, 6},
+                                         Tri{2, 6, 7}, Tri{2, 7, 3}, Tri{4, 0, 1}, Tri{4, 1, 5},
+                                         Tri{4, 5, 7}, Tri{4, 7, 6}, Tri{1, 0, 2}, Tri{1, 2, 3}};
 // GL's material: colours Q1.15 (32768 = 1.0), shininess Q8.8 (0..128); emission 0 by default.
 constexpr lr::Material kTeal{.ambient = {0, 6554, 6554},
                              .diffuse = {3277, 19661, 21299},
@@ -78,13 +70,11 @@ int main(int argc, char** argv) {
   const lr::LightSet lights{{lr::Light::directional(to_light, {32768, 32768, 32768})}, 1};
   renderer.configure(store.storage(), kW, kH);
   renderer.begin_frame(cam, lights, lr::Rgb8{16, 24, 48});
-  lr::DrawState state;
-  state.shading = lr::Shading::kFlat;
-  state.cull = lr::Cull::kBack;  // the default is kNone
+  // One colour per face, lit with its normal; back faces culled (the default is kNone).
+  const lr::DrawState state{.shading = lr::Shading::kFlat, .cull = lr::Cull::kBack};
   const lr::Mat4 model = lr::rotate_y(Fixed::from_int(static_cast<int32_t>(deg)));
-  if (renderer.draw(lr::Mesh{kCorners, {}, {}, {}, kTriangles}, model, kTeal, state) !=
-      lr::Status::kOk)
-    return 1;
+  const lr::Mesh cube{kCorners, {}, {}, {}, kTriangles};  // positions, normals, colours, uvs
+  if (renderer.draw(cube, model, kTeal, state) != lr::Status::kOk) return 1;
   if (!(sink.file = std::fopen(argc > 1 ? argv[1] : "cube.ppm", "wb"))) return 1;
   const lr::Status st = renderer.render(sink);
   const lr::FrameStats& s = renderer.stats();
