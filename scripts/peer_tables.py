@@ -7,7 +7,7 @@ output): one Markdown table per core from
 
 usage: scripts/peer_tables.py CORE RUN PROFILE PSNR
 
-CORE cortex-m4f gets the TGX figures (../shared/peer-scenes/README.md, Cortex-M4F) and the M4F
+CORE cortex-m4f gets the TGX figures (tests/data/peer/README.md, Cortex-M4F) and the M4F
 budgets of the issue "Fast on the chip" beside the counts; other cores get the counts alone.
 The stage mapping and the budgets are documented in scripts/peer_bench.sh's header.
 """

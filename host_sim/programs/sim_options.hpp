@@ -36,7 +36,7 @@ struct SimOptions {
 // --help, true and `help` set (the options after it are not read, none is checked).
 bool parse_sim_options(int argc, const char* const* argv, SimOptions& out, std::string& error);
 
-// The --help text (README.md shows it verbatim).
+// The --help text (docs/host-tools.md shows it verbatim: tests/cli).
 const char* sim_usage();
 
 }  // namespace lr::host

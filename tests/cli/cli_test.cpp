@@ -628,8 +628,8 @@ TEST(CliPhong, HelpListsEveryNewOption) {
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
 }
 
-TEST(CliPhong, ReadmeShowsTheHelpTextVerbatim) {
-  std::ifstream f(std::string(LR_SOURCE_DIR) + "/README.md");
+TEST(CliPhong, DocsShowTheHelpTextVerbatim) {
+  std::ifstream f(std::string(LR_SOURCE_DIR) + "/docs/host-tools.md");
   std::stringstream ss;
   ss << f.rdbuf();
   const std::string readme = ss.str(), start = "## lineraster-sim\n\n```\n";
