@@ -62,8 +62,9 @@ function(lr_install)
   install(TARGETS ${targets} ${programs} EXPORT lineraster-targets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-  # lr_package builds what `cmake --install` installs and nothing else (no tests, firmware or
-  # backends): scripts/demo.sh and the `use` presets build it, so their builds install as they are.
+  # lr_package builds what `cmake --install` installs (and what that links: lineraster-sim's
+  # display backends), no tests, benchmarks or firmware: scripts/demo.sh and the `use` build
+  # preset build it, so that their builds install as they are.
   if(PROJECT_IS_TOP_LEVEL)
     add_custom_target(lr_package)
     add_dependencies(lr_package ${targets} ${programs})
