@@ -6,6 +6,7 @@
 #include "lineraster/host_sim/programs/asset_writer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -32,6 +33,18 @@ constexpr std::string_view kReservedNames =
     "static_cast struct switch template this thread_local throw true try typedef typeid "
     "typename union unsigned using virtual void volatile wchar_t while xor xor_eq lr std "
     "int8_t int16_t int32_t int64_t uint8_t uint16_t uint32_t uint64_t size_t ptrdiff_t NULL ";
+
+// What the header includes: a header for every name it uses, the core's by the paths the package
+// installs (<prefix>/include/lineraster/...) and the build trees' include views give, so the
+// header compiles wherever lr::core is linked, whether through find_package, add_subdirectory or
+// FetchContent.
+constexpr std::array<std::string_view, 3> kStandardIncludes{"array", "cstddef", "cstdint"};
+constexpr std::array<std::string_view, 5> kCoreIncludes{
+    "lineraster/core/math/vec.hpp",          // lr::Vec3, lr::Normal16
+    "lineraster/core/output/color.hpp",      // lr::Rgb8
+    "lineraster/core/scene/material.hpp",    // lr::Material
+    "lineraster/core/scene/mesh.hpp",        // lr::Mesh
+    "lineraster/core/texture/texture.hpp"};  // lr::TexCoord, lr::Texture, lr::TexelFormat
 
 // An int32 as a C++ literal of type int that converts to int32_t without narrowing.
 std::string int_literal(int64_t v) {
@@ -124,11 +137,11 @@ void write_preamble(std::string& s, const AssetOptions& o, const AssetData& d) {
        "Q12.20\n"
        "// (v = 0 at the image's bottom), colours Q1.15, shininess Q8.8, texture rows bottom row "
        "first.\n"
-       "#pragma once\n\n"
-       "#include <array>\n#include <cstddef>\n#include <cstdint>\n\n"
-       "#include \"lineraster/core/scene/material.hpp\"\n#include "
-       "\"lineraster/core/scene/mesh.hpp\"\n#include "
-       "\"core/texture/texture.hpp\"\n\n";
+       "#pragma once\n\n";
+  for (std::string_view header : kStandardIncludes) s += "#include <" + std::string(header) + ">\n";
+  s += "\n";
+  for (std::string_view header : kCoreIncludes) s += "#include \"" + std::string(header) + "\"\n";
+  s += "\n";
 }
 
 // Draw i's arrays, material and mesh.
