@@ -10,10 +10,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <limits>
 
 #include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/formats/output_file.hpp"
 #include "lineraster/host_sim/scene/locality_order.hpp"
 #include "lineraster/host_sim/scene/mesh_prep.hpp"
 
@@ -371,31 +371,13 @@ bool write_asset_header(const AssetOptions& o, const std::string& out_path, std:
   if (!load_asset(o, d, error)) return false;
   if (warnings != nullptr) *warnings = d.warnings;
   const std::string text = asset_header_text(o, d);
-  if (out_path.empty() || out_path.find('\0') != std::string::npos)
-    return fail(error, "--out: invalid file name");
-  // The header never replaces what it was made from (the same file by any name or link).
-  for (const std::string& in : d.inputs) {
-    std::error_code ec;
-    if (std::filesystem::equivalent(out_path, in, ec))
-      return fail(error, out_path + ": is an input (" + in + "): refusing to overwrite it");
-  }
-  const std::string tmp = out_path + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) return fail(error, out_path + ": cannot write: " + std::strerror(errno));
-  bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  const int write_errno = errno;
-  ok = (std::fclose(f) == 0) && ok;
-  if (!ok) {
-    std::remove(tmp.c_str());
-    return fail(error,
-                out_path + ": cannot write: " + std::strerror(write_errno ? write_errno : EIO));
-  }
-  if (std::rename(tmp.c_str(), out_path.c_str()) != 0) {
-    const int e = errno;
-    std::remove(tmp.c_str());
-    return fail(error, out_path + ": cannot rename the temporary file: " + std::strerror(e));
-  }
-  return true;
+  // Only a regular file, never one of the files the header is made from (by any name or link).
+  if (!check_output(out_path, d.inputs, error)) return false;
+  return write_output(out_path, error, [&](std::FILE* f, std::string& what) {
+    if (std::fwrite(text.data(), 1, text.size(), f) == text.size()) return true;
+    what = std::string("write failed: ") + std::strerror(errno != 0 ? errno : EIO);
+    return false;
+  });
 }
 
 }  // namespace lr::host
