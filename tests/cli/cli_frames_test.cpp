@@ -92,15 +92,6 @@ size_t drawn(const ImageRgb8& img) {
   return n;
 }
 
-size_t distinct_colours(const ImageRgb8& img) {
-  std::vector<uint32_t> c;
-  for (size_t p = 0; p < img.rgb.size() / 3; ++p)
-    c.push_back(uint32_t{img.rgb[3 * p]} << 16 | uint32_t{img.rgb[3 * p + 1]} << 8 |
-                img.rgb[3 * p + 2]);
-  std::sort(c.begin(), c.end());
-  return static_cast<size_t>(std::unique(c.begin(), c.end()) - c.begin());
-}
-
 // ---- --version ----
 
 // Both tools print the version of project(VERSION) in the top-level CMakeLists.txt, and the
@@ -315,7 +306,7 @@ TEST(CliFrames, BadPatternsAreOneLineAndWriteNothing) {
        "--out-pattern: bad value 'f%d.jpg' (the file name must end in .png or .ppm)"},
       {"--out-pattern f%d.png", "--out-pattern needs --frames N"},
       {"--frames 2 --gif-delay 5", "--gif-delay needs --out FILE.gif"},
-      {"--frames 2 --out a.gif --gif-delay 1", "--gif-delay: bad value '1' (2..6000)"},
+      {"--frames 2 --gif-delay 1 --out a.gif", "--gif-delay: bad value '1' (2..6000)"},
       {"--out a.jpg", "--out: the file name must end in .png, .ppm or .gif"},
   };
   for (const Case& c : cases) {
@@ -329,6 +320,15 @@ TEST(CliFrames, BadPatternsAreOneLineAndWriteNothing) {
 // ---- --out FILE.gif ----
 
 #ifdef LR_HAVE_GIF
+
+size_t distinct_colours(const ImageRgb8& img) {
+  std::vector<uint32_t> c;
+  for (size_t p = 0; p < img.rgb.size() / 3; ++p)
+    c.push_back(uint32_t{img.rgb[3 * p]} << 16 | uint32_t{img.rgb[3 * p + 1]} << 8 |
+                img.rgb[3 * p + 2]);
+  std::sort(c.begin(), c.end());
+  return static_cast<size_t>(std::unique(c.begin(), c.end()) - c.begin());
+}
 
 // A GIF decoded with giflib: each frame's RGB and delay, and whether it loops for ever.
 struct DecodedGif {
