@@ -1,7 +1,7 @@
 // The files the host tools write: where they may write and how. One home for lineraster-sim,
 // lineraster-asset and every image writer (image_io.hpp), so that the rules cannot differ.
 //
-// The rules (docs/tools.md#output-files):
+// The rules (docs/host-tools.md#output-files):
 //   - A tool writes regular files and nothing else. The output is a new file, or an existing
 //     regular file replaced atomically: the content goes to a temporary file created beside the
 //     target (O_CREAT | O_EXCL under a random name, so never a FIFO or a link that was already

@@ -47,7 +47,7 @@ struct SimOptions {
 // none is checked).
 bool parse_sim_options(int argc, const char* const* argv, SimOptions& out, std::string& error);
 
-// The --help text (docs/tools.md shows it verbatim).
+// The --help text (docs/host-tools.md shows it verbatim: tests/cli).
 const char* sim_usage();
 
 }  // namespace lr::host

@@ -629,6 +629,20 @@ TEST(CliPhong, HelpListsEveryNewOption) {
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
 }
 
+TEST(CliPhong, DocsShowTheHelpTextVerbatim) {
+  std::ifstream f(std::string(LR_SOURCE_DIR) + "/docs/host-tools.md");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string readme = ss.str(), start = "## lineraster-sim\n\n```\n";
+  const size_t a = readme.find(start);
+  ASSERT_NE(a, std::string::npos);
+  const size_t b = readme.find("```\n", a + start.size());
+  ASSERT_NE(b, std::string::npos);
+  Outcome r = run("--help");
+  ASSERT_EQ(r.status, 0);
+  EXPECT_EQ(readme.substr(a + start.size(), b - a - start.size()), r.out);
+}
+
 // Phong renders: an image of the requested size whose coverage and depth are Gouraud's (depth
 // does not depend on how a pixel is lit), for every per-pixel option. The colours are the core's
 // business (tests/core); here only that each option reaches a frame.
