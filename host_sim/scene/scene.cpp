@@ -337,14 +337,20 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
   Rgb8 bg = to_rgb8(to_color15(o.background));
   renderer->begin_frame(cam, lights, bg);
 
-  Fixed scale, rot;
+  Fixed scale, rot_y, rot_x, rot_z;
   Vec3 tr;
-  if (!to_fixed(o.model_scale, scale) || !to_fixed(o.model_rotate_y, rot) ||
+  if (!to_fixed(o.model_scale, scale) || !to_fixed(o.model_rotate_y, rot_y) ||
+      !to_fixed(o.model_rotate_x, rot_x) || !to_fixed(o.model_rotate_z, rot_z) ||
       !fixed_vec(o.model_translate, tr)) {
     error = "model: a transform value is not finite or outside the core's range";
     return false;
   }
-  Mat4 model = translate(tr) * rotate_y(rot) * lr::scale(scale);
+  // Turned about z, then x, then y (SceneOptions); a rotation of 0 is left out, so a frame
+  // without x and z rotations is the same matrix, bit for bit, as before they existed.
+  Mat4 model = translate(tr) * rotate_y(rot_y);
+  if (rot_x.raw != 0) model = model * rotate_x(rot_x);
+  if (rot_z.raw != 0) model = model * rotate_z(rot_z);
+  model = model * lr::scale(scale);
   DrawState st;
   st.shading = o.shading;
   st.lighting = !o.unlit;

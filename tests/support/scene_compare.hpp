@@ -24,7 +24,10 @@ inline ref::RefParams ref_params(const host::HostMesh& mesh, const host::SceneOp
   ref::Mat4d fit =
       ref::mul(ref::scale({mt.fit_scale, mt.fit_scale, mt.fit_scale}),
                ref::translate({-mt.fit_center[0], -mt.fit_center[1], -mt.fit_center[2]}));
-  p.model = ref::mul(ref::mul(ref::translate(o.model_translate), ref::rotate_y(o.model_rotate_y)),
+  const ref::Mat4d rotation =
+      ref::mul(ref::rotate_y(o.model_rotate_y),
+               ref::mul(ref::rotate_x(o.model_rotate_x), ref::rotate_z(o.model_rotate_z)));
+  p.model = ref::mul(ref::mul(ref::translate(o.model_translate), rotation),
                      ref::mul(ref::scale({o.model_scale, o.model_scale, o.model_scale}), fit));
   p.view = ref::look_at(o.eye, o.target, o.up);
   p.projection = ref::perspective(o.fovy, double(o.width) / o.height, o.near, o.far);
