@@ -55,11 +55,11 @@ class FrameBufferSink final : public StripSink<PF> {
   using Pixel = typename PF::Storage;
   static_assert(sizeof(Pixel) == PF::kBytesPerPixel);
 
-  // `strip`: used only when the frame buffer's rows are not packed for the viewport; may be
-  // empty otherwise.
-  explicit FrameBufferSink(const FrameBuffer& frame, std::span<Pixel> strip = {}, uint16_t x = 0,
-                           uint16_t y = 0)
-      : frame_(frame), strip_(strip), x_(x), y_(y) {}
+  // The viewport goes at (x, y) of `frame_buffer`. `strip_buffer` is used only when the frame
+  // buffer's rows are not packed for the viewport; it may be empty otherwise.
+  explicit FrameBufferSink(const FrameBuffer& frame_buffer, std::span<Pixel> strip_buffer = {},
+                           uint16_t x = 0, uint16_t y = 0)
+      : frame_(frame_buffer), strip_(strip_buffer), x_(x), y_(y) {}
   FrameBufferSink(const FrameBufferSink&) = delete;
   FrameBufferSink& operator=(const FrameBufferSink&) = delete;
 
@@ -95,9 +95,9 @@ class FrameBufferSink final : public StripSink<PF> {
     return Status::kOk;
   }
 
-  Status submit(const StripRect& rect, StripLease<PF>&& strip) override {
+  Status submit(const StripRect& rect, StripLease<PF>&& lease) override {
     std::span<Pixel> px;
-    this->take_back(strip, px);
+    this->take_back(lease, px);
     if (!in_frame_ || !lent_) return Status::kBusy;
     lent_ = false;
     if (px.data() != lent_data_ || !next_strip(rect) ||
@@ -135,10 +135,10 @@ class FrameBufferSink final : public StripSink<PF> {
   }
 
   // Another frame buffer, or another place in it, from the next frame on (every strip drawn).
-  void set_frame(const FrameBuffer& frame, std::span<Pixel> strip = {}, uint16_t x = 0,
-                 uint16_t y = 0) {
-    frame_ = frame;
-    strip_ = strip;
+  void set_frame(const FrameBuffer& frame_buffer, std::span<Pixel> strip_buffer = {},
+                 uint16_t x = 0, uint16_t y = 0) {
+    frame_ = frame_buffer;
+    strip_ = strip_buffer;
     x_ = x;
     y_ = y;
     invalidate();
