@@ -67,10 +67,13 @@ static lr::Renderer<lr::Rgb565, kStrip> renderer;
 
 int main(int argc, char** argv) {
   std::fill(canvas.begin(), canvas.end(), lr::Rgb565::encode({200, 200, 200}));  // the GUI
+  // readme:begin framebuffer
   // The canvas as bytes, its stride in bytes (rows packed: width x 2), its size in pixels.
   const lr::FrameBuffer frame{std::as_writable_bytes(std::span(canvas)),
                               kCanvasW * sizeof(uint16_t), kCanvasW, kCanvasH};
+  // The renderer's viewport goes at (kX, kY) of it; strips are drawn in strip_pixels, then copied.
   lr::FrameBufferSink<lr::Rgb565> sink(frame, strip_pixels, kX, kY);
+  // readme:end framebuffer
 
   lr::Camera cam;
   cam.eye = {Fixed::from_double(2.5), Fixed::from_int(2), Fixed::from_double(3.5)};
