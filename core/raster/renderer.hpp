@@ -1,11 +1,12 @@
 // The renderer: a front end (vertex stage and binning) and a strip loop, composed.
 //
-// Renderer<PF, K, kSpans>: PF the strip's pixel format (Rgb565Be, Rgb888), K the strip height in
-// rows (1..32, compile time), kSpans the span states it links routines for (span_state.hpp:
-// kAllSpans by default; draws outside the set are refused). draw() and draw_screen() go to the
-// front end (core/binning/front_end.hpp), which bins the frame; render() hands the binned frame
-// to the strip loop (core/raster/strip_loop.hpp), which rasterizes it strip by strip into the
-// sink. RAM: the caller's FrameStorage; nothing is allocated, nothing holds a frame.
+// Renderer<PF, K, kSpans>: PF the strip's pixel format (core/output/pixel_format.hpp: Rgb565Be,
+// Rgb565, Xrgb8888, Rgb888), K the strip height in rows (1..32, compile time), kSpans the span
+// states it links routines for (span_state.hpp: kAllSpans by default; draws outside the set are
+// refused). draw() and draw_screen() go to the front end (core/binning/front_end.hpp), which
+// bins the frame; render() hands the binned frame to the strip loop (core/raster/strip_loop.hpp),
+// which rasterizes it strip by strip into the sink. RAM: the caller's FrameStorage; nothing is
+// allocated, nothing holds a frame.
 #pragma once
 
 #include <algorithm>
@@ -163,11 +164,14 @@ Status Renderer<PF, K, kSpans>::render(StripSink<PF>& sink, DepthSink* depth_sin
 }
 
 #ifdef LR_EXTERN_RENDERERS
-// Hosted builds (core/CMakeLists.txt) link the renderers with every span routine, for both
-// pixel formats and every strip height lineraster-sim offers, from lr_core
-// (raster/renderer_instances_*.cpp) instead of compiling the strip loop and all span routines
-// again in each program. Bare-metal builds instantiate where they are used, so that render()
-// can be inlined into its caller and the sink's calls made direct.
+// Hosted builds (core/CMakeLists.txt) link the renderers with every span routine, for the two
+// pixel formats of the host tools (Rgb565Be, Rgb888) and every strip height lineraster-sim
+// offers, from lr_core (raster/renderer_instances_*.cpp) instead of compiling the strip loop and
+// all span routines again in each program. Bare-metal builds instantiate where they are used, so
+// that render() can be inlined into its caller and the sink's calls made direct. The frame-buffer
+// formats (Rgb565, Xrgb8888) are instantiated where they are used in every build: no tool of the
+// project uses them, and their 12 instances would add some 40 s of compilation (Release) to
+// every hosted build of lr_core for programs that use one or two.
 extern template class Renderer<Rgb565Be, 1>;
 extern template class Renderer<Rgb565Be, 2>;
 extern template class Renderer<Rgb565Be, 4>;
