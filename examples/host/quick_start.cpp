@@ -3,7 +3,7 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
-#include <lineraster/lineraster.hpp>  // the core: renderer, storage, camera, meshes
+#include <lineraster/lineraster.hpp>  // the core: renderer, storage, camera, meshes, sinks
 
 using lr::Fixed;  // Q16.16; from_int(n) and ratio(n, d) at run time, from_double at compile time
 constexpr int kW = 160, kH = 120, kStrip = 8;
@@ -23,27 +23,6 @@ constexpr lr::Material kTeal{.ambient = {0, 6554, 6554},
                              .specular = {16384, 16384, 16384},
                              .shininess_q8 = 40 << 8};
 
-// Writes the strips as they come (top to bottom, full width) into a binary PPM file.
-struct PpmSink final : lr::StripSink<lr::Rgb888> {
-  std::FILE* file = nullptr;
-  std::array<lr::Rgb8, kW * kStrip> strip{};
-  lr::Status begin_frame(uint16_t w, uint16_t h) override {
-    return std::fprintf(file, "P6 %d %d 255\n", w, h) > 0 ? lr::Status::kOk : kError;
-  }
-  lr::Status acquire(lr::StripLease<lr::Rgb888>& out) override {
-    out = lend(strip.data(), strip.size(), 0);
-    return lr::Status::kOk;
-  }
-  lr::Status submit(const lr::StripRect& r, lr::StripLease<lr::Rgb888>&& lease) override {
-    std::span<lr::Rgb8> px;
-    take_back(lease, px);
-    const size_t n = size_t{r.width} * r.height;  // an Rgb8 is the file's 3 bytes
-    return std::fwrite(px.data(), 3, n, file) == n ? lr::Status::kOk : kError;
-  }
-  lr::Status end_frame() override { return lr::Status::kOk; }
-  static constexpr lr::Status kError = lr::Status::kDisplayError;
-};
-
 // Every store of the frame in one static object (flat-shaded draws need triangle_colors).
 constexpr lr::FrameCapacities kCaps{.width = kW,
                                     .height = kH,
@@ -54,7 +33,7 @@ constexpr lr::FrameCapacities kCaps{.width = kW,
                                     .triangle_colors = 12};
 static lr::StaticFrameStorage<kCaps> store;
 static lr::Renderer<lr::Rgb888, kStrip> renderer;
-static PpmSink sink;
+static std::array<lr::Rgb8, kW * kH> image;  // the frame: 3 bytes (R, G, B) a pixel
 
 int main(int argc, char** argv) {
   char* end = nullptr;  // the angle: known only at run time
@@ -75,10 +54,14 @@ int main(int argc, char** argv) {
   const lr::Mat4 model = lr::rotate_y(Fixed::from_int(static_cast<int32_t>(deg)));
   const lr::Mesh cube{kCorners, {}, {}, {}, kTriangles};  // positions, normals, colours, uvs
   if (renderer.draw(cube, model, kTeal, state) != lr::Status::kOk) return 1;
-  if (!(sink.file = std::fopen(argc > 1 ? argv[1] : "cube.ppm", "wb"))) return 1;
+  // The strips land in `image` (rows kW pixels apart); any frame buffer or canvas will do.
+  lr::FrameBufferSink<lr::Rgb888> sink({std::as_writable_bytes(std::span(image)), kW * 3, kW, kH});
   const lr::Status st = renderer.render(sink);
   const lr::FrameStats& s = renderer.stats();
   std::printf("quick_start: %ld degrees, %u triangles, %u culled, %u pixels\n", deg, s.triangles_in,
               s.culled_backface, s.pixels_written);
-  return std::fclose(sink.file) == 0 && st == lr::Status::kOk ? 0 : 1;
+  std::FILE* f = std::fopen(argc > 1 ? argv[1] : "cube.ppm", "wb");
+  const bool written = f && std::fprintf(f, "P6 %d %d 255\n", kW, kH) > 0 &&
+                       std::fwrite(image.data(), 3, image.size(), f) == image.size();
+  return (f && std::fclose(f) == 0 && written && st == lr::Status::kOk) ? 0 : 1;
 }
