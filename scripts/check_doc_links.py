@@ -2,9 +2,10 @@
 """Checks the links of the project's Markdown files: every relative link must name a file of the
 repository, and every #anchor a heading of its target (GitHub's slugs: lower case, punctuation
 dropped, spaces to hyphens). Also flags `tests/...::Suite.Name` references whose test does not
-exist in that file, so that docs/raster-rules.md keeps naming real tests, and checks that a fenced
-code block announced by `<!-- file: PATH -->` on the line before it is that file, byte for byte
-(the README's example cannot drift from examples/).
+exist in that file, so that docs/raster-rules.md keeps naming real tests; a document holding
+`<!-- every test of: PATH -->` must also name every test of PATH (docs/api-errors.md: one row per
+test, none left out). Checks that a fenced code block announced by `<!-- file: PATH -->` on the
+line before it is that file, byte for byte (the README's example cannot drift from examples/).
 
 Usage: scripts/check_doc_links.py [FILE.md ...]   (default: README.md and docs/**/*.md)
 Exit status 1 on any broken link or test reference, with one line per problem.
@@ -18,6 +19,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LINK = re.compile(r"(?<!!)\[[^\]]*\]\(([^)\s]+)\)|!\[[^\]]*\]\(([^)\s]+)\)")
 INCLUDED = re.compile(r"<!-- file: ([\w/.-]+) -->\n```\w*\n(.*?)^```$", re.S | re.M)
 TEST_REF = re.compile(r"`(tests/[\w/.-]+\.cpp)::(\w+)\.(\w+)`|`::(\w+)\.(\w+)`")
+EVERY_TEST = re.compile(r"<!-- every test of: ([\w/.-]+\.cpp) -->")
 
 
 def slug(heading):
@@ -71,6 +73,7 @@ def check(md):
             problems.append(f"{os.path.relpath(md, ROOT)}: no heading #{anchor} in {path or 'itself'}")
     # Test references: `tests/x_test.cpp::Suite.Name`, and `::Suite.Name` for the last file named.
     last = None
+    named = set()
     for m in TEST_REF.finditer(text):
         if m.group(1):
             last, suite, name = m.group(1), m.group(2), m.group(3)
@@ -78,11 +81,22 @@ def check(md):
             suite, name = m.group(4), m.group(5)
         if last is None:
             continue
+        named.add((last, suite, name))
         found = tests_in(os.path.join(ROOT, last))
         if found is None:
             problems.append(f"{os.path.relpath(md, ROOT)}: no test file {last}")
         elif (suite, name) not in found:
             problems.append(f"{os.path.relpath(md, ROOT)}: no test {suite}.{name} in {last}")
+    # Files whose every test the document must name.
+    for path in EVERY_TEST.findall(text):
+        found = tests_in(os.path.join(ROOT, path))
+        if found is None:
+            problems.append(f"{os.path.relpath(md, ROOT)}: no test file {path}")
+            continue
+        for suite, name in sorted(found):
+            if (path, suite, name) not in named:
+                problems.append(f"{os.path.relpath(md, ROOT)}: {path}'s test {suite}.{name} "
+                                "is not named here")
     return problems
 
 
