@@ -2,13 +2,15 @@
 """Checks the links of the project's Markdown files: every relative link must name a file of the
 repository, and every #anchor a heading of its target (GitHub's slugs: lower case, punctuation
 dropped, spaces to hyphens). Also flags `tests/...::Suite.Name` references whose test does not
-exist in that file, so that docs/raster-rules.md keeps naming real tests; a document holding
-`<!-- every test of: PATH -->` must also name every test of PATH (docs/api-errors.md: one row per
-test, none left out). Checks that a fenced code block announced by `<!-- file: PATH -->` on the
-line before it is that file, byte for byte (the README's example cannot drift from examples/).
+exist in that file, so that docs/raster-rules.md keeps naming real tests, and checks that a fenced
+code block announced by `<!-- file: PATH -->` on the line before it is that file, byte for byte
+(the README's example cannot drift from examples/).
 
 Usage: scripts/check_doc_links.py [FILE.md ...]   (default: README.md and docs/**/*.md)
 Exit status 1 on any broken link or test reference, with one line per problem.
+
+A document holding `<!-- every test of: PATH -->` must also name every test of PATH
+(docs/api-errors.md: one row per test of tests/core/api_errors_test.cpp, none left out).
 """
 import glob
 import os
