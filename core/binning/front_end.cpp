@@ -761,9 +761,32 @@ void FrontEnd::replay(uint8_t index) {
   run_mesh(index, c.mesh, c.model, material, state, plan, pl);
 }
 
+void FrontEnd::save_binning_counts() {
+  const FrameStats& s = stats_;
+  band_before_ = {
+      s.culled_backface,  s.culled_zero_area,        s.culled_offscreen,          s.clipped_away,
+      s.rejected_invalid, s.dropped_vertex_capacity, s.dropped_triangle_capacity, s.binned_inputs,
+      s.clipped,          s.triangles_binned,        s.vertices_transformed};
+}
+
+void FrontEnd::restore_binning_counts() {
+  const BinningCounts& b = band_before_;
+  FrameStats& s = stats_;
+  s.culled_backface = b.culled_backface;
+  s.culled_zero_area = b.culled_zero_area;
+  s.culled_offscreen = b.culled_offscreen;
+  s.clipped_away = b.clipped_away;
+  s.rejected_invalid = b.rejected_invalid;
+  s.dropped_vertex_capacity = b.dropped_vertex_capacity;
+  s.dropped_triangle_capacity = b.dropped_triangle_capacity;
+  s.binned_inputs = b.binned_inputs;
+  s.clipped = b.clipped;
+  s.triangles_binned = b.triangles_binned;
+  s.vertices_transformed = b.vertices_transformed;
+}
+
 Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
-  FrameStats& before = band_before_;
-  before = stats_;
+  save_binning_counts();
   banding_ = true;
   overflow_ = false;
   band_r0_ = s0 * strip_height_;
@@ -778,7 +801,7 @@ Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
   overflow_ = true;  // the frame still needs bands
   stats_.triangles_binned -= band_carried_;
   if (!fit && !keep_partial) {
-    stats_ = before;
+    restore_binning_counts();
     ++stats_.band_retries;
     return Status::kCapacity;
   }
@@ -788,7 +811,7 @@ Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
     const uint32_t binned = stats_.triangles_binned, transformed = stats_.vertices_transformed;
     const uint32_t dropped_triangles = stats_.dropped_triangle_capacity;
     const uint32_t dropped_vertices = stats_.dropped_vertex_capacity;
-    stats_ = before;
+    restore_binning_counts();
     stats_.triangles_binned = binned;
     stats_.vertices_transformed = transformed;
     stats_.dropped_triangle_capacity = dropped_triangles;

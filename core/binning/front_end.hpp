@@ -262,9 +262,20 @@ class FrontEnd {
   // (vertices are compacted per draw), the band's rows, and the refused draws' triangles.
   bool overflow_ = false, banding_ = false;
   int32_t band_r0_ = 0, band_r1_ = 0;
-  uint32_t band_carried_ = 0;       // the band's triangles from above it
-  bool band_dropped_ = false;       // the band is one strip and dropped triangles
-  FrameStats band_before_{};        // the statistics before the band (here, not on the stack)
+  uint32_t band_carried_ = 0;  // the band's triangles from above it
+  bool band_dropped_ = false;  // the band is one strip and dropped triangles
+  // The statistics binning changes (nothing else changes while a band is binned), as they were
+  // before the band: kept here, not on the stack, and not the whole FrameStats (RAM: the
+  // micro:bit's 16 KB holds a renderer with a few bytes to spare).
+  struct BinningCounts {
+    uint32_t culled_backface, culled_zero_area, culled_offscreen, clipped_away, rejected_invalid,
+        dropped_vertex_capacity, dropped_triangle_capacity, binned_inputs, clipped,
+        triangles_binned, vertices_transformed;
+  };
+  BinningCounts band_before_{};
+  // Out of line: inlined, they widened bin_band's frame, which is on the deepest stack path.
+  [[gnu::noinline]] void save_binning_counts();
+  [[gnu::noinline]] void restore_binning_counts();
   size_t draw_first_triangle_ = 0;  // the running draw's first binned triangle
   // Working memory of one draw, kept here rather than on the stack (the worst-case stack is a
   // budget of its own, and these are the largest locals of the deepest path): the draw's
