@@ -12,6 +12,9 @@ repository (`../shared/x.md`), in a link, in backticks or in the text.
 
 Usage: scripts/check_doc_links.py [FILE.md ...]   (default: README.md and docs/**/*.md)
 Exit status 1 on any broken link or test reference, with one line per problem.
+
+A document holding `<!-- every test of: PATH -->` must also name every test of PATH
+(docs/api-errors.md: one row per test of tests/core/api_errors_test.cpp, none left out).
 """
 import glob
 import os
@@ -25,6 +28,7 @@ INCLUDED = re.compile(r"<!-- file: ([\w/.-]+)(?: region: ([\w-]+))? -->\n```\w*\
 CPP_BLOCK = re.compile(r"^```cpp$", re.M)
 OUTSIDE = re.compile(r"(?<![\w./-])((?:\.\./)+[\w.-][\w./-]*)")
 TEST_REF = re.compile(r"`(tests/[\w/.-]+\.cpp)::(\w+)\.(\w+)`|`::(\w+)\.(\w+)`")
+EVERY_TEST = re.compile(r"<!-- every test of: ([\w/.-]+\.cpp) -->")
 
 
 def slug(heading):
@@ -78,6 +82,7 @@ def check(md):
             problems.append(f"{os.path.relpath(md, ROOT)}: no heading #{anchor} in {path or 'itself'}")
     # Test references: `tests/x_test.cpp::Suite.Name`, and `::Suite.Name` for the last file named.
     last = None
+    named = set()
     for m in TEST_REF.finditer(text):
         if m.group(1):
             last, suite, name = m.group(1), m.group(2), m.group(3)
@@ -85,11 +90,22 @@ def check(md):
             suite, name = m.group(4), m.group(5)
         if last is None:
             continue
+        named.add((last, suite, name))
         found = tests_in(os.path.join(ROOT, last))
         if found is None:
             problems.append(f"{os.path.relpath(md, ROOT)}: no test file {last}")
         elif (suite, name) not in found:
             problems.append(f"{os.path.relpath(md, ROOT)}: no test {suite}.{name} in {last}")
+    # Files whose every test the document must name.
+    for path in EVERY_TEST.findall(text):
+        found = tests_in(os.path.join(ROOT, path))
+        if found is None:
+            problems.append(f"{os.path.relpath(md, ROOT)}: no test file {path}")
+            continue
+        for suite, name in sorted(found):
+            if (path, suite, name) not in named:
+                problems.append(f"{os.path.relpath(md, ROOT)}: {path}'s test {suite}.{name} "
+                                "is not named here")
     return problems
 
 
