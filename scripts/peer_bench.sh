@@ -6,7 +6,8 @@
 # equals the host build's (lr_peer_host), byte for byte; then attributes each frame's
 # instructions to source folders (scripts/icount_profile.py --by folder) and prints one Markdown
 # table per core (scripts/peer_tables.py), with the PSNR of each frame against the double
-# reference (lr_peer_psnr, host).
+# reference and, for the RGB565 frame, against Mesa with the pixels covered by one of the two only
+# (lr_peer_psnr, host; tests/firmware_host/peer_figures.hpp says how they are measured).
 # Benchmark figures: printed, never compared with a threshold. Builds nothing: every program must
 # have been built (the message says which target is missing).
 #
@@ -97,7 +98,7 @@ for tree in "${trees[@]}"; do
   echo "peer_bench: $core: profiles of every frame ($((SECONDS - t0)) s)"
   table="$out/$core.md"
   {
-    echo "**$core** (lr_peer on QEMU $machine), 320x240 RGB565, strips of 8 rows, default settings (frame = begin_frame + draw + render; the sink does no per-pixel work). Each stage: instructions per frame (per unit$([[ $core == cortex-m4f ]] && echo "; the M4F budget")). PSNR: the core's RGB888 frame against the double reference over the pixels both cover (host)."
+    echo "**$core** (lr_peer on QEMU $machine), 320x240 RGB565, strips of 8 rows, default settings (frame = begin_frame + draw + render; the sink does no per-pixel work). Each stage: instructions per frame (per unit$([[ $core == cortex-m4f ]] && echo "; the M4F budget")). PSNR: the core's RGB888 frame against the double reference over the pixels both cover (host). vs Mesa: the RGB565 frame against Mesa's RGB888 frame over the whole frame (the background as the panel shows it), and the pixels covered by one of the two only (host)."
     echo
     python3 scripts/peer_tables.py "$core" "$out/$core.run.txt" "$out/$core.profile.txt" "$out/psnr.txt"
   } >"$table" || fail "could not make the tables ($tree)"
