@@ -75,7 +75,7 @@ cmake --build "$work/install-build" -j"$jobs" --target lr_package >> "$work/inst
 built=$(grep -oE "Built target [A-Za-z0-9_-]+" "$work/install.log" | cut -d' ' -f3 | sort | tr '\n' ' ')
 for t in $built; do
   case $t in
-    lr_core|lr_hal|lr_host|lr_asset_writer|lr_display_spec|lr_hal_*) ;;  # lr_hal_*: backends
+    lr_core|lr_hal|lr_host|lr_asset_writer|lr_frame_files|lr_display_spec|lr_hal_*) ;;  # lr_hal_*: backends
     lineraster-sim|lineraster-asset|lr_package) ;;
     *) fail "install: lr_package built $t (all: $built)" ;;
   esac
