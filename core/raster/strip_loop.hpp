@@ -21,13 +21,13 @@
 #include "lineraster/core/output/frame_stats.hpp"
 #include "lineraster/core/output/status.hpp"
 #include "lineraster/core/output/strip_sink.hpp"
+#include "lineraster/core/raster/legacy_rows.hpp"
+#include "lineraster/core/raster/row_loop.hpp"
 #include "lineraster/core/raster/strip_fill.hpp"
 #include "lineraster/core/setup/active_triangle.hpp"
+#include "lineraster/core/setup/triangle_rows.hpp"
 #include "lineraster/core/setup/triangle_setup.hpp"
-#include "lineraster/core/span/phong_span.hpp"
-#include "lineraster/core/span/span.hpp"
 #include "lineraster/core/span/span_state.hpp"
-#include "lineraster/core/span/tex_span.hpp"
 
 namespace lr {
 
@@ -92,7 +92,8 @@ class StripLoop {
   void skip_strip(int strip, int y0, int rows);
   void carry_into(int strip, uint16_t carried);
   void resolve_fetchers();
-  void raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows);
+  StripRows strip_rows(Pixel* pixels, int y0, int rows) const;
+  void add_counts(const StripRows& s);
   void retire(int next_row);
 
   // Whether the set links the affine colour routine, without and with depth: only then may a
@@ -181,8 +182,12 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
     } else {
       fill_pixels(depth.data(), count, uint16_t{0xFFFF});
       const uint16_t* order = storage_.active_index.data();
-      for (size_t i = 0; i < active_count_; ++i)
-        raster_triangle(storage_.active[order[i]], px.data(), y0, rows);
+      StripRows sr = strip_rows(px.data(), y0, rows);
+      for (size_t i = 0; i < active_count_; ++i) {
+        const ActiveTriangle& t = storage_.active[order[i]];
+        t.rows(t, sr);
+      }
+      add_counts(sr);
       retire(y0 + rows);
     }
     if (depth_sink) depth_sink->on_depth(rect, depth);
@@ -193,17 +198,13 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
   return Status::kOk;
 }
 
-// A strip whose inputs did not change: the triangles active in it are stepped over its rows
-// without drawing; those that start in it and end in it are never set up, those that go on are
-// handed to the next strip's bucket (in submission order), to be set up at that strip's first row.
+// A strip whose inputs did not change: the triangles active in it stay as they are (a visit of
+// the next strip picks them up at its own first row); those that start in it and end in it are
+// never set up, those that go on are handed to the next strip's bucket (in submission order), to
+// be set up at that strip's first row.
 template <class PF, int K, SpanSet kSpans>
 void StripLoop<PF, K, kSpans>::skip_strip(int strip, int y0, int rows) {
   const int next_row = y0 + rows;
-  const uint16_t* order = storage_.active_index.data();
-  for (size_t i = 0; i < active_count_; ++i) {
-    ActiveTriangle& t = storage_.active[order[i]];
-    walk_rows(t, std::min<int>(t.last_row, next_row - 1), [](int) {});
-  }
   retire(next_row);
 
   const std::span<BinnedTriangle> tris = frame_.triangles;
@@ -292,7 +293,12 @@ void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, i
         free_slots[free_count_++] = slot;
       node = n;
     }
-    for (size_t i = 0; i < batch; ++i) raster_triangle(storage_.active[order[i]], pixels, y0, rows);
+    StripRows sr = strip_rows(pixels, y0, rows);
+    for (size_t i = 0; i < batch; ++i) {
+      const ActiveTriangle& t = storage_.active[order[i]];
+      t.rows(t, sr);
+    }
+    add_counts(sr);
     for (size_t i = 0; i < batch; ++i) {
       const ActiveTriangle& t = storage_.active[order[i]];
       if (t.last_row >= next_row) {
@@ -373,13 +379,11 @@ template <class PF, int K, SpanSet kSpans>
   const BinnedTriangle& bt = frame_.triangles[node];
   const ScreenVertex* v[3];
   for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
-  int32_t ymin = std::min({v[0]->y, v[1]->y, v[2]->y});
-  int32_t ymax = std::max({v[0]->y, v[1]->y, v[2]->y});
-  const int32_t first = std::max<int32_t>({first_row_below(ymin), 0, strip * K});
-  const int32_t last = std::min<int32_t>(last_row_at_or_above(ymax), frame_.height - 1);
+  sort_by_y(v);
+  const int32_t first = std::max<int32_t>({first_row_below(v[0]->y), 0, strip * K});
+  const int32_t last = std::min<int32_t>(last_row_at_or_above(v[2]->y), frame_.height - 1);
   ActiveTriangle& t = storage_.active[slot];
-  setup_edges(v, first, last, t);
-  if (!has_pixels(t, t.last_row, frame_.width)) {
+  if (!setup_rows(v, first, last, frame_.width, t)) {
     ++stats_->triangles_without_pixels;
     return false;
   }
@@ -389,13 +393,21 @@ template <class PF, int K, SpanSet kSpans>
   // draws when there are none). A renderer without those spans sets up no such planes.
   constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
-  if constexpr (kTexture)
-    t.ext = dr.texture != nullptr || dr.phong ? &storage_.active_extra[slot] : nullptr;
-  setup_planes<kTexture, kPhong>(setup_input(node, bt, dr), t);
+  const bool legacy = kTexture && (dr.texture != nullptr || dr.phong);
+  t.ext = legacy ? &storage_.active_extra[slot] : nullptr;
+  const ColorPlanes colors = setup_planes<kTexture, kPhong>(setup_input(node, bt, dr), t);
+  if (legacy) {
+    t.rows = &legacy_rows<PF, kSpans>;
+  } else {
+    t.rows = kUntexturedRowTable<PF, kSpans>[untextured_index(dr.depth, colors)];
+    if (colors == ColorPlanes::kNone) {
+      const Rgb8 flat = dr.triangle_colors ? frame_.triangle_colors[node].primary : dr.color;
+      t.q.base = uint32_t{flat.r} | uint32_t{flat.g} << 8 | uint32_t{flat.b} << 16;
+    }
+  }
   ++stats_->triangles_set_up;
   t.index = node;
   t.draw = draw;
-  t.flat = dr.triangle_colors ? frame_.triangle_colors[node].primary : dr.color;
   return true;
 }
 
@@ -425,8 +437,6 @@ SetupInput StripLoop<PF, K, kSpans>::setup_input(uint16_t node, const BinnedTria
   for (int k = 0; k < 3; ++k) in.v[k] = &frame_.vertices[bt.v[k]];
   if (dr.uv)
     for (int k = 0; k < 3; ++k) in.tex.tv[k] = &frame_.tex_vertices[bt.v[k]];
-  in.first_row = 0;
-  in.last_row = 0;
   in.colors = dr.texture ? ColorPlanes::kNone : dr.colors;
   in.depth = dr.depth;
   in.affine_colors_ok = dr.depth ? kAffineColors[1] : kAffineColors[0];
@@ -462,37 +472,27 @@ SetupInput StripLoop<PF, K, kSpans>::setup_input(uint16_t node, const BinnedTria
   return in;
 }
 
+// The strip at rows y0..y0 + rows - 1 of `pixels` (and the strip's depth) for the row loops.
 template <class PF, int K, SpanSet kSpans>
-void StripLoop<PF, K, kSpans>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows) {
-  const DrawRecord& dr = frame_.draws[t.draw];
+StripRows StripLoop<PF, K, kSpans>::strip_rows(Pixel* pixels, int y0, int rows) const {
+  StripRows s;
+  s.pixels = pixels;
+  s.depth = storage_.depth.data();
+  s.y0 = y0;
+  s.y_last = y0 + rows - 1;
+  s.width = frame_.width;
+  s.vertices = frame_.vertices.data();
+  s.triangles = frame_.triangles.data();
+  s.draws = frame_.draws.data();
+  return s;
+}
+
+template <class PF, int K, SpanSet kSpans>
+void StripLoop<PF, K, kSpans>::add_counts(const StripRows& s) {
   FrameStats& stats = *stats_;
-  const int width = frame_.width;
-  uint16_t* const depth = storage_.depth.data();
-  // The routines of kSpans' tables (nullptr outside the set, whose draws the front end refused).
-  const SpanFn<PF> fn = span_routine<PF, kSpans>(dr.depth, t.colors);
-  TexSpanFn<PF> tex_fn = nullptr;
-  PhongSpanFn<PF> phong_fn = nullptr;
-  if constexpr (detail::has(kSpans.families, SpanFamily::kPhong))
-    if (dr.phong) phong_fn = phong_span_routine<PF, kSpans>(dr);
-  if constexpr (detail::has(kSpans.families, SpanFamily::kTextured))
-    if (dr.texture && !dr.phong) tex_fn = tex_span_routine<PF, kSpans>(dr);
-  walk_rows(t, std::min<int>(t.last_row, y0 + rows - 1), [&](int r) {
-    int32_t a = t.long_edge.column(), b = t.short_edge.column();
-    int32_t left = t.long_is_left ? a : b, right = t.long_is_left ? b : a;
-    left = std::max<int32_t>(left, 0);
-    right = std::min<int32_t>(right, width);
-    if (left < right) {
-      size_t off =
-          static_cast<size_t>(r - y0) * static_cast<size_t>(width) + static_cast<size_t>(left);
-      int32_t n = right - left;
-      uint16_t* dp = depth + off;
-      stats.pixels_written += phong_fn ? phong_fn(t, dr, pixels + off, dp, left, r, n)
-                              : tex_fn ? tex_fn(t, dr, pixels + off, dp, left, r, n)
-                                       : fn(t, pixels + off, dp, left, r, n);
-      stats.pixels_tested += static_cast<uint32_t>(n);
-      ++stats.spans;
-    }
-  });
+  stats.spans += s.spans;
+  stats.pixels_tested += s.tested;
+  stats.pixels_written += s.written;
 }
 
 template <class PF, int K, SpanSet kSpans>

@@ -21,6 +21,7 @@
 #include <cstdint>
 
 #include "lineraster/core/output/color.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
 #include "lineraster/core/setup/active_triangle.hpp"
 #include "lineraster/core/texture/texture.hpp"
 #include "lineraster/core/vertex/screen_vertex.hpp"
@@ -54,22 +55,18 @@ struct SetupInput {
   TextureSetup tex;
   PhongSetup phong;
   bool affine_colors_ok = false;  // the renderer links the affine colour routine (kPerspective
-                                  // triangles may get affine planes: ActiveTriangle::colors)
-  int32_t first_row;  // first row to draw (>= the triangle's own first row), viewport clamped
-  int32_t last_row;   // inclusive
+                                  // triangles may get affine planes: setup_planes' result)
 };
 
-// Fills `out` (except index/draw/flat). The triangle must have non-zero area.
-void setup_triangle(const SetupInput& in, ActiveTriangle& out);
-// The two halves of setup_triangle: the rows and edge walkers (rows first..last, inclusive), then
-// the attribute planes and the colour planes' kind (all of `in` but its rows): the strip loop
-// sets up no planes for a triangle whose rows cover no pixel centre.
-// setup_planes' kTexture and kPhong: whether it sets up texture and Phong planes at all. A
-// renderer whose spans have neither family links neither routine (the front end refuses such
-// draws before setup); kPhong needs kTexture (Phong's maps use the texture planes).
-void setup_edges(const ScreenVertex* const v[3], int32_t first, int32_t last, ActiveTriangle& out);
+// The attribute planes of a triangle of non-zero area (its rows and edges are setup_rows',
+// core/setup/triangle_rows.hpp: the strip loop sets up no planes for a triangle whose rows cover
+// no pixel centre). Returns the colour planes it made: in.colors, or kAffine for a kPerspective
+// triangle whose screen-linear colours are within half an 8-bit level of perspective-correct.
+// kTexture and kPhong: whether it sets up texture and Phong planes at all. A renderer whose
+// spans have neither family links neither routine (the front end refuses such draws before
+// setup); kPhong needs kTexture (Phong's maps use the texture planes).
 template <bool kTexture, bool kPhong>
-void setup_planes(const SetupInput& in, ActiveTriangle& out);
+ColorPlanes setup_planes(const SetupInput& in, ActiveTriangle& out);
 
 // What every plane of one triangle shares (docs/numerics.md#attribute-plane-equations). Most
 // triangles take the short path: one normalised reciprocal of twice the area and four edge

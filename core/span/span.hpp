@@ -90,7 +90,9 @@ uint32_t fill_span(const ActiveTriangle& t, typename PF::Storage* px, uint16_t* 
     dq = t.q.gx;
   }
   typename PF::Storage flat{};
-  if constexpr (kColors == ColorPlanes::kNone) flat = PF::encode(t.flat);
+  if constexpr (kColors == ColorPlanes::kNone)
+    flat = PF::encode(Rgb8{static_cast<uint8_t>(t.q.base), static_cast<uint8_t>(t.q.base >> 8),
+                           static_cast<uint8_t>(t.q.base >> 16)});
 
   uint32_t written = 0;
   for (int32_t i = 0; i < count; ++i) {
