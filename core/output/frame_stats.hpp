@@ -36,6 +36,9 @@ struct FrameStats {
   // many as it holds, in submission order: the frame is the same, the work is more).
   uint32_t strip_passes = 0;
   uint32_t triangles_set_up = 0;  // binned triangles that reached triangle setup
+  // Of those, untextured ones whose planes took the exact wide path (long needles, giants:
+  // docs/numerics.md#untextured-planes); the rest took the 32-bit short path.
+  uint32_t triangles_wide = 0;
   // Binned triangles whose rows cover no pixel centre, found at their first strip (edges only).
   uint32_t triangles_without_pixels = 0;
   uint32_t spans = 0;

@@ -60,28 +60,4 @@ void legacy_rows(const ActiveTriangle& t, StripRows& s) {
   }
 }
 
-// The untextured family through fill_span, one call per row.
-template <class PF, bool kDepth, ColorPlanes kColors>
-void fill_span_rows(const ActiveTriangle& t, StripRows& s) {
-  per_row_spans<PF>(t, s,
-                    [&](typename PF::Storage* px, uint16_t* dp, int32_t c, int32_t r, int32_t n) {
-                      return fill_span<PF, kDepth, kColors>(t, px, dp, c, r, n);
-                    });
-}
-
-template <class PF>
-struct UntexturedRows {
-  using Layout = UntexturedLayout;
-  using Fn = RowFn;
-  static constexpr auto kUsed = &UsedRoutines::untextured;
-  template <bool kDepth, ColorPlanes kColors>
-  static constexpr Fn routine() {
-    return &fill_span_rows<PF, kDepth, kColors>;
-  }
-};
-
-template <class PF, SpanSet kSet = kAllSpans>
-inline constexpr std::array<RowFn, kUntexturedRoutines> kUntexturedRowTable =
-    make_table<UntexturedRows<PF>, kSet>();
-
 }  // namespace lr

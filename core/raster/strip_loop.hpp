@@ -24,9 +24,11 @@
 #include "lineraster/core/raster/legacy_rows.hpp"
 #include "lineraster/core/raster/row_loop.hpp"
 #include "lineraster/core/raster/strip_fill.hpp"
+#include "lineraster/core/raster/untextured_rows.hpp"
 #include "lineraster/core/setup/active_triangle.hpp"
 #include "lineraster/core/setup/triangle_rows.hpp"
 #include "lineraster/core/setup/triangle_setup.hpp"
+#include "lineraster/core/setup/untextured_setup.hpp"
 #include "lineraster/core/span/span_state.hpp"
 
 namespace lr {
@@ -380,30 +382,42 @@ template <class PF, int K, SpanSet kSpans>
   const ScreenVertex* v[3];
   for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
   sort_by_y(v);
-  const int32_t first = std::max<int32_t>({first_row_below(v[0]->y), 0, strip * K});
-  const int32_t last = std::min<int32_t>(last_row_at_or_above(v[2]->y), frame_.height - 1);
   ActiveTriangle& t = storage_.active[slot];
-  if (!setup_rows(v, first, last, frame_.width, t)) {
-    ++stats_->triangles_without_pixels;
-    return false;
-  }
   const uint8_t draw = draw_of(bt);
   const DrawRecord& dr = frame_.draws[draw];
   // Textured and Phong triangles get their slot's extra planes (the front end refuses such
   // draws when there are none). A renderer without those spans sets up no such planes.
   constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
-  const bool legacy = kTexture && (dr.texture != nullptr || dr.phong);
-  t.ext = legacy ? &storage_.active_extra[slot] : nullptr;
-  const ColorPlanes colors = setup_planes<kTexture, kPhong>(setup_input(node, bt, dr), t);
-  if (legacy) {
+  const RowWindow window{std::max(0, strip * K), frame_.height - 1, frame_.width};
+  if (kTexture && (dr.texture != nullptr || dr.phong)) {
+    const int32_t first = std::max<int32_t>(first_row_below(v[0]->y), window.first_min);
+    const int32_t last = std::min<int32_t>(last_row_at_or_above(v[2]->y), window.last_max);
+    if (!setup_rows(v, first, last, window.width, t)) {
+      ++stats_->triangles_without_pixels;
+      return false;
+    }
+    t.ext = &storage_.active_extra[slot];
+    setup_planes<kTexture, kPhong>(setup_input(node, bt, dr), t);
     t.rows = &legacy_rows<PF, kSpans>;
   } else {
-    t.rows = kUntexturedRowTable<PF, kSpans>[untextured_index(dr.depth, colors)];
-    if (colors == ColorPlanes::kNone) {
-      const Rgb8 flat = dr.triangle_colors ? frame_.triangle_colors[node].primary : dr.color;
-      t.q.base = uint32_t{flat.r} | uint32_t{flat.g} << 8 | uint32_t{flat.b} << 16;
+    t.ext = nullptr;
+    UntexturedInput in;
+    in.colors = dr.colors;
+    in.depth = dr.depth;
+    in.lanes = kRgb565Lanes<PF>;
+    in.affine_ok = kAffineColors[dr.depth ? 1 : 0];
+    in.affine = kRgb565Lanes<PF> ? kAffineBound565 : kAffineBound8;
+    if (dr.colors == ColorPlanes::kNone)
+      in.flat_pixel = pixel_bits<PF>(
+          PF::encode(dr.triangle_colors ? frame_.triangle_colors[node].primary : dr.color));
+    const UntexturedTriangle u = setup_untextured_triangle(v, window, in, t);
+    if (!u.pixels) {
+      ++stats_->triangles_without_pixels;
+      return false;
     }
+    stats_->triangles_wide += u.wide ? 1 : 0;
+    t.rows = kUntexturedRowTable<PF, kSpans>[untextured_row_index(dr.depth, u.kind)];
   }
   ++stats_->triangles_set_up;
   t.index = node;

@@ -58,27 +58,40 @@ struct ActiveTriangle;
 using RowFn = void (*)(const ActiveTriangle& t, StripRows& strip);
 
 struct ActiveTriangle {
-  // The edges: long (top vertex to bottom vertex), top (top to middle vertex) and bottom
-  // (middle to bottom vertex), relative to col_base at first_row. A flat top or bottom has a
-  // record no row reads.
-  static constexpr int kLong = 0, kTop = 1, kBottom = 2;
-  RowEdge edge[3];
+  // The edges of the rows down to mid_row, left and right (one of them the long edge, from the
+  // top vertex to the bottom one, the other the top edge, to the middle vertex), relative to
+  // col_base at first_row, in the order a row loop reads them: Q, dx, dy (row_edge.hpp).
+  uint32_t edge_q[2] = {0, 0};
+  int32_t edge_dx[2] = {0, 0};
+  uint32_t edge_dy[2] = {1, 1};
+  // The bottom edge (middle to bottom vertex), which replaces the top edge after mid_row; its
+  // record at row mid_row + 1. A flat top or bottom has a record no row reads.
+  RowEdge bottom;
   int16_t first_row = 0;  // first row to draw: the edges' reference row
   int16_t mid_row = 0;    // last row drawn with the top edge (first_row - 1 when none is)
   int16_t last_row = 0;   // last row to draw (inclusive, clamped to the viewport)
   int16_t col_base = 0;   // the edges' column base
   uint16_t index = 0;     // binned triangle index: submission order
   uint8_t draw = 0;       // draw record of the triangle's state
-  uint8_t flags = 0;      // kLongIsLeft, kWideEdges
-  // The long edge is the left one (the middle vertex lies right of it).
-  static constexpr uint8_t kLongIsLeft = 1;
+  uint8_t flags = 0;      // kBottomRight, kWideEdges, kInside
+  // The top and bottom edges are the right ones (the middle vertex lies right of the long edge).
+  static constexpr uint8_t kBottomRight = 1;
   // The edges do not fit the records' 32 bits on every row (huge guard-band triangles): each
   // strip visit picks them up from the vertices (wide_edge, core/setup/triangle_rows.hpp).
   static constexpr uint8_t kWideEdges = 2;
+  // Every span lies in the columns [0, width) unclamped (col_base is 0).
+  static constexpr uint8_t kInside = 4;
+  // The three edges by their vertices (wide_edge): top to bottom, top to middle, middle to
+  // bottom.
+  static constexpr int kLong = 0, kTop = 1, kBottom = 2;
+  // The side (0 left, 1 right) of the top and bottom edges.
+  int short_side() const { return flags & kBottomRight; }
+  // The record of the left (0) or right (1) edge of the rows down to mid_row.
+  RowEdge side_edge(int side) const { return RowEdge{edge_q[side], edge_dx[side], edge_dy[side]}; }
   RowFn rows = nullptr;  // the row loop of the triangle's family and state
   Plane z;
+  Plane c[3];  // right after z: a row loop reads z, c[0] and c[1] as one block
   Plane q;
-  Plane c[3];
   // Textured and Phong triangles: their slot's planes (nullptr for the others).
   ActiveExtra* ext = nullptr;
 };

@@ -32,7 +32,8 @@ struct RowEdge {
 
 // Q(r) of the edge (xa, ya)-(xb, yb) relative to column base cb, exact in int64 (|Q| < 2^39
 // inside the coordinate budget).
-constexpr int64_t edge_q(int32_t xa, int32_t ya, int32_t xb, int32_t yb, int32_t cb, int32_t r) {
+constexpr int64_t edge_numerator(int32_t xa, int32_t ya, int32_t xb, int32_t yb, int32_t cb,
+                                 int32_t r) {
   const int64_t dy = int64_t{yb} - ya;
   const int64_t yc = int64_t{r} * kSubpixel + kHalfPixel;
   const int64_t p = (int64_t{xa} - kHalfPixel - int64_t{cb} * kSubpixel) * dy +
@@ -44,7 +45,7 @@ constexpr int64_t edge_q(int32_t xa, int32_t ya, int32_t xb, int32_t yb, int32_t
 constexpr RowEdge make_row_edge(int32_t xa, int32_t ya, int32_t xb, int32_t yb, int32_t cb,
                                 int32_t r_ref) {
   RowEdge e;
-  e.q = static_cast<uint32_t>(static_cast<uint64_t>(edge_q(xa, ya, xb, yb, cb, r_ref)));
+  e.q = static_cast<uint32_t>(static_cast<uint64_t>(edge_numerator(xa, ya, xb, yb, cb, r_ref)));
   e.dx = xb - xa;
   e.dy = static_cast<uint32_t>(yb - ya);
   return e;
