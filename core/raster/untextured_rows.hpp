@@ -65,26 +65,46 @@ constexpr RowFn untextured_rows() {
     return &untextured_rows_per_span<PF, kDepth, kKind>;
 }
 
-// The index of a (depth test, kind) in kUntexturedRowTable.
+// The index of a (depth test, kind) in kUntexturedRowTable<PF, kSet>: the row loops of a
+// renderer's untextured kinds, nullptr where no state its set admits uses one.
 constexpr size_t untextured_row_index(bool depth, UntexturedKind kind) {
   return static_cast<size_t>(kind) * 2 + (depth ? 1 : 0);
 }
 
-namespace detail {
 // The draw colour planes whose state selects a kind's routine.
 constexpr ColorPlanes colors_of(UntexturedKind k) {
   return k == UntexturedKind::kFlat          ? ColorPlanes::kNone
          : k == UntexturedKind::kPerspective ? ColorPlanes::kPerspective
                                              : ColorPlanes::kAffine;
 }
+
+// The kind a draw's colour planes select first: the one every triangle of a state gets unless
+// setup chooses another (kPerspective may give the affine kinds, kLanes gives kAffine to
+// triangles too large for lanes).
+template <class PF>
+constexpr UntexturedKind primary_kind(ColorPlanes c) {
+  return c == ColorPlanes::kNone          ? UntexturedKind::kFlat
+         : c == ColorPlanes::kPerspective ? UntexturedKind::kPerspective
+         : kRgb565Lanes<PF>               ? UntexturedKind::kLanes
+                                          : UntexturedKind::kAffine;
+}
+
+// Whether entry i of kUntexturedRowTable is used (not nullptr) by a renderer of PF whose set
+// uses the untextured routines u.
+template <class PF>
+constexpr bool untextured_row_used(const UsedRoutines& u, size_t i) {
+  const bool depth = i % 2 != 0;
+  const auto kind = static_cast<UntexturedKind>(i / 2);
+  return u.untextured[untextured_index(depth, colors_of(kind))] &&
+         (kind != UntexturedKind::kLanes || kRgb565Lanes<PF>);
+}
+
+namespace detail {
 template <class PF, SpanSet kSet, size_t I>
 constexpr RowFn untextured_row_entry() {
   constexpr bool kDepth = I % 2 != 0;
   constexpr auto kKind = static_cast<UntexturedKind>(I / 2);
-  constexpr bool kUsed =
-      kUsedRoutines<kSet>.untextured[untextured_index(kDepth, colors_of(kKind))] &&
-      (kKind != UntexturedKind::kLanes || kRgb565Lanes<PF>);
-  if constexpr (kUsed)
+  if constexpr (untextured_row_used<PF>(kUsedRoutines<kSet>, I))
     return untextured_rows<PF, kDepth, kKind>();
   else
     return nullptr;

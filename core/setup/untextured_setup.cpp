@@ -80,16 +80,17 @@ Plane wide_plane(const PlaneBasis& pb, const int32_t a[3]) {
   return make_plane(pb, u);
 }
 
-// The lane of a colour channel (Q1.15), rounded: 5-bit channels as 31 c 2^11 / 2^15 + 2^10,
-// green as 63 c 2^10 / 2^15 + 2^9: a level plus half a level in the lane's top bits.
+// The lane of a 5-bit channel (Q1.15), rounded: 31 c 2^11 / 2^15 + 2^10, a level plus half a
+// level in the lane's top five bits; green as 63 c 2^26 / 2^15 + 2^25, halved (63 c 2^10 + 2^24:
+// below 2^31, the plane doubled afterwards).
 constexpr int32_t lane5(uint32_t c15) {
   return static_cast<int32_t>(((31 * c15 + 8) >> 4) + (1u << 10));
 }
 constexpr int32_t lane6(uint32_t c15) {
-  return static_cast<int32_t>(((63 * c15 + 16) >> 5) + (1u << 9));
+  return static_cast<int32_t>(63 * 1024 * c15 + (1u << 24));
 }
 static_assert(lane5(Color15::kOne) == (1 << 16) - (1 << 10));
-static_assert(lane6(Color15::kOne) == (1 << 16) - (1 << 9));
+static_assert(lane6(Color15::kOne) < INT32_MAX);
 
 }  // namespace
 
@@ -296,13 +297,15 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
   const int32_t fx = (c0 * kSubpixel + kHalfPixel - x0) * (1 << 24);
   const int32_t fy = (r0 * kSubpixel + kHalfPixel - y0) * (1 << 24);
   // The plane of normalised differences n1, n2 whose gradient is 2^s times the products'
-  // (truncated: at most a unit per pixel more than the rounded one), a0 its value at vertex 0.
+  // (rounded), a0 its value at vertex 0.
   const auto plane = [&](int32_t n1, int32_t n2, uint32_t a0, int left, int right, Plane& pl) {
     const int32_t gx = mla_hi(n1, kx1, mul_hi(n2, kx2));
     const int32_t gy = mla_hi(n1, ky1, mul_hi(n2, ky2));
     const int32_t off = mla_hi(gx, fx, mul_hi(gy, fy));  // (gx fx + gy fy) / 256
-    const auto scale = [left, right](int32_t x) {
-      return static_cast<uint32_t>(static_cast<int32_t>(static_cast<uint32_t>(x) << left) >> right);
+    const int32_t half = (int32_t{1} << right) >> 1;
+    const auto scale = [left, right, half](int32_t x) {
+      return static_cast<uint32_t>(
+          (static_cast<int32_t>(static_cast<uint32_t>(x) << left) + half) >> right);
     };
     const uint32_t ugx = scale(gx), ugy = scale(gy);
     pl.gx = ugx;
@@ -327,19 +330,18 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
   const int32_t g1 = vb.color.g - cg, g2 = vc.color.g - cg;
   const int32_t b1 = vb.color.b - cbl, b2 = vc.color.b - cbl;
   if (in.lanes) {
-    // Lanes (kSmallEdgeBits <= kLanesMaxEdgeBits): the channels' planes in lane units, red and
-    // blue from differences 31 d 2^10 (< 2^30) of 31 c (lanes 31 c / 16: p - 14), green from
-    // 63 d 2^9 of 63 c (lanes 63 c / 32: p - 14 as well).
+    // Lanes (kSmallEdgeBits <= kLanesMaxEdgeBits): red and blue in lane units from differences
+    // 31 d 2^10 (< 2^30) of 31 c (lanes 31 c / 16: p - 14); green as 63 c 2^11 + 2^25 from
+    // differences 63 d 2^9 of 63 c (2^(p + 2)).
     const int left = left_of(p - 14), right = right_of(p - 14);
-    Plane pr, pb, pg;
+    Plane pr, pb;
     plane(r1 * 31 * 1024, r2 * 31 * 1024, ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024, left,
           right, pr);
     plane(b1 * 31 * 1024, b2 * 31 * 1024, ((31 * static_cast<uint32_t>(cbl)) >> 4) + 1024, left,
           right, pb);
-    plane(g1 * 63 * 512, g2 * 63 * 512, ((63 * static_cast<uint32_t>(cg)) >> 5) + 512, left, right,
-          pg);
+    plane(g1 * 63 * 512, g2 * 63 * 512, 63 * 2048 * static_cast<uint32_t>(cg) + (1u << 25),
+          left_of(p + 2), right_of(p + 2), t.c[1]);
     t.c[0] = Plane{(pb.base << 16) + pr.base, (pb.gx << 16) + pr.gx, (pb.gy << 16) + pr.gy};
-    t.c[1] = Plane{pg.base << 16, pg.gx << 16, pg.gy << 16};
     return {true, UntexturedKind::kLanes, false};
   }
   const int left = left_of(p), right = right_of(p);
@@ -391,9 +393,9 @@ UntexturedSetup setup_untextured(const ScreenVertex* const v[3], const Untexture
       values([](const ScreenVertex& x) { return lane5(x.color.r); }, r);
       values([](const ScreenVertex& x) { return lane5(x.color.b); }, bl);
       values([](const ScreenVertex& x) { return lane6(x.color.g); }, g);
-      const Plane pr = planes(r, 14), pbl = planes(bl, 14), pg = planes(g, 14);
+      const Plane pr = planes(r, 14), pbl = planes(bl, 14), pg = planes(g, -1);
       t.c[0] = Plane{(pbl.base << 16) + pr.base, (pbl.gx << 16) + pr.gx, (pbl.gy << 16) + pr.gy};
-      t.c[1] = Plane{pg.base << 16, pg.gx << 16, pg.gy << 16};
+      t.c[1] = Plane{pg.base << 1, pg.gx << 1, pg.gy << 1};  // green in 63 c 2^11 + 2^25
       break;
     }
     case UntexturedKind::kAffine:

@@ -12,12 +12,12 @@
 //   z       window depth x 65535 x 2^15 ("half depth"), [0, 65535 x 2^15], plus 2^14 (in the
 //           base): the 16-bit depth is z >> 15, rounded
 //   kFlat   c[0].base: the triangle's pixel, as the pixel format stores it (PixelBits)
-//   kLanes  (RGB565 pixel formats) colours as 16-bit lanes, each a level in its top bits,
-//           rounded: c[0] blue (high lane) and red (low lane), 31 x channel x 2^11 + 2^10 (a
-//           5-bit level in the lane's top five bits); c[1] green in the high lane (the low one
-//           0), 63 x channel x 2^10 + 2^9 (a 6-bit level in its top six bits); channel in
-//           [0, 1]. The lanes stay in [0, 2^16) on every pixel of the triangle (errors below 2^9:
-//           docs/numerics.md#untextured-planes), so adding a packed gradient steps both.
+//   kLanes  (RGB565 pixel formats) each colour a level plus half a level in its top bits,
+//           channel in [0, 1]: c[0] blue and red as the 16-bit lanes of one plane (blue high),
+//           31 x channel x 2^11 + 2^10 (a 5-bit level in the lane's top five bits); c[1] green,
+//           63 x channel x 2^26 + 2^25 (a 6-bit level in the top six bits). The lanes stay in
+//           [0, 2^16) on every pixel of the triangle (errors below 2^7 lane units:
+//           docs/numerics.md#untextured-planes), so adding the packed gradient steps both.
 //   kAffine c[i]: channel i, Q1.15 x 2^15 (Q2.30), [0, 2^30]
 //   kPerspective q: w_min / w in Q1.30, (0, 2^30]; c[i]: channel i (Q1.15) times q, Q1.30
 #pragma once

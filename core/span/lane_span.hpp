@@ -3,8 +3,8 @@
 //
 // Registers (untextured_setup.hpp, kLanes): br holds blue in its high lane and red in its low
 // lane, each a 5-bit level in the lane's top five bits (rounded); g holds green's 6-bit level in
-// its top six bits. One add steps both lanes of br (the low lane never leaves [0, 2^16) inside a
-// triangle, so nothing carries between them), and
+// its top six bits (26 bits below it). One add steps both lanes of br (the low lane never leaves
+// [0, 2^16) inside a triangle, so nothing carries between them), and
 //   t = br & 0xF800F800;  pixel = t | t >> 27 | (g & 0xFC000000) >> 21
 // puts red in bits 11..15 and blue in bits 0..4 in place. z is the half-depth plane plus 2^14.
 //
