@@ -41,6 +41,7 @@ struct FrameStats {
   uint32_t triangles_wide = 0;
   // Binned triangles whose rows cover no pixel centre, found at their first strip (edges only).
   uint32_t triangles_without_pixels = 0;
+  uint32_t rows_walked = 0;  // rows the row loops walked (triangle x row, with a span or not)
   uint32_t spans = 0;
   uint32_t pixels_tested = 0;   // pixels inside spans
   uint32_t pixels_written = 0;  // pixels that passed the depth test and were written

@@ -26,7 +26,7 @@ template <class PF, class Fill>
   const auto width = static_cast<size_t>(s.width);
   const int32_t y0 = s.y0;
   uint32_t spans = 0, tested = 0, written = 0;
-  for_each_span(t, s, [&](int32_t r, int32_t left, int32_t n) {
+  const int32_t rows = for_each_span(t, s, [&](int32_t r, int32_t left, int32_t n) {
     const size_t off = static_cast<size_t>(r - y0) * width + static_cast<size_t>(left);
     written += fill(pixels + off, depth + off, left, r, n);
     tested += static_cast<uint32_t>(n);
@@ -35,6 +35,7 @@ template <class PF, class Fill>
   s.spans += spans;
   s.tested += tested;
   s.written += written;
+  s.rows += static_cast<uint32_t>(rows);
 }
 
 // Textured and Phong triangles: the draw's span routine (kSpans' tables), chosen per visit.

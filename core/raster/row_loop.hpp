@@ -47,13 +47,13 @@ template <class Walker>
 }  // namespace detail
 
 // Calls span(row, left, count) for each row of t in the strip whose span, clamped to the
-// columns [0, width), is not empty.
+// columns [0, width), is not empty. Returns the rows walked.
 template <class Walker = RowEdgeWalker, class SpanFn>
-[[gnu::always_inline]] inline void for_each_span(const ActiveTriangle& t, const StripRows& s,
-                                                 SpanFn&& span) {
+[[gnu::always_inline]] inline int32_t for_each_span(const ActiveTriangle& t, const StripRows& s,
+                                                    SpanFn&& span) {
   int32_t r = std::max<int32_t>(t.first_row, s.y0);
   const int32_t end = std::min<int32_t>(t.last_row, s.y_last);
-  const int32_t mid = t.mid_row, width = s.width;
+  const int32_t mid = t.mid_row, width = s.width, rows = end - r + 1;
   const int ss = t.short_side();
   // The walkers of the left and the right edge; below the middle vertex the bottom edge
   // replaces the top one (on the short side).
@@ -69,7 +69,7 @@ template <class Walker = RowEdgeWalker, class SpanFn>
       w[1].step();
       if (a < b) span(r, a, b - a);
     }
-    if (r > end) return;
+    if (r > end) return rows;
     w[ss] = detail::pick_up<Walker>(t, s, ss, true, r, end);
     seg_end = end;
   }

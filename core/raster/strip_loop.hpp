@@ -507,6 +507,7 @@ void StripLoop<PF, K, kSpans>::add_counts(const StripRows& s) {
   stats.spans += s.spans;
   stats.pixels_tested += s.tested;
   stats.pixels_written += s.written;
+  stats.rows_walked += s.rows;
 }
 
 template <class PF, int K, SpanSet kSpans>

@@ -34,7 +34,7 @@ template <class PF, bool kDepth, UntexturedKind kKind>
   const auto width = static_cast<size_t>(s.width);
   const int32_t y0 = s.y0;
   uint32_t spans = 0, tested = 0, rejected = 0;
-  for_each_span(t, s, [&](int32_t r, int32_t left, int32_t n) {
+  const int32_t rows = for_each_span(t, s, [&](int32_t r, int32_t left, int32_t n) {
     const size_t off = static_cast<size_t>(r - y0) * width + static_cast<size_t>(left);
     rejected += untextured_span<PF, kDepth, kKind>(t, pixels + off, depth + off, left, r, n);
     tested += static_cast<uint32_t>(n);
@@ -43,6 +43,7 @@ template <class PF, bool kDepth, UntexturedKind kKind>
   s.spans += spans;
   s.tested += tested;
   s.written += tested - rejected;
+  s.rows += static_cast<uint32_t>(rows);
 }
 
 // The lanes kind with the depth test where lane_visit has its hand-allocated form: one loop for

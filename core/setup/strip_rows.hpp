@@ -24,8 +24,9 @@ struct StripRows {
   const ScreenVertex* vertices = nullptr;     // the frame's vertex store (wide edges)
   const BinnedTriangle* triangles = nullptr;  // and its binned triangles
   const DrawRecord* draws = nullptr;          // the frame's draw records
-  // Spans drawn, pixels inside them, pixels written (depth test passed).
-  uint32_t spans = 0, tested = 0, written = 0;
+  // Spans drawn, pixels inside them, pixels written (depth test passed), rows walked (a
+  // triangle's rows in the strip, with a span or not).
+  uint32_t spans = 0, tested = 0, written = 0, rows = 0;
 };
 
 }  // namespace lr

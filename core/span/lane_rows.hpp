@@ -27,6 +27,7 @@ inline void lane_visit_portable(const ActiveTriangle& t, StripRows& s) {
   using Pixel = typename PF::Storage;
   int32_t row = std::max<int32_t>(t.first_row, s.y0);
   const int32_t last = std::min<int32_t>(t.last_row, s.y_last), mid = t.mid_row;
+  s.rows += static_cast<uint32_t>(last - row + 1);
   const auto k = static_cast<uint32_t>(row - t.first_row);
   uint32_t q[2] = {t.edge_q[0] + static_cast<uint32_t>(t.edge_dx[0]) * k,
                    t.edge_q[1] + static_cast<uint32_t>(t.edge_dx[1]) * k};
@@ -85,13 +86,13 @@ namespace detail {
 //   0 q[0]  4 q[1]  8 px (the row's pixel in column 0)  12 row  16 dx[0]  20 dx[1]
 //   24 stride (bytes per row)  28 dy[0]  32 dy[1]  36 col_base  40 width  44 stop  48 last
 //   52 depth offset (bytes from a pixel to its depth)  56 rejected pixels  60 the short side (0, 4)
-// and r12 counts the pixels in spans plus 2^20 per span. Per row: the first eleven words in
-// r0-r6, r8-r11; left r0 and right r1 (clamped unless kInside); the index r6 from left - right
-// up to 0; the planes at (left, row): z r4 (step r5), br r9 (r10), g r3 (r8); the pixels' end r1,
-// the depths' end r2; per pixel the depth and the pixel in r0, green in r11. Instructions: per
-// written pixel 16, per rejected one 8 (plus the counter); per row with a span 35 (kInside 29),
-// without one 20 (14); per visit about 50 (pick-up, frame, counts).
-// The row loop, its labels numbered from N, with CLAMP between the columns and the span.
+// and r12 counts the pixels in spans (bits 0..19), the spans (20..25) and the rows (26..31). Per
+// row: the first eleven words in r0-r6, r8-r11; left r0 and right r1 (clamped unless kInside); the
+// index r6 from left - right up to 0; the planes at (left, row): z r4 (step r5), br r9 (r10), g r3
+// (r8); the pixels' end r1, the depths' end r2; per pixel the depth and the pixel in r0, green in
+// r11. Instructions: per written pixel 16, per rejected one 8 (plus the counter); per row with a
+// span 35 (kInside 29), without one 20 (14); per visit about 50 (pick-up, frame, counts). The row
+// loop, its labels numbered from N, with CLAMP between the columns and the span.
 #define LR_LANE_ROWS(N1, N2, N3, N4, N7, CLAMP, SWAP)                            \
   N1 ":\n\t"                                                                     \
      "ldm    sp, {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"             \
@@ -205,6 +206,9 @@ namespace detail {
       "strd   r4, r6, [sp, #36]\n\t"                                       \
       "movs   r12, #0\n\t"                                                 \
       "str    r12, [sp, #56]\n\t"                                          \
+      "subs   r12, r2, r0\n\t"                                             \
+      "add    r12, r12, #1\n\t"                                            \
+      "lsls   r12, r12, #26\n\t"                                           \
       "ldrb   r4, [lr, #47]\n\t"                                           \
       "and    r5, r4, #1\n\t"                                              \
       "lsls   r5, r5, #2\n\t"                                              \
@@ -237,15 +241,16 @@ namespace detail {
       "ldr    r0, [sp, #56]\n\t"                                           \
       "add    sp, #64\n\t"                                                 \
       "ldr    r5, [%[a], #4]\n\t"                                          \
-      "ldrd   r1, r2, [r5, #32]\n\t"                                       \
-      "ldr    r3, [r5, #40]\n\t"                                           \
-      "add    r1, r1, r12, lsr #20\n\t"                                    \
+      "add    r5, #32\n\t"                                                 \
+      "ldm    r5, {r1, r2, r3, r6}\n\t"                                    \
+      "ubfx   r4, r12, #20, #6\n\t"                                        \
+      "add    r1, r4\n\t"                                                  \
       "ubfx   r4, r12, #0, #20\n\t"                                        \
       "add    r2, r4\n\t"                                                  \
       "add    r3, r4\n\t"                                                  \
       "subs   r3, r0\n\t"                                                  \
-      "strd   r1, r2, [r5, #32]\n\t"                                       \
-      "str    r3, [r5, #40]\n\t"                                           \
+      "add    r6, r6, r12, lsr #26\n\t"                                    \
+      "stm    r5, {r1, r2, r3, r6}\n\t"                                    \
       :                                                                    \
       : [a] "r"(ts)                                                        \
       : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", \
@@ -266,7 +271,8 @@ template <bool kSwap>
   static_assert(offsetof(StripRows, pixels) == 0 && offsetof(StripRows, depth) == 4 &&
                 offsetof(StripRows, y0) == 8 && offsetof(StripRows, y_last) == 12 &&
                 offsetof(StripRows, width) == 16 && offsetof(StripRows, spans) == 32 &&
-                offsetof(StripRows, tested) == 36 && offsetof(StripRows, written) == 40);
+                offsetof(StripRows, tested) == 36 && offsetof(StripRows, written) == 40 &&
+                offsetof(StripRows, rows) == 44);
   if constexpr (kSwap)
     LR_LANE_VISIT("rev16  r0, r0\n\t");
   else

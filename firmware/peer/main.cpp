@@ -144,6 +144,7 @@ bool run_case(const peer::PeerCase& c) {
                                        {"set_up", st.triangles_set_up},
                                        {"no_pixels", st.triangles_without_pixels},
                                        {"spans", st.spans},
+                                       {"rows", st.rows_walked},
                                        {"max_active", st.max_active},
                                        {"dropped", dropped}};
   lr::fw::write_counts(counts);

@@ -128,7 +128,8 @@ Tally run_cases(uint32_t cases, Strip& a, Strip& b, DrawA&& draw_a, DrawB&& draw
       draw_b(t, sb);
       ++tally.visits;
       tally.pixels += sa.tested;
-      bool same = sa.spans == sb.spans && sa.tested == sb.tested && sa.written == sb.written;
+      bool same = sa.spans == sb.spans && sa.tested == sb.tested && sa.written == sb.written &&
+                  sa.rows == sb.rows;
       for (size_t i = 0; i < static_cast<size_t>(kWidth * rows); ++i)
         same = same && a.px[i] == b.px[i] && a.depth[i] == b.depth[i];
       if (!same) ++tally.differing;
