@@ -99,7 +99,7 @@ class StripLoop {
   void retire(int next_row);
 
   // Whether the set links the affine colour routine, without and with depth: only then may a
-  // perspective-colour triangle be given affine planes (setup_triangle).
+  // perspective-colour triangle be given affine planes (setup_untextured_triangle).
   static constexpr bool kAffineColors[2] = {
       kUsedRoutines<kSpans>.untextured[untextured_index(false, ColorPlanes::kAffine)],
       kUsedRoutines<kSpans>.untextured[untextured_index(true, ColorPlanes::kAffine)]};
@@ -443,7 +443,8 @@ uint8_t StripLoop<PF, K, kSpans>::draw_of(const BinnedTriangle& bt) const {
   return static_cast<uint8_t>(lo);
 }
 
-// What setup_planes needs of a binned triangle and its draw (the rows are setup_edges').
+// What setup_planes needs of a textured or Phong triangle and its draw (the rows are
+// setup_rows').
 template <class PF, int K, SpanSet kSpans>
 SetupInput StripLoop<PF, K, kSpans>::setup_input(uint16_t node, const BinnedTriangle& bt,
                                                  const DrawRecord& dr) const {
@@ -453,7 +454,6 @@ SetupInput StripLoop<PF, K, kSpans>::setup_input(uint16_t node, const BinnedTria
     for (int k = 0; k < 3; ++k) in.tex.tv[k] = &frame_.tex_vertices[bt.v[k]];
   in.colors = dr.texture ? ColorPlanes::kNone : dr.colors;
   in.depth = dr.depth;
-  in.affine_colors_ok = dr.depth ? kAffineColors[1] : kAffineColors[0];
   if (kSpans.has(SpanFamily::kPhong) && dr.phong) {
     for (int k = 0; k < 3; ++k) in.phong.s[k] = &frame_.surfaces[bt.v[k]];
     in.phong.position = dr.position;

@@ -190,36 +190,6 @@ Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]) {
   return make_plane(PlaneBasis(v), a);
 }
 
-// Whether screen-linear colours are within half an 8-bit level of perspective-correct ones
-// everywhere in the triangle, so that the per-pixel division can be skipped. With barycentrics
-// l_i, u_i = 1 / w_i and S = sum_j l_j u_j (a mean of the u_i), the perspective-correct ones are
-// l'_i = l_i u_i / S, and the two colours differ by sum_i (l'_i - l_i)(a_i - m) for any m (the
-// l' and l both sum to 1): with m the middle of the vertex values, at most
-// (sum_i l_i |u_i - S| / S) x D / 2, D the largest difference of a channel between two vertices.
-// A mean absolute deviation of values in [u_min, u_max] is at most (u_max - u_min) / 2, and
-// S >= u_min, so the difference is at most (R - 1) D / 4 for R = w_max / w_min. Half a level is
-// 32768 / 510 > 64 in Q1.15: (w_max - w_min) D <= 256 w_min suffices (products < 2^49).
-namespace {
-bool affine_is_exact_enough(const ScreenVertex* const v[3]) {
-  uint32_t wmin = v[0]->w, wmax = v[0]->w;
-  for (int i = 1; i < 3; ++i) {
-    wmin = v[i]->w < wmin ? v[i]->w : wmin;
-    wmax = v[i]->w > wmax ? v[i]->w : wmax;
-  }
-  uint32_t d = 0;
-  for (int c = 0; c < 3; ++c) {
-    uint32_t lo = channel(v[0]->color, c), hi = lo;
-    for (int i = 1; i < 3; ++i) {
-      const uint32_t x = channel(v[i]->color, c);
-      lo = x < lo ? x : lo;
-      hi = x > hi ? x : hi;
-    }
-    d = hi - lo > d ? hi - lo : d;
-  }
-  return uint64_t{wmax - wmin} * d <= uint64_t{wmin} * 256;
-}
-}  // namespace
-
 namespace {
 // The vertices and their surfaces and texture entries sorted by y (display rows, top first), as
 // sort_by_y (core/setup/triangle_rows.hpp) sorts: the planes' vertex 0 is the top vertex.
@@ -258,10 +228,7 @@ ColorPlanes setup_planes(const SetupInput& in, ActiveTriangle& t) {
   const bool tex = kTexture && in.tex.texture != nullptr;
   uint32_t q[3] = {1u << 30, 1u << 30, 1u << 30};
   const bool phong = kPhong && sf[0] != nullptr;
-  ColorPlanes colors = in.colors;
-  if (in.colors == ColorPlanes::kPerspective && in.affine_colors_ok && !tex && !phong &&
-      affine_is_exact_enough(v))
-    colors = ColorPlanes::kAffine;
+  const ColorPlanes colors = in.colors;
   if (colors == ColorPlanes::kPerspective || (tex && in.tex.perspective) || phong) {
     uint32_t wmin = v[0]->w;
     for (int i = 1; i < 3; ++i) wmin = v[i]->w < wmin ? v[i]->w : wmin;

@@ -1,5 +1,6 @@
-// Triangle setup: what a binned triangle becomes when its first strip is reached — edge walkers
-// for its rows and the planes of its attributes.
+// Triangle setup: the planes of a binned triangle's attributes, made when its first strip is
+// reached (its rows and edges: triangle_rows.hpp). The textured and Phong families use
+// setup_planes; the untextured family its own setup (untextured_setup.hpp) on the same planes.
 //
 // Attribute planes live on the pixel lattice: A(c, r) = base + gx c + gy r in uint32, modulo
 // 2^32, with gradients rounded once: every evaluation, direct or stepped, is exact. Error and
@@ -54,14 +55,12 @@ struct SetupInput {
   bool depth;
   TextureSetup tex;
   PhongSetup phong;
-  bool affine_colors_ok = false;  // the renderer links the affine colour routine (kPerspective
-                                  // triangles may get affine planes: setup_planes' result)
 };
 
-// The attribute planes of a triangle of non-zero area (its rows and edges are setup_rows',
-// core/setup/triangle_rows.hpp: the strip loop sets up no planes for a triangle whose rows cover
-// no pixel centre). Returns the colour planes it made: in.colors, or kAffine for a kPerspective
-// triangle whose screen-linear colours are within half an 8-bit level of perspective-correct.
+// The attribute planes of a textured or Phong triangle of non-zero area (its rows and edges are
+// setup_rows', core/setup/triangle_rows.hpp: the strip loop sets up no planes for a triangle
+// whose rows cover no pixel centre; untextured triangles: untextured_setup.hpp). Returns the
+// colour planes it made (in.colors).
 // kTexture and kPhong: whether it sets up texture and Phong planes at all. A renderer whose
 // spans have neither family links neither routine (the front end refuses such draws before
 // setup); kPhong needs kTexture (Phong's maps use the texture planes).

@@ -261,6 +261,10 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
       return {false, UntexturedKind::kFlat, false};
   }
 
+  if (in.colors == ColorPlanes::kNone && !in.depth) {  // no plane at all
+    t.c[0].base = in.flat_pixel;
+    return {true, UntexturedKind::kFlat, false};
+  }
   // Planes: the short path's basis in 32 bits (as fast_basis, with |D| < 2^29).
   UntexturedKind kind = in.colors == ColorPlanes::kNone     ? UntexturedKind::kFlat
                         : in.colors == ColorPlanes::kAffine ? UntexturedKind::kAffine
@@ -358,6 +362,10 @@ UntexturedSetup setup_untextured(const ScreenVertex* const v[3], const Untexture
                                                             : UntexturedKind::kPerspective;
   if (kind == UntexturedKind::kPerspective && in.affine_ok && affine_within(v, in.affine))
     kind = UntexturedKind::kAffine;
+  if (kind == UntexturedKind::kFlat && !in.depth) {  // no plane at all
+    t.c[0].base = in.flat_pixel;
+    return {kind, false};
+  }
   const bool persp = kind == UntexturedKind::kPerspective;
   FastBasis b;
   bool fast = fast_basis(v, persp ? kFastMaxSpreadPerspective : kFastMaxSpread, b);

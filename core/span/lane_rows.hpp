@@ -80,9 +80,10 @@ inline constexpr bool kLaneVisitAsm = false;
 #endif
 
 namespace detail {
-// The visit by hand (Armv7E-M: LDM/STM, UDIV, MLA, REV16). The triangle's address is in lr, the
-// strip's read from the pair the one operand points to (in r7, the register the loop leaves to
-// the compiler: Thumb's frame pointer). The visit's state is a 64-byte frame on the stack:
+// The visit by hand (Armv7E-M: LDM/STM, UDIV, MLA, REV16). The one operand (in r7, the register
+// the loop leaves to the compiler: Thumb's frame pointer) points to the visit's frame, a local
+// array of 18 words: the triangle's address at 64 (then in lr) and the strip's at 68, and the
+// visit's state:
 //   0 q[0]  4 q[1]  8 px (the row's pixel in column 0)  12 row  16 dx[0]  20 dx[1]
 //   24 stride (bytes per row)  28 dy[0]  32 dy[1]  36 col_base  40 width  44 stop  48 last
 //   52 depth offset (bytes from a pixel to its depth)  56 rejected pixels  60 the short side (0, 4)
@@ -95,14 +96,14 @@ namespace detail {
 // loop, its labels numbered from N, with CLAMP between the columns and the span.
 #define LR_LANE_ROWS(N1, N2, N3, N4, N7, CLAMP, SWAP)                            \
   N1 ":\n\t"                                                                     \
-     "ldm    sp, {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"             \
+     "ldm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"           \
      "add    r4, r0, r4\n\t"                                                     \
      "add    r5, r1, r5\n\t"                                                     \
      "udiv   r0, r0, r8\n\t"                                                     \
      "udiv   r1, r1, r9\n\t"                                                     \
      "add    r6, r2, r6\n\t"                                                     \
      "add    r8, r3, #1\n\t"                                                     \
-     "stm    sp, {r4, r5, r6, r8}\n\t" CLAMP                                     \
+     "stm    %[a], {r4, r5, r6, r8}\n\t" CLAMP                                   \
      "subs   r6, r0, r1\n\t"                                                     \
      "bge    " N7                                                                \
      "f\n\t"                                                                     \
@@ -119,7 +120,7 @@ namespace detail {
      "ldm    r8, {r2, r8, r11}\n\t"                                              \
      "mla    r2, r11, r3, r2\n\t"                                                \
      "mla    r3, r8, r0, r2\n\t"                                                 \
-     "ldr    r2, [sp, #52]\n\t"                                                  \
+     "ldr    r2, [%[a], #52]\n\t"                                                \
      "add    r2, r1\n\t" N2                                                      \
      ":\n\t"                                                                     \
      "ldrh   r0, [r2, r6, lsl #1]\n\t"                                           \
@@ -139,27 +140,27 @@ namespace detail {
      "adds   r6, #1\n\t"                                                         \
      "bne    " N2 "b\n\t" N7                                                     \
      ":\n\t"                                                                     \
-     "ldr    r0, [sp, #12]\n\t"                                                  \
-     "ldr    r1, [sp, #44]\n\t"                                                  \
+     "ldr    r0, [%[a], #12]\n\t"                                                \
+     "ldr    r1, [%[a], #44]\n\t"                                                \
      "cmp    r0, r1\n\t"                                                         \
      "ble    " N1                                                                \
      "b\n\t"                                                                     \
-     "ldr    r1, [sp, #48]\n\t"                                                  \
+     "ldr    r1, [%[a], #48]\n\t"                                                \
      "cmp    r0, r1\n\t"                                                         \
      "bgt    9f\n\t"                                                             \
-     "ldr    r2, [sp, #60]\n\t"                                                  \
-     "add    r2, sp\n\t"                                                         \
+     "ldr    r2, [%[a], #60]\n\t"                                                \
+     "add    r2, %[a]\n\t"                                                       \
      "add    r3, lr, #24\n\t"                                                    \
      "ldm    r3, {r3, r4, r5}\n\t"                                               \
      "str    r3, [r2]\n\t"                                                       \
      "str    r4, [r2, #16]\n\t"                                                  \
      "str    r5, [r2, #28]\n\t"                                                  \
-     "str    r1, [sp, #44]\n\t"                                                  \
+     "str    r1, [%[a], #44]\n\t"                                                \
      "b      " N1 "b\n\t" N3                                                     \
      ":\n\t"                                                                     \
-     "ldr    r0, [sp, #56]\n\t"                                                  \
+     "ldr    r0, [%[a], #56]\n\t"                                                \
      "adds   r0, #1\n\t"                                                         \
-     "str    r0, [sp, #56]\n\t"                                                  \
+     "str    r0, [%[a], #56]\n\t"                                                \
      "b      " N4 "b\n\t"
 // The columns relative to col_base, clamped to [0, width).
 #define LR_LANE_CLAMP              \
@@ -172,8 +173,7 @@ namespace detail {
 // The pick-up (the frame), the two loops (kInside without the clamp), the counts.
 #define LR_LANE_VISIT(SWAP) \
   asm volatile(                                                            \
-      "ldrd   lr, r12, [%[a]]\n\t"                                         \
-      "sub    sp, #64\n\t"                                                 \
+      "ldrd   lr, r12, [%[a], #64]\n\t"                                         \
       "ldrsh  r5, [lr, #36]\n\t"                                           \
       "ldrd   r3, r4, [r12, #8]\n\t"                                       \
       "cmp    r5, r3\n\t"                                                  \
@@ -189,36 +189,36 @@ namespace detail {
       "ldm    lr, {r4, r6, r8, r9, r10, r11}\n\t"                          \
       "mla    r4, r8, r5, r4\n\t"                                          \
       "mla    r6, r9, r5, r6\n\t"                                          \
-      "strd   r4, r6, [sp]\n\t"                                            \
-      "strd   r8, r9, [sp, #16]\n\t"                                       \
-      "strd   r10, r11, [sp, #28]\n\t"                                     \
+      "strd   r4, r6, [%[a]]\n\t"                                            \
+      "strd   r8, r9, [%[a], #16]\n\t"                                       \
+      "strd   r10, r11, [%[a], #28]\n\t"                                     \
       "ldrd   r4, r5, [r12]\n\t"                                           \
       "subs   r5, r5, r4\n\t"                                              \
-      "str    r5, [sp, #52]\n\t"                                           \
+      "str    r5, [%[a], #52]\n\t"                                           \
       "ldr    r6, [r12, #16]\n\t"                                          \
       "subs   r3, r0, r3\n\t"                                              \
       "mul    r3, r3, r6\n\t"                                              \
       "add    r4, r4, r3, lsl #1\n\t"                                      \
-      "strd   r4, r0, [sp, #8]\n\t"                                        \
+      "strd   r4, r0, [%[a], #8]\n\t"                                        \
       "lsls   r4, r6, #1\n\t"                                              \
-      "str    r4, [sp, #24]\n\t"                                           \
+      "str    r4, [%[a], #24]\n\t"                                           \
       "ldrsh  r4, [lr, #42]\n\t"                                           \
-      "strd   r4, r6, [sp, #36]\n\t"                                       \
+      "strd   r4, r6, [%[a], #36]\n\t"                                       \
       "movs   r12, #0\n\t"                                                 \
-      "str    r12, [sp, #56]\n\t"                                          \
+      "str    r12, [%[a], #56]\n\t"                                          \
       "subs   r12, r2, r0\n\t"                                             \
       "add    r12, r12, #1\n\t"                                            \
       "lsls   r12, r12, #26\n\t"                                           \
       "ldrb   r4, [lr, #47]\n\t"                                           \
       "and    r5, r4, #1\n\t"                                              \
       "lsls   r5, r5, #2\n\t"                                              \
-      "str    r5, [sp, #60]\n\t"                                           \
+      "str    r5, [%[a], #60]\n\t"                                           \
       "cmp    r0, r1\n\t"                                                  \
       "bgt    5f\n\t"                                                      \
       "cmp    r1, r2\n\t"                                                  \
       "it     gt\n\t"                                                      \
       "movgt  r1, r2\n\t"                                                  \
-      "strd   r1, r2, [sp, #44]\n\t"                                       \
+      "strd   r1, r2, [%[a], #44]\n\t"                                       \
       "b      6f\n\t"                                                      \
       "5:\n\t"                                                             \
       "subs   r0, r0, r1\n\t"                                              \
@@ -226,21 +226,20 @@ namespace detail {
       "add    r3, lr, #24\n\t"                                             \
       "ldm    r3, {r3, r6, r8}\n\t"                                        \
       "mla    r3, r6, r0, r3\n\t"                                          \
-      "add    r5, sp\n\t"                                                  \
+      "add    r5, %[a]\n\t"                                                  \
       "str    r3, [r5]\n\t"                                                \
       "str    r6, [r5, #16]\n\t"                                           \
       "str    r8, [r5, #28]\n\t"                                           \
-      "str    r2, [sp, #44]\n\t"                                           \
-      "str    r2, [sp, #48]\n\t"                                           \
+      "str    r2, [%[a], #44]\n\t"                                           \
+      "str    r2, [%[a], #48]\n\t"                                           \
       "6:\n\t"                                                             \
       "tst    r4, #4\n\t"                                                  \
       "bne    11f\n\t"                                                     \
       LR_LANE_ROWS("1", "2", "3", "4", "7", LR_LANE_CLAMP, SWAP)           \
       LR_LANE_ROWS("11", "12", "13", "14", "17", "", SWAP)                 \
       "9:\n\t"                                                             \
-      "ldr    r0, [sp, #56]\n\t"                                           \
-      "add    sp, #64\n\t"                                                 \
-      "ldr    r5, [%[a], #4]\n\t"                                          \
+      "ldr    r0, [%[a], #56]\n\t"                                           \
+      "ldr    r5, [%[a], #68]\n\t"                                          \
       "add    r5, #32\n\t"                                                 \
       "ldm    r5, {r1, r2, r3, r6}\n\t"                                    \
       "ubfx   r4, r12, #20, #6\n\t"                                        \
@@ -267,7 +266,12 @@ template <bool kSwap>
                 offsetof(ActiveTriangle, col_base) == 42 && offsetof(ActiveTriangle, flags) == 47 &&
                 offsetof(ActiveTriangle, z) == 52 && offsetof(ActiveTriangle, c) == 64);
   static_assert(ActiveTriangle::kBottomRight == 1 && ActiveTriangle::kInside == 4);
-  const void* const ts[2] = {&t, &s};
+  // The visit's frame, then the triangle's and the strip's addresses (a local array, so that
+  // the compiler's stack figures, and scripts/stack_usage.py's, include it).
+  uint32_t frame[18];
+  frame[16] = reinterpret_cast<uintptr_t>(&t);
+  frame[17] = reinterpret_cast<uintptr_t>(&s);
+  uint32_t* const ts = frame;
   static_assert(offsetof(StripRows, pixels) == 0 && offsetof(StripRows, depth) == 4 &&
                 offsetof(StripRows, y0) == 8 && offsetof(StripRows, y_last) == 12 &&
                 offsetof(StripRows, width) == 16 && offsetof(StripRows, spans) == 32 &&

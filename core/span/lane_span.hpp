@@ -8,9 +8,11 @@
 //   t = br & 0xF800F800;  pixel = t | t >> 27 | (g & 0xFC000000) >> 21
 // puts red in bits 11..15 and blue in bits 0..4 in place. z is the half-depth plane plus 2^14.
 //
-// lane_span_portable is the loop in C; on Armv7E-M lane_span runs the same loop with its
-// registers allocated by hand (lane_span_armv7em.hpp: GCC 12 spills in it), which
-// tests/core/lane_span_test.cpp and firmware/span_check compare pixel for pixel.
+// lane_span_portable is the loop in C. On Armv7E-M the whole strip visit of a lanes triangle
+// (edges, spans and this loop) runs with its registers allocated by hand (lane_rows.hpp: GCC 12
+// spills in it); firmware/span_check compares it with its C twin pixel for pixel on the target,
+// tests/core/lane_rows_test.cpp the C twin with the generic row loop and this loop with a
+// direct evaluation of the planes.
 #pragma once
 
 #include <cstddef>

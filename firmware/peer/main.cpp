@@ -142,10 +142,12 @@ bool run_case(const peer::PeerCase& c) {
                                        {"clipped_away", st.clipped_away},
                                        {"binned", st.triangles_binned},
                                        {"set_up", st.triangles_set_up},
+                                       {"wide", st.triangles_wide},
                                        {"no_pixels", st.triangles_without_pixels},
                                        {"spans", st.spans},
                                        {"rows", st.rows_walked},
                                        {"max_active", st.max_active},
+                                       {"active_bytes", st.bytes_per_active_triangle},
                                        {"dropped", dropped}};
   lr::fw::write_counts(counts);
   sh::write("\n");
