@@ -172,8 +172,8 @@ def main(argv):
     print("| scene | covered pixels (Mesa: S1 21,756, S2 39,889, S3 38,080) | pixels written | "
           "vertices | triangles in | back faces culled | other culled | drawn (set up) | "
           "binned, no pixel centre (edges only) | set up on the wide path | rows walked | spans | "
-          "bytes per active triangle | checksum |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+          "checksum |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for name, _, st in cases:
         other_culled = sum(int(st[k]) for k in ("culled_zero", "culled_off", "clipped_away"))
         print(f"| {name} | {commas(int(st['covered']))} | {commas(int(st['pixels_written']))} | "
@@ -182,7 +182,7 @@ def main(argv):
               f"{commas(int(st['set_up']))} | {commas(int(st['no_pixels']))} | "
               f"{st.get('wide', '-')} | "
               f"{commas(int(st.get('rows', 0)))} | {commas(int(st['spans']))} | "
-              f"{st.get('active_bytes', '-')} | {st['checksum']} |")
+              f"{st['checksum']} |")
     if rows and not no_lines:
         print()
         folder_table(cases, rows)

@@ -6,7 +6,7 @@
 // from kUntexturedRowTable<PF, kSpans>, whose entries no admitted state selects are nullptr (never
 // referenced, never linked). A draw's colour planes select kinds as follows:
 //   kNone (flat)   kFlat
-//   kAffine        kLanes (RGB565 formats; triangles within 256 pixels), kAffine
+//   kAffine        kLanes (RGB565 formats; edges within 128 pixels), kAffine
 //   kPerspective   kPerspective, and the affine kinds for triangles whose screen-linear colours
 //                  are close enough (setup_untextured)
 #pragma once
@@ -47,14 +47,14 @@ template <class PF, bool kDepth, UntexturedKind kKind>
 }
 
 // The lanes kind with the depth test where lane_visit has its hand-allocated form: one loop for
-// the visit for triangles whose edges fit, the rare others through untextured_rows_per_span.
+// the visit. Lanes triangles' edges always fit their records (no kWideEdges): their edge
+// components are below 2^kLanesMaxEdgeBits subpixels, so the columns of their rows span fewer
+// than 2^(kLanesMaxEdgeBits - 7) and their height is below 2^kLanesMaxEdgeBits subpixels
+// (setup_rows' bound, docs/numerics.md#edge-columns).
+static_assert((kLanesMaxEdgeBits - kSubpixelBits + 1) + kLanesMaxEdgeBits <= 32);
 template <class PF>
 void lanes_rows(const ActiveTriangle& t, StripRows& s) {
-  if ((t.flags & ActiveTriangle::kWideEdges) == 0) [[likely]] {
-    lane_visit<PF>(t, s);
-    return;
-  }
-  untextured_rows_per_span<PF, true, UntexturedKind::kLanes>(t, s);
+  lane_visit<PF>(t, s);
 }
 
 // The row loop of a (depth test, kind).

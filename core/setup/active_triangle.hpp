@@ -63,7 +63,7 @@ struct ActiveTriangle {
   // col_base at first_row, in the order a row loop reads them: Q, dx, dy (row_edge.hpp).
   uint32_t edge_q[2] = {0, 0};
   int32_t edge_dx[2] = {0, 0};
-  uint32_t edge_dy[2] = {1, 1};
+  uint32_t edge_dy[2] = {0, 0};  // (zero-initialised: active stores go to .bss)
   // The bottom edge (middle to bottom vertex), which replaces the top edge after mid_row; its
   // record at row mid_row + 1. A flat top or bottom has a record no row reads.
   RowEdge bottom;

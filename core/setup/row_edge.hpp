@@ -27,8 +27,10 @@ namespace lr {
 struct RowEdge {
   uint32_t q = 0;   // Q(r_ref) - cb dy, modulo 2^32
   int32_t dx = 0;   // xb - xa, |dx| < 2^23: Q's step per row
-  uint32_t dy = 1;  // yb - ya in (0, 2^23); 1 for an edge no row uses
+  uint32_t dy = 0;  // yb - ya in (0, 2^23); 1 for an edge no row uses (kUnusedEdge)
 };
+// The record of a flat top or bottom edge, which no row uses but a pick-up may divide by.
+inline constexpr RowEdge kUnusedEdge{0, 0, 1};
 
 // Q(r) of the edge (xa, ya)-(xb, yb) relative to column base cb, exact in int64 (|Q| < 2^39
 // inside the coordinate budget).

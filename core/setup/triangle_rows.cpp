@@ -43,7 +43,7 @@ bool setup_rows(const ScreenVertex* const v[3], int32_t first, int32_t last, int
   const bool fits = (32 - clz32(ncols)) + (32 - clz32(dy)) <= 32;
   t.col_base = static_cast<int16_t>(cb);
   const RowEdge lng = make_row_edge(x0, y0, x2, y2, cb, first);
-  const RowEdge top = y1 > y0 ? make_row_edge(x0, y0, x1, y1, cb, first) : RowEdge{};
+  const RowEdge top = y1 > y0 ? make_row_edge(x0, y0, x1, y1, cb, first) : kUnusedEdge;
   const int ls = long_left ? 0 : 1;
   t.edge_q[ls] = lng.q;
   t.edge_dx[ls] = lng.dx;
@@ -51,7 +51,7 @@ bool setup_rows(const ScreenVertex* const v[3], int32_t first, int32_t last, int
   t.edge_q[1 - ls] = top.q;
   t.edge_dx[1 - ls] = top.dx;
   t.edge_dy[1 - ls] = top.dy;
-  t.bottom = y2 > y1 ? make_row_edge(x1, y1, x2, y2, cb, mid + 1) : RowEdge{};
+  t.bottom = y2 > y1 ? make_row_edge(x1, y1, x2, y2, cb, mid + 1) : kUnusedEdge;
   if (!fits) {
     flags |= ActiveTriangle::kWideEdges;
   } else if (cb >= 0 && cmax <= width &&

@@ -147,7 +147,6 @@ bool run_case(const peer::PeerCase& c) {
                                        {"spans", st.spans},
                                        {"rows", st.rows_walked},
                                        {"max_active", st.max_active},
-                                       {"active_bytes", st.bytes_per_active_triangle},
                                        {"dropped", dropped}};
   lr::fw::write_counts(counts);
   sh::write("\n");

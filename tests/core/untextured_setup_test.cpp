@@ -219,8 +219,8 @@ TEST(UntexturedPlanes, SmallTrianglesInInt32WithinTheBound) {
       check(v, c, t.c[ch], p, rng, ec);
     }
   }
-  std::printf("[ planes ] small path: %d triangles, depth %.3f, colours %.3f of the bound\n",
-              small, ez.max_ratio, ec.max_ratio);
+  std::printf("[ planes ] small path: %d triangles, depth %.3f, colours %.3f of the bound\n", small,
+              ez.max_ratio, ec.max_ratio);
   EXPECT_EQ(ez.over, 0);
   EXPECT_EQ(ec.over, 0);
   EXPECT_GT(small, 50000);
@@ -290,8 +290,9 @@ TEST(AffineBound, AcceptedTrianglesAreWithinHalfAnOutputStep) {
       // Colour ranges from a few levels to full scale.
       const uint32_t cr = 1u << (6 + rng() % 10);
       const uint32_t c0 = static_cast<uint32_t>(rng() % (32769 - cr));
-      x.color = Color15{static_cast<uint16_t>(c0 + rng() % cr), static_cast<uint16_t>(c0 + rng() % cr),
-                        static_cast<uint16_t>(c0 + rng() % cr)};
+      x.color =
+          Color15{static_cast<uint16_t>(c0 + rng() % cr), static_cast<uint16_t>(c0 + rng() % cr),
+                  static_cast<uint16_t>(c0 + rng() % cr)};
     }
     // The worst pixel lies at an edge: sample barycentrics on the edges and inside.
     const ScreenVertex* v[3] = {&sv[0], &sv[1], &sv[2]};
@@ -363,6 +364,14 @@ TEST(AffineBound, ExactlyAtTheBound) {
   EXPECT_TRUE(affine_within(v, kAffineBound565));
   sv[1].w = wmin + (wmin >> 5) + 1024;
   EXPECT_FALSE(affine_within(v, kAffineBound565));
+}
+
+// The active store is zero-initialised storage (.bss on the targets, no flash image of it):
+// a default ActiveTriangle is all zero bytes.
+TEST(ActiveRecord, DefaultIsAllZeroBytes) {
+  static const ActiveTriangle t{};
+  const auto* bytes = reinterpret_cast<const unsigned char*>(&t);
+  for (size_t i = 0; i < sizeof t; ++i) EXPECT_EQ(bytes[i], 0u) << "byte " << i;
 }
 
 }  // namespace
