@@ -86,8 +86,20 @@ class StripLoop {
   void invalidate_strips() { inputs_known_ = false; }
 
  private:
+  // What set_up shares between the triangles of one strip: the rows they may take, and the
+  // untextured setup's input of the last draw seen (consecutive triangles share their draw).
+  struct SetupContext {
+    RowWindow window;
+    int draw = -1;
+    UntexturedInput in;
+  };
+  SetupContext setup_context(int strip) const {
+    SetupContext c;
+    c.window = RowWindow{std::max(0, strip * K), frame_.height - 1, frame_.width};
+    return c;
+  }
   bool activate(int strip);
-  bool set_up(uint16_t node, int strip, uint16_t slot);
+  bool set_up(uint16_t node, SetupContext& c, uint16_t slot);
   SetupInput setup_input(uint16_t node, const BinnedTriangle& bt, const DrawRecord& dr) const;
   uint8_t draw_of(const BinnedTriangle& bt) const;
   void crowded_strip(int strip, Pixel* pixels, int y0, int rows);
@@ -284,12 +296,13 @@ void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, i
 
   const int next_row = y0 + rows;
   uint16_t carried = kNoTriangle;  // from the latest submission to the earliest
+  SetupContext context = setup_context(strip);
   for (uint16_t node = all; node != kNoTriangle;) {
     size_t batch = 0;
     while (node != kNoTriangle && free_count_ > 0) {
       const uint16_t n = tris[node].next;
       const uint16_t slot = free_slots[--free_count_];
-      if (set_up(node, strip, slot))
+      if (set_up(node, context, slot))
         order[batch++] = slot;
       else
         free_slots[free_count_++] = slot;
@@ -353,10 +366,11 @@ bool StripLoop<PF, K, kSpans>::activate(int strip) {
   ptrdiff_t i = static_cast<ptrdiff_t>(active_count_) - 1;
   ptrdiff_t out = static_cast<ptrdiff_t>(active_count_ + m) - 1;
   size_t added = 0;
+  SetupContext context = setup_context(strip);
   for (; node != kNoTriangle; node = tris[node].next) {
     while (i >= 0 && storage_.active[order[i]].index > node) order[out--] = order[i--];
     const uint16_t slot = free_slots[--free_count_];
-    if (!set_up(node, strip, slot)) {
+    if (!set_up(node, context, slot)) {
       free_slots[free_count_++] = slot;
       continue;
     }
@@ -376,7 +390,7 @@ bool StripLoop<PF, K, kSpans>::activate(int strip) {
 // strip's (triangles carried over a skipped or crowded strip, or binned into a band that starts
 // below their top). False for a sliver between pixel centres: no planes, the slot unused.
 template <class PF, int K, SpanSet kSpans>
-[[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node, int strip,
+[[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node, SetupContext& c,
                                                                     uint16_t slot) {
   const BinnedTriangle& bt = frame_.triangles[node];
   const ScreenVertex* v[3];
@@ -389,7 +403,7 @@ template <class PF, int K, SpanSet kSpans>
   // draws when there are none). A renderer without those spans sets up no such planes.
   constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
-  const RowWindow window{std::max(0, strip * K), frame_.height - 1, frame_.width};
+  const RowWindow& window = c.window;
   if (kTexture && (dr.texture != nullptr || dr.phong)) {
     const int32_t first = std::max<int32_t>(first_row_below(v[0]->y), window.first_min);
     const int32_t last = std::min<int32_t>(last_row_at_or_above(v[2]->y), window.last_max);
@@ -402,15 +416,19 @@ template <class PF, int K, SpanSet kSpans>
     t.rows = &legacy_rows<PF, kSpans>;
   } else {
     t.ext = nullptr;
-    UntexturedInput in;
-    in.colors = dr.colors;
-    in.depth = dr.depth;
-    in.lanes = kRgb565Lanes<PF>;
-    in.affine_ok = kAffineColors[dr.depth ? 1 : 0];
-    in.affine = kRgb565Lanes<PF> ? kAffineBound565 : kAffineBound8;
-    if (dr.colors == ColorPlanes::kNone)
-      in.flat_pixel = pixel_bits<PF>(
-          PF::encode(dr.triangle_colors ? frame_.triangle_colors[node].primary : dr.color));
+    UntexturedInput& in = c.in;
+    if (c.draw != draw) {
+      c.draw = draw;
+      in.colors = dr.colors;
+      in.depth = dr.depth;
+      in.lanes = kRgb565Lanes<PF>;
+      in.affine_ok = kAffineColors[dr.depth ? 1 : 0];
+      in.affine = kRgb565Lanes<PF> ? kAffineBound565 : kAffineBound8;
+      if (dr.colors == ColorPlanes::kNone && !dr.triangle_colors)
+        in.flat_pixel = pixel_bits<PF>(PF::encode(dr.color));
+    }
+    if (dr.colors == ColorPlanes::kNone && dr.triangle_colors)
+      in.flat_pixel = pixel_bits<PF>(PF::encode(frame_.triangle_colors[node].primary));
     const UntexturedTriangle u = setup_untextured_triangle(v, window, in, t);
     if (!u.pixels) {
       ++stats_->triangles_without_pixels;

@@ -157,10 +157,10 @@ Plane fast_plane(const FastBasis& b, const int32_t a[3], int u) {
   return p;
 }
 
-bool affine_within(const ScreenVertex* const v[3], const AffineBound& bound) {
-  const uint32_t wmin = std::min({v[0]->w, v[1]->w, v[2]->w});
-  const uint32_t wmax = std::max({v[0]->w, v[1]->w, v[2]->w});
-  if (wmax - wmin <= wmin >> bound.quick_shift) return true;  // whatever the colours
+namespace {
+// affine_within's colour test, for w_max - w_min above the quick test's bound.
+[[gnu::noinline]] bool colors_within(const ScreenVertex* const v[3], uint32_t wmin, uint32_t wmax,
+                                     const AffineBound& bound) {
   uint32_t d = 0;
   for (int c = 0; c < 3; ++c) {
     const uint32_t a = channel(v[0]->color, c), b = channel(v[1]->color, c),
@@ -169,6 +169,14 @@ bool affine_within(const ScreenVertex* const v[3], const AffineBound& bound) {
     d = std::max(d, c == 1 ? range * bound.green_weight : range);
   }
   return umul64(wmax - wmin, d) <= umul64(bound.bound, wmin);
+}
+}  // namespace
+
+bool affine_within(const ScreenVertex* const v[3], const AffineBound& bound) {
+  const uint32_t wmin = std::min({v[0]->w, v[1]->w, v[2]->w});
+  const uint32_t wmax = std::max({v[0]->w, v[1]->w, v[2]->w});
+  if (wmax - wmin <= wmin >> bound.quick_shift) return true;  // whatever the colours
+  return colors_within(v, wmin, wmax, bound);
 }
 
 namespace {
@@ -271,7 +279,7 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
                                                             : UntexturedKind::kPerspective;
   if (kind == UntexturedKind::kPerspective && in.affine_ok) {
     const uint32_t wmin = std::min({va.w, vb.w, vc.w}), wmax = std::max({va.w, vb.w, vc.w});
-    if (wmax - wmin <= wmin >> in.affine.quick_shift || affine_within(v, in.affine))
+    if (wmax - wmin <= wmin >> in.affine.quick_shift || colors_within(v, wmin, wmax, in.affine))
       kind = UntexturedKind::kAffine;
   }
   const uint32_t ad = magnitude(d);
