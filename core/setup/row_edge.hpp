@@ -80,12 +80,18 @@ class DivideEdge {
 // quotient and remainder of dx / dy. Two divisions when picked up, none per row.
 class DdaEdge {
  public:
-  DdaEdge(const RowEdge& e, int32_t cb, int32_t k) : dy_(e.dy) {
+  [[gnu::always_inline]] DdaEdge(const RowEdge& e, int32_t cb, int32_t k) : dy_(e.dy) {
     const uint32_t q = e.q + static_cast<uint32_t>(e.dx) * static_cast<uint32_t>(k);
     col_ = cb + static_cast<int32_t>(q / dy_);
     rem_ = q % dy_;
     const auto dy = static_cast<int32_t>(dy_);
-    sq_ = floor_div32(e.dx, dy);
+    // Steep edges (|dx| < dy, about half of them) step by 0 or -1 columns: no division.
+    if (e.dx >= 0 && e.dx < dy)
+      sq_ = 0;
+    else if (e.dx < 0 && -e.dx <= dy)
+      sq_ = -1;
+    else
+      sq_ = floor_div32(e.dx, dy);
     sr_ = static_cast<uint32_t>(e.dx - sq_ * dy);  // in [0, dy): sq dy >= dx - dy > -2^24
   }
   int32_t column() const { return col_; }

@@ -10,9 +10,10 @@
 //
 // lane_span_portable is the loop in C. On Armv7E-M the whole strip visit of a lanes triangle
 // (edges, spans and this loop) runs with its registers allocated by hand (lane_rows.hpp: GCC 12
-// spills in it); firmware/span_check compares it with its C twin pixel for pixel on the target,
-// tests/core/lane_rows_test.cpp the C twin with the generic row loop and this loop with a
-// direct evaluation of the planes.
+// spills in it); on Armv6-M lane_span runs this loop by hand (eight low registers: GCC 12 spills
+// the steps and rebuilds the masks per pixel). firmware/span_check compares both with their C
+// twins pixel for pixel on the targets, tests/core/lane_rows_test.cpp the C twin with the
+// generic row loop and this loop with a direct evaluation of the planes.
 #pragma once
 
 #include <cstddef>
@@ -43,9 +44,11 @@ inline uint32_t lane_span_portable(typename PF::Storage* px, uint16_t* depth, in
   for (int32_t i = 0; i < n; ++i) {
     bool pass = true;
     if constexpr (kDepth) {
-      const auto d = static_cast<uint16_t>(z >> 15);
+      // The 17 bits of z >> 15 against the stored 16 (the same for half depths below 2^31, as
+      // the planes' are; so for every z, as the loops by hand compare).
+      const uint32_t d = z >> 15;
       pass = d < depth[i];
-      if (pass) depth[i] = d;
+      if (pass) depth[i] = static_cast<uint16_t>(d);
       z += dz;
     }
     if (pass)
@@ -56,6 +59,98 @@ inline uint32_t lane_span_portable(typename PF::Storage* px, uint16_t* depth, in
     g += dg;
   }
   return rejected;
+}
+
+#if defined(__thumb__) && !defined(__thumb2__)
+inline constexpr bool kLaneSpanAsm = true;  // Armv6-M
+#else
+inline constexpr bool kLaneSpanAsm = false;
+#endif
+
+namespace detail {
+// The loop with the depth test by hand on Armv6-M (n > 0). Low registers: the pixels' and the
+// depths' ends, the byte index from -2n up to 0, z, br and two temporaries; high: g and the
+// three steps (ADD takes them directly), the rejected count. Per written pixel 21 instructions
+// (22 with the byte swap), per rejected one 12. In unified syntax (GCC passes Armv6-M inline
+// assembly in divided syntax, and expects it back so).
+template <bool kSwap>
+[[gnu::always_inline]] inline uint32_t lane_span_v6m(uint16_t* px, uint16_t* depth, int32_t n,
+                                                     uint32_t z, uint32_t dz, uint32_t br,
+                                                     uint32_t dbr, uint32_t g, uint32_t dg) {
+#if defined(__thumb__) && !defined(__thumb2__)
+  uint16_t* const pe = px + n;
+  uint16_t* const de = depth + n;
+  int32_t i = -2 * n;
+  register uint32_t rg asm("r8") = g;
+  register uint32_t rdz asm("r9") = dz;
+  register uint32_t rdbr asm("r10") = dbr;
+  register uint32_t rdg asm("r11") = dg;
+  register uint32_t rej asm("r12") = 0;
+  uint32_t t1, t2;
+#define LR_LANE_SPAN_V6M(SWAP)                                                                  \
+  asm volatile(                                                                                 \
+      ".syntax unified\n\t"                                                                     \
+      "b      1f\n\t"                                                                           \
+      "3:\n\t"                                                                                  \
+      "mov    %[t1], %[rej]\n\t"                                                                \
+      "adds   %[t1], #1\n\t"                                                                    \
+      "mov    %[rej], %[t1]\n\t"                                                                \
+      "b      2f\n\t"                                                                           \
+      "1:\n\t"                                                                                  \
+      "lsrs   %[t1], %[z], #15\n\t"                                                             \
+      "ldrh   %[t2], [%[de], %[i]]\n\t"                                                         \
+      "cmp    %[t2], %[t1]\n\t"                                                                 \
+      "bls    3b\n\t"                                                                           \
+      "strh   %[t1], [%[de], %[i]]\n\t"                                                         \
+      "lsrs   %[t1], %[br], #27\n\t"                                                            \
+      "mov    %[t2], %[g]\n\t"                                                                  \
+      "lsrs   %[t2], %[t2], #26\n\t"                                                            \
+      "lsls   %[t2], %[t2], #5\n\t"                                                             \
+      "orrs   %[t1], %[t2]\n\t"                                                                 \
+      "lsls   %[t2], %[br], #16\n\t"                                                            \
+      "lsrs   %[t2], %[t2], #27\n\t"                                                            \
+      "lsls   %[t2], %[t2], #11\n\t"                                                            \
+      "orrs   %[t1], %[t2]\n\t" SWAP                                                            \
+      "strh   %[t1], [%[pe], %[i]]\n\t"                                                         \
+      "2:\n\t"                                                                                  \
+      "add    %[z], %[dz]\n\t"                                                                  \
+      "add    %[br], %[dbr]\n\t"                                                                \
+      "add    %[g], %[dg]\n\t"                                                                  \
+      "adds   %[i], #2\n\t"                                                                     \
+      "bne    1b\n\t"                                                                           \
+      ".syntax divided\n\t"                                                                     \
+      : [i] "+l"(i), [z] "+l"(z), [br] "+l"(br), [g] "+h"(rg), [rej] "+h"(rej), [t1] "=&l"(t1), \
+        [t2] "=&l"(t2)                                                                          \
+      : [pe] "l"(pe), [de] "l"(de), [dz] "h"(rdz), [dbr] "h"(rdbr), [dg] "h"(rdg)               \
+      : "cc", "memory")
+  if constexpr (kSwap)
+    LR_LANE_SPAN_V6M("rev16  %[t1], %[t1]\n\t");
+  else
+    LR_LANE_SPAN_V6M("");
+#undef LR_LANE_SPAN_V6M
+  return rej;
+#else
+  (void)px, (void)depth, (void)n, (void)z, (void)dz, (void)br, (void)dbr, (void)g, (void)dg;
+  return 0;
+#endif
+}
+}  // namespace detail
+
+// The loop of the renderer's span: by hand on Armv6-M with the depth test for the RGB565 formats
+// (whose from_value is the value or its byte swap), lane_span_portable elsewhere.
+template <class PF, bool kDepth>
+[[gnu::always_inline]] inline uint32_t lane_span(typename PF::Storage* px, uint16_t* depth,
+                                                 int32_t n, uint32_t z, uint32_t dz, uint32_t br,
+                                                 uint32_t dbr, uint32_t g, uint32_t dg) {
+  if constexpr (kLaneSpanAsm && kDepth && kRgb565Lanes<PF>) {
+    constexpr unsigned kProbe = PF::from_value(0x1234u);
+    if constexpr (kProbe == 0x1234u || kProbe == 0x3412u) {
+      if (n <= 0) return 0;
+      return detail::lane_span_v6m<kProbe == 0x3412u>(reinterpret_cast<uint16_t*>(px), depth, n, z,
+                                                      dz, br, dbr, g, dg);
+    }
+  }
+  return lane_span_portable<PF, kDepth>(px, depth, n, z, dz, br, dbr, g, dg);
 }
 
 }  // namespace lr

@@ -73,8 +73,8 @@ template <class PF, bool kDepth, UntexturedKind kKind>
     dz = t.z.gx;
   }
   if constexpr (kKind == UntexturedKind::kLanes) {
-    return lane_span_portable<PF, kDepth>(px, depth, count, z, dz, t.c[0].at(col, row), t.c[0].gx,
-                                          t.c[1].at(col, row), t.c[1].gx);
+    return lane_span<PF, kDepth>(px, depth, count, z, dz, t.c[0].at(col, row), t.c[0].gx,
+                                 t.c[1].at(col, row), t.c[1].gx);
   } else {
     uint32_t c[3] = {}, dc[3] = {}, q = 0, dq = 0;
     if constexpr (kKind != UntexturedKind::kFlat) {

@@ -1,9 +1,10 @@
 // Random cases for the lanes row loop (core/span/lane_rows.hpp): triangles set up as the
 // renderer sets them up (setup_untextured_triangle, RGB565 lanes with the depth test), drawn
 // strip by strip by two row loops into two copies of the same random strip buffers, whose
-// pixels, depths and counts must be equal. firmware/span_check compares the hand-allocated loop
-// with its C twin on the target; tests/core/lane_rows_test.cpp compares the C twin with the
-// renderer's generic row loop on the host. Integers only, no heap.
+// pixels, depths and counts must be equal; and random spans through two span loops.
+// firmware/span_check compares the hand-allocated loops with their C twins on the target;
+// tests/core/lane_rows_test.cpp compares the C twin with the renderer's generic row loop on the
+// host. Integers only, no heap.
 #pragma once
 
 #include <algorithm>
@@ -134,6 +135,56 @@ Tally run_cases(uint32_t cases, Strip& a, Strip& b, DrawA&& draw_a, DrawB&& draw
         same = same && a.px[i] == b.px[i] && a.depth[i] == b.depth[i];
       if (!same) ++tally.differing;
     }
+  }
+  return tally;
+}
+
+// Runs `cases` random spans (1 to kWidth pixels, lanes that stay in range over the span, depths
+// that pass, fail and tie) through span_a and span_b (fill(px, depth, n, z, dz, br, dbr, g, dg)
+// -> rejected pixels) into two copies of the same strip row: pixels, depths and the rejected
+// count must be equal.
+template <class SpanA, class SpanB>
+Tally run_spans(uint32_t cases, Strip& a, Strip& b, SpanA&& span_a, SpanB&& span_b,
+                uint32_t seed = 88172645u) {
+  Random rng;
+  rng.s = seed;
+  Tally tally;
+  for (uint32_t c = 0; c < cases; ++c) {
+    const int32_t n = rng.in(1, kWidth);
+    // A lane value and a step that keep it in [0, 2^16) over n pixels.
+    const auto lane = [&](uint32_t& v, int32_t& step) {
+      v = static_cast<uint32_t>(rng.in(0, 65535));
+      const int32_t room = static_cast<int32_t>(std::min<uint32_t>(v, 65535u - v)) / n;
+      step = rng.in(-room, room);
+    };
+    uint32_t r, bl, g;
+    int32_t dr, dbl, dg;
+    lane(r, dr);
+    lane(bl, dbl);
+    lane(g, dg);
+    const uint32_t br = (bl << 16) + r;
+    const uint32_t dbr = (static_cast<uint32_t>(dbl) << 16) + static_cast<uint32_t>(dr);
+    const uint32_t z = rng.next() >> 1, dz = rng.next() % 65536;
+    for (int32_t i = 0; i < n; ++i) {
+      const auto k = static_cast<size_t>(i);
+      a.px[k] = b.px[k] = static_cast<uint16_t>(rng.next());
+      const uint32_t d = (z + dz * static_cast<uint32_t>(i)) >> 15;
+      const uint32_t pick = rng.next() % 4;  // below, equal, above, cleared
+      a.depth[k] = b.depth[k] = static_cast<uint16_t>(pick == 0   ? d - 1
+                                                      : pick == 1 ? d
+                                                      : pick == 2 ? d + 1
+                                                                  : 0xFFFFu);
+    }
+    const uint32_t ra = span_a(a.px.data(), a.depth.data(), n, z, dz, br, dbr, g << 16,
+                               static_cast<uint32_t>(dg) << 16);
+    const uint32_t rb = span_b(b.px.data(), b.depth.data(), n, z, dz, br, dbr, g << 16,
+                               static_cast<uint32_t>(dg) << 16);
+    ++tally.visits;
+    tally.pixels += static_cast<uint32_t>(n);
+    bool same = ra == rb;
+    for (size_t i = 0; i < static_cast<size_t>(n); ++i)
+      same = same && a.px[i] == b.px[i] && a.depth[i] == b.depth[i];
+    if (!same) ++tally.differing;
   }
   return tally;
 }

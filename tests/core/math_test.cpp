@@ -379,7 +379,8 @@ TEST(Reciprocal, SmallDivisionEqualsTheDivision) {
 // ceil(((xa - 128) dy + dx (yc - ya)) / (256 dy)), checked against a direct 64-bit evaluation for
 // short edges (one record at the edge's first row, relative to the column base of its bounding
 // box: the record fits) and guard-band-long ones (picked up from the vertices for a visit of 32
-// rows, wide_edge), with both walkers and the step to the next row.
+// rows, wide_edge), with both walkers and the step to the next row; a sixth of the short edges
+// have |dx| within one of dy, where the DDA's step is found without a division.
 TEST(RowEdge, PickUpMatchesTheExactFormulaOnBothPaths) {
   uint64_t s = 12345;
   auto next = [&s]() {
@@ -396,9 +397,13 @@ TEST(RowEdge, PickUpMatchesTheExactFormulaOnBothPaths) {
     const int32_t range = i % 2 ? (1 << 14) : (1 << 22) - 1;  // short edges, then long ones
     const auto xa = static_cast<int32_t>(next() % (2 * range) - range);
     const auto ya = static_cast<int32_t>(next() % (2 * range) - range);
-    const auto xb = static_cast<int32_t>(next() % (2 * range) - range);
+    auto xb = static_cast<int32_t>(next() % (2 * range) - range);
     auto yb = static_cast<int32_t>(next() % (2 * range) - range);
     if (yb <= ya) yb = ya + 1 + static_cast<int32_t>(next() % 1000);
+    if (i % 6 == 5) {  // short edges with |dx| within one of dy: DdaEdge's steep-edge shortcut
+      const int32_t dx = yb - ya + static_cast<int32_t>(next() % 3) - 1;
+      xb = xa + (next() % 2 ? dx : -dx);
+    }
     // A row whose centre is on the edge (the rows a triangle asks for).
     const int32_t r0 = first_row_below(ya), r1 = last_row_at_or_above(yb);
     if (r1 < r0) continue;
