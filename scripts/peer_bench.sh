@@ -4,7 +4,8 @@
 # of each bare-metal build tree under QEMU with the instruction-counting plugin
 # (scripts/icount.sh) and checks that every case line (frame checksum and frame statistics)
 # equals the host build's (lr_peer_host), byte for byte; then attributes each frame's
-# instructions to source folders (scripts/icount_profile.py --by folder) and prints one Markdown
+# instructions to stages and source folders (scripts/icount_profile.py --by stage,folder) and
+# prints one Markdown
 # table per core (scripts/peer_tables.py), with the PSNR of each frame against the double
 # reference (lr_peer_psnr, host).
 # Benchmark figures: printed, never compared with a threshold. Builds nothing: every program must
