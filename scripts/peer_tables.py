@@ -164,7 +164,10 @@ def main(argv):
         p = psnr.get(name)
         if p:
             same = "" if not textured else (f"; {p['psnr_same_texels']} dB with the RGB565 texels")
-            cells.append(f"{p['psnr']} dB ({p['within1']} %){same}")
+            steps = "" if "rgb565_exact" not in p else (
+                f"; RGB565 frame: {p['rgb565_exact']} % on the reference's rounded level, "
+                f"{p['rgb565_over1']} pixel(s) beyond one step")
+            cells.append(f"{p['psnr']} dB ({p['within1']} %){same}{steps}")
         else:
             cells.append("-")
         print("| " + " | ".join(cells) + " |")

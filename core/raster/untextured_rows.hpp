@@ -111,13 +111,15 @@ constexpr RowFn untextured_row_entry() {
     return nullptr;
 }
 template <class PF, SpanSet kSet, size_t... I>
-constexpr std::array<RowFn, sizeof...(I)> untextured_row_table(std::index_sequence<I...>) {
+constexpr std::array<RowFn, sizeof...(I)> untextured_row_table(std::index_sequence<I...> /*rows*/) {
   return {untextured_row_entry<PF, kSet, I>()...};
 }
 }  // namespace detail
 
+inline constexpr size_t kUntexturedRows = 2 * static_cast<size_t>(kUntexturedKinds);
+
 template <class PF, SpanSet kSet = kAllSpans>
-inline constexpr std::array<RowFn, 2 * kUntexturedKinds> kUntexturedRowTable =
-    detail::untextured_row_table<PF, kSet>(std::make_index_sequence<2 * kUntexturedKinds>{});
+inline constexpr std::array<RowFn, kUntexturedRows> kUntexturedRowTable =
+    detail::untextured_row_table<PF, kSet>(std::make_index_sequence<kUntexturedRows>{});
 
 }  // namespace lr

@@ -62,7 +62,7 @@ class Scale {
 
 // a b as uint64 without a 64 x 64 library multiply on Armv6-M.
 uint64_t umul64(uint32_t a, uint32_t b) {
-  return (uint64_t{mul_hi_u(a, b)} << 32) | (a * b);
+  return (uint64_t{mul_hi_u(a, b)} << 32) | uint64_t{static_cast<uint32_t>(a * b)};
 }
 
 // q = w_min 2^30 / w in Q1.30 (w_min <= w), at least 1: from ~2^62 / (w normalised) and one

@@ -73,11 +73,11 @@ namespace detail {
 // three steps (ADD takes them directly), the rejected count. Per written pixel 21 instructions
 // (22 with the byte swap), per rejected one 12. In unified syntax (GCC passes Armv6-M inline
 // assembly in divided syntax, and expects it back so).
+#if defined(__thumb__) && !defined(__thumb2__)
 template <bool kSwap>
 [[gnu::always_inline]] inline uint32_t lane_span_v6m(uint16_t* px, uint16_t* depth, int32_t n,
                                                      uint32_t z, uint32_t dz, uint32_t br,
                                                      uint32_t dbr, uint32_t g, uint32_t dg) {
-#if defined(__thumb__) && !defined(__thumb2__)
   uint16_t* const pe = px + n;
   uint16_t* const de = depth + n;
   int32_t i = -2 * n;
@@ -129,11 +129,13 @@ template <bool kSwap>
     LR_LANE_SPAN_V6M("");
 #undef LR_LANE_SPAN_V6M
   return rej;
-#else
-  (void)px, (void)depth, (void)n, (void)z, (void)dz, (void)br, (void)dbr, (void)g, (void)dg;
-  return 0;
-#endif
 }
+#else
+// Declared only: lane_span never calls it on other cores.
+template <bool kSwap>
+uint32_t lane_span_v6m(uint16_t* px, uint16_t* depth, int32_t n, uint32_t z, uint32_t dz,
+                       uint32_t br, uint32_t dbr, uint32_t g, uint32_t dg);
+#endif
 }  // namespace detail
 
 // The loop of the renderer's span: by hand on Armv6-M with the depth test for the RGB565 formats

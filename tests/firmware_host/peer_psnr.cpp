@@ -7,8 +7,10 @@
 // RGB565 texels the core samples (the renderer's own error). Prints one line per scene: covered
 // pixels of each, coverage mismatches, and over the pixels both cover the PSNR, the % of pixels
 // within one level in every channel, the largest channel error (tests/support/scene_compare.hpp
-// measures them). scripts/peer_bench.sh puts the PSNR in its
-// tables. A figure, not a test: it never fails on the error's size.
+// measures them); and lr_peer's RGB565 frame against the reference's colours rounded to RGB565
+// (the % of pixels on the rounded level in every channel, the pixels with a channel more than
+// one step from it). scripts/peer_bench.sh puts the PSNR in its tables. A figure, not a test: it
+// never fails on the error's size.
 //
 // usage: lr_peer_psnr [SOURCE_DIR]   (default: the source tree it was built from)
 #include <cstdio>
@@ -51,10 +53,11 @@ constexpr lr::FrameCapacities kCapacities{
     .tex_vertices = peer_bunnyx_asset::meshes[0].positions.size() + 32,
     .active_extra = 2048};
 
-// The core's frame of a case, as lr_peer draws it, in RGB888.
+// The core's frame of a case, as lr_peer draws it, in PF (RGB888; RGB565 for the step check).
+template <class PF = lr::Rgb888>
 void render_core(const peer::PeerCase& c, lr::host::RenderResult& out) {
   auto store = std::make_unique<lr::StaticFrameStorage<kCapacities>>();
-  auto renderer = std::make_unique<lr::Renderer<lr::Rgb888, K>>();
+  auto renderer = std::make_unique<lr::Renderer<PF, K>>();
   if (renderer->configure(store->storage(), peer::kWidth, peer::kHeight) != lr::Status::kOk)
     die("configure failed");
   lr::Camera camera;
@@ -65,7 +68,7 @@ void render_core(const peer::PeerCase& c, lr::host::RenderResult& out) {
   lr::Status s = renderer->begin_frame(camera, c.lights, peer::kBackground);
   for (const lr::Mesh& m : peer::meshes(c.geometry))
     if (s == lr::Status::kOk) s = renderer->draw(m, model, c.material, state);
-  lr::host::CaptureDisplay<lr::Rgb888> display(size_t{peer::kWidth} * K);
+  lr::host::CaptureDisplay<PF> display(size_t{peer::kWidth} * K);
   lr::host::DepthCapture depth;
   depth.resize(peer::kWidth, peer::kHeight);
   if (s == lr::Status::kOk) s = renderer->render(display, &depth);
@@ -117,6 +120,37 @@ lr::ref::RefParams ref_params(const peer::PeerScene& s) {
   return p;
 }
 
+// The RGB565 frame (lr_peer's) against the reference's colours rounded to RGB565, over the
+// pixels both cover: how many have every channel on the rounded level, and how many have a
+// channel more than one step from it. The capture expands 565 by bit replication, so the top
+// bits of its bytes are the stored levels.
+struct StepCheck {
+  size_t both = 0, exact = 0, over1 = 0;
+};
+StepCheck rgb565_steps(const lr::host::RenderResult& core, const lr::ref::RefFrame& ref) {
+  StepCheck out;
+  for (int y = 0; y < ref.height; ++y) {
+    for (int x = 0; x < ref.width; ++x) {
+      const size_t i = ref.index(x, y);
+      if (core.depth[i] == 0xFFFF || ref.owner[i] < 0) continue;
+      ++out.both;
+      const double c[3] = {ref.color[i][0], ref.color[i][1], ref.color[i][2]};
+      const int levels[3] = {31, 63, 31}, shifts[3] = {3, 2, 3};
+      bool exact = true, over = false;
+      for (int k = 0; k < 3; ++k) {
+        const double v = c[k] < 0 ? 0 : c[k] > 1 ? 1 : c[k];
+        const int want = static_cast<int>(v * levels[k] + 0.5);
+        const int got = core.image.rgb[3 * i + static_cast<size_t>(k)] >> shifts[k];
+        exact = exact && got == want;
+        over = over || got > want + 1 || got < want - 1;
+      }
+      out.exact += exact ? 1 : 0;
+      out.over1 += over ? 1 : 0;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -154,14 +188,21 @@ int main(int argc, char** argv) {
       lr::ref::render(mesh, rp, same.reference);
       lr::test::measure(true, same);
     }
+    // lr_peer's RGB565 frame against the same reference (the colours it rounds to RGB565).
+    lr::host::RenderResult core565;
+    render_core<lr::Rgb565Be>(c, core565);
+    const StepCheck steps = rgb565_steps(core565, s.lit ? cmp.reference : same.reference);
     size_t covered = 0, ref_covered = 0;
     for (uint16_t d : cmp.core.depth) covered += d != 0xFFFF;
     for (int32_t o : cmp.reference.owner) ref_covered += o >= 0;
     std::printf(
         "lr_peer_psnr: case %s covered %zu ref_covered %zu coverage_diff %zu written %u psnr %.2f "
-        "within1 %.2f max_error %d psnr_same_texels %.2f within1_same_texels %.2f\n",
+        "within1 %.2f max_error %d psnr_same_texels %.2f within1_same_texels %.2f "
+        "rgb565_both %zu rgb565_exact %.2f rgb565_over1 %zu\n",
         s.name, covered, ref_covered, cmp.coverage_diff, cmp.core.stats.pixels_written, cmp.psnr,
-        100.0 * cmp.fraction_within1(), cmp.max_error, same.psnr, 100.0 * same.fraction_within1());
+        100.0 * cmp.fraction_within1(), cmp.max_error, same.psnr, 100.0 * same.fraction_within1(),
+        steps.both, steps.both ? 100.0 * double(steps.exact) / double(steps.both) : 0.0,
+        steps.over1);
   }
   return 0;
 }
