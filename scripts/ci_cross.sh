@@ -8,7 +8,9 @@
 #     `timeout` (a hung firmware never stops QEMU by itself):
 #       lr_smoke on the preset's board (LR_FW_BOARD; board names are QEMU machine names,
 #       firmware/boards.cmake): must pass, and its frame checksum must equal the host build's
-#       when LR_HOST_SMOKE is given. The Cortex-M0+ image also runs on mps2-an385 (the M3 that
+#       when LR_HOST_SMOKE is given;
+#       lr_span_check on its board (firmware/span_check: the lanes row loop by hand against its
+#       C twin, and the C twin against the generic row loop): must pass. The Cortex-M0+ image also runs on mps2-an385 (the M3 that
 #       runs the M0+ images needing more than the micro:bit's 16 KB; same ELF, same frame);
 #       the fault checks (firmware/fault_check, listed in its fault_checks.txt): each must end
 #       QEMU with a failure status and report "HardFault: pc=" the address of lr_fault_trigger.
@@ -116,6 +118,24 @@ smoke() {
   smoke_note="lr_smoke ${sum##* }${host_sum:+ == host}, stack ${stack:-?} B"
 }
 
+# span_check PRESET BUILD_DIR: runs lr_span_check on its board (images.txt); sets span_note.
+span_check() {
+  local preset="$1" build_dir="$2" name board machine elf
+  read -r name board machine elf < <(grep '^lr_span_check ' "$build_dir/firmware/images.txt" || true)
+  if [[ -z "${elf:-}" || ! -f "$elf" ]]; then
+    problem "[$preset] lr_span_check not built"
+    return 1
+  fi
+  echo "ci_cross: [$preset] lr_span_check on $machine"
+  qemu "$machine" "$elf"
+  indent <<<"$qemu_out"
+  if [[ $qemu_status != 0 ]] || ! grep -q '^lr_span_check: PASS' <<<"$qemu_out"; then
+    problem "[$preset] lr_span_check failed on $machine (QEMU status $qemu_status)"
+    return 1
+  fi
+  span_note="lr_span_check on $machine"
+}
+
 # faults PRESET MACHINE LIST: runs the fault checks of LIST for MACHINE; sets fault_note.
 faults() {
   local preset="$1" machine="$2" list="$3" m elf trigger expected passed=0 total=0
@@ -205,6 +225,10 @@ for preset in "${presets[@]}"; do
     if [[ "$machine" == "$board" || ("$preset" == cortex-m0plus && "$machine" == mps2-an385) ]]; then
       smoke "$preset" "$machine" "$smoke_elf" || ok=0
     fi
+    span_note=""
+    if [[ "$machine" == "$board" ]]; then
+      span_check "$preset" "$build_dir" || ok=0
+    fi
     if [[ -f "$fault_list" ]]; then
       faults "$preset" "$machine" "$fault_list" || ok=0
     else
@@ -212,7 +236,7 @@ for preset in "${presets[@]}"; do
       ok=0
     fi
     [[ "$machine" == "$board" ]] && line+=" $sizes;"
-    line+="${smoke_note:+ $smoke_note;} $fault_note"
+    line+="${smoke_note:+ $smoke_note;}${span_note:+ $span_note;} $fault_note"
     if [[ $ok == 1 ]]; then summary+=("PASS  $line"); else summary+=("FAIL  $line"); fi
   done
 done

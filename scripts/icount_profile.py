@@ -3,7 +3,7 @@
 (tools/qemu_icount, profile=PATH; scripts/icount.sh --profile OUT BEGIN END) and attributes each
 instruction address's execution count to a function, a source file or a source folder.
 
-usage: scripts/icount_profile.py ELF PROFILE [--by function|file|folder] [--top N] [--tsv]
+usage: scripts/icount_profile.py ELF PROFILE [--by function|file|folder|stage[,...]] [--top N] [--tsv]
        scripts/icount_profile.py --machine M ELF [--case NAME ...] [--by ...] [--top N] [--tsv]
 
 The first form reads PROFILE ("0xADDR COUNT" lines). The second runs firmware/bench's lr_bench
@@ -19,6 +19,13 @@ equals the frame's marker difference.
                  code of a standard-library header inlined into project code counts at the project
                  line it was inlined into
   --by folder    the same, grouped by folder: core/<stage>, firmware/<program>, hal/<backend>, ...
+  --by stage     the renderer's stages (the rules: STAGE_RULES below): vertex, cull + bin, setup,
+                 row loop + span entry, pixel loop, spans (textured and Phong), strip loop +
+                 clears, other. Each address's inline chain is read from the innermost frame out;
+                 the first file with a rule decides. The hand-allocated lanes visit
+                 (core/span/lane_rows.hpp, one asm statement) is split by its disassembly: its
+                 pixel loops (from each "ldrh r0, [r2, r6, lsl #1]" to the branch back to it, and
+                 the rejected pixels' counter) are the pixel loop, the rest the row loop.
   In file and folder views, code with no project source location is a row of its own named after
   its symbol and library, from the linker map (ELF with .map next to it, or --map): "libgcc:
   __aeabi_ldivmod", "libc: memcpy"; "libstdc++: NAME" for a standard-library template emitted out
@@ -193,6 +200,71 @@ def short(name, full):
     return re.sub(r"\((?:[^()]|\([^()]*\))*\)( const)?( \[clone [^\]]*\])*$", "", name)
 
 
+# The stage of a source file (relative path; first match wins); None: no rule (the next frame
+# out of the inline chain decides). setup.StripLoop::activate sets triangles up (set_up is
+# inlined there): its strip_loop.hpp lines are setup.
+STAGE_RULES = [
+    (r"core/(vertex|lighting)/", "vertex"),
+    (r"core/binning/", "cull + bin"),
+    (r"core/setup/row_edge\.hpp$", "row loop + span entry"),
+    (r"core/setup/(active_triangle|strip_rows)\.hpp$", None),
+    (r"core/setup/", "setup"),
+    (r"core/span/(lane_span|untextured_span)\.hpp$", "pixel loop"),
+    (r"core/span/lane_rows\.hpp$", "row loop + span entry"),
+    (r"core/raster/(untextured_rows|row_loop|legacy_rows)\.hpp$", "row loop + span entry"),
+    (r"core/(span|texture)/", "spans (textured, Phong)"),
+    (r"core/(raster|output)/|firmware/common/", "strip loop + clears"),
+]
+STAGES = ["vertex", "cull + bin", "setup", "row loop + span entry", "pixel loop",
+          "spans (textured, Phong)", "strip loop + clears", "other"]
+
+
+def lane_pixel_addresses(elf, prefix):
+    """The pixel loops of the hand-allocated lanes visit (core/span/lane_rows.hpp): from each
+    "ldrh r0, [r2, r6, lsl #1]" to the branch back to it, and the 4 instructions at the target of
+    that loop's "bls" (the rejected pixels' counter)."""
+    out = subprocess.run([prefix + "objdump", "-d", "--no-show-raw-insn", elf], check=True,
+                         capture_output=True, text=True).stdout
+    insns = []
+    for line in out.splitlines():
+        m = re.match(r"^\s+([0-9a-f]+):\s+(\S+)\s*(.*)$", line)
+        if m:
+            insns.append((int(m.group(1), 16), m.group(2), m.group(3)))
+    index = {a: i for i, (a, _, _) in enumerate(insns)}
+    pixels = set()
+    for i, (a, op, args) in enumerate(insns):
+        if not (op.startswith("ldrh") and re.match(r"r0, \[r2, r6, lsl #1\]", args)):
+            continue
+        for j in range(i, min(i + 24, len(insns))):
+            bj, opj, argsj = insns[j]
+            target = re.match(r"([0-9a-f]+)", argsj)
+            if opj.startswith("bls") and target and int(target.group(1), 16) in index:
+                k = index[int(target.group(1), 16)]
+                pixels.update(x[0] for x in insns[k:k + 4])
+            if opj.startswith("bne") and target and int(target.group(1), 16) == a:
+                pixels.update(x[0] for x in insns[i:j + 1])
+                break
+    return pixels
+
+
+def stage_of_chain(chain, function, address, lane_pixels):
+    for _, f, _ in chain:
+        rel = project_path(f)
+        if rel is None:
+            continue
+        if rel.endswith("core/raster/strip_loop.hpp") and "::activate(" in function:
+            return "setup"
+        for pattern, stage in STAGE_RULES:
+            if re.search(pattern, rel):
+                if stage is None:
+                    break
+                if stage == "row loop + span entry" and rel.endswith("lane_rows.hpp") and \
+                        address in lane_pixels:
+                    return "pixel loop"
+                return stage
+    return None
+
+
 def attribute(elf, counts, by, prefix, map_path, full_names):
     """{row name: instructions}."""
     symbols = Symbols(elf, prefix)
@@ -206,6 +278,22 @@ def attribute(elf, counts, by, prefix, map_path, full_names):
     starts = [r[0] for r in ranges]
     chains = locations(elf, prefix, sorted(counts))
     without_lines = 0
+    if by == "stage":
+        lane_pixels = lane_pixel_addresses(elf, prefix)
+        full = Symbols(elf, prefix)
+        rows = dict.fromkeys(STAGES, 0)
+        for address, n in counts.items():
+            chain = chains.get(address, [])
+            if not any(project_path(f) for _, f, _ in chain):
+                without_lines += n
+            stage = stage_of_chain(chain, full.name(address), address, lane_pixels)
+            if stage is None:
+                lib = library_of(ranges, starts, address)
+                name = short(symbols.name(address), False)
+                stage = "strip loop + clears" if lib == "libc" and re.match(
+                    r"mem(set|cpy|move)$", name) else "other"
+            rows[stage] += n
+        return rows, without_lines
     for address, n in counts.items():
         chain = chains.get(address, [])
         rel = next((p for p in (project_path(f) for _, f, _ in chain) if p), None)
@@ -271,7 +359,8 @@ def main(argv):
                                  epilog="\n".join(__doc__.splitlines()[3:]))
     ap.add_argument("elf")
     ap.add_argument("profile", nargs="?")
-    ap.add_argument("--by", choices=["function", "file", "folder"], default=None)
+    ap.add_argument("--by", default=None, help="function, file, folder or stage; several "
+                    "separated by commas print one table each")
     ap.add_argument("--top", type=int, default=0, help="rows to print (0: all; default 0)")
     ap.add_argument("--tsv", action="store_true", help="NAME<TAB>INSTRUCTIONS<TAB>PERCENT lines")
     ap.add_argument("--full-names", action="store_true", help="keep parameter lists, clone suffixes, long names")
@@ -288,19 +377,23 @@ def main(argv):
         ROOT = os.path.realpath(args.root)
     map_path = args.map or os.path.splitext(args.elf)[0] + ".map"
 
+    views = (args.by or "function").split(",")
+    for by in views:
+        if by not in ("function", "file", "folder", "stage"):
+            ap.error(f"--by {by}: function, file, folder or stage")
     if args.profile is not None:
         if args.machine or args.case:
             ap.error("--machine/--case run lr_bench: give no PROFILE with them")
-        by = args.by or "function"
-        rows, no_lines = attribute(args.elf, read_profile(args.profile), by, args.tool_prefix,
-                                   map_path, args.full_names)
-        print_table(args.profile, rows, by, args.top, args.tsv, 0 if args.full_names else 100)
-        warn_no_lines(no_lines, rows, by)
+        counts = read_profile(args.profile)
+        for by in views:
+            rows, no_lines = attribute(args.elf, counts, by, args.tool_prefix, map_path,
+                                       args.full_names)
+            print_table(args.profile, rows, by, args.top, args.tsv, 0 if args.full_names else 100)
+            warn_no_lines(no_lines, rows, by)
         return 0
 
     if not args.machine:
         ap.error("give PROFILE, or --machine to run lr_bench")
-    by = args.by or "function"
     cases = bench_cases(run_icount(args, []))
     unknown = set(args.case) - {name for name, _ in cases}
     if unknown:
@@ -317,11 +410,12 @@ def main(argv):
             if sum(counts.values()) != difference:
                 raise SystemExit(f"icount_profile: case {name}: the profile sums to "
                                  f"{sum(counts.values())}, the markers differ by {difference}")
-            rows, no_lines = attribute(args.elf, counts, by, args.tool_prefix, map_path,
-                                       args.full_names)
-            print_table(f"{name} (= its marker difference)", rows, by, args.top, args.tsv,
-                        0 if args.full_names else 100)
-            warn_no_lines(no_lines, rows, by)
+            for by in views:
+                rows, no_lines = attribute(args.elf, counts, by, args.tool_prefix, map_path,
+                                           args.full_names)
+                print_table(f"{name} (= its marker difference)", rows, by, args.top, args.tsv,
+                            0 if args.full_names else 100)
+                warn_no_lines(no_lines, rows, by)
     return 0
 
 

@@ -5,26 +5,35 @@
 # lr_peer_spans (each scene's renderer restricted to the span set of its draw state), under QEMU
 # with the instruction-counting plugin (scripts/icount.sh) and checks that every case line (frame
 # checksum and frame statistics) equals the host build's (lr_peer_host), byte for byte; then
-# attributes each frame's instructions to source folders (scripts/icount_profile.py --by folder)
-# and prints one Markdown table per core and image (scripts/peer_tables.py), with the PSNR of
-# each frame against the double reference and, for the RGB565 frame, against Mesa with the
-# pixels covered by one of the two only (lr_peer_psnr, host; tests/firmware_host/peer_figures.hpp
-# says how they are measured).
+# attributes each frame's instructions to stages and source folders (scripts/icount_profile.py
+# --by stage,folder) and prints one Markdown table per core and image (scripts/peer_tables.py),
+# with the PSNR of each frame against the double reference and, for the RGB565 frame, against
+# Mesa with the pixels covered by one of the two only (lr_peer_psnr, host;
+# tests/firmware_host/peer_figures.hpp says how they are measured).
 # Benchmark figures: printed, never compared with a threshold. Builds nothing: every program must
 # have been built (the message says which target is missing).
 #
-# Stages, from icount_profile.py's folder rows (inlined code counts where it is written):
-#   vertex               core/vertex + core/lighting            per vertex transformed
-#   cull + bin           core/binning                            per input triangle
-#   setup                core/setup                              per triangle set up ("drawn")
-#   spans                core/span + core/texture                per pixel written
+# Stages, from icount_profile.py --by stage (its STAGE_RULES: each address's inline chain from
+# the innermost frame out, the first file with a rule decides; math helpers count in the stage
+# that inlines them):
+#   vertex               core/vertex + core/lighting                     per vertex transformed
+#   cull + bin           core/binning                                    per input triangle
+#   setup                core/setup (edges, planes) + StripLoop::activate per triangle set up
+#                        (the triangles without a pixel centre included)  ("drawn")
+#   row loop + span entry  the row loops (core/raster/*_rows.hpp, row_loop.hpp, the edges of
+#                        core/setup/row_edge.hpp, the lanes visit's rows)  per row walked
+#   pixel loop           the untextured spans' per-pixel loops (lane_span.hpp,
+#                        untextured_span.hpp, the lanes visit's pixel loops) per pixel tested
+#   textured, Phong spans  core/span + core/texture otherwise             per pixel written
 #   strip loop + clears  core/raster + core/output + firmware/common (the sink, memset/memcpy)
-#                        + libc memset/memcpy if linked          per pixel of the 320x240 frame
-#   other                everything else: core/math, core/scene, libgcc's division helpers, ...
-# Budgets (the Cortex-M4F ones of the issue "Fast on the chip", printed beside the M4F figures):
-#   per frame S1 1.6 M, S1x 16 M, S2n 0.86 M, S2b 3.3 M, S3n 0.70 M, S3b 3.1 M; vertex 120 per
-#   vertex, cull + bin 60 per input triangle, setup 250 per drawn Gouraud triangle and 350 per
-#   textured one, clears 1 per pixel. TGX's figures: the peer README's (Cortex-M4F).
+#                        + libc memset/memcpy if linked                   per pixel of the 320x240 frame
+#   other                everything else: libgcc's division helpers, ...
+# The folder table below each core's tables has every folder, for a regrouping.
+# Budgets (Cortex-M4F, printed beside the M4F figures): per frame S1 1.8 M and S1x 18 M (the
+# issue "The integer core at its floor"), S2n 0.86 M, S2b 3.3 M, S3n 0.70 M, S3b 3.1 M ("Fast on
+# the chip"); vertex 100 per vertex, cull + bin 50 per input triangle, setup 300 per drawn Gouraud
+# triangle (350 textured), row loop + span entry 45 per row, depth + Gouraud pixel loop 16 per
+# pixel, clears 1 per pixel. TGX's figures: the peer README's (Cortex-M4F).
 # Cycles: neither tools/qemu_icount nor these scripts have a cycle model, so the tables print
 # "n/a" (instructions are not cycles: divisions and loads take more than one).
 # The stages need line tables: configure the cross trees with CXXFLAGS=-g (it does not change the
@@ -108,7 +117,7 @@ for tree in "${trees[@]}"; do
 
     echo "$run" >"$out/$label.run.txt"
     t0=$SECONDS
-    python3 scripts/icount_profile.py --machine "$machine" "$elf" --by folder >"$out/$label.profile.txt" \
+    python3 scripts/icount_profile.py --machine "$machine" "$elf" --by stage,folder >"$out/$label.profile.txt" \
       || fail "icount_profile.py failed on $elf"
     echo "peer_bench: $core $image: profiles of every frame ($((SECONDS - t0)) s)"
     table="$out/$label.md"

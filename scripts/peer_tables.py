@@ -2,14 +2,15 @@
 """The peer-scene tables of scripts/peer_bench.sh (which runs the programs; this only reads their
 output): one Markdown table per core from
   RUN      scripts/icount.sh's output for lr_peer (marker lines, "lr_bench: case NAME ..." lines)
-  PROFILE  scripts/icount_profile.py --by folder output for the same image (one table per case)
+  PROFILE  scripts/icount_profile.py --by stage,folder output for the same image (two tables per
+           case: the stages, then the folders)
   PSNR     lr_peer_psnr's output (host), or "-" for none
 
 usage: scripts/peer_tables.py CORE RUN PROFILE PSNR
 
 CORE cortex-m4f gets the TGX figures (tests/data/peer/README.md, Cortex-M4F) and the M4F
-budgets of the issue "Fast on the chip" beside the counts; other cores get the counts alone.
-The stage mapping and the budgets are documented in scripts/peer_bench.sh's header.
+budgets of the issue "The integer core at its floor" beside the counts; other cores get the
+counts alone. The stages and the budgets are documented in scripts/peer_bench.sh's header.
 """
 import re
 import sys
@@ -17,27 +18,17 @@ import sys
 PIXELS = 320 * 240
 # TGX's Cortex-M4F instructions per frame (the peer README's first column).
 TGX = {"S1": 3.25e6, "S1x": 32.8e6, "S2n": 1.72e6, "S2b": 6.72e6, "S3n": 1.61e6, "S3b": 6.38e6}
-# The M4F budgets: per frame, and per stage unit.
-BUDGET = {"S1": 1.6e6, "S1x": 16e6, "S2n": 0.86e6, "S2b": 3.3e6, "S3n": 0.70e6, "S3b": 3.1e6}
-BUDGET_VERTEX, BUDGET_BIN, BUDGET_CLEARS = 120, 60, 1
-BUDGET_SETUP_GOURAUD, BUDGET_SETUP_TEXTURED = 250, 350
-STAGES = ["vertex", "bin", "setup", "spans", "strips"]
-
-
-def stage_of(row):
-    """The stage of a --by folder row (scripts/peer_bench.sh's header has the same mapping)."""
-    if row in ("core/vertex", "core/lighting"):
-        return "vertex"
-    if row == "core/binning":
-        return "bin"
-    if row == "core/setup":
-        return "setup"
-    if row in ("core/span", "core/texture"):
-        return "spans"
-    if row in ("core/raster", "core/output", "firmware/common") or re.match(
-            r"libc: (memset|memcpy|memmove)$", row):
-        return "strips"
-    return "other"
+# The M4F budgets: per frame (S1 and S1x: the issue "The integer core at its floor"; the
+# textured scenes: "Fast on the chip"), and per stage unit.
+BUDGET = {"S1": 1.8e6, "S1x": 18e6, "S2n": 0.86e6, "S2b": 3.3e6, "S3n": 0.70e6, "S3b": 3.1e6}
+BUDGET_VERTEX, BUDGET_BIN, BUDGET_CLEARS = 100, 50, 1
+BUDGET_SETUP_GOURAUD, BUDGET_SETUP_TEXTURED = 300, 350
+BUDGET_ROW, BUDGET_PIXEL = 45, 16
+# The stage rows of scripts/icount_profile.py --by stage, and their short keys here.
+STAGE_KEYS = {"vertex": "vertex", "cull + bin": "bin", "setup": "setup",
+              "row loop + span entry": "rows", "pixel loop": "pixels",
+              "spans (textured, Phong)": "spans", "strip loop + clears": "strips", "other": "other"}
+STAGES = list(STAGE_KEYS.values())
 
 
 def read_run(path):
@@ -56,20 +47,22 @@ def read_run(path):
 
 
 def read_profile(path):
-    """{case: {stage: instructions}, ...} and {case: {folder row: instructions}}."""
-    stages, rows, case = {}, {}, None
+    """{case: {stage key: instructions}, ...} and {case: {folder row: instructions}}."""
+    stages, rows, case, view = {}, {}, None, None
     for line in open(path, encoding="utf-8"):
-        m = re.match(r"^(\S+) \(= its marker difference\): ([\d,]+) instructions", line)
+        m = re.match(r"^(\S+) \(= its marker difference\): ([\d,]+) instructions, by (\w+)", line)
         if m:
-            case = m.group(1)
-            stages[case] = dict.fromkeys(STAGES + ["other"], 0)
-            rows[case] = {}
+            case, view = m.group(1), m.group(3)
+            stages.setdefault(case, dict.fromkeys(STAGES, 0))
+            rows.setdefault(case, {})
             continue
         m = re.match(r"^\s+([\d,]+)\s+[\d.]+\s+(.+)$", line)
         if m and case and not line.lstrip().startswith("instructions"):
             n, row = int(m.group(1).replace(",", "")), m.group(2).strip()
-            stages[case][stage_of(row)] += n
-            rows[case][row] = n
+            if view == "stage":
+                stages[case][STAGE_KEYS[row]] += n
+            else:
+                rows[case][row] = n
     return stages, rows
 
 
@@ -123,7 +116,8 @@ def main(argv):
     psnr = read_psnr(psnr_path)
     head = ["scene", "instructions per frame", "est. cycles",
             "vertex (per vertex)", "cull + bin (per input triangle)",
-            "setup (per drawn triangle)", "spans (per pixel written)",
+            "setup (per drawn triangle)", "row loop + span entry (per row)",
+            "pixel loop (per pixel tested)", "textured, Phong spans (per pixel written)",
             "strip loop + clears (per pixel of the frame)", "other",
             "per pixel written", "per input triangle"]
     if m4f:
@@ -146,16 +140,20 @@ def main(argv):
         cells = [name, commas(ins) + (f" (budget {mega(BUDGET[name])})" if m4f and name in BUDGET
                                       else ""), "n/a"]
         sg = stages.get(name)
+        rows_walked = int(st.get("rows", 0))
+        tested = int(st["pixels_tested"])
         if sg is None:
-            cells += ["-"] * 6
+            cells += ["-"] * 8
         elif sum(n for k, n in rows[name].items() if k.startswith("other: ")) * 2 > ins:
             no_lines.append(name)
-            cells += ["n/a (no line tables)"] * 5 + [commas(sg["other"])]
+            cells += ["n/a (no line tables)"] * 7 + [commas(sg["other"])]
         else:
             setup_budget = BUDGET_SETUP_TEXTURED if textured else BUDGET_SETUP_GOURAUD
             cells += [cell(sg["vertex"], verts, "/vertex", BUDGET_VERTEX),
                       cell(sg["bin"], tris, "/triangle", BUDGET_BIN),
                       cell(sg["setup"], drawn, "/triangle", setup_budget),
+                      cell(sg["rows"], rows_walked, "/row", None if textured else BUDGET_ROW),
+                      cell(sg["pixels"], tested, "/pixel", None if textured else BUDGET_PIXEL),
                       cell(sg["spans"], written, "/pixel"),
                       f"{mega(sg['strips'])} ({sg['strips'] / PIXELS:.2f}/pixel"
                       + (f"; budget {BUDGET_CLEARS}" if m4f else "") + ")",
@@ -166,7 +164,10 @@ def main(argv):
         p = psnr.get(name)
         if p:
             same = "" if not textured else (f"; {p['psnr_same_texels']} dB with the RGB565 texels")
-            cells.append(f"{p['psnr']} dB ({p['within1']} %){same}")
+            steps = "" if "rgb565_exact" not in p else (
+                f"; RGB565 frame: {p['rgb565_exact']} % on the reference's rounded level, "
+                f"{p['rgb565_over1']} pixel(s) beyond one step")
+            cells.append(f"{p['psnr']} dB ({p['within1']} %){same}{steps}")
         else:
             cells.append("-")
         if p and "mesa_psnr565" in p:
@@ -177,15 +178,18 @@ def main(argv):
     print()
     print("| scene | covered pixels (Mesa: S1 21,756, S2 39,889, S3 38,080) | pixels written | "
           "vertices | triangles in | back faces culled | other culled | drawn (set up) | "
-          "binned, no pixel centre (edges only) | spans | checksum |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+          "binned, no pixel centre (edges only) | set up on the wide path | rows walked | spans | "
+          "checksum |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for name, _, st in cases:
         other_culled = sum(int(st[k]) for k in ("culled_zero", "culled_off", "clipped_away"))
         print(f"| {name} | {commas(int(st['covered']))} | {commas(int(st['pixels_written']))} | "
               f"{commas(int(st['vertices']))} | {commas(int(st['triangles_in']))} | "
               f"{commas(int(st['culled_back']))} | {commas(other_culled)} | "
               f"{commas(int(st['set_up']))} | {commas(int(st['no_pixels']))} | "
-              f"{commas(int(st['spans']))} | {st['checksum']} |")
+              f"{st.get('wide', '-')} | "
+              f"{commas(int(st.get('rows', 0)))} | {commas(int(st['spans']))} | "
+              f"{st['checksum']} |")
     if rows and not no_lines:
         print()
         folder_table(cases, rows)

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 namespace lr {
 
@@ -59,17 +60,45 @@ inline constexpr bool kSplitWideProducts = true;
 inline constexpr bool kSplitWideProducts = false;
 #endif
 
+// On Armv7-M the products are written out as the instructions: GCC 12 keeps the sign words of
+// 64-bit products it has hoisted and multiplies 64 x 64 in four instructions where one does.
 constexpr int32_t mul_hi(int32_t a, int32_t b) {
   if constexpr (kSplitWideProducts) return detail::mul_hi_split(a, b);
+#if defined(__thumb2__)
+  if (!std::is_constant_evaluated()) {
+    int32_t r;
+#if defined(__ARM_FEATURE_DSP)
+    asm("smmul %0, %1, %2" : "=r"(r) : "r"(a), "r"(b));
+#else
+    int32_t lo;
+    asm("smull %0, %1, %2, %3" : "=r"(lo), "=r"(r) : "r"(a), "r"(b));
+#endif
+    return r;
+  }
+#endif
   return static_cast<int32_t>((int64_t{a} * b) >> 32);
 }
 
 constexpr int32_t mla_hi(int32_t a, int32_t b, int32_t acc) {
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP)
+  if (!std::is_constant_evaluated()) {
+    int32_t r;
+    asm("smmla %0, %1, %2, %3" : "=r"(r) : "r"(a), "r"(b), "r"(acc));
+    return r;
+  }
+#endif
   return static_cast<int32_t>(static_cast<uint32_t>(acc) + static_cast<uint32_t>(mul_hi(a, b)));
 }
 
 constexpr uint32_t mul_hi_u(uint32_t a, uint32_t b) {
   if constexpr (kSplitWideProducts) return detail::mul_hi_u_split(a, b);
+#if defined(__thumb2__)
+  if (!std::is_constant_evaluated()) {
+    uint32_t lo, hi;
+    asm("umull %0, %1, %2, %3" : "=r"(lo), "=r"(hi) : "r"(a), "r"(b));
+    return hi;
+  }
+#endif
   return static_cast<uint32_t>((uint64_t{a} * b) >> 32);
 }
 

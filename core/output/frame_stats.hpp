@@ -46,8 +46,12 @@ struct FrameStats {
   // many as it holds, in submission order: the frame is the same, the work is more).
   uint32_t strip_passes = 0;
   uint32_t triangles_set_up = 0;  // binned triangles that reached triangle setup
+  // Of those, untextured ones whose planes took the exact wide path (long needles, giants:
+  // docs/numerics.md#untextured-planes); the rest took the 32-bit short path.
+  uint32_t triangles_wide = 0;
   // Binned triangles whose rows cover no pixel centre, found at their first strip (edges only).
   uint32_t triangles_without_pixels = 0;
+  uint32_t rows_walked = 0;  // rows the row loops walked (triangle x row, with a span or not)
   uint32_t spans = 0;
   uint32_t pixels_tested = 0;   // pixels inside spans
   uint32_t pixels_written = 0;  // pixels that passed the depth test and were written

@@ -21,13 +21,15 @@
 #include "lineraster/core/output/frame_stats.hpp"
 #include "lineraster/core/output/status.hpp"
 #include "lineraster/core/output/strip_sink.hpp"
+#include "lineraster/core/raster/legacy_rows.hpp"
+#include "lineraster/core/raster/row_loop.hpp"
 #include "lineraster/core/raster/strip_fill.hpp"
+#include "lineraster/core/raster/untextured_rows.hpp"
 #include "lineraster/core/setup/active_triangle.hpp"
+#include "lineraster/core/setup/triangle_rows.hpp"
 #include "lineraster/core/setup/triangle_setup.hpp"
-#include "lineraster/core/span/phong_span.hpp"
-#include "lineraster/core/span/span.hpp"
+#include "lineraster/core/setup/untextured_setup.hpp"
 #include "lineraster/core/span/span_state.hpp"
-#include "lineraster/core/span/tex_span.hpp"
 
 namespace lr {
 
@@ -85,19 +87,32 @@ class StripLoop {
   void invalidate_strips() { inputs_known_ = false; }
 
  private:
+  // What set_up shares between the triangles of one strip: the rows they may take, and the
+  // untextured setup's input of the last draw seen (consecutive triangles share their draw).
+  struct SetupContext {
+    RowWindow window;
+    int draw = -1;
+    UntexturedInput in;
+  };
+  SetupContext setup_context(int strip) const {
+    SetupContext c;
+    c.window = RowWindow{std::max(0, strip * K), frame_.height - 1, frame_.width};
+    return c;
+  }
   bool activate(int strip);
-  bool set_up(uint16_t node, int strip, uint16_t slot);
+  bool set_up(uint16_t node, SetupContext& c, uint16_t slot);
   SetupInput setup_input(uint16_t node, const BinnedTriangle& bt, const DrawRecord& dr) const;
   uint8_t draw_of(const BinnedTriangle& bt) const;
   void crowded_strip(int strip, Pixel* pixels, int y0, int rows);
   void skip_strip(int strip, int y0, int rows);
   void carry_into(int strip, uint16_t carried);
   void resolve_fetchers();
-  void raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows);
+  StripRows strip_rows(Pixel* pixels, int y0, int rows) const;
+  void add_counts(const StripRows& s);
   void retire(int next_row);
 
   // Whether the set links the affine colour routine, without and with depth: only then may a
-  // perspective-colour triangle be given affine planes (setup_triangle).
+  // perspective-colour triangle be given affine planes (setup_untextured_triangle).
   static constexpr bool kAffineColors[2] = {
       kUsedRoutines<kSpans>.untextured[untextured_index(false, ColorPlanes::kAffine)],
       kUsedRoutines<kSpans>.untextured[untextured_index(true, ColorPlanes::kAffine)]};
@@ -182,8 +197,12 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
     } else {
       fill_pixels(depth.data(), count, uint16_t{0xFFFF});
       const uint16_t* order = storage_.active_index.data();
-      for (size_t i = 0; i < active_count_; ++i)
-        raster_triangle(storage_.active[order[i]], px.data(), y0, rows);
+      StripRows sr = strip_rows(px.data(), y0, rows);
+      for (size_t i = 0; i < active_count_; ++i) {
+        const ActiveTriangle& t = storage_.active[order[i]];
+        t.rows(t, sr);
+      }
+      add_counts(sr);
       retire(y0 + rows);
     }
     if (depth_sink) depth_sink->on_depth(rect, depth);
@@ -194,17 +213,13 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
   return Status::kOk;
 }
 
-// A strip whose inputs did not change: the triangles active in it are stepped over its rows
-// without drawing; those that start in it and end in it are never set up, those that go on are
-// handed to the next strip's bucket (in submission order), to be set up at that strip's first row.
+// A strip whose inputs did not change: the triangles active in it stay as they are (a visit of
+// the next strip picks them up at its own first row); those that start in it and end in it are
+// never set up, those that go on are handed to the next strip's bucket (in submission order), to
+// be set up at that strip's first row.
 template <class PF, int K, SpanSet kSpans>
 void StripLoop<PF, K, kSpans>::skip_strip(int strip, int y0, int rows) {
   const int next_row = y0 + rows;
-  const uint16_t* order = storage_.active_index.data();
-  for (size_t i = 0; i < active_count_; ++i) {
-    ActiveTriangle& t = storage_.active[order[i]];
-    walk_rows(t, std::min<int>(t.last_row, next_row - 1), [](int) {});
-  }
   retire(next_row);
 
   const std::span<BinnedTriangle> tris = frame_.triangles;
@@ -282,18 +297,24 @@ void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, i
 
   const int next_row = y0 + rows;
   uint16_t carried = kNoTriangle;  // from the latest submission to the earliest
+  SetupContext context = setup_context(strip);
   for (uint16_t node = all; node != kNoTriangle;) {
     size_t batch = 0;
     while (node != kNoTriangle && free_count_ > 0) {
       const uint16_t n = tris[node].next;
       const uint16_t slot = free_slots[--free_count_];
-      if (set_up(node, strip, slot))
+      if (set_up(node, context, slot))
         order[batch++] = slot;
       else
         free_slots[free_count_++] = slot;
       node = n;
     }
-    for (size_t i = 0; i < batch; ++i) raster_triangle(storage_.active[order[i]], pixels, y0, rows);
+    StripRows sr = strip_rows(pixels, y0, rows);
+    for (size_t i = 0; i < batch; ++i) {
+      const ActiveTriangle& t = storage_.active[order[i]];
+      t.rows(t, sr);
+    }
+    add_counts(sr);
     for (size_t i = 0; i < batch; ++i) {
       const ActiveTriangle& t = storage_.active[order[i]];
       if (t.last_row >= next_row) {
@@ -346,10 +367,11 @@ bool StripLoop<PF, K, kSpans>::activate(int strip) {
   ptrdiff_t i = static_cast<ptrdiff_t>(active_count_) - 1;
   ptrdiff_t out = static_cast<ptrdiff_t>(active_count_ + m) - 1;
   size_t added = 0;
+  SetupContext context = setup_context(strip);
   for (; node != kNoTriangle; node = tris[node].next) {
     while (i >= 0 && storage_.active[order[i]].index > node) order[out--] = order[i--];
     const uint16_t slot = free_slots[--free_count_];
-    if (!set_up(node, strip, slot)) {
+    if (!set_up(node, context, slot)) {
       free_slots[free_count_++] = slot;
       continue;
     }
@@ -369,34 +391,56 @@ bool StripLoop<PF, K, kSpans>::activate(int strip) {
 // strip's (triangles carried over a skipped or crowded strip, or binned into a band that starts
 // below their top). False for a sliver between pixel centres: no planes, the slot unused.
 template <class PF, int K, SpanSet kSpans>
-[[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node, int strip,
+[[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node, SetupContext& c,
                                                                     uint16_t slot) {
   const BinnedTriangle& bt = frame_.triangles[node];
   const ScreenVertex* v[3];
   for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
-  int32_t ymin = std::min({v[0]->y, v[1]->y, v[2]->y});
-  int32_t ymax = std::max({v[0]->y, v[1]->y, v[2]->y});
-  const int32_t first = std::max<int32_t>({first_row_below(ymin), 0, strip * K});
-  const int32_t last = std::min<int32_t>(last_row_at_or_above(ymax), frame_.height - 1);
+  sort_by_y(v);
   ActiveTriangle& t = storage_.active[slot];
-  setup_edges(v, first, last, t);
-  if (!has_pixels(t, t.last_row, frame_.width)) {
-    ++stats_->triangles_without_pixels;
-    return false;
-  }
   const uint8_t draw = draw_of(bt);
   const DrawRecord& dr = frame_.draws[draw];
   // Textured and Phong triangles get their slot's extra planes (the front end refuses such
   // draws when there are none). A renderer without those spans sets up no such planes.
   constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
-  if constexpr (kTexture)
-    t.ext = dr.texture != nullptr || dr.phong ? &storage_.active_extra[slot] : nullptr;
-  setup_planes<kTexture, kPhong>(setup_input(node, bt, dr), t);
+  const RowWindow& window = c.window;
+  if (kTexture && (dr.texture != nullptr || dr.phong)) {
+    const int32_t first = std::max<int32_t>(first_row_below(v[0]->y), window.first_min);
+    const int32_t last = std::min<int32_t>(last_row_at_or_above(v[2]->y), window.last_max);
+    if (!setup_rows(v, first, last, window.width, t)) {
+      ++stats_->triangles_without_pixels;
+      return false;
+    }
+    t.ext = &storage_.active_extra[slot];
+    setup_planes<kTexture, kPhong>(setup_input(node, bt, dr), t);
+    t.rows = &legacy_rows<PF, kSpans>;
+  } else {
+    t.ext = nullptr;
+    UntexturedInput& in = c.in;
+    if (c.draw != draw) {
+      c.draw = draw;
+      in.colors = dr.colors;
+      in.depth = dr.depth;
+      in.lanes = kRgb565Lanes<PF>;
+      in.affine_ok = kAffineColors[dr.depth ? 1 : 0];
+      in.affine = kRgb565Lanes<PF> ? kAffineBound565 : kAffineBound8;
+      if (dr.colors == ColorPlanes::kNone && !dr.triangle_colors)
+        in.flat_pixel = pixel_bits<PF>(PF::encode(dr.color));
+    }
+    if (dr.colors == ColorPlanes::kNone && dr.triangle_colors)
+      in.flat_pixel = pixel_bits<PF>(PF::encode(frame_.triangle_colors[node].primary));
+    const UntexturedTriangle u = setup_untextured_triangle(v, window, in, t);
+    if (!u.pixels) {
+      ++stats_->triangles_without_pixels;
+      return false;
+    }
+    stats_->triangles_wide += u.wide ? 1 : 0;
+    t.rows = kUntexturedRowTable<PF, kSpans>[untextured_row_index(dr.depth, u.kind)];
+  }
   ++stats_->triangles_set_up;
   t.index = node;
   t.draw = draw;
-  t.flat = dr.triangle_colors ? frame_.triangle_colors[node].primary : dr.color;
   return true;
 }
 
@@ -418,7 +462,8 @@ uint8_t StripLoop<PF, K, kSpans>::draw_of(const BinnedTriangle& bt) const {
   return static_cast<uint8_t>(lo);
 }
 
-// What setup_planes needs of a binned triangle and its draw (the rows are setup_edges').
+// What setup_planes needs of a textured or Phong triangle and its draw (the rows are
+// setup_rows').
 template <class PF, int K, SpanSet kSpans>
 SetupInput StripLoop<PF, K, kSpans>::setup_input(uint16_t node, const BinnedTriangle& bt,
                                                  const DrawRecord& dr) const {
@@ -426,11 +471,8 @@ SetupInput StripLoop<PF, K, kSpans>::setup_input(uint16_t node, const BinnedTria
   for (int k = 0; k < 3; ++k) in.v[k] = &frame_.vertices[bt.v[k]];
   if (dr.uv)
     for (int k = 0; k < 3; ++k) in.tex.tv[k] = &frame_.tex_vertices[bt.v[k]];
-  in.first_row = 0;
-  in.last_row = 0;
   in.colors = dr.texture ? ColorPlanes::kNone : dr.colors;
   in.depth = dr.depth;
-  in.affine_colors_ok = dr.depth ? kAffineColors[1] : kAffineColors[0];
   if (kSpans.has(SpanFamily::kPhong) && dr.phong) {
     for (int k = 0; k < 3; ++k) in.phong.s[k] = &frame_.surfaces[bt.v[k]];
     in.phong.position = dr.position;
@@ -463,37 +505,28 @@ SetupInput StripLoop<PF, K, kSpans>::setup_input(uint16_t node, const BinnedTria
   return in;
 }
 
+// The strip at rows y0..y0 + rows - 1 of `pixels` (and the strip's depth) for the row loops.
 template <class PF, int K, SpanSet kSpans>
-void StripLoop<PF, K, kSpans>::raster_triangle(ActiveTriangle& t, Pixel* pixels, int y0, int rows) {
-  const DrawRecord& dr = frame_.draws[t.draw];
+StripRows StripLoop<PF, K, kSpans>::strip_rows(Pixel* pixels, int y0, int rows) const {
+  StripRows s;
+  s.pixels = pixels;
+  s.depth = storage_.depth.data();
+  s.y0 = y0;
+  s.y_last = y0 + rows - 1;
+  s.width = frame_.width;
+  s.vertices = frame_.vertices.data();
+  s.triangles = frame_.triangles.data();
+  s.draws = frame_.draws.data();
+  return s;
+}
+
+template <class PF, int K, SpanSet kSpans>
+void StripLoop<PF, K, kSpans>::add_counts(const StripRows& s) {
   FrameStats& stats = *stats_;
-  const int width = frame_.width;
-  uint16_t* const depth = storage_.depth.data();
-  // The routines of kSpans' tables (nullptr outside the set, whose draws the front end refused).
-  const SpanFn<PF> fn = span_routine<PF, kSpans>(dr.depth, t.colors);
-  TexSpanFn<PF> tex_fn = nullptr;
-  PhongSpanFn<PF> phong_fn = nullptr;
-  if constexpr (detail::has(kSpans.families, SpanFamily::kPhong))
-    if (dr.phong) phong_fn = phong_span_routine<PF, kSpans>(dr);
-  if constexpr (detail::has(kSpans.families, SpanFamily::kTextured))
-    if (dr.texture && !dr.phong) tex_fn = tex_span_routine<PF, kSpans>(dr);
-  walk_rows(t, std::min<int>(t.last_row, y0 + rows - 1), [&](int r) {
-    int32_t a = t.long_edge.column(), b = t.short_edge.column();
-    int32_t left = t.long_is_left ? a : b, right = t.long_is_left ? b : a;
-    left = std::max<int32_t>(left, 0);
-    right = std::min<int32_t>(right, width);
-    if (left < right) {
-      size_t off =
-          static_cast<size_t>(r - y0) * static_cast<size_t>(width) + static_cast<size_t>(left);
-      int32_t n = right - left;
-      uint16_t* dp = depth + off;
-      stats.pixels_written += phong_fn ? phong_fn(t, dr, pixels + off, dp, left, r, n)
-                              : tex_fn ? tex_fn(t, dr, pixels + off, dp, left, r, n)
-                                       : fn(t, pixels + off, dp, left, r, n);
-      stats.pixels_tested += static_cast<uint32_t>(n);
-      ++stats.spans;
-    }
-  });
+  stats.spans += s.spans;
+  stats.pixels_tested += s.tested;
+  stats.pixels_written += s.written;
+  stats.rows_walked += s.rows;
 }
 
 template <class PF, int K, SpanSet kSpans>

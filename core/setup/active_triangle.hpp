@@ -1,13 +1,19 @@
 // The active triangle: what triangle setup makes of a binned triangle when the strip loop
-// reaches its first strip, and what the span routines read. Edge walkers for its rows and the
-// planes of its attributes (the formats of the planes: triangle_setup.hpp).
+// reaches its first strip, and what the row loops and span routines read, in place. Written once
+// at setup and never changed afterwards: each strip visit picks the triangle up at its own first
+// row from the edges' records (core/setup/row_edge.hpp), whatever strip came before and whoever
+// drew it, so strips can be skipped, drawn in passes or (later) shared between cores.
+//
+// Every family has the same rows, edges and row loop (resolved at setup: one call per triangle
+// and strip visit) and the same five planes; what the planes hold is the family's:
+//   untextured:  core/setup/untextured_setup.hpp (z, and the colours by kind)
+//   textured, Phong: core/setup/triangle_setup.hpp (z, q, c), with the further planes of their
+//                slot in ActiveExtra
 #pragma once
 
 #include <cstdint>
 
-#include "lineraster/core/output/color.hpp"
-#include "lineraster/core/scene/draw_state.hpp"
-#include "lineraster/core/setup/edge.hpp"
+#include "lineraster/core/setup/row_edge.hpp"
 
 namespace lr {
 
@@ -46,72 +52,56 @@ struct ActiveExtra {
   int32_t org[3] = {0, 0, 0};
 };
 
+struct StripRows;  // one strip as the row loops see it (core/raster/row_loop.hpp)
+struct ActiveTriangle;
+// A row loop: draws the triangle's rows of one strip (one call per triangle and strip visit).
+using RowFn = void (*)(const ActiveTriangle& t, StripRows& strip);
+
 struct ActiveTriangle {
-  EdgeWalker long_edge;    // top vertex to bottom vertex
-  EdgeWalker short_edge;   // the short edge of the current row (top, then bottom)
-  EdgeWalker bottom_edge;  // middle vertex to bottom vertex, positioned at row mid_row + 1
-  int16_t row = 0;         // next row to draw
-  int16_t mid_row = 0;     // last row drawn with the top short edge
-  int16_t last_row = 0;    // last row to draw (inclusive, clamped to the viewport)
-  uint16_t index = 0;      // binned triangle index: submission order
-  bool long_is_left = false;
-  uint8_t draw = 0;  // draw record of the triangle's state
-  // The colour planes this triangle has: the draw's, except that a perspective-correct draw's
-  // triangle gets affine planes when they are within half an 8-bit level of it (setup_triangle).
-  ColorPlanes colors = ColorPlanes::kNone;
-  Rgb8 flat{};  // colour of flat-shaded triangles
+  // The edges of the rows down to mid_row, left and right (one of them the long edge, from the
+  // top vertex to the bottom one, the other the top edge, to the middle vertex), relative to
+  // col_base at first_row, in the order a row loop reads them: Q, dx, dy (row_edge.hpp).
+  uint32_t edge_q[2] = {0, 0};
+  int32_t edge_dx[2] = {0, 0};
+  uint32_t edge_dy[2] = {0, 0};  // (zero-initialised: active stores go to .bss)
+  // The bottom edge (middle to bottom vertex), which replaces the top edge after mid_row; its
+  // record at row mid_row + 1. A flat top or bottom has a record no row reads.
+  RowEdge bottom;
+  int16_t first_row = 0;  // first row to draw: the edges' reference row
+  int16_t mid_row = 0;    // last row drawn with the top edge (first_row - 1 when none is)
+  int16_t last_row = 0;   // last row to draw (inclusive, clamped to the viewport)
+  int16_t col_base = 0;   // the edges' column base
+  uint16_t index = 0;     // binned triangle index: submission order
+  uint8_t draw = 0;       // draw record of the triangle's state
+  uint8_t flags = 0;      // kBottomRight, kWideEdges, kInside
+  // The top and bottom edges are the right ones (the middle vertex lies right of the long edge).
+  static constexpr uint8_t kBottomRight = 1;
+  // The edges do not fit the records' 32 bits on every row (huge guard-band triangles): each
+  // strip visit picks them up from the vertices (wide_edge, core/setup/triangle_rows.hpp).
+  static constexpr uint8_t kWideEdges = 2;
+  // Every span lies in the columns [0, width) unclamped (col_base is 0).
+  static constexpr uint8_t kInside = 4;
+  // The three edges by their vertices (wide_edge): top to bottom, top to middle, middle to
+  // bottom.
+  static constexpr int kLong = 0, kTop = 1, kBottom = 2;
+  // The side (0 left, 1 right) of the top and bottom edges.
+  int short_side() const { return flags & kBottomRight; }
+  // The record of the left (0) or right (1) edge of the rows down to mid_row.
+  RowEdge side_edge(int side) const { return RowEdge{edge_q[side], edge_dx[side], edge_dy[side]}; }
+  RowFn rows = nullptr;  // the row loop of the triangle's family and state
   Plane z;
+  Plane c[3];  // right after z: a row loop reads z, c[0] and c[1] as one block
   Plane q;
-  Plane c[3];  // colour channels; Phong: the normal's components
   // Textured and Phong triangles: their slot's planes (nullptr for the others).
   ActiveExtra* ext = nullptr;
 };
 static_assert(sizeof(ActiveExtra) == 124);
-static_assert(sizeof(ActiveTriangle) == 136 + sizeof(uintptr_t));  // 140 B on Cortex-M
+static_assert(sizeof(ActiveTriangle) == (sizeof(uintptr_t) == 4 ? 116 : 128));  // 116 B on Cortex-M
 
 inline constexpr uint32_t kPlaneBias = 1u << 31;
 // A biased signed plane value back to int32.
 constexpr int32_t unbias(uint32_t v) {
   return static_cast<int32_t>(v - kPlaneBias);
-}
-
-// Walks the triangle's rows from t.row up to `end` (inclusive): row(r) for each, then both edges
-// step to the next row; at the middle vertex the short edge becomes the bottom edge. Leaves t.row
-// at the first row not walked. The one place rows are stepped: drawing a strip passes the span
-// work as `row`, skipping an unchanged strip passes nothing.
-template <class RowFn>
-[[gnu::always_inline]] inline void walk_rows(ActiveTriangle& t, int end, RowFn&& row) {
-  int r = t.row;
-  for (; r <= end; ++r) {
-    if (r == t.mid_row + 1) t.short_edge = t.bottom_edge;
-    row(r);
-    t.long_edge.step();
-    t.short_edge.step();
-  }
-  t.row = static_cast<int16_t>(r);
-}
-
-// Whether a row from t.row up to `end` (inclusive) has a pixel centre inside the triangle and
-// inside columns [0, width): walk_rows' stepping on copies of the edges, up to the first such row
-// (most triangles have one in their first row, which needs no copies).
-inline bool has_pixels(const ActiveTriangle& t, int end, int32_t width) {
-  const bool long_left = t.long_is_left;
-  auto inside = [long_left, width](const EdgeWalker& long_edge, const EdgeWalker& short_edge) {
-    const int32_t a = long_edge.column(), b = short_edge.column();
-    const int32_t left = long_left ? a : b, right = long_left ? b : a;
-    return left < width && right > 0 && left < right;
-  };
-  const int bottom = t.mid_row + 1;
-  int r = t.row;
-  if (r <= end && r != bottom && inside(t.long_edge, t.short_edge)) return true;
-  EdgeWalker long_edge = t.long_edge, short_edge = t.short_edge;
-  for (; r <= end; ++r) {
-    if (r == bottom) short_edge = t.bottom_edge;
-    if (inside(long_edge, short_edge)) return true;
-    long_edge.step();
-    short_edge.step();
-  }
-  return false;
 }
 
 }  // namespace lr

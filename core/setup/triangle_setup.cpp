@@ -190,52 +190,16 @@ Plane make_plane(const ScreenVertex* const v[3], const uint32_t a[3]) {
   return make_plane(PlaneBasis(v), a);
 }
 
-// Whether screen-linear colours are within half an 8-bit level of perspective-correct ones
-// everywhere in the triangle, so that the per-pixel division can be skipped. With barycentrics
-// l_i, u_i = 1 / w_i and S = sum_j l_j u_j (a mean of the u_i), the perspective-correct ones are
-// l'_i = l_i u_i / S, and the two colours differ by sum_i (l'_i - l_i)(a_i - m) for any m (the
-// l' and l both sum to 1): with m the middle of the vertex values, at most
-// (sum_i l_i |u_i - S| / S) x D / 2, D the largest difference of a channel between two vertices.
-// A mean absolute deviation of values in [u_min, u_max] is at most (u_max - u_min) / 2, and
-// S >= u_min, so the difference is at most (R - 1) D / 4 for R = w_max / w_min. Half a level is
-// 32768 / 510 > 64 in Q1.15: (w_max - w_min) D <= 256 w_min suffices (products < 2^49).
 namespace {
-bool affine_is_exact_enough(const ScreenVertex* const v[3]) {
-  uint32_t wmin = v[0]->w, wmax = v[0]->w;
-  for (int i = 1; i < 3; ++i) {
-    wmin = v[i]->w < wmin ? v[i]->w : wmin;
-    wmax = v[i]->w > wmax ? v[i]->w : wmax;
-  }
-  uint32_t d = 0;
-  for (int c = 0; c < 3; ++c) {
-    uint32_t lo = channel(v[0]->color, c), hi = lo;
-    for (int i = 1; i < 3; ++i) {
-      const uint32_t x = channel(v[i]->color, c);
-      lo = x < lo ? x : lo;
-      hi = x > hi ? x : hi;
-    }
-    d = hi - lo > d ? hi - lo : d;
-  }
-  return uint64_t{wmax - wmin} * d <= uint64_t{wmin} * 256;
-}
-}  // namespace
-
-namespace {
-// The vertices (and, with kExtras, their surfaces and texture entries) sorted by y (display rows,
-// top first); a fixed network keeps ties deterministic, so that setup_edges and setup_planes sort
-// alike.
-template <bool kExtras>
+// The vertices and their surfaces and texture entries sorted by y (display rows, top first), as
+// sort_by_y (core/setup/triangle_rows.hpp) sorts: the planes' vertex 0 is the top vertex.
 struct Sorted {
   const ScreenVertex* v[3];
-  const SurfaceVertex* sf[3] = {nullptr, nullptr, nullptr};
-  const TexVertex* tv[3] = {nullptr, nullptr, nullptr};
-  explicit Sorted(const ScreenVertex* const vs[3]) : v{vs[0], vs[1], vs[2]} { sort(); }
+  const SurfaceVertex* sf[3];
+  const TexVertex* tv[3];
   Sorted(const ScreenVertex* const vs[3], const SurfaceVertex* const ss[3],
          const TexVertex* const ts[3])
       : v{vs[0], vs[1], vs[2]}, sf{ss[0], ss[1], ss[2]}, tv{ts[0], ts[1], ts[2]} {
-    sort();
-  }
-  void sort() {
     order(0, 1);
     order(1, 2);
     order(0, 1);
@@ -243,42 +207,17 @@ struct Sorted {
   void order(int a, int b) {
     if (v[b]->y < v[a]->y) {
       std::swap(v[a], v[b]);
-      if constexpr (kExtras) {
-        std::swap(sf[a], sf[b]);
-        std::swap(tv[a], tv[b]);
-      }
+      std::swap(sf[a], sf[b]);
+      std::swap(tv[a], tv[b]);
     }
   }
 };
 }  // namespace
 
-void setup_edges(const ScreenVertex* const vertices[3], int32_t first, int32_t last,
-                 ActiveTriangle& t) {
-  const Sorted<false> sorted(vertices);
-  const ScreenVertex* const* v = sorted.v;
-  int32_t x0 = v[0]->x, y0 = v[0]->y, x1 = v[1]->x, y1 = v[1]->y, x2 = v[2]->x, y2 = v[2]->y;
-  // Vertices sorted top to bottom: a positive area puts the middle vertex right of the long edge.
-  t.long_is_left = signed_area2(*v[0], *v[1], *v[2]) > 0;
-
-  t.row = static_cast<int16_t>(first);
-  t.last_row = static_cast<int16_t>(last);
-  int32_t mid = last_row_at_or_above(y1);
-  if (mid < first - 1) mid = first - 1;
-  if (mid > last) mid = last;
-  t.mid_row = static_cast<int16_t>(mid);
-  t.long_edge.init(x0, y0, x2, y2, first);
-  if (y2 > y1) t.bottom_edge.init(x1, y1, x2, y2, mid + 1 > first ? mid + 1 : first);
-  if (first <= mid) {
-    t.short_edge.init(x0, y0, x1, y1, first);  // rows exist above y1, so y1 > y0
-  } else {
-    t.short_edge = t.bottom_edge;
-  }
-}
-
 template <bool kTexture, bool kPhong>
-void setup_planes(const SetupInput& in, ActiveTriangle& t) {
+ColorPlanes setup_planes(const SetupInput& in, ActiveTriangle& t) {
   static_assert(kTexture || !kPhong, "Phong's maps use the texture planes");
-  const Sorted<true> sorted(in.v, in.phong.s, in.tex.tv);
+  const Sorted sorted(in.v, in.phong.s, in.tex.tv);
   const ScreenVertex* const* v = sorted.v;
   const SurfaceVertex* const* sf = sorted.sf;
   const PlaneBasis pb(v);  // after the sort: the planes' vertex 0 is the top vertex, as before
@@ -289,23 +228,20 @@ void setup_planes(const SetupInput& in, ActiveTriangle& t) {
   const bool tex = kTexture && in.tex.texture != nullptr;
   uint32_t q[3] = {1u << 30, 1u << 30, 1u << 30};
   const bool phong = kPhong && sf[0] != nullptr;
-  t.colors = in.colors;
-  if (in.colors == ColorPlanes::kPerspective && in.affine_colors_ok && !tex && !phong &&
-      affine_is_exact_enough(v))
-    t.colors = ColorPlanes::kAffine;
-  if (t.colors == ColorPlanes::kPerspective || (tex && in.tex.perspective) || phong) {
+  const ColorPlanes colors = in.colors;
+  if (colors == ColorPlanes::kPerspective || (tex && in.tex.perspective) || phong) {
     uint32_t wmin = v[0]->w;
     for (int i = 1; i < 3; ++i) wmin = v[i]->w < wmin ? v[i]->w : wmin;
     for (int i = 0; i < 3; ++i) q[i] = perspective_factor(wmin, v[i]->w);
     t.q = make_plane(pb, q);
   }
-  if (t.colors == ColorPlanes::kPerspective) {
+  if (colors == ColorPlanes::kPerspective) {
     for (int c = 0; c < 3; ++c) {
       uint32_t cq[3];
       for (int i = 0; i < 3; ++i) cq[i] = scale_by_q(channel(v[i]->color, c), q[i]);
       t.c[c] = make_plane(pb, cq);
     }
-  } else if (t.colors == ColorPlanes::kAffine) {
+  } else if (colors == ColorPlanes::kAffine) {
     for (int c = 0; c < 3; ++c) {
       uint32_t cv[3];
       for (int i = 0; i < 3; ++i) cv[i] = uint32_t{channel(v[i]->color, c)} << 15;
@@ -316,16 +252,12 @@ void setup_planes(const SetupInput& in, ActiveTriangle& t) {
     if (tex) setup_texture(in.tex, v, sorted.tv, pb, q, t);
   if constexpr (kPhong)
     if (phong) setup_phong(in.phong, sf, pb, q, t);
+  return colors;
 }
 
-template void setup_planes<false, false>(const SetupInput&, ActiveTriangle&);
-template void setup_planes<true, false>(const SetupInput&, ActiveTriangle&);
-template void setup_planes<true, true>(const SetupInput&, ActiveTriangle&);
-
-void setup_triangle(const SetupInput& in, ActiveTriangle& t) {
-  setup_edges(in.v, in.first_row, in.last_row, t);
-  setup_planes<true, true>(in, t);
-}
+template ColorPlanes setup_planes<false, false>(const SetupInput&, ActiveTriangle&);
+template ColorPlanes setup_planes<true, false>(const SetupInput&, ActiveTriangle&);
+template ColorPlanes setup_planes<true, true>(const SetupInput&, ActiveTriangle&);
 
 void setup_phong(const PhongSetup& ps, const SurfaceVertex* const s[3], const PlaneBasis& pb,
                  const uint32_t q[3], ActiveTriangle& t) {

@@ -1,5 +1,6 @@
-// Triangle setup: what a binned triangle becomes when its first strip is reached — edge walkers
-// for its rows and the planes of its attributes.
+// Triangle setup: the planes of a binned triangle's attributes, made when its first strip is
+// reached (its rows and edges: triangle_rows.hpp). The textured and Phong families use
+// setup_planes; the untextured family its own setup (untextured_setup.hpp) on the same planes.
 //
 // Attribute planes live on the pixel lattice: A(c, r) = base + gx c + gy r in uint32, modulo
 // 2^32, with gradients rounded once: every evaluation, direct or stepped, is exact. Error and
@@ -21,6 +22,7 @@
 #include <cstdint>
 
 #include "lineraster/core/output/color.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
 #include "lineraster/core/setup/active_triangle.hpp"
 #include "lineraster/core/texture/texture.hpp"
 #include "lineraster/core/vertex/screen_vertex.hpp"
@@ -53,23 +55,17 @@ struct SetupInput {
   bool depth;
   TextureSetup tex;
   PhongSetup phong;
-  bool affine_colors_ok = false;  // the renderer links the affine colour routine (kPerspective
-                                  // triangles may get affine planes: ActiveTriangle::colors)
-  int32_t first_row;  // first row to draw (>= the triangle's own first row), viewport clamped
-  int32_t last_row;   // inclusive
 };
 
-// Fills `out` (except index/draw/flat). The triangle must have non-zero area.
-void setup_triangle(const SetupInput& in, ActiveTriangle& out);
-// The two halves of setup_triangle: the rows and edge walkers (rows first..last, inclusive), then
-// the attribute planes and the colour planes' kind (all of `in` but its rows): the strip loop
-// sets up no planes for a triangle whose rows cover no pixel centre.
-// setup_planes' kTexture and kPhong: whether it sets up texture and Phong planes at all. A
-// renderer whose spans have neither family links neither routine (the front end refuses such
-// draws before setup); kPhong needs kTexture (Phong's maps use the texture planes).
-void setup_edges(const ScreenVertex* const v[3], int32_t first, int32_t last, ActiveTriangle& out);
+// The attribute planes of a textured or Phong triangle of non-zero area (its rows and edges are
+// setup_rows', core/setup/triangle_rows.hpp: the strip loop sets up no planes for a triangle
+// whose rows cover no pixel centre; untextured triangles: untextured_setup.hpp). Returns the
+// colour planes it made (in.colors).
+// kTexture and kPhong: whether it sets up texture and Phong planes at all. A renderer whose
+// spans have neither family links neither routine (the front end refuses such draws before
+// setup); kPhong needs kTexture (Phong's maps use the texture planes).
 template <bool kTexture, bool kPhong>
-void setup_planes(const SetupInput& in, ActiveTriangle& out);
+ColorPlanes setup_planes(const SetupInput& in, ActiveTriangle& out);
 
 // What every plane of one triangle shares (docs/numerics.md#attribute-plane-equations). Most
 // triangles take the short path: one normalised reciprocal of twice the area and four edge

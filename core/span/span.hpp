@@ -1,9 +1,8 @@
-// Span routines: fill one row of one triangle between its edges.
-//
-// One routine per state (depth test on/off x colour planes none/perspective/affine), each a
-// template instance with no per-pixel branch on state; the table of a renderer's
-// SpanSet holds the instances its states select (span_state.hpp). Per pixel: depth test
-// first, then colour, then the write. Returns the number of pixels written.
+// What the span routines share: the perspective-correct channel's reciprocal, the depth test of
+// the full-scale depth planes (textured and Phong), the affine channel's clamp. The spans
+// themselves: untextured_span.hpp, tex_span.hpp, phong_span.hpp; every family's routines are
+// template instances with no per-pixel branch on state, in tables of the renderer's SpanSet
+// (span_state.hpp, dispatch.hpp).
 #pragma once
 
 #include <array>
@@ -64,83 +63,5 @@ constexpr uint32_t affine15(uint32_t plane_c) {
 static_assert(to_byte(Color15::kOne - 1) == to_byte(Color15::kOne));
 
 }  // namespace detail
-
-template <class PF>
-using SpanFn = uint32_t (*)(const ActiveTriangle& t, typename PF::Storage* px, uint16_t* depth,
-                            int32_t col, int32_t row, int32_t count);
-
-template <class PF, bool kDepth, ColorPlanes kColors>
-uint32_t fill_span(const ActiveTriangle& t, typename PF::Storage* px, uint16_t* depth, int32_t col,
-                   int32_t row, int32_t count) {
-  uint32_t z = 0, dz = 0;
-  if constexpr (kDepth) {
-    z = detail::depth_start(t.z, col, row);
-    dz = t.z.gx;
-  }
-  uint32_t q = 0, dq = 0;
-  std::array<uint32_t, 3> c{}, dc{};
-  if constexpr (kColors != ColorPlanes::kNone) {
-    for (int k = 0; k < 3; ++k) {
-      c[static_cast<size_t>(k)] = t.c[k].at(col, row);
-      dc[static_cast<size_t>(k)] = t.c[k].gx;
-    }
-  }
-  if constexpr (kColors == ColorPlanes::kPerspective) {
-    q = t.q.at(col, row);
-    dq = t.q.gx;
-  }
-  typename PF::Storage flat{};
-  if constexpr (kColors == ColorPlanes::kNone) flat = PF::encode(t.flat);
-
-  uint32_t written = 0;
-  for (int32_t i = 0; i < count; ++i) {
-    bool pass = true;
-    if constexpr (kDepth) {
-      pass = detail::depth_pass(z, depth[i]);
-      z += dz;
-    }
-    if (pass) {
-      if constexpr (kColors == ColorPlanes::kNone) {
-        px[i] = flat;
-      } else if constexpr (kColors == ColorPlanes::kPerspective) {
-        detail::Reciprocal rc(q);
-        px[i] = PF::encode15(rc.apply(c[0]), rc.apply(c[1]), rc.apply(c[2]));
-      } else {
-        px[i] =
-            PF::encode15(detail::affine15(c[0]), detail::affine15(c[1]), detail::affine15(c[2]));
-      }
-      ++written;
-    }
-    if constexpr (kColors != ColorPlanes::kNone) {
-      c[0] += dc[0];
-      c[1] += dc[1];
-      c[2] += dc[2];
-    }
-    if constexpr (kColors == ColorPlanes::kPerspective) q += dq;
-  }
-  return written;
-}
-
-// The untextured family (dispatch.hpp): fill_span per (depth test, colour planes).
-template <class PF>
-struct UntexturedSpans {
-  using Layout = UntexturedLayout;
-  using Fn = SpanFn<PF>;
-  static constexpr auto kUsed = &UsedRoutines::untextured;
-  template <bool kDepth, ColorPlanes kColors>
-  static constexpr Fn routine() {
-    return &fill_span<PF, kDepth, kColors>;
-  }
-};
-
-// The routines of a set, generated from the template and the state space (span_state.hpp).
-template <class PF, SpanSet kSet = kAllSpans>
-inline constexpr std::array<SpanFn<PF>, kUntexturedRoutines> kSpanTable =
-    make_table<UntexturedSpans<PF>, kSet>();
-
-template <class PF, SpanSet kSet = kAllSpans>
-constexpr SpanFn<PF> span_routine(bool depth, ColorPlanes colors) {
-  return kSpanTable<PF, kSet>[untextured_index(depth, colors)];
-}
 
 }  // namespace lr

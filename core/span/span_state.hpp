@@ -3,7 +3,7 @@
 //
 // A draw's state (SpanState) is its family and the dimensions that family's routine is
 // instantiated for:
-//   untextured: depth test x colour planes (none, perspective, affine)       fill_span
+//   untextured: depth test x colour planes (none, perspective, affine)       untextured_span
 //   textured:   depth test x perspective mode x environment x mip mode       fill_tex_span
 //               x filter (the texel fetcher)
 //   Phong:      depth test x lighting method x (exact: world-position planes; fill_phong_span
@@ -366,7 +366,8 @@ constexpr UsedRoutines used_routines(const SpanSet& set) {
       case SpanFamily::kUntextured:
         u.untextured[untextured_index(s.depth, s.colors)] = true;
         // Perspective-correct colours fall back to the affine routine on triangles where the two
-        // agree within half a level (setup_triangle): that routine is part of the state.
+        // agree within half an output step (setup_untextured_triangle): that routine is part of
+        // the state.
         if (s.colors == ColorPlanes::kPerspective)
           u.untextured[untextured_index(s.depth, ColorPlanes::kAffine)] = true;
         break;

@@ -176,8 +176,10 @@ bool run_case() {
                                        {"clipped_away", st.clipped_away},
                                        {"binned", st.triangles_binned},
                                        {"set_up", st.triangles_set_up},
+                                       {"wide", st.triangles_wide},
                                        {"no_pixels", st.triangles_without_pixels},
                                        {"spans", st.spans},
+                                       {"rows", st.rows_walked},
                                        {"max_active", st.max_active},
                                        {"dropped", dropped}};
   lr::fw::write_counts(counts);

@@ -94,13 +94,15 @@ lr_fw_guard() {
 
 # Calls through pointers in the images, for scripts/stack_usage.py (its --indirect-from rules;
 # shared by scripts/footprint.sh, ci_firmware.sh and small_ram.sh): the renderer calls the
-# sink's virtual methods and the span routines of its families; textured and Phong spans call
+# sink's virtual methods and each triangle's row loop; the textured and Phong row loop calls
+# the span routines of its families; textured and Phong spans call
 # texel fetchers; the front end calls the renderer's admission test and, with Phong spans, its
 # Phong records; the panel path (the Cortex-M7 demo) calls its bus; Reset_Handler calls the static constructors (none: the images
 # constant-initialise).
 lr_fw_stack_rules=(
-  --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|strips|raster_triangle)\('
-  'OrderedStripSink<.*>::|lr::PanelSink::|lr::StripSink<.*>::(retains_frame|keep)\(|lr::fill_span<|lr::fill_tex_span<|lr::fill_phong_span<'
+  --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|strips|crowded_strip)\('
+  'OrderedStripSink<.*>::|lr::PanelSink::|lr::StripSink<.*>::(retains_frame|keep)\(|lr::(lanes_rows|untextured_rows_per_span|legacy_rows)<'
+  --indirect-from 'lr::legacy_rows<' 'lr::fill_tex_span<|lr::fill_phong_span<'
   --indirect-from 'lr::(detail::)?fill_(tex_span_body|tex_span|phong_span)<' 'lr::fetch_batch<'
   --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'
   --indirect-from 'lr::FrontEnd::(draw(_screen)?|admitted)\(' 'lr::admits<|lr::FrontEnd::phong_record\('

@@ -176,7 +176,7 @@ TEST(Capacity, CrowdedStripsAreDrawnInPassesWithTheSameFrame) {
   }
 }
 
-// Slivers between pixel centres get no planes and no active slot (setup_edges only): the frame
+// Slivers between pixel centres get no planes and no active slot (rows and edges only): the frame
 // is the one with the slivers moved off the viewport (same submission order, same colours), in
 // strips where triangles already active and new ones interleave with them (no depth test: the
 // active order decides every overlap).

@@ -348,7 +348,7 @@ TEST(SpanDispatch, TheEnumerationCoversEveryFamilyOnceAndTheFullSetAdmitsIt) {
 
 // A set's routine tables, their entries as addresses.
 struct Tables {
-  std::array<const void*, kUntexturedRoutines> untextured{};
+  std::array<const void*, 2 * kUntexturedKinds> untextured{};  // the row loops
   std::array<const void*, kTexturedRoutines> textured{};
   std::array<const void*, kPhongRoutines> phong{};
   std::array<const void*, kFetchRoutines> fetch{};
@@ -365,7 +365,7 @@ std::array<const void*, N> addresses(const std::array<Fn, N>& table) {
 
 template <SpanSet kSet>
 Tables tables_of() {
-  return {addresses(kSpanTable<PF, kSet>), addresses(kTexSpanTable<PF, kSet>),
+  return {addresses(kUntexturedRowTable<PF, kSet>), addresses(kTexSpanTable<PF, kSet>),
           addresses(kPhongSpanTable<PF, kSet>), addresses(kFetchTable<kSet>),
           addresses(kEnvFetchTable<kSet>)};
 }
@@ -379,7 +379,8 @@ Tables tables_using(const UsedRoutines& used) {
     for (size_t i = 0; i < entries.size(); ++i)
       if (!flags[i]) entries[i] = nullptr;
   };
-  keep(t.untextured, used.untextured);
+  for (size_t i = 0; i < t.untextured.size(); ++i)
+    if (!untextured_row_used<PF>(used, i)) t.untextured[i] = nullptr;
   keep(t.textured, used.textured);
   keep(t.phong, used.phong);
   keep(t.fetch, used.fetch);
@@ -393,7 +394,7 @@ std::array<const void*, 3> routines_in(const Tables& t, const SpanState& s, Texe
   std::array<const void*, 3> r{};
   switch (s.family) {
     case SpanFamily::kUntextured:
-      r[0] = t.untextured[untextured_index(s.depth, s.colors)];
+      r[0] = t.untextured[untextured_row_index(s.depth, primary_kind<PF>(s.colors))];
       break;
     case SpanFamily::kTextured:
       r[0] = t.textured[textured_index(s.depth, s.persp, s.env, s.mip)];
@@ -432,12 +433,13 @@ TEST(SpanDispatch, EveryStateOfTheFullSetHasItsOwnNonNullRoutines) {
   }
   // Every instance of each table, every fetcher: non-null and distinct.
   std::set<const void*> all;
-  for (auto p : kSpanTable<PF>) all.insert(reinterpret_cast<const void*>(p));
+  for (auto p : kUntexturedRowTable<PF>)  // Rgb888: no lanes kind
+    if (p != nullptr) all.insert(reinterpret_cast<const void*>(p));
   for (auto p : kTexSpanTable<PF>) all.insert(reinterpret_cast<const void*>(p));
   for (auto p : kPhongSpanTable<PF>) all.insert(reinterpret_cast<const void*>(p));
   for (auto p : kFetchTable<>) all.insert(reinterpret_cast<const void*>(p));
   for (auto p : kEnvFetchTable<>) all.insert(reinterpret_cast<const void*>(p));
-  EXPECT_EQ(all.size(), kUntexturedRoutines + kTexturedRoutines + kPhongRoutines +
+  EXPECT_EQ(all.size(), 2 * (kUntexturedKinds - 1) + kTexturedRoutines + kPhongRoutines +
                             kFetchRoutines);  // environment maps use 4 of the fetchers
   EXPECT_EQ(all.count(nullptr), 0u);
 }

@@ -18,7 +18,9 @@
 #include "lineraster/core/raster/strip_fill.hpp"
 #include "lineraster/core/scene/camera.hpp"
 #include "lineraster/core/scene/material.hpp"
-#include "lineraster/core/setup/edge.hpp"
+#include "lineraster/core/setup/active_triangle.hpp"
+#include "lineraster/core/setup/row_edge.hpp"
+#include "lineraster/core/setup/triangle_rows.hpp"
 
 namespace lr {
 namespace {
@@ -373,38 +375,68 @@ TEST(Reciprocal, SmallDivisionEqualsTheDivision) {
     check_all_shifts((1u << 14) + static_cast<uint32_t>(next() % ((1u << 24) - (1u << 14) + 1)));
 }
 
-// The edge walker's 32-bit path and the 64-bit one (long edges far outside the viewport) both
-// hold X = ceil((N) / dy) with the error term of the header: checked against a direct 64-bit
-// evaluation for short and guard-band-long edges.
-TEST(EdgeWalker, InitMatchesTheExactFormulaOnBothPaths) {
+// Edge records (core/setup/row_edge.hpp): the column of a row picked up from a record equals
+// ceil(((xa - 128) dy + dx (yc - ya)) / (256 dy)), checked against a direct 64-bit evaluation for
+// short edges (one record at the edge's first row, relative to the column base of its bounding
+// box: the record fits) and guard-band-long ones (picked up from the vertices for a visit of 32
+// rows, wide_edge), with both walkers and the step to the next row; a sixth of the short edges
+// have |dx| within one of dy, where the DDA's step is found without a division.
+TEST(RowEdge, PickUpMatchesTheExactFormulaOnBothPaths) {
   uint64_t s = 12345;
   auto next = [&s]() {
     s = s * 6364136223846793005u + 1442695040888963407u;
     return static_cast<int64_t>(s >> 33);
   };
+  auto exact = [](int64_t xa, int64_t ya, int64_t xb, int64_t yb, int64_t row) {
+    const int64_t dy = yb - ya, dx = xb - xa;
+    const int64_t n = (xa - kHalfPixel) * dy + dx * (row * kSubpixel + kHalfPixel - ya);
+    return ceil_div(n, dy * kSubpixel);
+  };
+  int records = 0, wide = 0;
   for (int i = 0; i < 200000; ++i) {
     const int32_t range = i % 2 ? (1 << 14) : (1 << 22) - 1;  // short edges, then long ones
     const auto xa = static_cast<int32_t>(next() % (2 * range) - range);
     const auto ya = static_cast<int32_t>(next() % (2 * range) - range);
-    const auto xb = static_cast<int32_t>(next() % (2 * range) - range);
+    auto xb = static_cast<int32_t>(next() % (2 * range) - range);
     auto yb = static_cast<int32_t>(next() % (2 * range) - range);
     if (yb <= ya) yb = ya + 1 + static_cast<int32_t>(next() % 1000);
+    if (i % 6 == 5) {  // short edges with |dx| within one of dy: DdaEdge's steep-edge shortcut
+      const int32_t dx = yb - ya + static_cast<int32_t>(next() % 3) - 1;
+      xb = xa + (next() % 2 ? dx : -dx);
+    }
     // A row whose centre is on the edge (the rows a triangle asks for).
     const int32_t r0 = first_row_below(ya), r1 = last_row_at_or_above(yb);
     if (r1 < r0) continue;
     const int32_t row = r0 + static_cast<int32_t>(next() % (r1 - r0 + 1));
-    EdgeWalker e;
-    e.init(xa, ya, xb, yb, row);
-    const int64_t dy = int64_t{yb} - ya, dx = int64_t{xb} - xa;
-    const int64_t n =
-        (int64_t{xa} - kHalfPixel) * dy + dx * (int64_t{row} * kSubpixel + kHalfPixel - ya);
-    const int64_t x = ceil_div(n, dy);
-    ASSERT_EQ(e.x, x);
-    ASSERT_EQ(e.err, x * dy - n);
-    ASSERT_EQ(e.step_q, floor_div(dx * kSubpixel, dy));
-    ASSERT_EQ(e.step_r, dx * kSubpixel - floor_div(dx * kSubpixel, dy) * dy);
-    ASSERT_EQ(e.dy, dy);
+    const int32_t last = std::min(r1, row + 31);
+    const ScreenVertex a{xa, ya, 0, 0, {}, 0, 0}, b{xb, yb, 0, 0, {}, 0, 0};
+    const ScreenVertex* v[3] = {&a, &a, &b};
+    const PickedEdge p = wide_edge(v, ActiveTriangle::kLong, row, last);
+    DivideEdge d(p.e, p.cb, 0);
+    DdaEdge e(p.e, p.cb, 0);
+    for (int32_t r = row; r <= last; ++r) {
+      ASSERT_EQ(d.column(), exact(xa, ya, xb, yb, r));
+      ASSERT_EQ(e.column(), exact(xa, ya, xb, yb, r));
+      d.step();
+      e.step();
+    }
+    ++wide;
+    const int32_t cb = (std::min(xa, xb) - kHalfPixel) >> kSubpixelBits;
+    const int32_t cmax = (std::max(xa, xb) - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
+    if (int64_t{cmax - cb + 1} * (int64_t{yb} - ya) >= (int64_t{1} << 32)) continue;
+    const RowEdge rec = make_row_edge(xa, ya, xb, yb, cb, r0);
+    DivideEdge dr(rec, cb, row - r0);
+    DdaEdge er(rec, cb, row - r0);
+    for (int32_t r = row; r <= last; ++r) {
+      ASSERT_EQ(dr.column(), exact(xa, ya, xb, yb, r));
+      ASSERT_EQ(er.column(), exact(xa, ya, xb, yb, r));
+      dr.step();
+      er.step();
+    }
+    ++records;
   }
+  EXPECT_GT(records, 50000);  // the short edges
+  EXPECT_GT(wide, 100000);
 }
 
 // Strip fills: every length from 0 to 300 and values with equal and unequal bytes, the pixels

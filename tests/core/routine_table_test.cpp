@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/raster/untextured_rows.hpp"
 #include "lineraster/core/span/index_layout.hpp"
 #include "lineraster/core/span/phong_span.hpp"
 #include "lineraster/core/span/sampler.hpp"
@@ -41,7 +42,8 @@ TEST(RoutineTable, EveryLayoutDecodesAndEncodesEveryIndexBack) {
 }
 
 TEST(RoutineTable, TablesHaveOneEntryPerCombinationOfTheirFields) {
-  EXPECT_EQ(kSpanTable<PF>.size(), 2u * 3u);
+  EXPECT_EQ(kUntexturedRowTable<PF>.size(), 2u * 4u);
+  EXPECT_EQ(untextured_row_index(true, UntexturedKind::kLanes), 1u + 2u * 3u);
   EXPECT_EQ(kTexSpanTable<PF>.size(), 2u * 3u * 2u * 3u);
   EXPECT_EQ(kPhongSpanTable<PF>.size(), 64u);
   EXPECT_EQ(kFetchTable<>.size(), 2u * 2u * 2u * 4u);
@@ -62,8 +64,9 @@ template <size_t J>
 void expect_state_routine() {
   constexpr SpanState s = kSpanStates[J];
   if constexpr (s.family == SpanFamily::kUntextured) {
-    EXPECT_EQ(kSpanTable<PF>[untextured_index(s.depth, s.colors)],
-              (&fill_span<PF, s.depth, s.colors>))
+    constexpr UntexturedKind kKind = primary_kind<PF>(s.colors);
+    EXPECT_EQ(kUntexturedRowTable<PF>[untextured_row_index(s.depth, kKind)],
+              (untextured_rows<PF, s.depth, kKind>()))
         << "state " << J;
   } else if constexpr (s.family == SpanFamily::kTextured) {
     EXPECT_EQ(kTexSpanTable<PF>[textured_index(s.depth, s.persp, s.env, s.mip)],
@@ -128,7 +131,9 @@ void expect_restriction(const std::array<T, N>& table, const std::array<T, N>& f
 template <SpanSet kSet>
 void expect_restricted_tables() {
   constexpr UsedRoutines u = kUsedRoutines<kSet>;
-  expect_restriction(kSpanTable<PF, kSet>, kSpanTable<PF>, u.untextured, "untextured");
+  std::array<bool, 2 * kUntexturedKinds> rows{};
+  for (size_t i = 0; i < rows.size(); ++i) rows[i] = untextured_row_used<PF>(u, i);
+  expect_restriction(kUntexturedRowTable<PF, kSet>, kUntexturedRowTable<PF>, rows, "untextured");
   expect_restriction(kTexSpanTable<PF, kSet>, kTexSpanTable<PF>, u.textured, "textured");
   expect_restriction(kPhongSpanTable<PF, kSet>, kPhongSpanTable<PF>, u.phong, "phong");
   expect_restriction(kFetchTable<kSet>, kFetchTable<>, u.fetch, "fetch");

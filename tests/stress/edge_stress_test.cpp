@@ -1,9 +1,12 @@
-// Numerical stress: exact edge stepping and attribute drift across the whole guard band.
+// Numerical stress: exact edge columns and attribute drift across the whole guard band.
 //
-// Edges: the EdgeWalker's stepped X on every row of an edge equals the exact rational formula of
-// edge.hpp, X = ceil(((xa - 128) dy + dx (yc - ya)) / dy), evaluated here independently in
+// Edges: the column of an edge on every row, as both row walkers (DivideEdge, DdaEdge) step it
+// from a record (core/setup/row_edge.hpp), equals the exact rational formula
+// c = ceil(((xa - 128) dy + dx (yc - ya)) / (256 dy)), evaluated here independently in
 // __int128, for edges of every octant of slope (vertical, horizontal, slope 1 and its neighbours,
-// very steep, very shallow, random) with end points anywhere in |x|, |y| < 2^22 subpixels.
+// very steep, very shallow, random) with end points anywhere in |x|, |y| < 2^22 subpixels:
+// picked up per strip visit of 32 rows from the vertices (wide_edge, every edge), and from one
+// record at the first row (and at a middle row) where the record fits 32 bits.
 //
 // Attributes: along the longest spans and edges, the values stepped by adding the gradient equal
 // Plane::at (modular arithmetic: exact), and differ from the exact rational plane through the
@@ -18,7 +21,8 @@
 #include <random>
 #include <vector>
 
-#include "lineraster/core/setup/edge.hpp"
+#include "lineraster/core/setup/row_edge.hpp"
+#include "lineraster/core/setup/triangle_rows.hpp"
 #include "lineraster/core/setup/triangle_setup.hpp"
 
 namespace lr {
@@ -47,44 +51,64 @@ int64_t last_row(int64_t yb) {
 }
 
 struct EdgeCheck {
-  uint64_t rows = 0, x_mismatch = 0, column_mismatch = 0, err_bad = 0;
+  uint64_t rows = 0, column_mismatch = 0, record_rows = 0;
 };
 
-// Steps a walker over every row of the edge (top to bottom) and compares with the formula.
-// Also starts a second walker on a row in the middle (init at any row must agree).
+// The exact column of the edge on row r: the first column whose centre is at or right of it.
+i128 exact_column(i128 xa, i128 ya, i128 xb, i128 yb, i128 r) {
+  const i128 dx = xb - xa, dy = yb - ya;
+  const i128 yc = r * S + S / 2;
+  return ceil_div128((xa - S / 2) * dy + dx * (yc - ya), dy * S);
+}
+
+// Steps both walkers from their constructors' row over `rows` rows against the exact columns.
+template <class W>
+void walk(W w, int64_t xa, int64_t ya, int64_t xb, int64_t yb, int64_t r, int64_t rows,
+          EdgeCheck& c) {
+  for (int64_t k = 0; k < rows; ++k, ++r) {
+    const i128 col = exact_column(xa, ya, xb, yb, r);
+    if (i128{w.column()} != col && c.column_mismatch++ < 5)
+      ADD_FAILURE() << "edge (" << xa << "," << ya << ")-(" << xb << "," << yb << ") row " << r
+                    << ": " << w.column() << ", exact " << static_cast<int64_t>(col);
+    w.step();
+  }
+}
+
+// Walks the edge over every row it is used on (top to bottom), picked up per visit of 32 rows
+// (as a strip loop with strips of 32 does for a triangle whose records do not fit), and, when its
+// record fits 32 bits (edges_fit's condition for a triangle of this one edge), from one record at
+// its first row and from the same record at a middle row.
 void check_edge(int64_t xa, int64_t ya, int64_t xb, int64_t yb, EdgeCheck& c) {
   if (ya > yb) {
     std::swap(xa, xb);
     std::swap(ya, yb);
   }
   if (ya == yb) return;  // horizontal: no rows use it
-  const i128 dx = xb - xa, dy = yb - ya;
   const int64_t r0 = first_row(ya), r1 = last_row(yb);
   if (r0 > r1) return;
-  EdgeWalker w{}, mid{};
-  w.init(static_cast<int32_t>(xa), static_cast<int32_t>(ya), static_cast<int32_t>(xb),
-         static_cast<int32_t>(yb), static_cast<int32_t>(r0));
-  const int64_t rm = r0 + (r1 - r0) / 2;
-  mid.init(static_cast<int32_t>(xa), static_cast<int32_t>(ya), static_cast<int32_t>(xb),
-           static_cast<int32_t>(yb), static_cast<int32_t>(rm));
-  for (int64_t r = r0; r <= r1; ++r) {
-    const i128 yc = i128{r} * S + S / 2;
-    const i128 n = (i128{xa} - S / 2) * dy + dx * (yc - ya);
-    const i128 x = ceil_div128(n, dy);
-    // The first column whose centre is at or right of the edge: 256 c + 128 >= x(yc).
-    const i128 col = ceil_div128(n, dy * S);
-    ++c.rows;
-    if (i128{w.x} != x) {
-      if (c.x_mismatch++ < 5)
-        ADD_FAILURE() << "edge (" << xa << "," << ya << ")-(" << xb << "," << yb << ") row " << r
-                      << ": stepped " << w.x << ", exact " << static_cast<int64_t>(x);
-    }
-    if (i128{w.column()} != col) ++c.column_mismatch;
-    // The invariant X dy - N = e, 0 <= e < dy.
-    if (w.err < 0 || w.err >= w.dy || i128{w.x} * dy - n != w.err) ++c.err_bad;
-    if (r == rm && (mid.x != w.x || mid.err != w.err)) ++c.x_mismatch;
-    w.step();
+  const ScreenVertex a{static_cast<int32_t>(xa), static_cast<int32_t>(ya), 0, 0, {}, 0, 0};
+  const ScreenVertex b{static_cast<int32_t>(xb), static_cast<int32_t>(yb), 0, 0, {}, 0, 0};
+  const ScreenVertex* v[3] = {&a, &a, &b};  // the long edge of a triangle
+  for (int64_t r = r0; r <= r1; r += 32) {
+    const int64_t rows = std::min<int64_t>(32, r1 - r + 1);
+    const PickedEdge p = wide_edge(v, ActiveTriangle::kLong, static_cast<int32_t>(r),
+                                   static_cast<int32_t>(r + rows - 1));
+    walk(DivideEdge(p.e, p.cb, 0), xa, ya, xb, yb, r, rows, c);
+    walk(DdaEdge(p.e, p.cb, 0), xa, ya, xb, yb, r, rows, c);
+    c.rows += static_cast<uint64_t>(rows);
   }
+  const int32_t cb = static_cast<int32_t>(std::min(xa, xb) - S / 2) >> kSubpixelBits;
+  const int64_t cmax = static_cast<int64_t>(ceil_div128(std::max(xa, xb) - S / 2, S));
+  if ((cmax - cb + 1) * (yb - ya) >= (int64_t{1} << 32)) return;
+  const RowEdge e =
+      make_row_edge(static_cast<int32_t>(xa), static_cast<int32_t>(ya), static_cast<int32_t>(xb),
+                    static_cast<int32_t>(yb), cb, static_cast<int32_t>(r0));
+  walk(DivideEdge(e, cb, 0), xa, ya, xb, yb, r0, r1 - r0 + 1, c);
+  walk(DdaEdge(e, cb, 0), xa, ya, xb, yb, r0, r1 - r0 + 1, c);
+  const int64_t rm = r0 + (r1 - r0) / 2;
+  walk(DivideEdge(e, cb, static_cast<int32_t>(rm - r0)), xa, ya, xb, yb, rm, r1 - rm + 1, c);
+  walk(DdaEdge(e, cb, static_cast<int32_t>(rm - r0)), xa, ya, xb, yb, rm, r1 - rm + 1, c);
+  c.record_rows += static_cast<uint64_t>(r1 - r0 + 1);
 }
 
 TEST(EdgeStress, LongEdgesOfEveryOctantStepExactlyOnEveryRow) {
@@ -140,14 +164,15 @@ TEST(EdgeStress, LongEdgesOfEveryOctantStepExactlyOnEveryRow) {
       }
     }
   }
-  EXPECT_EQ(c.x_mismatch, 0u);
   EXPECT_EQ(c.column_mismatch, 0u);
-  EXPECT_EQ(c.err_bad, 0u);
   // 13 of the directions span the band's full height (2^15 rows), each tried 12 times.
   EXPECT_GT(c.rows, uint64_t{13 * 12} * 32000);
-  std::printf("[ stress ] %zu long edges, %llu rows stepped, 0 allowed mismatches: %llu found\n",
-              edges, static_cast<unsigned long long>(c.rows),
-              static_cast<unsigned long long>(c.x_mismatch + c.column_mismatch));
+  std::printf(
+      "[ stress ] %zu long edges, %llu rows stepped (%llu from one record), 0 allowed "
+      "mismatches: %llu found\n",
+      edges, static_cast<unsigned long long>(c.rows),
+      static_cast<unsigned long long>(c.record_rows),
+      static_cast<unsigned long long>(c.column_mismatch));
 }
 
 TEST(EdgeStress, RandomEdgesAnywhereInTheGuardBandStepExactly) {
@@ -176,13 +201,14 @@ TEST(EdgeStress, RandomEdgesAnywhereInTheGuardBandStepExactly) {
     }
     check_edge(xa, ya, xb, yb, c);
   }
-  EXPECT_EQ(c.x_mismatch, 0u);
   EXPECT_EQ(c.column_mismatch, 0u);
-  EXPECT_EQ(c.err_bad, 0u);
-  // A quarter of the edges are steep ones 300 rows long.
+  // A quarter of the edges are steep ones 300 rows long; the short ones fit one record.
   EXPECT_GT(c.rows, uint64_t{1000} * 290);
-  std::printf("[ stress ] 4000 random edges, %llu rows stepped, exact on all\n",
-              static_cast<unsigned long long>(c.rows));
+  EXPECT_GT(c.record_rows, uint64_t{1000});
+  std::printf(
+      "[ stress ] 4000 random edges, %llu rows stepped (%llu from one record), exact on "
+      "all\n",
+      static_cast<unsigned long long>(c.rows), static_cast<unsigned long long>(c.record_rows));
 }
 
 // ---- Attribute drift ----
@@ -233,35 +259,38 @@ long double fast_plane_term(const ScreenVertex* const v[3]) {
   return 9.0L * std::ldexp(1.0L, 2 * bm + clz32(d) - 30);
 }
 
-// Rasterizes the triangle's rows exactly as Renderer::raster_triangle does (no viewport clamp),
-// and checks the plane along the edges (both span ends on every row) and along whole spans
+// Rasterizes the triangle's rows with the exact columns (clamped to a window), and checks the
+// planes make_plane gives (the textured and Phong families', and the untextured family's exact
+// wide path) along the edges (both span ends on every row) and along whole spans
 // (every pixel stepped; the exact error every `every` pixels) on `span_rows` rows.
 struct Window {
   int32_t c0 = INT32_MIN, c1 = INT32_MAX, r0 = INT32_MIN, r1 = INT32_MAX;  // [c0, c1), [r0, r1]
 };
 
+// The span of the triangle with sorted vertices v on row r (exact columns), clamped to win.
+struct RowSpan {
+  int32_t left, right;
+};
+RowSpan span_at(const ScreenVertex* const v[3], int32_t r, const Window& win) {
+  const int32_t mid = last_row_at_or_above(v[1]->y);
+  const ScreenVertex &a = *v[r <= mid ? 0 : 1], &b = *v[r <= mid ? 1 : 2];
+  const auto lng = static_cast<int32_t>(exact_column(v[0]->x, v[0]->y, v[2]->x, v[2]->y, r));
+  const auto sht = static_cast<int32_t>(exact_column(a.x, a.y, b.x, b.y, r));
+  const bool long_left = signed_area2(*v[0], *v[1], *v[2]) > 0;
+  return {std::max(long_left ? lng : sht, win.c0), std::min(long_left ? sht : lng, win.c1)};
+}
+
 void check_drift(const Tri& tri, int span_rows, int every, std::mt19937_64& rng, Drift& d,
                  Window win = {}) {
-  ActiveTriangle t{};
-  SetupInput in{};
-  for (int k = 0; k < 3; ++k) in.v[k] = &tri.v[k];
-  int32_t ymin = std::min({tri.v[0].y, tri.v[1].y, tri.v[2].y});
-  int32_t ymax = std::max({tri.v[0].y, tri.v[1].y, tri.v[2].y});
-  in.first_row = std::max(first_row_below(ymin), win.r0);
-  in.last_row = std::min(last_row_at_or_above(ymax), win.r1);
-  in.colors = ColorPlanes::kNone;
-  in.depth = true;
-  in.tex = TextureSetup{};
-  if (in.first_row > in.last_row) return;
-  setup_triangle(in, t);
-  // setup_triangle sorts by y and builds the z plane from the sorted vertices: do the same here.
+  // The planes' vertex 0 is the top vertex (setup sorts by y): do the same here.
   const ScreenVertex* v[3] = {&tri.v[0], &tri.v[1], &tri.v[2]};
-  if (v[1]->y < v[0]->y) std::swap(v[0], v[1]);
-  if (v[2]->y < v[1]->y) std::swap(v[1], v[2]);
-  if (v[1]->y < v[0]->y) std::swap(v[0], v[1]);
+  sort_by_y(v);
+  const int32_t first = std::max(first_row_below(v[0]->y), win.r0);
+  const int32_t last = std::min(last_row_at_or_above(v[2]->y), win.r1);
+  if (first > last) return;
   const uint32_t z[3] = {v[0]->z, v[1]->z, v[2]->z};
+  const Plane zp = make_plane(v, z);
   const Plane generic = make_plane(v, tri.a);
-  ASSERT_EQ(t.z.gx, make_plane(v, z).gx);
 
   // The planes' documented bound (docs/numerics.md#attribute-plane-equations): the short path
   // adds its reciprocal and coefficient rounding, 9 x 2^(2 bm + sh - 30).
@@ -283,25 +312,17 @@ void check_drift(const Tri& tri, int span_rows, int every, std::mt19937_64& rng,
     }
   };
 
-  const int32_t rows = t.last_row - t.row + 1;
+  const int32_t rows = last - first + 1;
   std::uniform_int_distribution<int32_t> pick(0, rows - 1);
   std::vector<int32_t> full_rows;
-  for (int i = 0; i < span_rows; ++i) full_rows.push_back(t.row + pick(rng));
-  int32_t widest_row = t.row, widest = -1;
+  for (int i = 0; i < span_rows; ++i) full_rows.push_back(first + pick(rng));
+  int32_t widest_row = first, widest = -1;
   // First pass: find the widest span (the longest span is always checked in full).
-  {
-    ActiveTriangle w = t;
-    for (int32_t r = w.row; r <= w.last_row; ++r) {
-      if (r == w.mid_row + 1) w.short_edge = w.bottom_edge;
-      int32_t a = w.long_edge.column(), b = w.short_edge.column();
-      int32_t l = std::max(w.long_is_left ? a : b, win.c0);
-      int32_t n = std::min(w.long_is_left ? b : a, win.c1) - l;
-      if (n > widest) {
-        widest = n;
-        widest_row = r;
-      }
-      w.long_edge.step();
-      w.short_edge.step();
+  for (int32_t r = first; r <= last; ++r) {
+    const RowSpan sp = span_at(v, r, win);
+    if (sp.right - sp.left > widest) {
+      widest = sp.right - sp.left;
+      widest_row = r;
     }
   }
   full_rows.push_back(widest_row);
@@ -310,24 +331,22 @@ void check_drift(const Tri& tri, int span_rows, int every, std::mt19937_64& rng,
   uint32_t left_prev = 0;
   int32_t col_prev = 0, row_prev = INT32_MIN;
   size_t next_full = 0;
-  for (int32_t r = t.row; r <= t.last_row; ++r) {
-    if (r == t.mid_row + 1) t.short_edge = t.bottom_edge;
-    int32_t a = t.long_edge.column(), b = t.short_edge.column();
-    int32_t left = std::max(t.long_is_left ? a : b, win.c0);
-    int32_t right = std::min(t.long_is_left ? b : a, win.c1);
+  for (int32_t r = first; r <= last; ++r) {
+    const RowSpan sp = span_at(v, r, win);
+    const int32_t left = sp.left, right = sp.right;
     if (left < right) {
       // Along the edge: the left end stepped vertically (gy per row, gx per column moved).
-      uint32_t z_left = t.z.at(left, r);
+      uint32_t z_left = zp.at(left, r);
       if (row_prev != INT32_MIN) {
-        uint32_t stepped = left_prev + t.z.gy * static_cast<uint32_t>(r - row_prev) +
-                           t.z.gx * static_cast<uint32_t>(left - col_prev);
+        uint32_t stepped = left_prev + zp.gy * static_cast<uint32_t>(r - row_prev) +
+                           zp.gx * static_cast<uint32_t>(left - col_prev);
         if (stepped != z_left) ++d.step_mismatch;
       }
       left_prev = z_left;
       col_prev = left;
       row_prev = r;
       sample(z, left, r, z_left);
-      sample(z, right - 1, r, t.z.at(right - 1, r));
+      sample(z, right - 1, r, zp.at(right - 1, r));
       sample(tri.a, left, r, generic.at(left, r));
       sample(tri.a, right - 1, r, generic.at(right - 1, r));
       bool full = false;
@@ -336,21 +355,19 @@ void check_drift(const Tri& tri, int span_rows, int every, std::mt19937_64& rng,
         ++next_full;
       }
       if (full) {
-        // Along the span, as fill_span steps it.
-        uint32_t zs = t.z.at(left, r), gs = generic.at(left, r);
+        // Along the span, as the spans step it.
+        uint32_t zs = zp.at(left, r), gs = generic.at(left, r);
         for (int32_t c = left; c < right; ++c) {
-          if (zs != t.z.at(c, r) || gs != generic.at(c, r)) ++d.step_mismatch;
+          if (zs != zp.at(c, r) || gs != generic.at(c, r)) ++d.step_mismatch;
           if ((c - left) % every == 0 || c == right - 1) {
             sample(z, c, r, zs);
             sample(tri.a, c, r, gs);
           }
-          zs += t.z.gx;
+          zs += zp.gx;
           gs += generic.gx;
         }
       }
     }
-    t.long_edge.step();
-    t.short_edge.step();
   }
 }
 

@@ -1,0 +1,444 @@
+#include "lineraster/core/setup/untextured_setup.hpp"
+
+#include <algorithm>
+#include <optional>
+
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/math/reciprocal.hpp"
+#include "lineraster/core/math/wide_mul.hpp"
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/setup/row_edge.hpp"
+#include "lineraster/core/setup/triangle_rows.hpp"
+#include "lineraster/core/setup/triangle_setup.hpp"
+
+namespace lr {
+
+namespace {
+
+constexpr int bit_length(uint32_t v) {
+  return v == 0 ? 0 : 32 - clz32(v);
+}
+
+constexpr uint32_t magnitude(int32_t v) {
+  return v < 0 ? 0u - static_cast<uint32_t>(v) : static_cast<uint32_t>(v);
+}
+
+// ~ 2^62 / d for d in [2^31, 2^32), in (2^30, 2^31): a 17-bit estimate (recip16: one division,
+// or a table on Armv6-M) and one Newton step in high-word products; relative error below 2^-28
+// (docs/numerics.md#untextured-planes). The same integers on every core.
+int32_t recip62(uint32_t d) {
+  const uint32_t x0 = recip16(d >> 16) << 14;  // < 2^31, within 2^-15 of 2^62 / d
+  // e = 2^30 - d x0 / 2^32: minus the estimate's relative error times 2^30 (|e| < 2^16).
+  const auto e = static_cast<int32_t>((1u << 30) - mul_hi_u(d, x0));
+  const int64_t x1 = int64_t{static_cast<int32_t>(x0)} + mul_hi(static_cast<int32_t>(x0), e * 4);
+  return x1 > INT32_MAX ? INT32_MAX : static_cast<int32_t>(x1);
+}
+
+// v 2^s modulo 2^32: shifted left, or right with rounding (|v| < 2^30).
+uint32_t scale(int32_t v, int s) {
+  if (s >= 0) return static_cast<uint32_t>(v) << s;
+  const int r = s < -31 ? 31 : -s;
+  return static_cast<uint32_t>((v + (int32_t{1} << (r - 1))) >> r);
+}
+
+// v 2^s modulo 2^32 as two shifts and a rounding half, s fixed per triangle (|v| < 2^30).
+class Scale {
+ public:
+  explicit Scale(int s)
+      : left_(s > 0 ? s : 0),
+        right_(s >= 0    ? 0
+               : s < -31 ? 31
+                         : -s),
+        half_(s >= 0 ? 0 : int32_t{1} << (right_ - 1)) {}
+  uint32_t operator()(int32_t v) const {
+    return static_cast<uint32_t>(
+        (static_cast<int32_t>(static_cast<uint32_t>(v) << left_) + half_) >> right_);
+  }
+
+ private:
+  int left_, right_;
+  int32_t half_;
+};
+
+// a b as uint64 without a 64 x 64 library multiply on Armv6-M.
+uint64_t umul64(uint32_t a, uint32_t b) {
+  return (uint64_t{mul_hi_u(a, b)} << 32) | uint64_t{static_cast<uint32_t>(a * b)};
+}
+
+// q = w_min 2^30 / w in Q1.30 (w_min <= w), at least 1: from ~2^62 / (w normalised) and one
+// high-word product.
+uint32_t perspective_q(uint32_t wmin, uint32_t w) {
+  const int s = clz32(w);
+  const uint32_t q = mul_hi_u(wmin << s, static_cast<uint32_t>(recip62(w << s)));
+  return q == 0 ? 1u : q;
+}
+
+// A plane of the wide path: make_plane's exact one.
+Plane wide_plane(const PlaneBasis& pb, const int32_t a[3]) {
+  const uint32_t u[3] = {static_cast<uint32_t>(a[0]), static_cast<uint32_t>(a[1]),
+                         static_cast<uint32_t>(a[2])};
+  return make_plane(pb, u);
+}
+
+// The lane of a 5-bit channel (Q1.15), rounded: 31 c 2^11 / 2^15 + 2^10, a level plus half a
+// level in the lane's top five bits; green as 63 c 2^26 / 2^15 + 2^25, halved (63 c 2^10 + 2^24:
+// below 2^31, the plane doubled afterwards).
+constexpr int32_t lane5(uint32_t c15) {
+  return static_cast<int32_t>(((31 * c15 + 8) >> 4) + (1u << 10));
+}
+constexpr int32_t lane6(uint32_t c15) {
+  return static_cast<int32_t>(63 * 1024 * c15 + (1u << 24));
+}
+static_assert(lane5(Color15::kOne) == (1 << 16) - (1 << 10));
+static_assert(lane6(Color15::kOne) < INT32_MAX);
+
+}  // namespace
+
+bool fast_basis(const ScreenVertex* const v[3], int max_spread, FastBasis& b) {
+  const int32_t x0 = v[0]->x, y0 = v[0]->y;
+  const int32_t e1x = v[1]->x - x0, e1y = v[1]->y - y0, e2x = v[2]->x - x0, e2y = v[2]->y - y0;
+  const int bm = bit_length(magnitude(e1x) | magnitude(e1y) | magnitude(e2x) | magnitude(e2y));
+  b.bm = bm;
+  if (bm > kFastMaxEdgeBits) return false;
+  // Twice the signed area, normalised: |D| 2^(32 - L) (truncated when |D| >= 2^32).
+  bool neg;
+  uint32_t dn;
+  int L;
+  if (bm <= 15) {  // products below 2^30: int32
+    const int32_t d = e1x * e2y - e2x * e1y;
+    neg = d < 0;
+    const uint32_t m = magnitude(d);
+    if (m == 0) return false;
+    L = bit_length(m);
+    dn = m << (32 - L);
+  } else {
+    const int64_t d = mul_wide(e1x, e2y) - mul_wide(e2x, e1y);
+    neg = d < 0;
+    const uint64_t m = abs64(d);
+    if (m == 0) return false;
+    L = 64 - clz64(m);
+    dn = L <= 32 ? static_cast<uint32_t>(m) << (32 - L) : static_cast<uint32_t>(m >> (L - 32));
+  }
+  b.spread = 2 * bm - L;
+  if (b.spread > max_spread) return false;
+  // k = e 2^(31 - bm) R / 2^32 = 256 e / D x 2^(21 - bm + L), |k| <= 2^30.
+  const int32_t r = recip62(dn);
+  const int sh = 31 - bm;
+  auto k = [&](int32_t e) {
+    return mul_hi(static_cast<int32_t>(static_cast<uint32_t>(neg ? -e : e) << sh), r);
+  };
+  b.kx1 = k(e2y);
+  b.kx2 = k(-e1y);
+  b.ky1 = k(-e2x);
+  b.ky2 = k(e1x);
+  b.p = 11 + bm - L;
+  b.fx = (kHalfPixel - (x0 & (kSubpixel - 1))) * (1 << 23);
+  b.fy = (kHalfPixel - (y0 & (kSubpixel - 1))) * (1 << 23);
+  b.c0 = static_cast<uint32_t>(x0 >> kSubpixelBits);
+  b.r0 = static_cast<uint32_t>(y0 >> kSubpixelBits);
+  return true;
+}
+
+Plane fast_plane(const FastBasis& b, const int32_t a[3], int u) {
+  const int32_t d1 = a[1] - a[0], d2 = a[2] - a[0];
+  const int32_t n1 = u >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(d1) << u) : d1 >> 1;
+  const int32_t n2 = u >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(d2) << u) : d2 >> 1;
+  // The gradients times 2^-s, |g| < 2^29.
+  const int32_t gx = mla_hi(n1, b.kx1, mul_hi(n2, b.kx2));
+  const int32_t gy = mla_hi(n1, b.ky1, mul_hi(n2, b.ky2));
+  const int s = b.p - u;
+  Plane p;
+  p.gx = scale(gx, s);
+  p.gy = scale(gy, s);
+  // The value at the centre of vertex 0's pixel, a0 + (gx fx + gy fy) / 256, moved to pixel
+  // (0, 0) in modular arithmetic.
+  const uint32_t off = scale(mla_hi(gx, b.fx, mul_hi(gy, b.fy)), s + 1);
+  p.base = static_cast<uint32_t>(a[0]) + off - p.gx * b.c0 - p.gy * b.r0;
+  return p;
+}
+
+namespace {
+// affine_within's colour test, for w_max - w_min above the quick test's bound.
+[[gnu::noinline]] bool colors_within(const ScreenVertex* const v[3], uint32_t wmin, uint32_t wmax,
+                                     const AffineBound& bound) {
+  uint32_t d = 0;
+  for (int c = 0; c < 3; ++c) {
+    const uint32_t a = channel(v[0]->color, c), b = channel(v[1]->color, c),
+                   e = channel(v[2]->color, c);
+    const uint32_t range = std::max({a, b, e}) - std::min({a, b, e});
+    d = std::max(d, c == 1 ? range * bound.green_weight : range);
+  }
+  return umul64(wmax - wmin, d) <= umul64(bound.bound, wmin);
+}
+}  // namespace
+
+bool affine_within(const ScreenVertex* const v[3], const AffineBound& bound) {
+  const uint32_t wmin = std::min({v[0]->w, v[1]->w, v[2]->w});
+  const uint32_t wmax = std::max({v[0]->w, v[1]->w, v[2]->w});
+  if (wmax - wmin <= wmin >> bound.quick_shift) return true;  // whatever the colours
+  return colors_within(v, wmin, wmax, bound);
+}
+
+namespace {
+
+// The edge columns of rows from..t.last_row: whether one has a pixel centre in [0, width).
+[[gnu::noinline]] bool later_rows_have_pixels(const ActiveTriangle& t, int32_t from,
+                                              int32_t width) {
+  const int ss = t.short_side(), ls = 1 - ss;
+  const int32_t first = t.first_row, mid = t.mid_row;
+  for (int32_t r = from; r <= t.last_row; ++r) {
+    int32_t c[2];
+    c[ls] = DivideEdge(t.side_edge(ls), t.col_base, r - first).column();
+    c[ss] = r <= mid ? DivideEdge(t.side_edge(ss), t.col_base, r - first).column()
+                     : DivideEdge(t.bottom, t.col_base, r - mid - 1).column();
+    if (c[0] < width && c[1] > 0 && c[0] < c[1]) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
+                                             const UntexturedInput& in, ActiveTriangle& t) {
+  const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
+  const int32_t x0 = va.x, y0 = va.y;
+  const int32_t e1x = vb.x - x0, e1y = vb.y - y0, e2x = vc.x - x0, e2y = vc.y - y0;
+  // Rows (|y| < 2^22: the arithmetic shift is the floor).
+  const int32_t first = std::max(((y0 - kHalfPixel) >> kSubpixelBits) + 1, w.first_min);
+  const int32_t last = std::min((vc.y - kHalfPixel) >> kSubpixelBits, w.last_max);
+  const uint32_t m = magnitude(e1x) | magnitude(e2x) | static_cast<uint32_t>(e2y);
+  if (m >= (1u << kSmallEdgeBits) || first > last) {
+    if (!setup_rows(v, first, last, w.width, t)) return {false, UntexturedKind::kFlat, false};
+    const UntexturedSetup u = setup_untextured(v, in, t);
+    return {true, u.kind, u.wide};
+  }
+  // Within 2^kSmallEdgeBits subpixels: every product below is below 2^30 (docs/numerics.md).
+  const int32_t mid = std::clamp((vb.y - kHalfPixel) >> kSubpixelBits, first - 1, last);
+  const int32_t d = e1x * e2y - e2x * e1y;  // twice the signed area
+  const int32_t cb = (std::min({x0, vb.x, vc.x}) - kHalfPixel) >> kSubpixelBits;
+  const int32_t t0 = first * kSubpixel + kHalfPixel - y0;
+  const int32_t xa = x0 - kHalfPixel - cb * kSubpixel, xb = xa + e1x;
+  const int32_t bdx = e2x - e1x, bdy = e2y - e1y;
+  const auto q = [](int32_t xr, int32_t dx, int32_t dy, int32_t tr) {
+    return static_cast<uint32_t>((xr * dy + dx * tr + dy * kSubpixel - 1) >> kSubpixelBits);
+  };
+  const bool long_left = d > 0;
+  // The long, top and bottom edges' records (the bottom one at row mid + 1), relative to cb, or
+  // to column 0 when the triangle lies inside the columns [0, width] (below 2^26 here).
+  const auto top_dy = static_cast<uint32_t>(e1y > 0 ? e1y : 1);
+  const auto btm_dy = static_cast<uint32_t>(bdy > 0 ? bdy : 1);
+  uint32_t ql = q(xa, e2x, e2y, t0), qt = q(xa, e1x, e1y, t0);
+  uint32_t qb = q(xb, bdx, bdy, t0 - e1y + (mid + 1 - first) * kSubpixel);
+  const int32_t cmax = (std::max({x0, vb.x, vc.x}) - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
+  const bool inside = cb >= 0 && cmax <= w.width;
+  int32_t base = cb;
+  if (inside) {
+    const auto ucb = static_cast<uint32_t>(cb);
+    ql += ucb * static_cast<uint32_t>(e2y);
+    qt += ucb * top_dy;
+    qb += ucb * btm_dy;
+    base = 0;
+  }
+  // The record, left edge first.
+  t.edge_q[0] = long_left ? ql : qt;
+  t.edge_q[1] = long_left ? qt : ql;
+  t.edge_dx[0] = long_left ? e2x : e1x;
+  t.edge_dx[1] = long_left ? e1x : e2x;
+  t.edge_dy[0] = long_left ? static_cast<uint32_t>(e2y) : top_dy;
+  t.edge_dy[1] = long_left ? top_dy : static_cast<uint32_t>(e2y);
+  t.bottom = RowEdge{qb, bdx, btm_dy};
+  t.first_row = static_cast<int16_t>(first);
+  t.mid_row = static_cast<int16_t>(mid);
+  t.last_row = static_cast<int16_t>(last);
+  t.col_base = static_cast<int16_t>(base);
+  t.flags = static_cast<uint8_t>((long_left ? ActiveTriangle::kBottomRight : 0) |
+                                 (inside ? ActiveTriangle::kInside : 0));
+  {
+    // A row with a pixel centre in the viewport's columns: the middle vertex's row (the top
+    // edge's last), where the triangle is widest, or another.
+    const int32_t rm = mid >= first ? mid : first;
+    const auto k = static_cast<uint32_t>(rm - first);
+    const int32_t cl = base + static_cast<int32_t>((ql + static_cast<uint32_t>(e2x) * k) /
+                                                   static_cast<uint32_t>(e2y));
+    const int32_t cs =
+        base + static_cast<int32_t>(mid >= first ? (qt + static_cast<uint32_t>(e1x) * k) / top_dy
+                                                 : qb / btm_dy);
+    const int32_t left = long_left ? cl : cs, right = long_left ? cs : cl;
+    if (!(left < w.width && right > 0 && left < right) &&
+        !later_rows_have_pixels(t, first, w.width))
+      return {false, UntexturedKind::kFlat, false};
+  }
+
+  if (in.colors == ColorPlanes::kNone && !in.depth) {  // no plane at all
+    t.c[0].base = in.flat_pixel;
+    return {true, UntexturedKind::kFlat, false};
+  }
+  // Planes: the short path's basis in 32 bits (as fast_basis, with |D| < 2^29).
+  UntexturedKind kind = in.colors == ColorPlanes::kNone     ? UntexturedKind::kFlat
+                        : in.colors == ColorPlanes::kAffine ? UntexturedKind::kAffine
+                                                            : UntexturedKind::kPerspective;
+  if (kind == UntexturedKind::kPerspective && in.affine_ok) {
+    const uint32_t wmin = std::min({va.w, vb.w, vc.w}), wmax = std::max({va.w, vb.w, vc.w});
+    if (wmax - wmin <= wmin >> in.affine.quick_shift || colors_within(v, wmin, wmax, in.affine))
+      kind = UntexturedKind::kAffine;
+  }
+  const uint32_t ad = magnitude(d);
+  const int lz = clz32(ad);
+  const int bm = 32 - clz32(m);
+  const int spread = 2 * bm - 32 + lz;
+  const int32_t z0 = static_cast<int32_t>(va.z >> 1);
+  const int32_t dz1 = static_cast<int32_t>(vb.z >> 1) - z0;
+  const int32_t dz2 = static_cast<int32_t>(vc.z >> 1) - z0;
+  const int zbits = in.depth ? bit_length(magnitude(dz1) | magnitude(dz2)) : 0;
+  if (kind == UntexturedKind::kPerspective || spread > kFastMaxSpread ||
+      spread + zbits > kFastMaxDepthSpread) {
+    const UntexturedSetup u = setup_untextured(v, in, t);
+    return {true, u.kind, u.wide};
+  }
+  const int32_t r = recip62(ad << lz);
+  const int32_t rs = d < 0 ? -r : r;
+  const int sh = 31 - bm;
+  const int32_t kx1 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(e2y) << sh), rs);
+  const int32_t kx2 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(-e1y) << sh), rs);
+  const int32_t ky1 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(-e2x) << sh), rs);
+  const int32_t ky2 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(e1x) << sh), rs);
+  const int p = bm + lz - 21;  // 11 + bm - L
+  // The reference pixel (c0, r0): the one whose centre is within [-128, 127] subpixels of
+  // vertex 0 on both axes, so that the offset f fits f 2^24.
+  const int32_t c0 = (x0 - 1) >> kSubpixelBits, r0 = (y0 - 1) >> kSubpixelBits;
+  const int32_t fx = (c0 * kSubpixel + kHalfPixel - x0) * (1 << 24);
+  const int32_t fy = (r0 * kSubpixel + kHalfPixel - y0) * (1 << 24);
+  // The plane of normalised differences n1, n2 whose gradient is 2^s times the products'
+  // (rounded), a0 its value at vertex 0.
+  const auto plane = [&](int32_t n1, int32_t n2, uint32_t a0, int left, int right, Plane& pl) {
+    const int32_t gx = mla_hi(n1, kx1, mul_hi(n2, kx2));
+    const int32_t gy = mla_hi(n1, ky1, mul_hi(n2, ky2));
+    const int32_t off = mla_hi(gx, fx, mul_hi(gy, fy));  // (gx fx + gy fy) / 256
+    const int32_t half = (int32_t{1} << right) >> 1;
+    const auto scale = [left, right, half](int32_t x) {
+      return static_cast<uint32_t>(
+          (static_cast<int32_t>(static_cast<uint32_t>(x) << left) + half) >> right);
+    };
+    const uint32_t ugx = scale(gx), ugy = scale(gy);
+    pl.gx = ugx;
+    pl.gy = ugy;
+    pl.base = a0 + scale(off) - ugx * static_cast<uint32_t>(c0) - ugy * static_cast<uint32_t>(r0);
+  };
+  // 2^s as a left and a right shift.
+  const auto left_of = [](int s) { return s > 0 ? s : 0; };
+  const auto right_of = [](int s) { return s >= 0 ? 0 : s < -31 ? 31 : -s; };
+  if (in.depth) {
+    const int zu = 30 - zbits;  // >= -1
+    const int32_t n1 = zu >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(dz1) << zu) : dz1 >> 1;
+    const int32_t n2 = zu >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(dz2) << zu) : dz2 >> 1;
+    plane(n1, n2, static_cast<uint32_t>(z0) + (1u << 14), left_of(p - zu), right_of(p - zu), t.z);
+  }
+  if (kind == UntexturedKind::kFlat) {
+    t.c[0].base = in.flat_pixel;
+    return {true, kind, false};
+  }
+  const int32_t cr = va.color.r, cg = va.color.g, cbl = va.color.b;
+  const int32_t r1 = vb.color.r - cr, r2 = vc.color.r - cr;
+  const int32_t g1 = vb.color.g - cg, g2 = vc.color.g - cg;
+  const int32_t b1 = vb.color.b - cbl, b2 = vc.color.b - cbl;
+  if (in.lanes) {
+    // Lanes (kSmallEdgeBits <= kLanesMaxEdgeBits): red and blue in lane units from differences
+    // 31 d 2^10 (< 2^30) of 31 c (lanes 31 c / 16: p - 14); green as 63 c 2^11 + 2^25 from
+    // differences 63 d 2^9 of 63 c (2^(p + 2)).
+    const int left = left_of(p - 14), right = right_of(p - 14);
+    Plane pr, pb;
+    plane(r1 * 31 * 1024, r2 * 31 * 1024, ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024, left,
+          right, pr);
+    plane(b1 * 31 * 1024, b2 * 31 * 1024, ((31 * static_cast<uint32_t>(cbl)) >> 4) + 1024, left,
+          right, pb);
+    plane(g1 * 63 * 512, g2 * 63 * 512, 63 * 2048 * static_cast<uint32_t>(cg) + (1u << 25),
+          left_of(p + 2), right_of(p + 2), t.c[1]);
+    t.c[0] = Plane{(pb.base << 16) + pr.base, (pb.gx << 16) + pr.gx, (pb.gy << 16) + pr.gy};
+    return {true, UntexturedKind::kLanes, false};
+  }
+  const int left = left_of(p), right = right_of(p);
+  plane(r1 * 32768, r2 * 32768, static_cast<uint32_t>(cr) << 15, left, right, t.c[0]);
+  plane(g1 * 32768, g2 * 32768, static_cast<uint32_t>(cg) << 15, left, right, t.c[1]);
+  plane(b1 * 32768, b2 * 32768, static_cast<uint32_t>(cbl) << 15, left, right, t.c[2]);
+  return {true, kind, false};
+}
+
+UntexturedSetup setup_untextured(const ScreenVertex* const v[3], const UntexturedInput& in,
+                                 ActiveTriangle& t) {
+  UntexturedKind kind = in.colors == ColorPlanes::kNone     ? UntexturedKind::kFlat
+                        : in.colors == ColorPlanes::kAffine ? UntexturedKind::kAffine
+                                                            : UntexturedKind::kPerspective;
+  if (kind == UntexturedKind::kPerspective && in.affine_ok && affine_within(v, in.affine))
+    kind = UntexturedKind::kAffine;
+  if (kind == UntexturedKind::kFlat && !in.depth) {  // no plane at all
+    t.c[0].base = in.flat_pixel;
+    return {kind, false};
+  }
+  const bool persp = kind == UntexturedKind::kPerspective;
+  FastBasis b;
+  bool fast = fast_basis(v, persp ? kFastMaxSpreadPerspective : kFastMaxSpread, b);
+  const int32_t z[3] = {static_cast<int32_t>(v[0]->z >> 1), static_cast<int32_t>(v[1]->z >> 1),
+                        static_cast<int32_t>(v[2]->z >> 1)};
+  int zu = 30;
+  if (in.depth) {
+    const int zbits = bit_length(std::max(magnitude(z[1] - z[0]), magnitude(z[2] - z[0])));
+    fast = fast && b.spread + zbits <= kFastMaxDepthSpread;
+    zu = 30 - zbits;
+  }
+  if (kind == UntexturedKind::kAffine && in.lanes && b.bm <= kLanesMaxEdgeBits)
+    kind = UntexturedKind::kLanes;
+  // The planes, on the short path or the wide one.
+  std::optional<PlaneBasis> pb;
+  if (!fast) pb.emplace(v);
+  auto planes = [&](const int32_t a[3], int u) {
+    return fast ? fast_plane(b, a, u) : wide_plane(*pb, a);
+  };
+  if (in.depth) {
+    t.z = planes(z, zu);
+    t.z.base += 1u << 14;  // the 16-bit depth's rounding
+  }
+  auto values = [&](auto f, int32_t a[3]) {
+    for (int i = 0; i < 3; ++i) a[i] = f(*v[i]);
+  };
+  switch (kind) {
+    case UntexturedKind::kFlat:
+      t.c[0].base = in.flat_pixel;
+      break;
+    case UntexturedKind::kLanes: {
+      int32_t r[3], bl[3], g[3];
+      values([](const ScreenVertex& x) { return lane5(x.color.r); }, r);
+      values([](const ScreenVertex& x) { return lane5(x.color.b); }, bl);
+      values([](const ScreenVertex& x) { return lane6(x.color.g); }, g);
+      const Plane pr = planes(r, 14), pbl = planes(bl, 14), pg = planes(g, -1);
+      t.c[0] = Plane{(pbl.base << 16) + pr.base, (pbl.gx << 16) + pr.gx, (pbl.gy << 16) + pr.gy};
+      t.c[1] = Plane{pg.base << 1, pg.gx << 1, pg.gy << 1};  // green in 63 c 2^11 + 2^25
+      break;
+    }
+    case UntexturedKind::kAffine:
+      for (int c = 0; c < 3; ++c) {
+        int32_t a[3];
+        for (int i = 0; i < 3; ++i) a[i] = int32_t{channel(v[i]->color, c)} << 15;
+        t.c[c] = planes(a, 0);
+      }
+      break;
+    case UntexturedKind::kPerspective: {
+      const uint32_t wmin = std::min({v[0]->w, v[1]->w, v[2]->w});
+      uint32_t q[3];
+      for (int i = 0; i < 3; ++i) q[i] = perspective_q(wmin, v[i]->w);
+      const int32_t qs[3] = {static_cast<int32_t>(q[0]), static_cast<int32_t>(q[1]),
+                             static_cast<int32_t>(q[2])};
+      t.q = planes(qs, 0);
+      for (int c = 0; c < 3; ++c) {
+        int32_t a[3];
+        // A Q1.15 channel times q, in Q1.30: c 2^16 x 2 q / 2^32 (at most q).
+        for (int i = 0; i < 3; ++i)
+          a[i] = static_cast<int32_t>(mul_hi_u(uint32_t{channel(v[i]->color, c)} << 16, q[i] << 1));
+        t.c[c] = planes(a, 0);
+      }
+      break;
+    }
+  }
+  return {kind, !fast};
+}
+
+}  // namespace lr

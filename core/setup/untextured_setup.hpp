@@ -1,0 +1,133 @@
+// Triangle setup of the untextured family (flat, Gouraud with affine or perspective-correct
+// colours, depth test on or off): the planes of a triangle whose rows and edges setup_rows made.
+//
+// Planes come from one reciprocal of twice the area and 32-bit products: four coefficients per
+// triangle (the barycentric gradients scaled by a per-triangle power of two), then per attribute
+// two high-word products per gradient and a shift (docs/numerics.md#untextured-planes). That
+// short path holds for triangles within 4096 pixels whose aspect keeps its error bound; the
+// rest (long needles, giants) take the exact wide path of make_plane (triangle_setup.hpp),
+// counted in FrameStats::triangles_wide.
+//
+// What the ActiveTriangle's planes hold (kind: UntexturedKind; all uint32, modular):
+//   z       window depth x 65535 x 2^15 ("half depth"), [0, 65535 x 2^15], plus 2^14 (in the
+//           base): the 16-bit depth is z >> 15, rounded
+//   kFlat   c[0].base: the triangle's pixel, as the pixel format stores it (PixelBits)
+//   kLanes  (RGB565 pixel formats) each colour a level plus half a level in its top bits,
+//           channel in [0, 1]: c[0] blue and red as the 16-bit lanes of one plane (blue high),
+//           31 x channel x 2^11 + 2^10 (a 5-bit level in the lane's top five bits); c[1] green,
+//           63 x channel x 2^26 + 2^25 (a 6-bit level in the top six bits). The lanes stay in
+//           [0, 2^16) on every pixel of the triangle (errors below 2^7 lane units:
+//           docs/numerics.md#untextured-planes), so adding the packed gradient steps both.
+//   kAffine c[i]: channel i, Q1.15 x 2^15 (Q2.30), [0, 2^30]
+//   kPerspective q: w_min / w in Q1.30, (0, 2^30]; c[i]: channel i (Q1.15) times q, Q1.30
+#pragma once
+
+#include <cstdint>
+
+#include "lineraster/core/output/color.hpp"
+#include "lineraster/core/scene/draw_state.hpp"
+#include "lineraster/core/setup/active_triangle.hpp"
+#include "lineraster/core/vertex/screen_vertex.hpp"
+
+namespace lr {
+
+// The span a triangle of the family gets (its row loop: core/raster/untextured_rows.hpp).
+enum class UntexturedKind : uint8_t { kFlat, kPerspective, kAffine, kLanes };
+inline constexpr int kUntexturedKinds = 4;
+
+// The affine colour test's bound for a pixel format (docs/numerics.md#when-screen-linear-colours-
+// are-close-enough): affine colours are taken when (w_max - w_min) x D <= bound x w_min, D the
+// largest difference of a channel (Q1.15) between two vertices, green's counted green_weight
+// times. Half an output step of the format: 256 and 1 for 8-bit channels (half a level),
+// 2,080 and 2 for RGB565 (half a 5-bit step for red and blue, half a 6-bit step for green).
+// quick_shift: a test first that needs no colour: (w_max - w_min) 2^quick_shift <= w_min
+// implies the bound for any colours (2^quick_shift x bound >= 2^15 x green_weight).
+struct AffineBound {
+  uint32_t bound = 256;
+  uint32_t green_weight = 1;
+  int quick_shift = 7;
+};
+inline constexpr AffineBound kAffineBound8{256, 1, 7};
+inline constexpr AffineBound kAffineBound565{2080, 2, 5};
+static_assert((kAffineBound8.bound << kAffineBound8.quick_shift) >=
+              (Color15::kOne * kAffineBound8.green_weight));
+static_assert((kAffineBound565.bound << kAffineBound565.quick_shift) >=
+              (Color15::kOne * kAffineBound565.green_weight));
+
+struct UntexturedInput {
+  ColorPlanes colors = ColorPlanes::kNone;  // the draw's: kNone is flat
+  bool depth = true;                        // a depth plane
+  bool lanes = false;                       // the pixel format has the RGB565 lane span (kLanes)
+  bool affine_ok = false;  // a kPerspective triangle may get affine planes (routine linked)
+  AffineBound affine{};
+  uint32_t flat_pixel = 0;  // kFlat: the pixel, as PixelBits stores it
+};
+
+struct UntexturedSetup {
+  UntexturedKind kind;
+  bool wide;  // the planes took the exact wide path
+};
+
+// The rows a triangle may be drawn on: from the later of its own first row and first_min, to
+// the earlier of its own last row and last_max; columns [0, width).
+struct RowWindow {
+  int32_t first_min = 0;
+  int32_t last_max = 0;
+  int32_t width = 0;
+};
+
+struct UntexturedTriangle {
+  bool pixels;  // false: a sliver, whose rows cover no pixel centre (no planes were made)
+  UntexturedKind kind;
+  bool wide;
+};
+
+// The whole setup of an untextured triangle (vertices v sorted by y, non-zero area): rows,
+// edges (setup_rows) and planes. Triangles within 64 pixels take one path in 32-bit arithmetic
+// for all of it; the others setup_rows and setup_untextured.
+UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
+                                             const UntexturedInput& in, ActiveTriangle& t);
+
+// The planes of the triangle with vertices v sorted by y (setup_rows' order: vertex 0 is the
+// top one) and non-zero area.
+UntexturedSetup setup_untextured(const ScreenVertex* const v[3], const UntexturedInput& in,
+                                 ActiveTriangle& t);
+
+// Whether the screen-linear colours of the triangle are within the bound of perspective-correct
+// ones everywhere in it (exposed for tests).
+bool affine_within(const ScreenVertex* const v[3], const AffineBound& b);
+
+// The short path's shared part (exposed for tests): the barycentric gradients of the triangle
+// (vertex 0's) as k = 256 e / D x 2^T, |k| <= 2^30, with T = 21 - bm + L (bm the bit length of
+// the largest edge component, L that of |D|), and vertex 0's pixel and offset.
+struct FastBasis {
+  int32_t kx1 = 0, kx2 = 0, ky1 = 0, ky2 = 0;
+  int32_t p = 0;       // 11 + bm - L: a plane whose differences are scaled by 2^u shifts by p - u
+  int32_t spread = 0;  // 2 bm - L: how far the triangle is from well-shaped (log2 of aspect + 1)
+  int32_t bm = 0;
+  int32_t fx = 0, fy = 0;   // (128 - (x0 & 255)) << 23 and the same for y
+  uint32_t c0 = 0, r0 = 0;  // vertex 0's pixel
+};
+// False when the triangle is too large for the short path (an edge component of 2^20 subpixels
+// or more) or its spread exceeds `max_spread`.
+bool fast_basis(const ScreenVertex* const v[3], int max_spread, FastBasis& b);
+// The plane through vertex values a (each in [0, 2^31)), their differences scaled by 2^u
+// (u >= -1, |a_i - a_0| 2^u < 2^30 + 1).
+Plane fast_plane(const FastBasis& b, const int32_t a[3], int u);
+
+// The short path's limits (docs/numerics.md#untextured-planes): the largest edge component, the
+// spread of affine and flat triangles and of perspective ones, and the depth plane's spread plus
+// the bit length of its largest vertex difference.
+inline constexpr int kFastMaxEdgeBits = 20;
+inline constexpr int kFastMaxSpread = 10;
+inline constexpr int kFastMaxSpreadPerspective = 6;
+inline constexpr int kFastMaxDepthSpread = 35;
+// Lanes: edge components below 2^15 subpixels (128 pixels), so that the lanes' rounding stays
+// below 2^7 lane units everywhere in the triangle (an eighth of a 6-bit level).
+inline constexpr int kLanesMaxEdgeBits = 15;
+// Triangles whose edge components are below 2^kSmallEdgeBits subpixels (64 pixels) are set up
+// in 32-bit arithmetic throughout (setup_untextured_triangle).
+inline constexpr int kSmallEdgeBits = 14;
+static_assert(kSmallEdgeBits <= kLanesMaxEdgeBits && kSmallEdgeBits <= kFastMaxEdgeBits);
+
+}  // namespace lr

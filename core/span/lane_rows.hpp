@@ -1,0 +1,305 @@
+// One strip visit of a lanes triangle with the depth test (RGB565 formats) in one loop: the
+// triangle picked up at the strip's first row, then per row its edges, its span clamped to the
+// viewport's columns, the planes at the span's first pixel and the depth and colour loop
+// (lane_span.hpp). On Armv7E-M its registers are allocated by hand (one asm block: GCC 12 spills
+// the row state around the pixel loop and fills the visit's state one word at a time);
+// lane_visit_portable is the same loop in C, which tests/core/lane_rows_test.cpp and
+// firmware/span_check compare with it, and the generic row loop
+// (core/raster/untextured_rows.hpp) gives the same pixels.
+//
+// The triangle's edges must fit their records (no kWideEdges): per row the left and right
+// columns are col_base + Q / dy (exact: core/setup/row_edge.hpp); after mid_row the bottom edge
+// replaces the top one on the short side.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+#include "lineraster/core/setup/active_triangle.hpp"
+#include "lineraster/core/setup/strip_rows.hpp"
+#include "lineraster/core/span/lane_span.hpp"
+
+namespace lr {
+
+template <class PF>
+inline void lane_visit_portable(const ActiveTriangle& t, StripRows& s) {
+  using Pixel = typename PF::Storage;
+  int32_t row = std::max<int32_t>(t.first_row, s.y0);
+  const int32_t last = std::min<int32_t>(t.last_row, s.y_last), mid = t.mid_row;
+  s.rows += static_cast<uint32_t>(last - row + 1);
+  const auto k = static_cast<uint32_t>(row - t.first_row);
+  uint32_t q[2] = {t.edge_q[0] + static_cast<uint32_t>(t.edge_dx[0]) * k,
+                   t.edge_q[1] + static_cast<uint32_t>(t.edge_dx[1]) * k};
+  int32_t dx[2] = {t.edge_dx[0], t.edge_dx[1]};
+  uint32_t dy[2] = {t.edge_dy[0], t.edge_dy[1]};
+  const int ss = t.short_side();
+  int32_t stop = std::min(mid, last);
+  if (row > mid) {  // below the middle vertex from the start
+    q[ss] = t.bottom.q + static_cast<uint32_t>(t.bottom.dx) * static_cast<uint32_t>(row - mid - 1);
+    dx[ss] = t.bottom.dx;
+    dy[ss] = t.bottom.dy;
+    stop = last;
+  }
+  auto* const pixels = static_cast<Pixel*>(s.pixels);
+  const Plane* p = &t.z;
+  uint32_t spans = 0, tested = 0, rejected = 0;
+  for (;;) {
+    for (; row <= stop; ++row) {
+      const int32_t left = std::max<int32_t>(t.col_base + static_cast<int32_t>(q[0] / dy[0]), 0);
+      const int32_t right =
+          std::min<int32_t>(t.col_base + static_cast<int32_t>(q[1] / dy[1]), s.width);
+      q[0] += static_cast<uint32_t>(dx[0]);
+      q[1] += static_cast<uint32_t>(dx[1]);
+      if (left >= right) continue;
+      ++spans;
+      tested += static_cast<uint32_t>(right - left);
+      const auto r = static_cast<uint32_t>(row), c = static_cast<uint32_t>(left);
+      const size_t o = static_cast<size_t>(row - s.y0) * static_cast<size_t>(s.width) +
+                       static_cast<size_t>(left);
+      rejected += lane_span_portable<PF, true>(pixels + o, s.depth + o, right - left,
+                                               p[0].base + p[0].gy * r + p[0].gx * c, p[0].gx,
+                                               p[1].base + p[1].gy * r + p[1].gx * c, p[1].gx,
+                                               p[2].base + p[2].gy * r + p[2].gx * c, p[2].gx);
+    }
+    if (row > last) break;
+    q[ss] = t.bottom.q;  // at row mid + 1
+    dx[ss] = t.bottom.dx;
+    dy[ss] = t.bottom.dy;
+    stop = last;
+  }
+  s.spans += spans;
+  s.tested += tested;
+  s.written += tested - rejected;
+}
+
+#if defined(__thumb2__) && (defined(__ARM_ARCH_7EM__) || defined(__ARM_ARCH_8M_MAIN__))
+inline constexpr bool kLaneVisitAsm = true;
+#else
+inline constexpr bool kLaneVisitAsm = false;
+#endif
+
+namespace detail {
+// The visit by hand (Armv7E-M: LDM/STM, UDIV, MLA, REV16). The one operand (in r7, the register
+// the loop leaves to the compiler: Thumb's frame pointer) points to the visit's frame, a local
+// array of 18 words: the triangle's address at 64 (then in lr) and the strip's at 68, and the
+// visit's state:
+//   0 q[0]  4 q[1]  8 px (the row's pixel in column 0)  12 row  16 dx[0]  20 dx[1]
+//   24 stride (bytes per row)  28 dy[0]  32 dy[1]  36 col_base  40 width  44 stop  48 last
+//   52 depth offset (bytes from a pixel to its depth)  56 rejected pixels  60 the short side (0, 4)
+// and r12 counts the pixels in spans (bits 0..19), the spans (20..25) and the rows (26..31). Per
+// row: the first eleven words in r0-r6, r8-r11; left r0 and right r1 (clamped unless kInside); the
+// index r6 from left - right up to 0; the planes at (left, row): z r4 (step r5), br r9 (r10), g r3
+// (r8); the pixels' end r1, the depths' end r2; per pixel the depth and the pixel in r0, green in
+// r11. Instructions: per written pixel 16, per rejected one 8 (plus the counter); per row with a
+// span 35 (kInside 29), without one 20 (14); per visit about 50 (pick-up, frame, counts). The row
+// loop, its labels numbered from N, with CLAMP between the columns and the span.
+#define LR_LANE_ROWS(N1, N2, N3, N4, N7, CLAMP, SWAP)                            \
+  N1 ":\n\t"                                                                     \
+     "ldm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"           \
+     "add    r4, r0, r4\n\t"                                                     \
+     "add    r5, r1, r5\n\t"                                                     \
+     "udiv   r0, r0, r8\n\t"                                                     \
+     "udiv   r1, r1, r9\n\t"                                                     \
+     "add    r6, r2, r6\n\t"                                                     \
+     "add    r8, r3, #1\n\t"                                                     \
+     "stm    %[a], {r4, r5, r6, r8}\n\t" CLAMP                                   \
+     "subs   r6, r0, r1\n\t"                                                     \
+     "bge    " N7                                                                \
+     "f\n\t"                                                                     \
+     "sub    r12, r12, r6\n\t"                                                   \
+     "add    r12, r12, #0x100000\n\t"                                            \
+     "add    r1, r2, r1, lsl #1\n\t"                                             \
+     "add    r8, lr, #52\n\t"                                                    \
+     "ldm    r8!, {r4, r5, r9}\n\t"                                              \
+     "mla    r4, r9, r3, r4\n\t"                                                 \
+     "mla    r4, r5, r0, r4\n\t"                                                 \
+     "ldm    r8!, {r9, r10, r11}\n\t"                                            \
+     "mla    r9, r11, r3, r9\n\t"                                                \
+     "mla    r9, r10, r0, r9\n\t"                                                \
+     "ldm    r8, {r2, r8, r11}\n\t"                                              \
+     "mla    r2, r11, r3, r2\n\t"                                                \
+     "mla    r3, r8, r0, r2\n\t"                                                 \
+     "ldr    r2, [%[a], #52]\n\t"                                                \
+     "add    r2, r1\n\t" N2                                                      \
+     ":\n\t"                                                                     \
+     "ldrh   r0, [r2, r6, lsl #1]\n\t"                                           \
+     "cmp    r0, r4, lsr #15\n\t"                                                \
+     "bls    " N3                                                                \
+     "f\n\t"                                                                     \
+     "lsrs   r0, r4, #15\n\t"                                                    \
+     "strh   r0, [r2, r6, lsl #1]\n\t"                                           \
+     "and    r0, r9, #0xF800F800\n\t"                                            \
+     "orr    r0, r0, r0, lsr #27\n\t"                                            \
+     "and    r11, r3, #0xFC000000\n\t"                                           \
+     "orr    r0, r0, r11, lsr #21\n\t" SWAP "strh   r0, [r1, r6, lsl #1]\n\t" N4 \
+     ":\n\t"                                                                     \
+     "add    r4, r5\n\t"                                                         \
+     "add    r9, r10\n\t"                                                        \
+     "add    r3, r8\n\t"                                                         \
+     "adds   r6, #1\n\t"                                                         \
+     "bne    " N2 "b\n\t" N7                                                     \
+     ":\n\t"                                                                     \
+     "ldr    r0, [%[a], #12]\n\t"                                                \
+     "ldr    r1, [%[a], #44]\n\t"                                                \
+     "cmp    r0, r1\n\t"                                                         \
+     "ble    " N1                                                                \
+     "b\n\t"                                                                     \
+     "ldr    r1, [%[a], #48]\n\t"                                                \
+     "cmp    r0, r1\n\t"                                                         \
+     "bgt    9f\n\t"                                                             \
+     "ldr    r2, [%[a], #60]\n\t"                                                \
+     "add    r2, %[a]\n\t"                                                       \
+     "add    r3, lr, #24\n\t"                                                    \
+     "ldm    r3, {r3, r4, r5}\n\t"                                               \
+     "str    r3, [r2]\n\t"                                                       \
+     "str    r4, [r2, #16]\n\t"                                                  \
+     "str    r5, [r2, #28]\n\t"                                                  \
+     "str    r1, [%[a], #44]\n\t"                                                \
+     "b      " N1 "b\n\t" N3                                                     \
+     ":\n\t"                                                                     \
+     "ldr    r0, [%[a], #56]\n\t"                                                \
+     "adds   r0, #1\n\t"                                                         \
+     "str    r0, [%[a], #56]\n\t"                                                \
+     "b      " N4 "b\n\t"
+// The columns relative to col_base, clamped to [0, width).
+#define LR_LANE_CLAMP              \
+  "add    r0, r10\n\t"             \
+  "add    r1, r10\n\t"             \
+  "bic    r0, r0, r0, asr #31\n\t" \
+  "cmp    r1, r11\n\t"             \
+  "it     gt\n\t"                  \
+  "movgt  r1, r11\n\t"
+// The pick-up (the frame), the two loops (kInside without the clamp), the counts.
+#define LR_LANE_VISIT(SWAP) \
+  asm volatile(                                                            \
+      "ldrd   lr, r12, [%[a], #64]\n\t"                                         \
+      "ldrsh  r5, [lr, #36]\n\t"                                           \
+      "ldrd   r3, r4, [r12, #8]\n\t"                                       \
+      "cmp    r5, r3\n\t"                                                  \
+      "ite    ge\n\t"                                                      \
+      "movge  r0, r5\n\t"                                                  \
+      "movlt  r0, r3\n\t"                                                  \
+      "ldrsh  r2, [lr, #40]\n\t"                                           \
+      "cmp    r2, r4\n\t"                                                  \
+      "it     gt\n\t"                                                      \
+      "movgt  r2, r4\n\t"                                                  \
+      "ldrsh  r1, [lr, #38]\n\t"                                           \
+      "subs   r5, r0, r5\n\t"                                              \
+      "ldm    lr, {r4, r6, r8, r9, r10, r11}\n\t"                          \
+      "mla    r4, r8, r5, r4\n\t"                                          \
+      "mla    r6, r9, r5, r6\n\t"                                          \
+      "strd   r4, r6, [%[a]]\n\t"                                            \
+      "strd   r8, r9, [%[a], #16]\n\t"                                       \
+      "strd   r10, r11, [%[a], #28]\n\t"                                     \
+      "ldrd   r4, r5, [r12]\n\t"                                           \
+      "subs   r5, r5, r4\n\t"                                              \
+      "str    r5, [%[a], #52]\n\t"                                           \
+      "ldr    r6, [r12, #16]\n\t"                                          \
+      "subs   r3, r0, r3\n\t"                                              \
+      "mul    r3, r3, r6\n\t"                                              \
+      "add    r4, r4, r3, lsl #1\n\t"                                      \
+      "strd   r4, r0, [%[a], #8]\n\t"                                        \
+      "lsls   r4, r6, #1\n\t"                                              \
+      "str    r4, [%[a], #24]\n\t"                                           \
+      "ldrsh  r4, [lr, #42]\n\t"                                           \
+      "strd   r4, r6, [%[a], #36]\n\t"                                       \
+      "movs   r12, #0\n\t"                                                 \
+      "str    r12, [%[a], #56]\n\t"                                          \
+      "subs   r12, r2, r0\n\t"                                             \
+      "add    r12, r12, #1\n\t"                                            \
+      "lsls   r12, r12, #26\n\t"                                           \
+      "ldrb   r4, [lr, #47]\n\t"                                           \
+      "and    r5, r4, #1\n\t"                                              \
+      "lsls   r5, r5, #2\n\t"                                              \
+      "str    r5, [%[a], #60]\n\t"                                           \
+      "cmp    r0, r1\n\t"                                                  \
+      "bgt    5f\n\t"                                                      \
+      "cmp    r1, r2\n\t"                                                  \
+      "it     gt\n\t"                                                      \
+      "movgt  r1, r2\n\t"                                                  \
+      "strd   r1, r2, [%[a], #44]\n\t"                                       \
+      "b      6f\n\t"                                                      \
+      "5:\n\t"                                                             \
+      "subs   r0, r0, r1\n\t"                                              \
+      "subs   r0, #1\n\t"                                                  \
+      "add    r3, lr, #24\n\t"                                             \
+      "ldm    r3, {r3, r6, r8}\n\t"                                        \
+      "mla    r3, r6, r0, r3\n\t"                                          \
+      "add    r5, %[a]\n\t"                                                  \
+      "str    r3, [r5]\n\t"                                                \
+      "str    r6, [r5, #16]\n\t"                                           \
+      "str    r8, [r5, #28]\n\t"                                           \
+      "str    r2, [%[a], #44]\n\t"                                           \
+      "str    r2, [%[a], #48]\n\t"                                           \
+      "6:\n\t"                                                             \
+      "tst    r4, #4\n\t"                                                  \
+      "bne    11f\n\t"                                                     \
+      LR_LANE_ROWS("1", "2", "3", "4", "7", LR_LANE_CLAMP, SWAP)           \
+      LR_LANE_ROWS("11", "12", "13", "14", "17", "", SWAP)                 \
+      "9:\n\t"                                                             \
+      "ldr    r0, [%[a], #56]\n\t"                                           \
+      "ldr    r5, [%[a], #68]\n\t"                                          \
+      "add    r5, #32\n\t"                                                 \
+      "ldm    r5, {r1, r2, r3, r6}\n\t"                                    \
+      "ubfx   r4, r12, #20, #6\n\t"                                        \
+      "add    r1, r4\n\t"                                                  \
+      "ubfx   r4, r12, #0, #20\n\t"                                        \
+      "add    r2, r4\n\t"                                                  \
+      "add    r3, r4\n\t"                                                  \
+      "subs   r3, r0\n\t"                                                  \
+      "add    r6, r6, r12, lsr #26\n\t"                                    \
+      "stm    r5, {r1, r2, r3, r6}\n\t"                                    \
+      :                                                                    \
+      : [a] "r"(ts)                                                        \
+      : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", \
+        "cc", "memory")
+
+template <bool kSwap>
+[[gnu::always_inline]] inline void lane_visit_asm(const ActiveTriangle& t, StripRows& s) {
+#if defined(__thumb2__) && (defined(__ARM_ARCH_7EM__) || defined(__ARM_ARCH_8M_MAIN__))
+  static_assert(offsetof(ActiveTriangle, edge_q) == 0 && offsetof(ActiveTriangle, edge_dx) == 8 &&
+                offsetof(ActiveTriangle, edge_dy) == 16 && offsetof(ActiveTriangle, bottom) == 24 &&
+                offsetof(ActiveTriangle, first_row) == 36 &&
+                offsetof(ActiveTriangle, mid_row) == 38 &&
+                offsetof(ActiveTriangle, last_row) == 40 &&
+                offsetof(ActiveTriangle, col_base) == 42 && offsetof(ActiveTriangle, flags) == 47 &&
+                offsetof(ActiveTriangle, z) == 52 && offsetof(ActiveTriangle, c) == 64);
+  static_assert(ActiveTriangle::kBottomRight == 1 && ActiveTriangle::kInside == 4);
+  // The visit's frame, then the triangle's and the strip's addresses (a local array, so that
+  // the compiler's stack figures, and scripts/stack_usage.py's, include it).
+  uint32_t frame[18];
+  frame[16] = reinterpret_cast<uintptr_t>(&t);
+  frame[17] = reinterpret_cast<uintptr_t>(&s);
+  uint32_t* const ts = frame;
+  static_assert(offsetof(StripRows, pixels) == 0 && offsetof(StripRows, depth) == 4 &&
+                offsetof(StripRows, y0) == 8 && offsetof(StripRows, y_last) == 12 &&
+                offsetof(StripRows, width) == 16 && offsetof(StripRows, spans) == 32 &&
+                offsetof(StripRows, tested) == 36 && offsetof(StripRows, written) == 40 &&
+                offsetof(StripRows, rows) == 44);
+  if constexpr (kSwap)
+    LR_LANE_VISIT("rev16  r0, r0\n\t");
+  else
+    LR_LANE_VISIT("");
+#else
+  (void)t;
+  (void)s;
+#endif
+}
+#undef LR_LANE_VISIT
+#undef LR_LANE_CLAMP
+#undef LR_LANE_ROWS
+}  // namespace detail
+
+// The visit: by hand on Armv7E-M for the RGB565 formats (whose from_value is the value or its
+// byte swap), in C elsewhere.
+template <class PF>
+[[gnu::always_inline]] inline void lane_visit(const ActiveTriangle& t, StripRows& s) {
+  constexpr unsigned kProbe = PF::from_value(0x1234u);
+  if constexpr (kLaneVisitAsm && (kProbe == 0x1234u || kProbe == 0x3412u))
+    detail::lane_visit_asm<kProbe == 0x3412u>(t, s);
+  else
+    lane_visit_portable<PF>(t, s);
+}
+
+}  // namespace lr

@@ -1,0 +1,192 @@
+// Random cases for the lanes row loop (core/span/lane_rows.hpp): triangles set up as the
+// renderer sets them up (setup_untextured_triangle, RGB565 lanes with the depth test), drawn
+// strip by strip by two row loops into two copies of the same random strip buffers, whose
+// pixels, depths and counts must be equal; and random spans through two span loops.
+// firmware/span_check compares the hand-allocated loops with their C twins on the target;
+// tests/core/lane_rows_test.cpp compares the C twin with the renderer's generic row loop on the
+// host. Integers only, no heap.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/raster/untextured_rows.hpp"
+#include "lineraster/core/setup/active_triangle.hpp"
+#include "lineraster/core/setup/strip_rows.hpp"
+#include "lineraster/core/setup/triangle_rows.hpp"
+#include "lineraster/core/setup/untextured_setup.hpp"
+#include "lineraster/core/vertex/screen_vertex.hpp"
+
+namespace lr::fw::lanes {
+
+using PF = Rgb565Be;
+inline constexpr int kWidth = 96;  // the viewport: triangles reach beyond every side
+inline constexpr int kHeight = 64;
+inline constexpr int kMaxRows = kMaxVisitRows;
+
+// xorshift32: the same sequence on every core.
+struct Random {
+  uint32_t s = 2463534242u;
+  uint32_t next() {
+    s ^= s << 13;
+    s ^= s >> 17;
+    s ^= s << 5;
+    return s;
+  }
+  // In [lo, hi].
+  int32_t in(int32_t lo, int32_t hi) {
+    return lo + static_cast<int32_t>(next() % static_cast<uint32_t>(hi - lo + 1));
+  }
+};
+
+// A strip: pixels and depths.
+struct Strip {
+  std::array<uint16_t, kWidth * kMaxRows> px{};
+  std::array<uint16_t, kWidth * kMaxRows> depth{};
+};
+
+// A random triangle of the case's kind: small (the 32-bit setup), medium (up to 200 px, the
+// general setup and, beyond 128 px, the affine kind), needles, flat tops and bottoms, anywhere
+// around the viewport.
+inline void random_triangle(Random& rng, ScreenVertex v[3]) {
+  const int kind = rng.in(0, 9);
+  const int32_t size = kind < 6 ? 12 * kSubpixel : kind < 8 ? 60 * kSubpixel : 200 * kSubpixel;
+  const int32_t cx = rng.in(-20 * kSubpixel, (kWidth + 20) * kSubpixel);
+  const int32_t cy = rng.in(-20 * kSubpixel, (kHeight + 20) * kSubpixel);
+  for (int i = 0; i < 3; ++i) {
+    v[i].x = cx + rng.in(-size, size);
+    v[i].y = cy + rng.in(-size, size);
+    v[i].z = static_cast<uint32_t>(rng.next() % (kDepthMax + 1u));
+    v[i].w = 1u << 16;
+    v[i].color = Color15{static_cast<uint16_t>(rng.in(0, Color15::kOne)),
+                         static_cast<uint16_t>(rng.in(0, Color15::kOne)),
+                         static_cast<uint16_t>(rng.in(0, Color15::kOne))};
+    v[i].outcode = 0;
+    v[i].color_pending = 0;
+  }
+  if (kind == 8) v[1].y = v[0].y;  // a flat top or bottom (after the sort)
+  if (kind == 9) {                 // a needle
+    v[1].x = v[0].x + rng.in(-3, 3);
+    v[1].y = v[0].y + rng.in(-2 * kSubpixel, 2 * kSubpixel);
+  }
+}
+
+// The result of a case: how many visits were compared and how many differed.
+struct Tally {
+  uint32_t triangles = 0, visits = 0, differing = 0, pixels = 0;
+};
+
+// Runs `cases` random triangles: each set up at its first strip of a random height, then every
+// strip visit drawn by draw_a into `a` and draw_b into `b` from the same random contents.
+template <class DrawA, class DrawB>
+Tally run_cases(uint32_t cases, Strip& a, Strip& b, DrawA&& draw_a, DrawB&& draw_b,
+                uint32_t seed = 2463534242u) {
+  Random rng;
+  rng.s = seed;
+  Tally tally;
+  UntexturedInput in;
+  in.colors = ColorPlanes::kAffine;
+  in.depth = true;
+  in.lanes = true;
+  in.affine = kAffineBound565;
+  for (uint32_t c = 0; c < cases; ++c) {
+    ScreenVertex v[3];
+    random_triangle(rng, v);
+    if (signed_area2(v[0], v[1], v[2]) == 0) continue;
+    const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
+    sort_by_y(s);
+    const int k = rng.in(1, kMaxRows);  // the strip height
+    const int32_t top = std::max<int32_t>(first_row_below(s[0]->y), 0);
+    const int32_t bottom = std::min<int32_t>(last_row_at_or_above(s[2]->y), kHeight - 1);
+    if (top > bottom) continue;
+    const int32_t strip0 = top / k;
+    ActiveTriangle t;
+    const RowWindow window{strip0 * k, kHeight - 1, kWidth};
+    const UntexturedTriangle u = setup_untextured_triangle(s, window, in, t);
+    if (!u.pixels || u.kind != UntexturedKind::kLanes ||
+        (t.flags & ActiveTriangle::kWideEdges) != 0)
+      continue;
+    ++tally.triangles;
+    for (int32_t y0 = strip0 * k; y0 <= t.last_row; y0 += k) {
+      const int32_t rows = std::min<int32_t>(k, kHeight - y0);
+      for (size_t i = 0; i < static_cast<size_t>(kWidth * rows); ++i) {
+        a.px[i] = b.px[i] = static_cast<uint16_t>(rng.next());
+        // Depths that pass, fail and tie (the test is LESS).
+        a.depth[i] = b.depth[i] = static_cast<uint16_t>(rng.next() % 4 == 0 ? 0xFFFFu : rng.next());
+      }
+      StripRows sa, sb;
+      sa.pixels = a.px.data();
+      sa.depth = a.depth.data();
+      sb.pixels = b.px.data();
+      sb.depth = b.depth.data();
+      sa.y0 = sb.y0 = y0;
+      sa.y_last = sb.y_last = y0 + rows - 1;
+      sa.width = sb.width = kWidth;
+      draw_a(t, sa);
+      draw_b(t, sb);
+      ++tally.visits;
+      tally.pixels += sa.tested;
+      bool same = sa.spans == sb.spans && sa.tested == sb.tested && sa.written == sb.written &&
+                  sa.rows == sb.rows;
+      for (size_t i = 0; i < static_cast<size_t>(kWidth * rows); ++i)
+        same = same && a.px[i] == b.px[i] && a.depth[i] == b.depth[i];
+      if (!same) ++tally.differing;
+    }
+  }
+  return tally;
+}
+
+// Runs `cases` random spans (1 to kWidth pixels, lanes that stay in range over the span, depths
+// that pass, fail and tie) through span_a and span_b (fill(px, depth, n, z, dz, br, dbr, g, dg)
+// -> rejected pixels) into two copies of the same strip row: pixels, depths and the rejected
+// count must be equal.
+template <class SpanA, class SpanB>
+Tally run_spans(uint32_t cases, Strip& a, Strip& b, SpanA&& span_a, SpanB&& span_b,
+                uint32_t seed = 88172645u) {
+  Random rng;
+  rng.s = seed;
+  Tally tally;
+  for (uint32_t c = 0; c < cases; ++c) {
+    const int32_t n = rng.in(1, kWidth);
+    // A lane value and a step that keep it in [0, 2^16) over n pixels.
+    const auto lane = [&](uint32_t& v, int32_t& step) {
+      v = static_cast<uint32_t>(rng.in(0, 65535));
+      const int32_t room = static_cast<int32_t>(std::min<uint32_t>(v, 65535u - v)) / n;
+      step = rng.in(-room, room);
+    };
+    uint32_t r, bl, g;
+    int32_t dr, dbl, dg;
+    lane(r, dr);
+    lane(bl, dbl);
+    lane(g, dg);
+    const uint32_t br = (bl << 16) + r;
+    const uint32_t dbr = (static_cast<uint32_t>(dbl) << 16) + static_cast<uint32_t>(dr);
+    const uint32_t z = rng.next() >> 1, dz = rng.next() % 65536;
+    for (int32_t i = 0; i < n; ++i) {
+      const auto k = static_cast<size_t>(i);
+      a.px[k] = b.px[k] = static_cast<uint16_t>(rng.next());
+      const uint32_t d = (z + dz * static_cast<uint32_t>(i)) >> 15;
+      const uint32_t pick = rng.next() % 4;  // below, equal, above, cleared
+      a.depth[k] = b.depth[k] = static_cast<uint16_t>(pick == 0   ? d - 1
+                                                      : pick == 1 ? d
+                                                      : pick == 2 ? d + 1
+                                                                  : 0xFFFFu);
+    }
+    const uint32_t ra = span_a(a.px.data(), a.depth.data(), n, z, dz, br, dbr, g << 16,
+                               static_cast<uint32_t>(dg) << 16);
+    const uint32_t rb = span_b(b.px.data(), b.depth.data(), n, z, dz, br, dbr, g << 16,
+                               static_cast<uint32_t>(dg) << 16);
+    ++tally.visits;
+    tally.pixels += static_cast<uint32_t>(n);
+    bool same = ra == rb;
+    for (size_t i = 0; i < static_cast<size_t>(n); ++i)
+      same = same && a.px[i] == b.px[i] && a.depth[i] == b.depth[i];
+    if (!same) ++tally.differing;
+  }
+  return tally;
+}
+
+}  // namespace lr::fw::lanes

@@ -1,0 +1,93 @@
+// lr_span_check: the lanes row loop by hand (core/span/lane_rows.hpp, the Armv7E-M asm) against
+// its C twin, on random triangles drawn strip by strip into random strip buffers
+// (firmware/span_check/lane_cases.hpp): the same pixels, depths and counts on every visit; on
+// Armv6-M the span loop by hand (core/span/lane_span.hpp) against its C twin on random spans.
+// Also the C twin against the renderer's generic row loop (a span routine per row, by hand on
+// Armv6-M), which every core runs. Reports on the console (semihosting); exit status 0 when
+// nothing differs.
+#include <cstdint>
+
+#include "firmware/common/semihost.hpp"
+#include "firmware/span_check/lane_cases.hpp"
+#include "lineraster/core/raster/untextured_rows.hpp"
+#include "lineraster/core/span/lane_rows.hpp"
+
+namespace {
+
+namespace sh = lr::fw::semihost;
+namespace lanes = lr::fw::lanes;
+
+lanes::Strip g_a, g_b;
+
+bool report(const char* what, const lanes::Tally& t) {
+  sh::write("lr_span_check: ");
+  sh::write(what);
+  sh::write(": ");
+  sh::write_dec(t.triangles);
+  sh::write(" triangles, ");
+  sh::write_dec(t.visits);
+  sh::write(" strip visits, ");
+  sh::write_dec(t.pixels);
+  sh::write(" pixels, ");
+  sh::write_dec(t.differing);
+  sh::write(" visits differ\n");
+  // A run that compared (almost) nothing proves nothing.
+  return t.differing == 0 && t.triangles > 1000 && t.pixels > 20000;
+}
+
+// The same for random spans (run_spans: a visit is a span).
+bool report_spans(const char* what, const lanes::Tally& t) {
+  sh::write("lr_span_check: ");
+  sh::write(what);
+  sh::write(": ");
+  sh::write_dec(t.visits);
+  sh::write(" spans, ");
+  sh::write_dec(t.pixels);
+  sh::write(" pixels, ");
+  sh::write_dec(t.differing);
+  sh::write(" spans differ\n");
+  return t.differing == 0 && t.visits > 1000 && t.pixels > 20000;
+}
+
+}  // namespace
+
+int main() {
+  using lr::ActiveTriangle;
+  using lr::StripRows;
+  using PF = lanes::PF;
+  constexpr uint32_t kCases = 6000;
+  bool ok = true;
+  const auto portable = [](const ActiveTriangle& t, StripRows& s) {
+    lr::lane_visit_portable<PF>(t, s);
+  };
+  if constexpr (lr::kLaneVisitAsm) {
+    const auto by_hand = [](const ActiveTriangle& t, StripRows& s) { lr::lane_visit<PF>(t, s); };
+    ok = report("hand-allocated loop == C loop",
+                lanes::run_cases(kCases, g_a, g_b, by_hand, portable)) &&
+         ok;
+  } else {
+    sh::write("lr_span_check: no hand-allocated visit on this core\n");
+  }
+  // The span loop of the generic row loop: by hand on Armv6-M (lane_span.hpp).
+  const auto span = [](uint16_t* px, uint16_t* depth, int32_t n, uint32_t z, uint32_t dz,
+                       uint32_t br, uint32_t dbr, uint32_t g, uint32_t dg) {
+    return lr::lane_span<PF, true>(px, depth, n, z, dz, br, dbr, g, dg);
+  };
+  const auto span_portable = [](uint16_t* px, uint16_t* depth, int32_t n, uint32_t z, uint32_t dz,
+                                uint32_t br, uint32_t dbr, uint32_t g, uint32_t dg) {
+    return lr::lane_span_portable<PF, true>(px, depth, n, z, dz, br, dbr, g, dg);
+  };
+  if constexpr (lr::kLaneSpanAsm) {
+    ok = report_spans("span loop by hand == C span loop",
+                      lanes::run_spans(20000, g_a, g_b, span, span_portable)) &&
+         ok;
+  }
+  const auto generic = [](const ActiveTriangle& t, StripRows& s) {
+    lr::untextured_rows_per_span<PF, true, lr::UntexturedKind::kLanes>(t, s);
+  };
+  ok = report("C loop == generic row loop",
+              lanes::run_cases(kCases, g_a, g_b, portable, generic, 12345u)) &&
+       ok;
+  sh::write(ok ? "lr_span_check: PASS\n" : "lr_span_check: FAIL\n");
+  sh::exit(ok);
+}

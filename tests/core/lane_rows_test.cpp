@@ -1,0 +1,185 @@
+// The RGB565 lanes span and row loop (core/span/lane_span.hpp, lane_rows.hpp) on the host:
+// the C loop of a strip visit against the renderer's generic row loop (the cases the firmware
+// check lr_span_check runs on the targets, where it also compares the hand-allocated loop), the
+// lane span against a direct evaluation of its planes at every pixel, and the lanes' colours
+// against the exact (double) colour of each pixel centre: within one RGB565 step everywhere.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "firmware/span_check/lane_cases.hpp"
+#include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/raster/untextured_rows.hpp"
+#include "lineraster/core/span/lane_rows.hpp"
+#include "lineraster/core/span/lane_span.hpp"
+
+namespace lr {
+namespace {
+
+using PF = Rgb565Be;
+namespace lanes = fw::lanes;
+
+TEST(LaneRows, CLoopDrawsWhatTheGenericRowLoopDraws) {
+  static lanes::Strip a, b;
+  const auto portable = [](const ActiveTriangle& t, StripRows& s) {
+    lane_visit_portable<PF>(t, s);
+  };
+  const auto generic = [](const ActiveTriangle& t, StripRows& s) {
+    untextured_rows_per_span<PF, true, UntexturedKind::kLanes>(t, s);
+  };
+  const lanes::Tally t = lanes::run_cases(20000, a, b, portable, generic, 777u);
+  std::printf("[ lanes ] %u triangles, %u strip visits, %u pixels: %u visits differ\n", t.triangles,
+              t.visits, t.pixels, t.differing);
+  EXPECT_EQ(t.differing, 0u);
+  EXPECT_GT(t.triangles, 8000u);
+  EXPECT_GT(t.pixels, 100000u);
+}
+
+TEST(LaneSpan, StepsEqualTheDirectEvaluationOfThePlanes) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<uint32_t> any;
+  size_t rejected_seen = 0;
+  for (int c = 0; c < 2000; ++c) {
+    const int32_t n = static_cast<int32_t>(any(rng) % 200 + 1);
+    // Lanes that stay in range over the span (as inside a triangle): starts and steps small
+    // enough in both halves.
+    const auto lane = [&](uint32_t lo, uint32_t hi) { return lo + any(rng) % (hi - lo); };
+    const uint32_t r0 = lane(2000, 60000), b0 = lane(2000, 60000), g0 = lane(2000, 60000);
+    const auto step = [&](uint32_t v0) {
+      const int32_t room = static_cast<int32_t>(std::min(v0, 65535u - v0)) / n;
+      return static_cast<int32_t>(any(rng) % (2 * static_cast<uint32_t>(room) + 1)) - room;
+    };
+    const int32_t dr = step(r0), db = step(b0), dg = step(g0);
+    const uint32_t br = (b0 << 16) + r0,
+                   dbr = (static_cast<uint32_t>(db) << 16) + static_cast<uint32_t>(dr);
+    const uint32_t g = g0 << 16, dgg = static_cast<uint32_t>(dg) << 16;
+    const uint32_t z = any(rng) >> 1, dz = any(rng) % 4096;
+    std::vector<uint16_t> px(static_cast<size_t>(n), 0x1234), depth(static_cast<size_t>(n));
+    for (auto& d : depth) d = static_cast<uint16_t>(any(rng));
+    std::vector<uint16_t> depth_before = depth;
+    const uint32_t rejected =
+        lane_span_portable<PF, true>(px.data(), depth.data(), n, z, dz, br, dbr, g, dgg);
+    uint32_t expect_rejected = 0;
+    for (int32_t i = 0; i < n; ++i) {
+      const auto ui = static_cast<uint32_t>(i);
+      const uint32_t rv = r0 + static_cast<uint32_t>(dr) * ui,
+                     bv = b0 + static_cast<uint32_t>(db) * ui;
+      const uint32_t gv = g0 + static_cast<uint32_t>(dg) * ui;
+      const auto d = static_cast<uint16_t>((z + dz * ui) >> 15);
+      const size_t k = static_cast<size_t>(i);
+      if (d < depth_before[k]) {
+        ASSERT_EQ(depth[k], d);
+        const unsigned v = (rv >> 11) << 11 | (gv >> 10) << 5 | (bv >> 11);
+        ASSERT_EQ(PF::to_value(px[k]), v) << "case " << c << " pixel " << i;
+      } else {
+        ASSERT_EQ(depth[k], depth_before[k]);
+        ASSERT_EQ(px[k], 0x1234);
+        ++expect_rejected;
+      }
+    }
+    EXPECT_EQ(rejected, expect_rejected);
+    rejected_seen += rejected;
+  }
+  EXPECT_GT(rejected_seen, 1000u);
+}
+
+// The exact colour of a pixel centre: the barycentric mix of the vertex colours (Q1.15).
+double exact_channel(const ScreenVertex* const v[3], int c, double px, double py) {
+  const double x0 = v[0]->x, y0 = v[0]->y;
+  const double e1x = v[1]->x - x0, e1y = v[1]->y - y0, e2x = v[2]->x - x0, e2y = v[2]->y - y0;
+  const double d = e1x * e2y - e2x * e1y;
+  const double l1 = ((px - x0) * e2y - (py - y0) * e2x) / d;
+  const double l2 = ((py - y0) * e1x - (px - x0) * e1y) / d;
+  const double a0 = channel(v[0]->color, c), a1 = channel(v[1]->color, c),
+               a2 = channel(v[2]->color, c);
+  return (a0 + l1 * (a1 - a0) + l2 * (a2 - a0)) / Color15::kOne;
+}
+
+TEST(Lanes, EveryPixelWithinOneRgb565StepOfTheExactColour) {
+  // Random triangles up to 128 px (the lanes' limit), drawn whole in one strip of 32 rows with
+  // the generic row loop; each written pixel against the exact colour at its centre, rounded to
+  // RGB565.
+  std::mt19937 rng(21);
+  std::uniform_int_distribution<int32_t> pos(0, 96 * kSubpixel),
+      size(-128 * kSubpixel, 128 * kSubpixel);
+  std::uniform_int_distribution<int> col(0, Color15::kOne);
+  UntexturedInput in;
+  in.colors = ColorPlanes::kAffine;
+  in.depth = true;
+  in.lanes = true;
+  in.affine = kAffineBound565;
+  static lanes::Strip strip;
+  uint64_t pixels = 0, exact = 0, worst = 0;
+  int triangles = 0;
+  while (triangles < 3000) {
+    ScreenVertex v[3];
+    const int32_t cx = pos(rng),
+                  cy = std::uniform_int_distribution<int32_t>(0, 32 * kSubpixel)(rng);
+    const int32_t reach = triangles % 3 == 0 ? 128 * kSubpixel : 24 * kSubpixel;
+    for (auto& p : v) {
+      p.x = cx + size(rng) % reach;
+      p.y = cy + size(rng) % reach;
+      p.z = 1000;
+      p.w = 1u << 16;
+      p.color = Color15{static_cast<uint16_t>(col(rng)), static_cast<uint16_t>(col(rng)),
+                        static_cast<uint16_t>(col(rng))};
+    }
+    if (signed_area2(v[0], v[1], v[2]) == 0) continue;
+    const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
+    sort_by_y(s);
+    ActiveTriangle t;
+    const UntexturedTriangle u =
+        setup_untextured_triangle(s, RowWindow{0, 31, lanes::kWidth}, in, t);
+    if (!u.pixels || u.kind != UntexturedKind::kLanes) continue;
+    ++triangles;
+    std::fill(strip.depth.begin(), strip.depth.end(), 0xFFFF);
+    std::fill(strip.px.begin(), strip.px.end(), 0);
+    StripRows sr;
+    sr.pixels = strip.px.data();
+    sr.depth = strip.depth.data();
+    sr.y0 = 0;
+    sr.y_last = 31;
+    sr.width = lanes::kWidth;
+    untextured_rows_per_span<PF, true, UntexturedKind::kLanes>(t, sr);
+    for (int32_t r = 0; r < 32; ++r) {
+      for (int32_t c = 0; c < lanes::kWidth; ++c) {
+        const size_t i = static_cast<size_t>(r * lanes::kWidth + c);
+        if (strip.depth[i] == 0xFFFF) continue;
+        const double x = c * kSubpixel + kHalfPixel, y = r * kSubpixel + kHalfPixel;
+        const unsigned v565 = PF::to_value(strip.px[i]);
+        const int got[3] = {static_cast<int>(v565 >> 11), static_cast<int>((v565 >> 5) & 63),
+                            static_cast<int>(v565 & 31)};
+        const int levels[3] = {31, 63, 31};
+        bool same = true;
+        for (int ch = 0; ch < 3; ++ch) {
+          const double e = std::clamp(exact_channel(s, ch, x, y), 0.0, 1.0) * levels[ch];
+          const auto want = static_cast<int>(std::floor(e + 0.5));
+          const auto diff = static_cast<uint64_t>(std::abs(got[ch] - want));
+          worst = std::max(worst, diff);
+          same = same && diff == 0;
+        }
+        ++pixels;
+        exact += same ? 1 : 0;
+      }
+    }
+  }
+  std::printf(
+      "[ lanes ] %d triangles, %llu pixels: %.4f %% exactly the rounded exact colour, "
+      "worst %llu step\n",
+      triangles, static_cast<unsigned long long>(pixels),
+      100.0 * static_cast<double>(exact) / static_cast<double>(pixels),
+      static_cast<unsigned long long>(worst));
+  EXPECT_GT(pixels, 200000u);
+  EXPECT_LE(worst, 1u);
+  // Red and blue are 16-bit lanes (a unit is 1/2048 of a step): about 1 % of the pixels round one
+  // step off where the exact value lies that close to a rounding boundary.
+  EXPECT_GT(static_cast<double>(exact), 0.985 * static_cast<double>(pixels));
+}
+
+}  // namespace
+}  // namespace lr

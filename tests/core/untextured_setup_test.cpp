@@ -1,0 +1,378 @@
+// The untextured family's setup (core/setup/untextured_setup.{hpp,cpp}) against exact values:
+//
+// - the 32-bit short path's planes (fast_basis, fast_plane, and the int32 setup of small
+//   triangles) at pixel centres of random triangles' bounding boxes, within the error the
+//   documentation derives (docs/numerics.md#untextured-planes): per pixel from vertex 0,
+//   5 x 2^s units from the coefficients (half a unit more where the gradient is rounded), plus
+//   the base's rounding;
+// - long needles take the exact wide path and FrameStats::triangles_wide counts them;
+// - the affine colour test of each pixel format: wherever it accepts a triangle, its
+//   screen-linear colours are within half an output step of the perspective-correct ones
+//   (docs/numerics.md#when-screen-linear-colours-are-close-enough), and the test is tight.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <random>
+
+#include "lineraster/core/math/fixed.hpp"
+#include "lineraster/core/setup/triangle_rows.hpp"
+#include "lineraster/core/setup/triangle_setup.hpp"
+#include "lineraster/core/setup/untextured_setup.hpp"
+#include "tests/reference/int128.hpp"
+#include "tests/support/core_harness.hpp"
+
+namespace lr {
+namespace {
+
+#if defined(__SIZEOF_INT128__)
+__extension__ typedef __int128 i128;
+#else
+using i128 = ref::Int128;  // 32-bit targets (the armhf test build): the same exact values
+#endif
+
+uint32_t low_word(const i128& v) {
+#if defined(__SIZEOF_INT128__)
+  return static_cast<uint32_t>(static_cast<uint64_t>(v));
+#else
+  return static_cast<uint32_t>(v.lo());
+#endif
+}
+
+// The plane's error at pixel (c, r) against the exact plane through the vertex values a,
+// modulo 2^32, in units.
+double plane_error(const ScreenVertex* const v[3], const uint32_t a[3], const Plane& p, int32_t c,
+                   int32_t r) {
+  const int64_t x0 = v[0]->x, y0 = v[0]->y;
+  const int64_t ex1 = v[1]->x - x0, ey1 = v[1]->y - y0, ex2 = v[2]->x - x0, ey2 = v[2]->y - y0;
+  const i128 d = i128{ex1} * ey2 - i128{ex2} * ey1;
+  const i128 da1 = i128{a[1]} - a[0], da2 = i128{a[2]} - a[0];
+  const i128 px = i128{c} * kSubpixel + kHalfPixel - x0, py = i128{r} * kSubpixel + kHalfPixel - y0;
+  i128 n = px * (da1 * ey2 - da2 * ey1) + py * (da2 * ex1 - da1 * ex2);
+  i128 dd = d;
+  if (dd < 0) {
+    n = -n;
+    dd = -dd;
+  }
+  i128 t = n / dd, rem = n % dd;  // n = t dd + rem, rem in [0, dd)
+  if (rem < 0) {
+    t = t - 1;
+    rem = rem + dd;
+  }
+  const auto diff = static_cast<int32_t>(p.at(c, r) - a[0] - low_word(t));
+  return diff - static_cast<double>(rem) / static_cast<double>(dd);
+}
+
+int bit_length(uint32_t v) {
+  return v == 0 ? 0 : 32 - clz32(v);
+}
+uint32_t mag(int64_t v) {
+  return static_cast<uint32_t>(v < 0 ? -v : v);
+}
+
+// The triangle's bm and L (docs/numerics.md#untextured-planes).
+void bm_and_l(const ScreenVertex* const v[3], int& bm, int& l) {
+  const int64_t e1x = v[1]->x - v[0]->x, e1y = v[1]->y - v[0]->y;
+  const int64_t e2x = v[2]->x - v[0]->x, e2y = v[2]->y - v[0]->y;
+  bm = bit_length(mag(e1x) | mag(e1y) | mag(e2x) | mag(e2y));
+  const int64_t d = e1x * e2y - e2x * e1y;
+  const auto ad = static_cast<uint64_t>(d < 0 ? -d : d);
+  l = 64 - clz64(ad);
+}
+
+struct Errors {
+  long long samples = 0, over = 0;
+  double max_ratio = 0;     // largest error / bound
+  double max_relative = 0;  // largest error / the attribute's largest difference
+  double max_abs = 0;       // in units
+};
+
+// Checks plane p (gradient scale 2^s) at the corners and random pixel centres of the bounding
+// box against the derived bound.
+void check(const ScreenVertex* const v[3], const uint32_t a[3], const Plane& p, int s,
+           std::mt19937_64& rng, Errors& e) {
+  const int32_t xl = std::min({v[0]->x, v[1]->x, v[2]->x}),
+                xh = std::max({v[0]->x, v[1]->x, v[2]->x});
+  const int32_t yl = std::min({v[0]->y, v[1]->y, v[2]->y}),
+                yh = std::max({v[0]->y, v[1]->y, v[2]->y});
+  const int32_t c0 = first_row_below(xl - 1), c1 = last_row_at_or_above(xh);
+  const int32_t r0 = first_row_below(yl - 1), r1 = last_row_at_or_above(yh);
+  if (c0 > c1 || r0 > r1) return;
+  const uint32_t range = std::max({mag(int64_t{a[1]} - a[0]), mag(int64_t{a[2]} - a[0]), 1u});
+  const double unit = std::ldexp(1.0, s);
+  auto sample = [&](int32_t c, int32_t r) {
+    const double err = std::fabs(plane_error(v, a, p, c, r));
+    const double dx = std::fabs((c * 256.0 + 128 - v[0]->x) / 256);
+    const double dy = std::fabs((r * 256.0 + 128 - v[0]->y) / 256);
+    const double bound = (5 * unit + (s < 0 ? 0.5 : 0.0)) * (dx + dy + 1) + 8 * unit + 1;
+    ++e.samples;
+    e.max_ratio = std::max(e.max_ratio, err / bound);
+    e.max_relative = std::max(e.max_relative, err / range);
+    e.max_abs = std::max(e.max_abs, err);
+    if (err > bound && e.over++ < 5)
+      ADD_FAILURE() << "error " << err << " > bound " << bound << " at (" << c << "," << r
+                    << "), s " << s;
+  };
+  sample(c0, r0);
+  sample(c1, r0);
+  sample(c0, r1);
+  sample(c1, r1);
+  for (int k = 0; k < 4; ++k)
+    sample(c0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(c1 - c0 + 1)),
+           r0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(r1 - r0 + 1)));
+}
+
+TEST(UntexturedPlanes, ShortPathWithinTheDocumentedBound) {
+  std::mt19937_64 rng(36);
+  int taken = 0, refused = 0;
+  Errors e;
+  for (int i = 0; i < 200000; ++i) {
+    // Extent 2^2 .. 2^20 subpixels, anywhere in the guard band.
+    const int bits = 2 + static_cast<int>(rng() % 19);
+    const int32_t span = int32_t{1} << bits;
+    auto coord = [&] {
+      return static_cast<int32_t>(rng() % static_cast<uint64_t>(2 * span)) - span;
+    };
+    const int32_t ox = static_cast<int32_t>(rng() % (1u << 21)) - (1 << 20);
+    const int32_t oy = static_cast<int32_t>(rng() % (1u << 21)) - (1 << 20);
+    ScreenVertex sv[3];
+    for (auto& x : sv) {
+      x.x = ox + coord();
+      x.y = oy + coord();
+    }
+    if (signed_area2(sv[0], sv[1], sv[2]) == 0) continue;
+    const ScreenVertex* v[3] = {&sv[0], &sv[1], &sv[2]};
+    FastBasis b;
+    if (!fast_basis(v, kFastMaxSpread, b)) {
+      ++refused;
+      continue;
+    }
+    ++taken;
+    // Values in [0, 2^31) whose differences have abits bits: u = 30 - abits.
+    const int abits = 1 + static_cast<int>(rng() % 31);
+    const uint32_t lo = static_cast<uint32_t>(rng() % (1u << 30));
+    int32_t a[3];
+    uint32_t ua[3];
+    for (int k = 0; k < 3; ++k) {
+      a[k] = static_cast<int32_t>(lo + static_cast<uint32_t>(rng() >> (64 - abits)) / 2);
+      ua[k] = static_cast<uint32_t>(a[k]);
+    }
+    const int dbits = bit_length(std::max(mag(int64_t{a[1]} - a[0]), mag(int64_t{a[2]} - a[0])));
+    const int u = 30 - dbits;
+    const Plane p = fast_plane(b, a, u);
+    check(v, ua, p, b.p - u, rng, e);
+  }
+  std::printf("[ planes ] short path: %d triangles (%d refused), %lld samples, %.3f of the bound\n",
+              taken, refused, e.samples, e.max_ratio);
+  EXPECT_EQ(e.over, 0);
+  EXPECT_GT(taken, 100000);
+  EXPECT_GT(refused, 5000);
+  EXPECT_GT(e.max_ratio, 0.05);  // not loose by orders of magnitude
+}
+
+// Small triangles (edge components below 2^14 subpixels) are set up in int32 throughout; their
+// depth and colour planes are within the same bound.
+TEST(UntexturedPlanes, SmallTrianglesInInt32WithinTheBound) {
+  std::mt19937_64 rng(37);
+  UntexturedInput in;
+  in.colors = ColorPlanes::kAffine;
+  in.depth = true;
+  Errors ez, ec;
+  int small = 0;
+  for (int i = 0; i < 100000; ++i) {
+    ScreenVertex sv[3];
+    const int32_t ox = static_cast<int32_t>(rng() % (300 * 256)),
+                  oy = static_cast<int32_t>(rng() % (200 * 256));
+    const int32_t reach = 1 + static_cast<int32_t>(rng() % (i % 2 ? 16383 : 2048));
+    for (auto& x : sv) {
+      x.x = ox + static_cast<int32_t>(rng() % static_cast<uint64_t>(reach));
+      x.y = oy + static_cast<int32_t>(rng() % static_cast<uint64_t>(reach));
+      x.z = static_cast<uint32_t>(rng() % (uint64_t{kDepthMax} + 1));
+      x.w = 1u << 16;
+      x.color = Color15{static_cast<uint16_t>(rng() % 32769), static_cast<uint16_t>(rng() % 32769),
+                        static_cast<uint16_t>(rng() % 32769)};
+    }
+    if (signed_area2(sv[0], sv[1], sv[2]) == 0) continue;
+    const ScreenVertex* v[3] = {&sv[0], &sv[1], &sv[2]};
+    sort_by_y(v);
+    int bm = 0, l = 0;
+    bm_and_l(v, bm, l);
+    if (2 * bm - l > kFastMaxSpread) continue;
+    uint32_t z[3];
+    for (int k = 0; k < 3; ++k) z[k] = (v[k]->z >> 1) + (1u << 14);
+    const uint32_t zd = std::max(mag(int64_t{z[1]} - z[0]), mag(int64_t{z[2]} - z[0]));
+    if (2 * bm - l + bit_length(zd) > kFastMaxDepthSpread) continue;
+    ActiveTriangle t;
+    const UntexturedTriangle got = setup_untextured_triangle(v, RowWindow{0, 240, 320}, in, t);
+    if (!got.pixels) continue;
+    ASSERT_FALSE(got.wide);
+    ASSERT_EQ(got.kind, UntexturedKind::kAffine);
+    const int p = 11 + bm - l;
+    ++small;
+    // Depth: differences scaled by 2^(30 - bits); colours (Q2.30) by 2^0.
+    check(v, z, t.z, p - (30 - bit_length(zd)), rng, ez);
+    for (int ch = 0; ch < 3; ++ch) {
+      uint32_t c[3];
+      for (int k = 0; k < 3; ++k) c[k] = uint32_t{channel(v[k]->color, ch)} << 15;
+      check(v, c, t.c[ch], p, rng, ec);
+    }
+  }
+  std::printf("[ planes ] small path: %d triangles, depth %.3f, colours %.3f of the bound\n", small,
+              ez.max_ratio, ec.max_ratio);
+  EXPECT_EQ(ez.over, 0);
+  EXPECT_EQ(ec.over, 0);
+  EXPECT_GT(small, 50000);
+  // Depth within 0.08 of a 16-bit step (2^15 units of half depth) on these triangles.
+  EXPECT_LT(ez.max_abs, 2560.0);
+}
+
+// A needle whose spread exceeds the short path's limit is set up on the exact wide path and
+// counted; a small triangle beside it is not.
+TEST(UntexturedPlanes, NeedlesTakeTheWidePathAndAreCounted) {
+  test::ScreenScene scene;
+  constexpr int64_t S = kSubpixel;
+  // 1,800 pixels long, a quarter pixel thick, crossing the row centre 30.5 (spread 13).
+  scene.add(-800 * S, 30 * S, 1000 * S, 31 * S, 1000 * S, 31 * S + S / 4);
+  scene.add(10 * S, 10 * S, 20 * S, 12 * S, 12 * S, 20 * S);
+  DrawState st = test::coverage_state();
+  st.depth_test = true;
+  st.shading = Shading::kGouraud;
+  test::CoreHarness<8> h(320, 64);
+  h.begin();
+  ASSERT_EQ(h.renderer().draw_screen(scene.vertices, scene.triangles, st), Status::kOk);
+  Status status = Status::kInvalidArgument;
+  h.render(&status);
+  EXPECT_EQ(status, Status::kOk);
+  EXPECT_EQ(h.renderer().stats().triangles_wide, 1u);
+  EXPECT_GT(h.renderer().stats().pixels_written, 100u);
+
+  const ScreenVertex* v[3] = {&scene.vertices[0], &scene.vertices[1], &scene.vertices[2]};
+  sort_by_y(v);
+  UntexturedInput in;
+  in.colors = ColorPlanes::kAffine;
+  ActiveTriangle t;
+  EXPECT_TRUE(setup_untextured(v, in, t).wide);
+  const ScreenVertex* w[3] = {&scene.vertices[3], &scene.vertices[4], &scene.vertices[5]};
+  sort_by_y(w);
+  EXPECT_FALSE(setup_untextured(w, in, t).wide);
+}
+
+// Barycentric mixes of the vertex colours: screen-linear and perspective-correct (weights
+// l_i / w_i), channel ch in [0, 1].
+double mix(const ScreenVertex* const v[3], const double l[3], int ch, bool perspective) {
+  double num = 0, den = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double wt = perspective ? l[k] / v[k]->w : l[k];
+    num += wt * channel(v[k]->color, ch);
+    den += wt;
+  }
+  return num / den / Color15::kOne;
+}
+
+TEST(AffineBound, AcceptedTrianglesAreWithinHalfAnOutputStep) {
+  std::mt19937_64 rng(38);
+  struct Format {
+    AffineBound bound;
+    double half_step[3];  // of red, green, blue, in [0, 1]
+    int accepted = 0, refused = 0;
+    double worst = 0;  // largest error / half a step, over accepted triangles
+  };
+  Format formats[2] = {{kAffineBound8, {0.5 / 255, 0.5 / 255, 0.5 / 255}},
+                       {kAffineBound565, {0.5 / 31, 0.5 / 63, 0.5 / 31}}};
+  for (int i = 0; i < 40000; ++i) {
+    ScreenVertex sv[3];
+    const uint32_t w0 = 1u << (10 + rng() % 16);
+    const uint32_t dw = static_cast<uint32_t>(rng() % (w0 >> (1 + rng() % 9)) + 1);
+    for (auto& x : sv) {
+      x.w = w0 + static_cast<uint32_t>(rng() % dw);
+      // Colour ranges from a few levels to full scale.
+      const uint32_t cr = 1u << (6 + rng() % 10);
+      const uint32_t c0 = static_cast<uint32_t>(rng() % (32769 - cr));
+      x.color =
+          Color15{static_cast<uint16_t>(c0 + rng() % cr), static_cast<uint16_t>(c0 + rng() % cr),
+                  static_cast<uint16_t>(c0 + rng() % cr)};
+    }
+    // The worst pixel lies at an edge: sample barycentrics on the edges and inside.
+    const ScreenVertex* v[3] = {&sv[0], &sv[1], &sv[2]};
+    for (Format& f : formats) {
+      if (!affine_within(v, f.bound)) {
+        ++f.refused;
+        continue;
+      }
+      ++f.accepted;
+      for (int k = 0; k <= 64; ++k) {
+        for (int e = 0; e < 4; ++e) {
+          double l[3] = {0, 0, 0};
+          const double s = k / 64.0;
+          if (e < 3) {
+            l[e] = s;
+            l[(e + 1) % 3] = 1 - s;
+          } else {
+            const double r1 = static_cast<double>(rng() % 1000) / 1000, r2 = (1 - r1) * s;
+            l[0] = r1;
+            l[1] = r2;
+            l[2] = 1 - r1 - r2;
+          }
+          for (int ch = 0; ch < 3; ++ch) {
+            const double d = std::fabs(mix(v, l, ch, false) - mix(v, l, ch, true));
+            f.worst = std::max(f.worst, d / f.half_step[ch]);
+          }
+        }
+      }
+    }
+  }
+  for (const Format& f : formats)
+    std::printf("[ affine ] bound %u: %d accepted, %d refused, worst %.3f of half a step\n",
+                f.bound.bound, f.accepted, f.refused, f.worst);
+  for (const Format& f : formats) {
+    EXPECT_LE(f.worst, 1.0);
+    EXPECT_GT(f.worst, 0.25);  // the test is not far stricter than it needs to be
+    EXPECT_GT(f.accepted, 1000);
+    EXPECT_GT(f.refused, 1000);
+  }
+  // The RGB565 bound accepts more triangles than the 8-bit one.
+  EXPECT_GT(formats[1].accepted, formats[0].accepted);
+}
+
+// The bound itself, at its edge: (w_max - w_min) D = bound x w_min is accepted, one more is not.
+TEST(AffineBound, ExactlyAtTheBound) {
+  ScreenVertex sv[3];
+  const uint32_t wmin = 1u << 20;
+  // Red range D = 2^12: (w_max - w_min) = 2080 x 2^20 / 2^12 = 2080 x 2^8 for RGB565.
+  sv[0].color = Color15{0, 0, 0};
+  sv[1].color = Color15{1u << 12, 0, 0};
+  sv[2].color = Color15{0, 0, 0};
+  sv[0].w = wmin;
+  sv[2].w = wmin;
+  const ScreenVertex* v[3] = {&sv[0], &sv[1], &sv[2]};
+  sv[1].w = wmin + 2080 * 256;
+  EXPECT_TRUE(affine_within(v, kAffineBound565));
+  EXPECT_FALSE(affine_within(v, kAffineBound8));
+  sv[1].w = wmin + 2080 * 256 + 1;
+  EXPECT_FALSE(affine_within(v, kAffineBound565));
+  // Green counts twice for RGB565: the same range in green needs half the w spread.
+  sv[1].color = Color15{0, 1u << 12, 0};
+  sv[1].w = wmin + 1040 * 256;
+  EXPECT_TRUE(affine_within(v, kAffineBound565));
+  sv[1].w = wmin + 1040 * 256 + 1;
+  EXPECT_FALSE(affine_within(v, kAffineBound565));
+  // The colour-free quick test: w_max - w_min <= w_min / 2^5 is accepted whatever the colours.
+  sv[1].color = Color15{Color15::kOne, Color15::kOne, Color15::kOne};
+  sv[1].w = wmin + (wmin >> 5);
+  EXPECT_TRUE(affine_within(v, kAffineBound565));
+  sv[1].w = wmin + (wmin >> 5) + 1024;
+  EXPECT_FALSE(affine_within(v, kAffineBound565));
+}
+
+// The active store is zero-initialised storage (.bss on the targets, no flash image of it):
+// a default ActiveTriangle is all zero bytes.
+TEST(ActiveRecord, DefaultIsAllZeroBytes) {
+  static const ActiveTriangle t{};
+  const auto* bytes = reinterpret_cast<const unsigned char*>(&t);
+  for (size_t i = 0; i < sizeof t; ++i) EXPECT_EQ(bytes[i], 0u) << "byte " << i;
+}
+
+}  // namespace
+}  // namespace lr
