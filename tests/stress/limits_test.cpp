@@ -181,28 +181,39 @@ void quad(std::vector<ScreenVertex>& v, std::vector<std::array<uint16_t, 3>>& t,
   t.push_back({b, uint16_t(b + 2), uint16_t(b + 3)});
 }
 
+// Quads of 16 x 16 pixels (set up in int32: edges below 64 pixels) and 200 x 100 (the 32-bit
+// short path) at one depth, at both ends of the range: every pixel gets the 16-bit depth
+// round(65535 depth) = (z + 2^15) >> 16 (the half-depth plane's (z / 2 + 2^14) >> 15 is the same
+// for every z), or nothing where that is 65535, the cleared value.
 TEST(Limits, DepthZeroIsDrawnDepthOneLosesToTheClearValueBeyondIsRejected) {
-  const int w = 16, h = 16;
-  for (uint32_t z : {0u, 1u, kDepthMax - (1u << 15), kDepthMax, kDepthMax + 1, 0xFFFFFFFFu}) {
-    std::vector<ScreenVertex> v;
-    std::vector<std::array<uint16_t, 3>> t;
-    const uint32_t zz[4] = {z, z, z, z};
-    quad(v, t, w, h, zz, {9, 9, 9});
-    test::CoreHarness<4> core(w, h);
-    core.begin();
-    core.renderer().draw_screen(v, t, flat_depth());
-    core.render();
-    const FrameStats& s = core.renderer().stats();
-    EXPECT_EQ(stress::accounted(s), 2u);
-    if (z > kDepthMax) {
-      EXPECT_EQ(s.rejected_invalid, 2u) << z;
-      EXPECT_EQ(s.pixels_written, 0u);
-    } else if (z >= kDepthMax - (1u << 15)) {
-      // Rounds to 65535, the cleared value: LESS fails, as in GL with depth 1.0.
-      EXPECT_EQ(s.pixels_written, 0u) << z;
-    } else {
-      EXPECT_EQ(s.pixels_written, uint32_t(w * h)) << z;
-      EXPECT_EQ(core.depth()[0], (z + (1u << 15)) >> 16);
+  constexpr uint32_t kHalfStep = 1u << 15;
+  for (const auto& [w, h] : {std::pair{16, 16}, std::pair{200, 100}}) {
+    for (uint32_t z :
+         {0u, 1u, kHalfStep - 1, kHalfStep, kDepthMax - kHalfStep - 1, kDepthMax - kHalfStep,
+          kDepthMax - kHalfStep + 1, kDepthMax - 1, kDepthMax, kDepthMax + 1, 0xFFFFFFFFu}) {
+      std::vector<ScreenVertex> v;
+      std::vector<std::array<uint16_t, 3>> t;
+      const uint32_t zz[4] = {z, z, z, z};
+      quad(v, t, w, h, zz, {9, 9, 9});
+      test::CoreHarness<4> core(w, h);
+      core.begin();
+      core.renderer().draw_screen(v, t, flat_depth());
+      core.render();
+      const FrameStats& s = core.renderer().stats();
+      EXPECT_EQ(stress::accounted(s), 2u);
+      const size_t n = size_t(w) * size_t(h);
+      size_t other_depth = 0;
+      if (z > kDepthMax) {
+        EXPECT_EQ(s.rejected_invalid, 2u) << z;
+        EXPECT_EQ(s.pixels_written, 0u);
+      } else if (z >= kDepthMax - kHalfStep) {
+        // Rounds to 65535, the cleared value: LESS fails, as in GL with depth 1.0.
+        EXPECT_EQ(s.pixels_written, 0u) << w << " x " << h << ", z " << z;
+      } else {
+        EXPECT_EQ(s.pixels_written, n) << w << " x " << h << ", z " << z;
+        for (size_t i = 0; i < n; ++i) other_depth += core.depth()[i] != (z + kHalfStep) >> 16;
+      }
+      EXPECT_EQ(other_depth, 0u) << w << " x " << h << ", z " << z;
     }
   }
 }
