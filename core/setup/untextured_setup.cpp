@@ -314,7 +314,10 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
     const int32_t gx = mla_hi(n1, kx1, mul_hi(n2, kx2));
     const int32_t gy = mla_hi(n1, ky1, mul_hi(n2, ky2));
     const int32_t off = mla_hi(gx, fx, mul_hi(gy, fy));  // (gx fx + gy fy) / 256
-    const int32_t half = (int32_t{1} << right) >> 1;
+    // Half of 2^right, 0 for no shift; in unsigned arithmetic, since right reaches 31 (the
+    // depth plane of a small triangle with (nearly) one depth): as int32, 2^31 >> 1 is -2^30,
+    // which made every scaled value -1 (gradients of -1 per pixel: depth 65535 drawn as 65534).
+    const auto half = static_cast<int32_t>((1u << right) >> 1);
     const auto scale = [left, right, half](int32_t x) {
       return static_cast<uint32_t>(
           (static_cast<int32_t>(static_cast<uint32_t>(x) << left) + half) >> right);

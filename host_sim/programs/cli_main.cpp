@@ -162,7 +162,8 @@ bool render_frames(SimOptions& o, const lr::host::HostMesh& mesh, lr::host::Pane
         t0 += std::chrono::steady_clock::now() - o0;
       }
       const BusTotals before = panel.totals();
-      if (!panel.send(result.image, error)) return false;
+      // The frame as a panel firmware renders it (SceneOptions::rgb565, set with --display).
+      if (!panel.send(result.rgb565, result.image.width, result.image.height, error)) return false;
       sent = panel.totals() - before;
     }
     if (!outputs.add(f, panel.emulator() ? panel.emulator()->image() : result.image, error))

@@ -46,8 +46,12 @@ std::unique_ptr<DeviceBus> open_device(const std::string& spec, Parse parse, std
 
 }  // namespace
 
-Status send_frame(StripSink<Rgb565Be>& sink, const ImageRgb8& img, int k) {
-  const auto w = static_cast<uint16_t>(img.width), h = static_cast<uint16_t>(img.height);
+Status send_frame(StripSink<Rgb565Be>& sink, std::span<const uint16_t> rgb565, int width,
+                  int height, int k) {
+  if (width < 1 || height < 1 || width > 0xFFFF || height > 0xFFFF || k < 1 ||
+      rgb565.size() != static_cast<size_t>(width) * static_cast<size_t>(height))
+    return Status::kInvalidArgument;
+  const auto w = static_cast<uint16_t>(width), h = static_cast<uint16_t>(height);
   Status st = sink.begin_frame(w, h);
   if (st != Status::kOk) return st;
   for (int y0 = 0; y0 < h; y0 += k) {
@@ -56,14 +60,10 @@ Status send_frame(StripSink<Rgb565Be>& sink, const ImageRgb8& img, int k) {
     st = sink.acquire(lease);
     if (st != Status::kOk) return st;
     std::span<uint16_t> px = lease.pixels();
-    if (px.size() < size_t{w} * static_cast<size_t>(rows)) return Status::kInvalidArgument;
-    for (int r = 0; r < rows; ++r) {
-      for (int c = 0; c < w; ++c) {
-        const uint8_t* p = &img.rgb[(static_cast<size_t>(y0 + r) * w + static_cast<size_t>(c)) * 3];
-        px[static_cast<size_t>(r) * w + static_cast<size_t>(c)] =
-            Rgb565Be::encode({p[0], p[1], p[2]});
-      }
-    }
+    const size_t n = size_t{w} * static_cast<size_t>(rows);
+    if (px.size() < n) return Status::kInvalidArgument;
+    const size_t first = static_cast<size_t>(y0) * w;
+    for (size_t i = 0; i < n; ++i) px[i] = Rgb565Be::from_value(rgb565[first + i]);
     const StripRect rect{0, static_cast<uint16_t>(y0), w, static_cast<uint16_t>(rows)};
     st = sink.submit(rect, std::move(lease));
     if (st != Status::kOk) return st;
@@ -136,8 +136,9 @@ bool PanelOutput::open(const DisplaySpec& spec, const PanelConfig& config, int s
   return true;
 }
 
-bool PanelOutput::send(const ImageRgb8& img, std::string& error) {
-  const Status st = send_frame(*sink_, img, strip_height_);
+bool PanelOutput::send(std::span<const uint16_t> rgb565, int width, int height,
+                       std::string& error) {
+  const Status st = send_frame(*sink_, rgb565, width, height, strip_height_);
   if (st != Status::kOk) {
     error = std::string("panel: frame: ") + to_string(st) + device_error();
     return false;

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -15,15 +16,14 @@
 #include "lineraster/hal/panel_sink.hpp"
 #include "lineraster/host_sim/emulator/emulator_bus.hpp"
 #include "lineraster/host_sim/emulator/panel_emulator.hpp"
-#include "lineraster/host_sim/formats/image_io.hpp"
 
 namespace lr::host {
 
-// Sends a rendered frame to a strip sink as the renderer does: begin_frame, strips of k rows top
-// to bottom (acquire, fill, submit), end_frame. render_scene() renders RGB888, and every span
-// of the core stores PF::encode(Rgb8), so Rgb565Be::encode of the frame's pixels is exactly what
-// a Renderer<Rgb565Be, K> would have put in each strip.
-Status send_frame(StripSink<Rgb565Be>& sink, const ImageRgb8& img, int k);
+// Sends a frame of RGB565 values (width x height, row by row: render_scene's with
+// SceneOptions::rgb565, what a Renderer<Rgb565Be, K> puts in its strips) to a strip sink as the
+// renderer does: begin_frame, strips of k rows top to bottom (acquire, fill, submit), end_frame.
+Status send_frame(StripSink<Rgb565Be>& sink, std::span<const uint16_t> rgb565, int width,
+                  int height, int k);
 
 // A real panel's bus (spidev or FT232H; defined where the backends are known).
 class DeviceBus;
@@ -40,9 +40,9 @@ class PanelOutput {
   // Opens the bus and initialises the panel. False with a one-line error.
   bool open(const DisplaySpec& spec, const PanelConfig& config, int strip_height,
             std::string& error);
-  // One frame to the panel; the backlight goes on after the first (never showing the RAM's
-  // power-on noise). False with a one-line error.
-  bool send(const ImageRgb8& img, std::string& error);
+  // One frame of RGB565 values (send_frame) to the panel; the backlight goes on after the first
+  // (never showing the RAM's power-on noise). False with a one-line error.
+  bool send(std::span<const uint16_t> rgb565, int width, int height, std::string& error);
 
   const BusTotals& totals() const { return counting_->totals(); }
   const PanelSinkStats& sink_stats() const { return sink_->stats(); }

@@ -558,7 +558,8 @@ bool check_lights(SimOptions& o, std::string& error) {
   return true;
 }
 
-// A panel decides the frame's size.
+// A panel decides the frame's size, and its pixel format: the frame is rendered in Rgb565Be, as
+// a panel firmware renders it (Gouraud colours rounded once to RGB565, not through 8 bits).
 bool check_panel(SimOptions& o, std::string& error) {
   const bool to_panel = o.display.kind != DisplayKind::kNone;
   if (o.display.kind == DisplayKind::kEmulator) {
@@ -583,6 +584,7 @@ bool check_panel(SimOptions& o, std::string& error) {
   }
   o.scene.width = w;
   o.scene.height = h;
+  o.scene.rgb565 = true;
   return true;
 }
 

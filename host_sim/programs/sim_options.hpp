@@ -15,7 +15,7 @@ namespace lr::host {
 
 // Everything the command line asks for; the defaults are the CLI's.
 struct SimOptions {
-  SceneOptions scene;  // width and height are the panel's when a display is given
+  SceneOptions scene;  // with a display: the panel's width and height, and rgb565
   std::string obj, out = "out.png", depth_out;
   bool out_given = false;    // --out was given (with --out-pattern, --out is then written too)
   FramePattern out_pattern;  // --out-pattern: each frame to its own file

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <type_traits>
 #include <unordered_map>
 
 #include "lineraster/core/lighting/lighting_table.hpp"
@@ -272,10 +273,9 @@ size_t distinct_materials(const std::vector<FixedDraw>& draws) {
   return seen.size();
 }
 
-template <int K>
+template <class PF, int K>
 bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
               const SceneOptions& o, RenderResult& out, std::string& error) {
-  using PF = Rgb888;
   // Phong only: a SurfaceVertex per vertex-store entry, the lighting prepared per material, and
   // for kTable the table pool: one table per material, split (two words per sample) as textured
   // or environment-mapped draws need it.
@@ -394,6 +394,12 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
     return false;
   }
   out.image = display.image();
+  out.rgb565.clear();
+  if constexpr (std::is_same_v<PF, Rgb565Be>) {
+    out.rgb565.reserve(display.raw_frame().size());
+    for (const uint16_t p : display.raw_frame())
+      out.rgb565.push_back(static_cast<uint16_t>(PF::to_value(p)));
+  }
   out.depth = depth_capture.depth();
   out.stats = renderer->stats();
   out.incomplete = out.incomplete || s == Status::kCapacity ||
@@ -492,24 +498,27 @@ bool render_scene(const HostMesh& mesh, const SceneOptions& o, RenderResult& out
       return false;
     textures.has_normal_map = true;
   }
-  auto render_with = [&](const SceneOptions& so) {
+  auto render_pf = [&]<class PF>(PF /*format*/, const SceneOptions& so) {
     switch (so.strip_height) {
       case 1:
-        return render_k<1>(draws, textures, so, out, error);
+        return render_k<PF, 1>(draws, textures, so, out, error);
       case 2:
-        return render_k<2>(draws, textures, so, out, error);
+        return render_k<PF, 2>(draws, textures, so, out, error);
       case 4:
-        return render_k<4>(draws, textures, so, out, error);
+        return render_k<PF, 4>(draws, textures, so, out, error);
       case 8:
-        return render_k<8>(draws, textures, so, out, error);
+        return render_k<PF, 8>(draws, textures, so, out, error);
       case 16:
-        return render_k<16>(draws, textures, so, out, error);
+        return render_k<PF, 16>(draws, textures, so, out, error);
       case 32:
-        return render_k<32>(draws, textures, so, out, error);
+        return render_k<PF, 32>(draws, textures, so, out, error);
       default:
         error = "strip height must be 1, 2, 4, 8, 16 or 32";
         return false;
     }
+  };
+  auto render_with = [&](const SceneOptions& so) {
+    return so.rgb565 ? render_pf(Rgb565Be{}, so) : render_pf(Rgb888{}, so);
   };
   SceneOptions so = o;
   if (!render_with(so)) return false;

@@ -72,6 +72,9 @@ struct SceneOptions {
   Cull cull = Cull::kNone;
   Perspective perspective = Perspective::kExact;
   int strip_height = 8;  // 1, 2, 4, 8, 16 or 32
+  // The pixel format rendered in: Rgb888 (host images), or Rgb565Be (what an RGB565 panel is
+  // sent, the frame a panel firmware renders: RenderResult::rgb565, the image its decode).
+  bool rgb565 = false;
   // Texturing. The texture is `texture` when given, else each material's map_Kd (when the mesh
   // has texture coordinates). Lit draws modulate the texel (specular added after), unlit ones
   // replace the colour by the texel.
@@ -88,8 +91,11 @@ struct SceneOptions {
 };
 
 struct RenderResult {
+  // The frame as 8-bit RGB: rendered so, or with SceneOptions::rgb565 the RGB565 frame decoded
+  // by bit replication (as panel controllers expand it).
   ImageRgb8 image;
-  std::vector<uint16_t> depth;  // 16-bit window depth per pixel, 65535 where nothing was drawn
+  std::vector<uint16_t> rgb565;  // SceneOptions::rgb565: the RGB565 values, row by row; else empty
+  std::vector<uint16_t> depth;   // 16-bit window depth per pixel, 65535 where nothing was drawn
   FrameStats stats;
   uint32_t strips = 0;
   uint64_t bytes = 0;

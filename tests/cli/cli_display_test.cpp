@@ -1,5 +1,6 @@
 // lineraster-sim --display, --panel and --frames as a user runs them: the emulated panel shows the
-// frame the plain render gives (in RGB565), at every module size and rotation; --frames prints
+// frame rendered in RGB565 (what a panel firmware renders: tests/support/sim_render.hpp), within
+// one RGB565 level of the plain RGB888 render, at every module size and rotation; --frames prints
 // one JSON line per frame and totals, skipping shows from the second frame on; every bad value,
 // and a real panel that is not there, is one line on stderr, exit status 2 and no output file.
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 
 #include "lineraster/core/output/pixel_format.hpp"
 #include "lineraster/host_sim/formats/image_io.hpp"
+#include "tests/support/sim_render.hpp"
 #include "tests/support/tmp_dir.hpp"
 
 namespace {
@@ -72,16 +74,23 @@ lr::host::ImageRgb8 read(const std::string& path) {
   return img;
 }
 
-// What a panel shows of an RGB888 frame: each pixel through RGB565 and back.
-lr::host::ImageRgb8 through_565(lr::host::ImageRgb8 img) {
-  for (size_t i = 0; i < img.rgb.size(); i += 3) {
-    const lr::Rgb8 c =
-        lr::Rgb565Be::decode(lr::Rgb565Be::encode({img.rgb[i], img.rgb[i + 1], img.rgb[i + 2]}));
-    img.rgb[i] = c.r;
-    img.rgb[i + 1] = c.g;
-    img.rgb[i + 2] = c.b;
+// Channels of two images more than one RGB565 level apart (images of RGB565 values decoded by bit
+// replication, or an RGB888 one: its levels are Rgb565Be::encode's), or all of them when the
+// sizes differ.
+size_t beyond_one_level(const lr::host::ImageRgb8& a, const lr::host::ImageRgb8& b) {
+  if (a.width != b.width || a.height != b.height) return a.rgb.size() + b.rgb.size();
+  size_t n = 0;
+  for (size_t i = 0; i < a.rgb.size(); i += 3) {
+    const unsigned va = lr::Rgb565Be::to_value(
+                       lr::Rgb565Be::encode({a.rgb[i], a.rgb[i + 1], a.rgb[i + 2]})),
+                   vb = lr::Rgb565Be::to_value(
+                       lr::Rgb565Be::encode({b.rgb[i], b.rgb[i + 1], b.rgb[i + 2]}));
+    for (const auto& [shift, max] : {std::pair{11u, 31u}, {5u, 63u}, {0u, 31u}}) {
+      const unsigned la = (va >> shift) & max, lb = (vb >> shift) & max;
+      n += (la > lb ? la - lb : lb - la) > 1;
+    }
   }
-  return img;
+  return n;
 }
 
 TEST(CliDisplay, HelpListsThePanelOptions) {
@@ -94,7 +103,7 @@ TEST(CliDisplay, HelpListsThePanelOptions) {
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
 }
 
-TEST(CliDisplay, TheEmulatedPanelShowsThePlainRenderAtEverySizeAndRotation) {
+TEST(CliDisplay, TheEmulatedPanelShowsTheRgb565RenderAtEverySizeAndRotation) {
   struct Case {
     std::string panel;
     int width, height;
@@ -109,18 +118,24 @@ TEST(CliDisplay, TheEmulatedPanelShowsThePlainRenderAtEverySizeAndRotation) {
   for (const Case& c : cases) {
     SCOPED_TRACE(c.panel);
     const std::string shown = tmpdir() + "/shown.png", plain = tmpdir() + "/plain.png";
-    const Outcome r = run(kScene + " --display emulator:" + c.panel + " --out " + shown);
+    const std::string display = kScene + " --display emulator:" + c.panel;
+    const Outcome r = run(display + " --out " + shown);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.err, "");  // no warning: the driver's stream is clean
     EXPECT_EQ(r.out, "");
-    ASSERT_EQ(run(kScene + " --width " + std::to_string(c.width) + " --height " +
-                  std::to_string(c.height) + " --out " + plain)
-                  .status,
-              0);
-    const lr::host::ImageRgb8 a = read(shown), b = through_565(read(plain));
+    const std::string size =
+        " --width " + std::to_string(c.width) + " --height " + std::to_string(c.height);
+    ASSERT_EQ(run(kScene + size + " --out " + plain).status, 0);
+    const lr::host::ImageRgb8 a = read(shown), b = read(plain);
     ASSERT_EQ(a.width, c.width);
     ASSERT_EQ(a.height, c.height);
-    EXPECT_TRUE(a.rgb == b.rgb);
+    // The frame rendered here from the same options: in RGB565 with --display (what the panel
+    // must show exactly), in RGB888 without (the plain file: the two parse alike).
+    const lr::host::RenderResult want = lr::test::sim_render(display);
+    EXPECT_EQ(want.rgb565.size(), size_t(c.width) * size_t(c.height));
+    EXPECT_TRUE(a.rgb == want.image.rgb);
+    EXPECT_TRUE(b.rgb == lr::test::sim_render(kScene + size).image.rgb);
+    EXPECT_EQ(beyond_one_level(a, b), 0u);
   }
   // --width/--height may repeat the panel's size.
   EXPECT_EQ(run(kScene + " --display emulator:st7789:135x240:90 --width 240 --height 135 --out " +
@@ -167,7 +182,11 @@ TEST(CliDisplay, FramesPrintPerFrameFiguresAndTotalsAndSkipUnchangedStrips) {
   // --out holds the last frame (the model turned by 270 degrees), as the panel shows it.
   ASSERT_EQ(run(kScene + " --width 240 --height 240 --model-rotate-y 270 --out " + plain).status,
             0);
-  EXPECT_TRUE(read(out).rgb == through_565(read(plain)).rgb);
+  const lr::host::ImageRgb8 last = read(out);
+  EXPECT_TRUE(last.rgb == lr::test::sim_render(
+                              kScene + " --display emulator:st7789:240x240 --model-rotate-y 270")
+                              .image.rgb);
+  EXPECT_EQ(beyond_one_level(last, read(plain)), 0u);
 }
 
 TEST(CliDisplay, FramesWithoutADisplayPrintTheCoresFigures) {

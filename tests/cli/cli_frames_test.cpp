@@ -21,9 +21,9 @@
 #include <gif_lib.h>
 #endif
 
-#include "lineraster/core/output/pixel_format.hpp"
 #include "lineraster/host_sim/formats/image_io.hpp"
 #include "lineraster/host_sim/programs/gif_writer.hpp"
+#include "tests/support/sim_render.hpp"
 #include "tests/support/tmp_dir.hpp"
 
 namespace {
@@ -255,24 +255,16 @@ TEST(CliFrames, OutPatternWritesEveryFrameOfTheTurntable) {
 }
 
 // Through the emulated panel, each frame file holds what the panel shows: the frame drawn alone
-// at that angle, through RGB565 (as tests/cli/cli_display_test.cpp finds for one frame).
+// at that angle, in RGB565 (tests/support/sim_render.hpp; as tests/cli/cli_display_test.cpp
+// finds for one frame).
 TEST(CliFrames, WithTheEmulatedPanelEachFileIsWhatThePanelShows) {
   const TmpDir dir("lr_cli_frames");
-  const Outcome r = sim(kKnot +
-                            " --fit --display emulator:st7789:135x240 --frames 2 "
-                            "--out-pattern e%d.png",
-                        dir.path());
+  const std::string display = kKnot + " --fit --display emulator:st7789:135x240";
+  const Outcome r = sim(display + " --frames 2 --out-pattern e%d.png", dir.path());
   ASSERT_EQ(r.status, 0) << r.err;
   for (int f = 0; f < 2; ++f) {
-    ImageRgb8 want = render(kKnot + " --fit --width 135 --height 240 --model-rotate-y " +
-                            std::to_string(180 * f));
-    for (size_t i = 0; i < want.rgb.size(); i += 3) {
-      const lr::Rgb8 c = lr::Rgb565Be::decode(
-          lr::Rgb565Be::encode({want.rgb[i], want.rgb[i + 1], want.rgb[i + 2]}));
-      want.rgb[i] = c.r;
-      want.rgb[i + 1] = c.g;
-      want.rgb[i + 2] = c.b;
-    }
+    const ImageRgb8 want =
+        lr::test::sim_render(display + " --model-rotate-y " + std::to_string(180 * f)).image;
     const ImageRgb8 got = read(dir.file("e" + std::to_string(f) + ".png"));
     EXPECT_EQ(got.width, 135);
     EXPECT_EQ(got.height, 240);

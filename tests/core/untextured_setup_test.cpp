@@ -180,16 +180,23 @@ TEST(UntexturedPlanes, SmallTrianglesInInt32WithinTheBound) {
   in.colors = ColorPlanes::kAffine;
   in.depth = true;
   Errors ez, ec;
-  int small = 0;
+  int small = 0, flat = 0;
   for (int i = 0; i < 100000; ++i) {
     ScreenVertex sv[3];
     const int32_t ox = static_cast<int32_t>(rng() % (300 * 256)),
                   oy = static_cast<int32_t>(rng() % (200 * 256));
     const int32_t reach = 1 + static_cast<int32_t>(rng() % (i % 2 ? 16383 : 2048));
+    // One triangle in four at (nearly) one depth, at the range's ends among others: its depth
+    // plane's gradient scale 2^s is at its smallest (s down to -31).
+    const bool flat_depth = i % 4 == 3;
+    const uint32_t zbase = i % 8 == 3   ? kDepthMax - 3
+                           : i % 8 == 7 ? static_cast<uint32_t>(rng() % 4)
+                                        : static_cast<uint32_t>(rng() % (kDepthMax - 3));
     for (auto& x : sv) {
       x.x = ox + static_cast<int32_t>(rng() % static_cast<uint64_t>(reach));
       x.y = oy + static_cast<int32_t>(rng() % static_cast<uint64_t>(reach));
-      x.z = static_cast<uint32_t>(rng() % (uint64_t{kDepthMax} + 1));
+      x.z = flat_depth ? zbase + static_cast<uint32_t>(rng() % (i % 16 == 3 ? 1 : 4))
+                       : static_cast<uint32_t>(rng() % (uint64_t{kDepthMax} + 1));
       x.w = 1u << 16;
       x.color = Color15{static_cast<uint16_t>(rng() % 32769), static_cast<uint16_t>(rng() % 32769),
                         static_cast<uint16_t>(rng() % 32769)};
@@ -211,6 +218,7 @@ TEST(UntexturedPlanes, SmallTrianglesInInt32WithinTheBound) {
     ASSERT_EQ(got.kind, UntexturedKind::kAffine);
     const int p = 11 + bm - l;
     ++small;
+    flat += flat_depth ? 1 : 0;
     // Depth: differences scaled by 2^(30 - bits); colours (Q2.30) by 2^0.
     check(v, z, t.z, p - (30 - bit_length(zd)), rng, ez);
     for (int ch = 0; ch < 3; ++ch) {
@@ -219,11 +227,14 @@ TEST(UntexturedPlanes, SmallTrianglesInInt32WithinTheBound) {
       check(v, c, t.c[ch], p, rng, ec);
     }
   }
-  std::printf("[ planes ] small path: %d triangles, depth %.3f, colours %.3f of the bound\n", small,
-              ez.max_ratio, ec.max_ratio);
+  std::printf(
+      "[ planes ] small path: %d triangles (%d at nearly one depth), depth %.3f, colours %.3f of "
+      "the bound\n",
+      small, flat, ez.max_ratio, ec.max_ratio);
   EXPECT_EQ(ez.over, 0);
   EXPECT_EQ(ec.over, 0);
   EXPECT_GT(small, 50000);
+  EXPECT_GT(flat, 10000);
   // Depth within 0.08 of a 16-bit step (2^15 units of half depth) on these triangles.
   EXPECT_LT(ez.max_abs, 2560.0);
 }

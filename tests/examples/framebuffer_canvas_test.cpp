@@ -27,9 +27,12 @@ std::string slurp(const std::string& path) {
 
 constexpr int kCanvasW = 200, kCanvasH = 150, kX = 20, kY = 15, kW = 160, kH = 120;
 // The colours as RGB565 holds them (decoded by bit replication): the GUI's (200, 200, 200), the
-// clear colour (16, 24, 48), the teal cube's three faces lit from (1, 3, 2).
+// clear colour (16, 24, 48), the teal cube's three faces lit from (1, 3, 2): each face's exact
+// lit colour (double, GL's lighting) rounded to RGB565. The left face's green is 0.46829,
+// 29.503 in 6-bit steps: level 30 (121), where its byte 119 would encode to 29 (117): the Gouraud
+// colours of RGB565 formats are rounded once (docs/numerics.md#colour-conversions).
 constexpr Rgb kGui{198, 199, 198}, kClear{16, 24, 49};
-constexpr Rgb kTop{90, 174, 198}, kLeft{74, 117, 132}, kRight{74, 113, 123};
+constexpr Rgb kTop{90, 174, 198}, kLeft{74, 121, 132}, kRight{74, 113, 123};
 
 TEST(ExamplesFramebufferCanvas, DrawsTheCubeInItsWindowOfTheCanvasThenKeepsEveryStrip) {
   const lr::test::TmpDir tmp("lr_framebuffer_canvas_test");

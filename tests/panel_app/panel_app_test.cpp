@@ -134,7 +134,7 @@ TEST(PanelAppOptions, EveryBadCommandLineIsOneLine) {
 // ---- frames
 
 // lineraster-sim --obj torus_knot.obj --fit --material gold --width W --height H
-// --model-rotate-y DEG, as RGB565 values (what the panel shows).
+// --model-rotate-y DEG as a panel is sent it (--display: rendered in Rgb565Be), as RGB565 values.
 std::vector<uint16_t> sim_frame(int width, int height, int degrees) {
   static host::HostMesh mesh;
   std::string error;
@@ -157,14 +157,11 @@ std::vector<uint16_t> sim_frame(int width, int height, int degrees) {
   o.material.emission = {0, 0, 0};
   o.material.shininess = gold->shininess_fraction * 1e-8 * 128.0;
   o.use_mesh_materials = false;
+  o.rgb565 = true;
   host::RenderResult r;
   EXPECT_TRUE(host::render_scene(mesh, o, r, error)) << error;
-  std::vector<uint16_t> out(r.image.rgb.size() / 3);
-  for (size_t i = 0; i < out.size(); ++i) {
-    const uint8_t* p = &r.image.rgb[3 * i];
-    out[i] = static_cast<uint16_t>(Rgb565Be::to_value(Rgb565Be::encode({p[0], p[1], p[2]})));
-  }
-  return out;
+  EXPECT_EQ(r.rgb565.size(), size_t(width) * size_t(height));
+  return r.rgb565;
 }
 
 size_t differing(const std::vector<uint16_t>& a, const std::vector<uint16_t>& b) {

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/setup/untextured_setup.hpp"
 #include "lineraster/host_sim/scene/scene.hpp"
 #include "tests/stress/random_stress.hpp"
 
@@ -181,44 +182,84 @@ void quad(std::vector<ScreenVertex>& v, std::vector<std::array<uint16_t, 3>>& t,
   t.push_back({b, uint16_t(b + 2), uint16_t(b + 3)});
 }
 
+// Quads of 16 x 16 pixels (set up in int32: edges below 64 pixels) and 200 x 100 (the 32-bit
+// short path) at one depth, at both ends of the range: every pixel gets the 16-bit depth
+// round(65535 depth) = (z + 2^15) >> 16 (the half-depth plane's (z / 2 + 2^14) >> 15 is the same
+// for every z), or nothing where that is 65535, the cleared value.
 TEST(Limits, DepthZeroIsDrawnDepthOneLosesToTheClearValueBeyondIsRejected) {
-  const int w = 16, h = 16;
-  for (uint32_t z : {0u, 1u, kDepthMax - (1u << 15), kDepthMax, kDepthMax + 1, 0xFFFFFFFFu}) {
-    std::vector<ScreenVertex> v;
-    std::vector<std::array<uint16_t, 3>> t;
-    const uint32_t zz[4] = {z, z, z, z};
-    quad(v, t, w, h, zz, {9, 9, 9});
-    test::CoreHarness<4> core(w, h);
-    core.begin();
-    core.renderer().draw_screen(v, t, flat_depth());
-    core.render();
-    const FrameStats& s = core.renderer().stats();
-    EXPECT_EQ(stress::accounted(s), 2u);
-    if (z > kDepthMax) {
-      EXPECT_EQ(s.rejected_invalid, 2u) << z;
-      EXPECT_EQ(s.pixels_written, 0u);
-    } else if (z >= kDepthMax - (1u << 15)) {
-      // Rounds to 65535, the cleared value: LESS fails, as in GL with depth 1.0.
-      EXPECT_EQ(s.pixels_written, 0u) << z;
-    } else {
-      EXPECT_EQ(s.pixels_written, uint32_t(w * h)) << z;
-      EXPECT_EQ(core.depth()[0], (z + (1u << 15)) >> 16);
+  constexpr uint32_t kHalfStep = 1u << 15;
+  for (const auto& [w, h] : {std::pair{16, 16}, std::pair{200, 100}}) {
+    for (uint32_t z :
+         {0u, 1u, kHalfStep - 1, kHalfStep, kDepthMax - kHalfStep - 1, kDepthMax - kHalfStep,
+          kDepthMax - kHalfStep + 1, kDepthMax - 1, kDepthMax, kDepthMax + 1, 0xFFFFFFFFu}) {
+      std::vector<ScreenVertex> v;
+      std::vector<std::array<uint16_t, 3>> t;
+      const uint32_t zz[4] = {z, z, z, z};
+      quad(v, t, w, h, zz, {9, 9, 9});
+      test::CoreHarness<4> core(w, h);
+      core.begin();
+      core.renderer().draw_screen(v, t, flat_depth());
+      core.render();
+      const FrameStats& s = core.renderer().stats();
+      EXPECT_EQ(stress::accounted(s), 2u);
+      const size_t n = size_t(w) * size_t(h);
+      size_t other_depth = 0;
+      if (z > kDepthMax) {
+        EXPECT_EQ(s.rejected_invalid, 2u) << z;
+        EXPECT_EQ(s.pixels_written, 0u);
+      } else if (z >= kDepthMax - kHalfStep) {
+        // Rounds to 65535, the cleared value: LESS fails, as in GL with depth 1.0.
+        EXPECT_EQ(s.pixels_written, 0u) << w << " x " << h << ", z " << z;
+      } else {
+        EXPECT_EQ(s.pixels_written, n) << w << " x " << h << ", z " << z;
+        for (size_t i = 0; i < n; ++i) other_depth += core.depth()[i] != (z + kHalfStep) >> 16;
+      }
+      EXPECT_EQ(other_depth, 0u) << w << " x " << h << ", z " << z;
     }
   }
 }
 
 // ---- Depth precision ----
 
-// Two planes drawn over the whole viewport; B's vertex depths are A's plus delta, so B's plane
-// is A's plus delta exactly at every pixel (same gradients, same rounding of the base).
-// Documented rule: 16-bit values (z + 2^15) >> 16 compared with LESS: where they differ the
-// nearer wins, where they are equal (planes closer than 1/65535 may tie) the first drawn wins.
+// The depth plane of the triangle (sorted by y) as the strip loop sets it up, in half units
+// (docs/numerics.md#depth), and the exact plane through the same half depths z / 2 + 2^14 at
+// pixel (x, y)'s centre.
+Plane depth_plane(const ScreenVertex* const tv[3], int w, int h) {
+  UntexturedInput in;
+  in.colors = ColorPlanes::kNone;
+  in.depth = true;
+  ActiveTriangle t{};
+  EXPECT_TRUE(setup_untextured_triangle(tv, RowWindow{0, h - 1, w}, in, t).pixels);
+  return t.z;
+}
+double exact_half_depth(const ScreenVertex* const tv[3], int x, int y) {
+  const double px = (x + 0.5) * kSubpixel, py = (y + 0.5) * kSubpixel;
+  const double x0 = tv[0]->x, y0 = tv[0]->y;
+  const double e1x = tv[1]->x - x0, e1y = tv[1]->y - y0, e2x = tv[2]->x - x0, e2y = tv[2]->y - y0;
+  const double d = e1x * e2y - e2x * e1y;
+  const double l1 = ((px - x0) * e2y - (py - y0) * e2x) / d;
+  const double l2 = ((py - y0) * e1x - (px - x0) * e1y) / d;
+  double z[3];
+  for (int k = 0; k < 3; ++k) z[k] = double(tv[k]->z >> 1) + (1 << 14);
+  return z[0] + l1 * (z[1] - z[0]) + l2 * (z[2] - z[0]);
+}
+
+// Two planes drawn over the whole viewport; B's vertex depths are A's plus delta.
+// Documented rule (docs/numerics.md#depth): the untextured family's depth plane interpolates the
+// half depths z / 2 (rounded down) with 2^14 in its base, the 16-bit value is the plane's value
+// >> 15, compared with LESS: where the values differ the nearer wins, where they are equal
+// (planes closer than 1/65535 may tie) the first drawn wins. The model takes each plane as setup
+// builds it (setup_untextured_triangle, the strip loop's call), checks it against the exact
+// plane, and applies the rule. Planes at least 1/65535 apart always resolve to the nearer: for
+// an even delta B's half depths are A's plus delta / 2 exactly (the same gradients, the same
+// rounding), for an odd one they differ from that by the dropped low bits (0 or 1 per vertex).
 TEST(DepthPrecision, NearCoplanarScreenPlanesResolveAsTheSixteenBitRuleSays) {
   const int w = 48, h = 40;
   std::mt19937_64 rng(17);
   std::uniform_int_distribution<uint32_t> base(0, kDepthMax - (3u << 16));
   std::uniform_int_distribution<int32_t> slope(-(1 << 20), 1 << 20);
-  uint64_t pixels = 0, resolved = 0, ties = 0, wrong = 0;
+  uint64_t pixels = 0, resolved = 0, ties = 0, wrong = 0, far_shown = 0;
+  double max_plane_error = 0;  // half-depth units (2^15 a 16-bit step)
   for (int trial = 0; trial < 300; ++trial) {
     uint32_t za[4];
     const uint32_t b0 = base(rng);
@@ -245,35 +286,55 @@ TEST(DepthPrecision, NearCoplanarScreenPlanesResolveAsTheSixteenBitRuleSays) {
     core.begin();
     core.renderer().draw_screen(v, t, flat_depth());
     host::ImageRgb8 img = core.render();
-    // A's plane exactly as setup builds it (vertices sorted by y; the fixed network keeps ties
-    // in order): each triangle of the quad has its own plane.
+    // Each triangle of each quad has its own plane (vertices sorted by y; the fixed network
+    // keeps ties in order): [quad A, B][upper, lower].
+    const ScreenVertex* tv[2][2][3];
+    Plane planes[2][2];
+    for (int q = 0; q < 2; ++q)
+      for (int lower = 0; lower < 2; ++lower) {
+        const size_t o = (q == 0) == a_first ? 0 : 4;
+        const ScreenVertex** s = tv[q][lower];
+        s[0] = &v[o];
+        s[1] = &v[o + (lower ? 1 : 2)];
+        s[2] = &v[o + (lower ? 2 : 3)];
+        if (s[1]->y < s[0]->y) std::swap(s[0], s[1]);
+        if (s[2]->y < s[1]->y) std::swap(s[1], s[2]);
+        if (s[1]->y < s[0]->y) std::swap(s[0], s[1]);
+        planes[q][lower] = depth_plane(s, w, h);
+      }
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const size_t p = size_t(y) * w + size_t(x);
         // Which of the two triangles covers the centre: the diagonal from (0,0) to (w,h).
-        const bool lower = double(y + 0.5) * w > double(x + 0.5) * h;
-        const size_t o = a_first ? 0 : 4;
-        const ScreenVertex* tv[3] = {&v[o], &v[o + (lower ? 1 : 2)], &v[o + (lower ? 2 : 3)]};
-        if (tv[1]->y < tv[0]->y) std::swap(tv[0], tv[1]);
-        if (tv[2]->y < tv[1]->y) std::swap(tv[1], tv[2]);
-        if (tv[1]->y < tv[0]->y) std::swap(tv[0], tv[1]);
-        const uint32_t zv[3] = {tv[0]->z, tv[1]->z, tv[2]->z};
-        const uint32_t zpa = make_plane(tv, zv).at(x, y);
-        const uint32_t da = (zpa + (1u << 15)) >> 16, db = (zpa + delta + (1u << 15)) >> 16;
+        const int lower = double(y + 0.5) * w > double(x + 0.5) * h ? 1 : 0;
+        const uint32_t zpa = planes[0][lower].at(x, y), zpb = planes[1][lower].at(x, y);
+        for (int q = 0; q < 2; ++q)
+          max_plane_error = std::max(
+              max_plane_error,
+              std::fabs(double(q == 0 ? zpa : zpb) - exact_half_depth(tv[q][lower], x, y)));
+        const uint32_t da = zpa >> 15, db = zpb >> 15;
         const bool a_wins = da < db || (da == db && a_first);
         const bool shows_a = img.rgb[3 * p] == 255;
         ++pixels;
         (da < db ? resolved : ties)++;
         if (a_wins != shows_a) ++wrong;
-        if (delta >= (1u << 16) && !shows_a) ++wrong;  // >= 1/65535 apart: the nearer, always
+        // >= 1/65535 apart: the nearer, always.
+        if (delta >= (1u << 16) && !shows_a) ++far_shown;
       }
   }
   EXPECT_EQ(wrong, 0u);
+  EXPECT_EQ(far_shown, 0u);
   EXPECT_GT(ties, 0u);
+  // The planes within 1/64 of a 16-bit step of the exact ones (docs/numerics.md#depth).
+  EXPECT_LT(max_plane_error, 512.0);
   std::printf(
       "[ stress ] depth: %llu pixels of near-coplanar plane pairs, %llu resolved by 16-bit depth "
-      "(all planes >= 1/65535 apart among them), %llu ties won by the first drawn, 0 wrong\n",
-      (unsigned long long)pixels, (unsigned long long)resolved, (unsigned long long)ties);
+      "(all planes >= 1/65535 apart among them), %llu ties won by the first drawn, %llu not as "
+      "the rule says, %llu farther shown; planes within %.1f half-depth units (%.4f of a step) "
+      "of the exact ones\n",
+      (unsigned long long)pixels, (unsigned long long)resolved, (unsigned long long)ties,
+      (unsigned long long)wrong, (unsigned long long)far_shown, max_plane_error,
+      max_plane_error / 32768);
 }
 
 // Through the 3D path: two tilted quads 'eps' apart along the view axis. Where their exact window
