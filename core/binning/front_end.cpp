@@ -392,6 +392,8 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
       poly[k].u = poly[k].v = 0;
     }
     if (d.plan.kind.phong) poly[k].surface = surfaces_[vi[k]];
+    poly[k].corner = static_cast<int8_t>(k);
+    poly[k].outcode = sv[k]->outcode;
   }
   const int m = clip_polygon(poly, ClipPolygon(clip_scratch_.data(), kMaxClipVertices), 3, oc_or,
                              d.stage.guard());
@@ -411,10 +413,17 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
   for (size_t k = 0; k < static_cast<size_t>(m); ++k) {
     const size_t at = vertex_count_ + k;
     ScreenVertex& nv = vertices_[at];
+    // A corner the clipper kept is inside every plane (outcode 0: projected already): the
+    // same position as in the triangles around it that need no clipping.
+    if (poly[k].corner >= 0) {
+      nv = *sv[poly[k].corner];
+      ++projected;
+    } else if (d.stage.project(poly[k].p, nv)) {
+      ++projected;
+    }
     nv.color = poly[k].color;
     nv.outcode = 0;
     nv.color_pending = 0;
-    if (d.stage.project(poly[k].p, nv)) ++projected;
     if (d.plan.kind.phong) surfaces_[at] = poly[k].surface;
     if (d.plan.uv) tex_[at] = TexVertex{poly[k].u, poly[k].v, poly[k].spec, 0};
   }
@@ -524,6 +533,8 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
     cache_.fill(kNoCacheEntry);
     cache_lru_ = 0;
   }
+  const VertexStage stage(camera_, model, guard_, width_, height_,
+                          position_bound(mesh.positions.data(), n));
   VertexColors colors;
   colors.lit = plan.lit;
   colors.pending = plan.lit && plan.gouraud;
@@ -533,14 +544,18 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   colors.tangents = phong && state.normal_map != nullptr;
   colors.material = material.diffuse;
   colors.lighting = &pl;
-  const VertexStage stage(camera_, model, guard_, width_, height_);
+  // Lit Gouraud under directional lights and a rigid model: the lights turned into model space.
+  if (colors.pending && !colors.need_position && stage.object_lights(pl, object_lights_))
+    colors.object = &object_lights_;
   const size_t base = vertex_count_;
   draw_first_triangle_ = edges_.size();
   if (!cached) {
     vertex_count_ += n;
     stats_.vertices_transformed += static_cast<uint32_t>(n);
-    stage.transform(mesh, colors, vertices_.data() + base,
-                    phong ? surfaces_.data() + base : nullptr, uv ? tex_.data() + base : nullptr);
+    const TransformSummary done = stage.transform(mesh, colors, vertices_.data() + base,
+                                                  phong ? surfaces_.data() + base : nullptr,
+                                                  uv ? tex_.data() + base : nullptr);
+    stats_.vertices_wide += done.wide;
   }
 
   MeshDraw d{mesh, state, stage, plan, colors, base, index, cached};
@@ -583,9 +598,10 @@ std::array<uint16_t, 3> FrontEnd::cache_corners(MeshDraw& d, const std::array<ui
       if (taken(slot)) slot ^= 1;
       if (taken(slot)) slot = 2 * kCacheSets + k;
       const size_t at = cache_first_ + slot;
-      d.stage.transform_one(d.mesh, d.colors, i, vertices_[at],
-                            cache_surfaces_ ? &surfaces_[at] : nullptr,
-                            cache_tex_ ? &tex_[at] : nullptr);
+      if (d.stage.transform_one(d.mesh, d.colors, i, vertices_[at],
+                                cache_surfaces_ ? &surfaces_[at] : nullptr,
+                                cache_tex_ ? &tex_[at] : nullptr))
+        ++stats_.vertices_wide;
       cache_[slot] = i | kNoCacheEntry << 16;
       ++stats_.vertices_transformed;
     }
@@ -783,11 +799,13 @@ Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
   // the vertices transformed in every band; what was dropped in the bands that dropped it.
   if (s0 != 0) {
     const uint32_t binned = stats_.triangles_binned, transformed = stats_.vertices_transformed;
+    const uint32_t wide = stats_.vertices_wide;
     const uint32_t dropped_triangles = stats_.dropped_triangle_capacity;
     const uint32_t dropped_vertices = stats_.dropped_vertex_capacity;
     stats_ = before;
     stats_.triangles_binned = binned;
     stats_.vertices_transformed = transformed;
+    stats_.vertices_wide = wide;
     stats_.dropped_triangle_capacity = dropped_triangles;
     stats_.dropped_vertex_capacity = dropped_vertices;
   }

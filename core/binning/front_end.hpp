@@ -16,6 +16,7 @@
 #include "lineraster/core/binning/edge_table.hpp"
 #include "lineraster/core/binning/outcome.hpp"
 #include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/lighting/object_lights.hpp"
 #include "lineraster/core/math/mat4.hpp"
 #include "lineraster/core/output/color.hpp"
 #include "lineraster/core/output/frame_stats.hpp"
@@ -249,6 +250,7 @@ class FrontEnd {
   // budget of its own, and these are the largest locals of the deepest path): the draw's
   // prepared lighting, and a clipped polygon with the clipper's scratch.
   PreparedLighting lighting_{};
+  ObjectLights object_lights_{};  // the draw's lights in model space (VertexColors::object)
   std::array<ClipVertex, kMaxClipVertices> clip_polygon_{};
   std::array<ClipVertex, kMaxClipVertices> clip_scratch_{};
   bool draw_colors_ = false;  // the running draw's triangles have TriangleColors

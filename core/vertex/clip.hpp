@@ -40,15 +40,21 @@ struct ClipVertex {
   Color15 spec;
   int32_t u = 0, v = 0;     // texture coordinates, Q12.20
   SurfaceVertex surface{};  // per-pixel lighting: interpolated linearly like the colours
+  // A corner of the input triangle (0..2) or a point made by clipping (-1). A corner's side of
+  // each plane is its outcode's, the vertex stage's decision, so that a corner kept by the
+  // clipper is the vertex its unclipped neighbours use; a made point's is its distance's sign.
+  int8_t corner = -1;
+  uint8_t outcode = 0;  // a corner's
 };
 
 uint8_t outcode(const ClipCoord& c, GuardBand g);
 
 // Clips the convex polygon poly[0..n) against the planes in `planes`; returns the new vertex
-// count (0: nothing left), the polygon in poly. `scratch` holds each plane's output (the caller
-// owns both: the front end keeps them in its object, not on the stack). Intersections are
-// always computed from the inside vertex towards the outside one, so an edge shared by two
-// triangles is cut at the same point in both (no cracks after clipping).
+// count (0: nothing left), the polygon in poly (the corners it keeps keep their `corner`).
+// `scratch` holds each plane's output (the caller owns both: the front end keeps them in its
+// object, not on the stack). Intersections are always computed from the inside vertex towards the
+// outside one, so an edge shared by two triangles is cut at the same point in both (no cracks after
+// clipping).
 using ClipPolygon = std::span<ClipVertex, kMaxClipVertices>;
 int clip_polygon(ClipPolygon poly, ClipPolygon scratch, int n, uint8_t planes, GuardBand g);
 

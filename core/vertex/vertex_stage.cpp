@@ -21,19 +21,20 @@ Unit30 transform_normal_call(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
 }
 
 VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width,
-                         int height)
+                         int height, uint32_t bound)
     : model_(model),
       mvp_(camera.projection * camera.view * model),
       nm_(normal_matrix(model)),
       guard_(guard),
       width_(width),
-      height_(height) {
+      height_(height),
+      screen_(mvp_, bound, width, height, guard) {
   rigid_ = rigid_normal_rows(nm_, rot_);
 }
 
-void VertexStage::transform_one(const Mesh& mesh, const VertexColors& colors, size_t i,
+bool VertexStage::transform_one(const Mesh& mesh, const VertexColors& colors, size_t i,
                                 ScreenVertex& sv, SurfaceVertex* surface, TexVertex* tex) const {
-  transform_vertex(mesh, colors, i, sv, surface, tex);
+  return transform_vertex(mesh, colors, i, sv, surface, tex);
 }
 
 bool VertexStage::project(const ClipCoord& c, ScreenVertex& v) const {

@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/lighting/object_lights.hpp"
 #include "lineraster/core/math/fixed.hpp"
 #include "lineraster/core/math/mat4.hpp"
 #include "lineraster/core/math/rigid.hpp"
@@ -18,6 +19,7 @@
 #include "lineraster/core/scene/camera.hpp"
 #include "lineraster/core/scene/mesh.hpp"
 #include "lineraster/core/vertex/clip.hpp"
+#include "lineraster/core/vertex/screen_transform.hpp"
 #include "lineraster/core/vertex/screen_vertex.hpp"
 #include "lineraster/core/vertex/surface_vertex.hpp"
 
@@ -73,6 +75,17 @@ struct VertexColors {
   bool tangents = false;       // Phong with a normal map
   Color15 material{};          // unlit meshes without vertex colours
   const PreparedLighting* lighting = nullptr;  // lit draws
+  // Lit Gouraud draws of directional lights under a rigid model matrix: the lights in model
+  // space (VertexStage::object_lights), else nullptr.
+  const ObjectLights* object = nullptr;
+};
+
+// What VertexStage::transform() did: the vertices the exact path projected (the short path's
+// range or precision did not reach them), and the OR of every vertex's outcode (0: no triangle
+// of the draw needs the clipper).
+struct TransformSummary {
+  uint32_t wide = 0;
+  uint8_t outcodes = 0;
 };
 
 // A model-space tangent (Q1.14) to world space (the model's upper 3x3), unit Q1.14.
@@ -80,26 +93,47 @@ void transform_tangent(const Mat4& model, const Tangent16& t, int16_t out[3]);
 
 class VertexStage {
  public:
-  VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width, int height);
+  // bound: every coordinate of the positions the stage will transform lies in [-bound - 1,
+  // bound] (position_bound); the default takes any (the short path then has less precision).
+  VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width, int height,
+              uint32_t bound = 0x7FFFFFFFu);
 
   // The mesh's vertices into out[0, n) (and surfaces[0, n) for Phong, tex[0, n) for draws
   // with texture coordinates; else nullptr): transformed, clip-tested (outcode), projected and
   // snapped when inside every plane.
-  [[gnu::always_inline]] void transform(const Mesh& mesh, const VertexColors& colors,
-                                        ScreenVertex* out, SurfaceVertex* surfaces,
-                                        TexVertex* tex) const;
+  [[gnu::always_inline]] TransformSummary transform(const Mesh& mesh, const VertexColors& colors,
+                                                    ScreenVertex* out, SurfaceVertex* surfaces,
+                                                    TexVertex* tex) const;
   // One vertex: mesh vertex i into sv (and *surface, *tex when not nullptr), as transform().
-  [[gnu::always_inline]] void transform_vertex(const Mesh& mesh, const VertexColors& colors,
+  // True when the exact path projected it.
+  [[gnu::always_inline]] bool transform_vertex(const Mesh& mesh, const VertexColors& colors,
                                                size_t i, ScreenVertex& sv, SurfaceVertex* surface,
                                                TexVertex* tex) const;
   // The same out of line: transform() and the vertex cache (FrontEnd::cache_corners) call it.
-  void transform_one(const Mesh& mesh, const VertexColors& colors, size_t i, ScreenVertex& sv,
+  bool transform_one(const Mesh& mesh, const VertexColors& colors, size_t i, ScreenVertex& sv,
                      SurfaceVertex* surface, TexVertex* tex) const;
+
+  // The directional lights of pl in model space into out when the model matrix is rigid (false:
+  // it is not, and lighting stays in world space).
+  bool object_lights(const PreparedLighting& pl, ObjectLights& out) const {
+    if (!rigid_) return false;
+    prepare_object_lights(pl, rot_, out);
+    return true;
+  }
 
   // Lit colour(s) of mesh vertex i, with the normal negated or not (two-sided back faces): the
   // secondary colour apart when colors.split, else 0.
   // (colors by value here and in light_face: the caller's copy stays in registers.)
   LitColor light(const Mesh& mesh, const VertexColors colors, size_t i, bool back) const {
+    if (colors.object != nullptr) {
+      const uint32_t len2 = normal_len2(mesh.normals[i]);
+      if (unit_len2(len2)) {
+        const LitColor c =
+            light_object(*colors.lighting, *colors.object, mesh.normals[i], len2, back);
+        if (colors.split) return c;
+        return {sum_clamped(c.primary, c.secondary), Color15{}};
+      }
+    }
     Unit30 nw = world_normal(mesh.normals[i]);
     if (back) nw = negate(nw);
     if (!colors.need_position) {
@@ -135,6 +169,7 @@ class VertexStage {
   bool rigid_ = false;
   GuardBand guard_;
   int32_t width_, height_;
+  ScreenTransform screen_;  // the short path (after mvp_: made from it)
 };
 
 inline LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1,
@@ -161,23 +196,36 @@ inline LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p
 bool front_facing_clip(const ClipCoord (&c)[3]);
 
 // One copy of the per-vertex code (transform_one), shared with the vertex cache's misses.
-inline void VertexStage::transform(const Mesh& mesh, const VertexColors& draw_colors,
-                                   ScreenVertex* out, SurfaceVertex* surfaces,
-                                   TexVertex* tex) const {
+inline TransformSummary VertexStage::transform(const Mesh& mesh, const VertexColors& draw_colors,
+                                               ScreenVertex* out, SurfaceVertex* surfaces,
+                                               TexVertex* tex) const {
   const VertexColors colors = draw_colors;  // a copy: kept in registers across the calls below
   const size_t n = mesh.positions.size();
-  for (size_t i = 0; i < n; ++i)
-    transform_one(mesh, colors, i, out[i], surfaces != nullptr ? &surfaces[i] : nullptr,
-                  tex != nullptr ? &tex[i] : nullptr);
+  uint32_t wide = 0;
+  uint32_t outcodes = 0;
+  for (size_t i = 0; i < n; ++i) {
+    wide += transform_one(mesh, colors, i, out[i], surfaces != nullptr ? &surfaces[i] : nullptr,
+                          tex != nullptr ? &tex[i] : nullptr)
+                ? 1u
+                : 0u;
+    outcodes |= out[i].outcode;
+  }
+  return {wide, static_cast<uint8_t>(outcodes)};
 }
 
-inline void VertexStage::transform_vertex(const Mesh& mesh, const VertexColors& colors, size_t i,
+inline bool VertexStage::transform_vertex(const Mesh& mesh, const VertexColors& colors, size_t i,
                                           ScreenVertex& sv, SurfaceVertex* surface,
                                           TexVertex* tex) const {
   sv.color_pending = colors.pending ? 1 : 0;
-  const ClipCoord c = clip(mesh.positions[i]);
-  sv.outcode = outcode(c, guard_);
-  if (sv.outcode == 0) project(c, sv);
+  // The short path (32-bit rows, one reciprocal of w), else the exact one on 64-bit clip
+  // coordinates.
+  bool wide = false;
+  if (!screen_.project(mesh.positions[i], sv)) [[unlikely]] {
+    const ClipCoord c = clip(mesh.positions[i]);
+    sv.outcode = outcode(c, guard_);
+    if (sv.outcode == 0) project(c, sv);
+    wide = true;
+  }
   if (tex != nullptr) {
     tex->u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
     tex->v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
@@ -201,6 +249,7 @@ inline void VertexStage::transform_vertex(const Mesh& mesh, const VertexColors& 
   } else {
     sv.color = Color15{};  // lit Gouraud: lit on first use (light()); flat: per triangle
   }
+  return wide;
 }
 
 }  // namespace lr
