@@ -220,7 +220,8 @@ struct FrontEnd::MeshDraw {
   const VertexColors colors;
   const size_t base;  // the mesh's first vertex store entry
   const uint8_t draw;
-  const bool cached;  // the mesh goes through the vertex cache (FrontEnd::cache_corners)
+  const bool cached;     // the mesh goes through the vertex cache (FrontEnd::cache_corners)
+  bool clipping = true;  // a vertex may be outside a plane (else no triangle needs the clipper)
   // Back faces' colours (two-sided Gouraud): written before use on each back face; one set per
   // draw, because a value-initialised local per triangle cost a 120-byte memset each.
   LitColor back_colors[3] = {};
@@ -549,6 +550,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
     colors.object = &object_lights_;
   const size_t base = vertex_count_;
   draw_first_triangle_ = edges_.size();
+  uint8_t clip_outcodes = 0;  // the OR of the draw's outcodes (through the cache: unknown)
   if (!cached) {
     vertex_count_ += n;
     stats_.vertices_transformed += static_cast<uint32_t>(n);
@@ -556,14 +558,15 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
                                                   phong ? surfaces_.data() + base : nullptr,
                                                   uv ? tex_.data() + base : nullptr);
     stats_.vertices_wide += done.wide;
+    clip_outcodes = done.outcodes;
   }
 
   MeshDraw d{mesh, state, stage, plan, colors, base, index, cached};
-  const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
+  d.clipping = cached || clip_outcodes != 0;
   if (cached)
-    triangle_loop<true>(d, tri_count);
+    triangle_loop<true>(d);
   else
-    triangle_loop<false>(d, tri_count);
+    triangle_loop<false>(d);
   if (cached) {
     cache_first_ = 0;
     vertex_limit_ = vertices_.size();
@@ -572,9 +575,115 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
 }
 
 // The triangle loop, out of line: one loop body in each stack frame, not both in run_mesh's.
+// The common triangle takes the lane (below); every other one, and every triangle of a draw
+// through the vertex cache, draw_triangle().
 template <bool kCached>
-void FrontEnd::triangle_loop(MeshDraw& d, uint32_t triangles) {
-  for (uint32_t t = 0; t < triangles; ++t) draw_triangle<kCached>(d, d.mesh.triangles[t]);
+void FrontEnd::triangle_loop(MeshDraw& d) {
+  const auto count = static_cast<uint32_t>(d.mesh.triangles.size());
+  const bool lane = !kCached && !d.plan.two_sided && !draw_colors_ && !edges_.signing();
+  for (uint32_t t = 0; t < count; ++t) {
+    if (lane) {
+      t = lane_triangles(d, t);
+      if (t == count) break;
+    }
+    draw_triangle<kCached>(d, d.mesh.triangles[t]);
+  }
+}
+
+// The lane, from triangle t on: one-sided, Gouraud or one colour (no per-triangle colours),
+// inside every plane (a draw with no vertex outside one skips the outcode tests), the edge table
+// neither full nor banded nor signed. Culled on its facing first, its pending vertices lit,
+// appended to its strip's bucket, counted in locals. Returns the first triangle it leaves to
+// draw_triangle() (or the count). Its own small stack frame, never live with draw_triangle()'s
+// locals.
+uint32_t FrontEnd::lane_triangles(MeshDraw& d, uint32_t t) {
+  if (banding_) return t;  // (set only by draw_triangle())
+  const std::array<uint16_t, 3>* const tris = d.mesh.triangles.data();
+  const std::array<uint16_t, 3>* const end = tris + d.mesh.triangles.size();
+  const auto n = static_cast<uint32_t>(d.mesh.positions.size());
+  const ScreenVertex* const base = vertices_.data() + d.base;
+  // Which facings are culled (bit 0: back faces, bit 1: front faces); lit Gouraud (vertices lit
+  // on first use); a draw with a vertex outside a plane.
+  const Cull cull = d.state.cull;
+  const uint32_t culled = cull == Cull::kBack ? 1u : cull == Cull::kFront ? 2u : 0u;
+  const bool pending = d.colors.pending, clipping = d.clipping;
+  const uint32_t zero_before = stats_.culled_zero_area, off_before = stats_.culled_offscreen;
+  EdgeTable::Run run(edges_);
+  uint32_t binned = 0;
+  const std::array<uint16_t, 3>* tp = tris + t;
+  for (; tp != end; ++tp) {
+    {
+      const uint32_t i0 = (*tp)[0], i1 = (*tp)[1], i2 = (*tp)[2];
+      if (i0 >= n || i1 >= n || i2 >= n) [[unlikely]]
+        break;
+      const ScreenVertex& v0 = base[i0];
+      const ScreenVertex& v1 = base[i1];
+      const ScreenVertex& v2 = base[i2];
+      if (clipping && (v0.outcode | v1.outcode | v2.outcode) != 0) [[unlikely]]
+        break;
+      // The facing first: most culled triangles leave here.
+      const int32_t x0 = v0.x, y0 = v0.y;
+      const uint32_t f = facing(v1.x - x0, v1.y - y0, v2.x - x0, v2.y - y0);  // 1 back, 2 front
+      if ((f & culled) != 0) continue;
+      if (f == 0) [[unlikely]] {
+        ++stats_.culled_zero_area;
+        continue;
+      }
+    }
+    // A face that is drawn: its rows and columns, its pending vertices, its bucket.
+    const uint32_t i0 = (*tp)[0], i1 = (*tp)[1], i2 = (*tp)[2];
+    const ScreenVertex& v0 = base[i0];
+    const ScreenVertex& v1 = base[i1];
+    const ScreenVertex& v2 = base[i2];
+    int32_t r0;
+    if (!edges_.covers(v0, v1, v2, r0)) {
+      ++stats_.culled_offscreen;
+      continue;
+    }
+    if (run.full()) [[unlikely]]
+      break;
+    if (pending && (v0.color_pending | v1.color_pending | v2.color_pending) != 0)
+      light_corners(d, *tp);
+    BinnedTriangle& bt = run.add(r0);
+    const auto first = static_cast<uint16_t>(d.base);
+    bt.v[0] = static_cast<uint16_t>(first + i0);
+    bt.v[1] = static_cast<uint16_t>(first + i1);
+    bt.v[2] = static_cast<uint16_t>(first + i2);
+    ++binned;
+  }
+  run.finish();
+  const auto done = static_cast<uint32_t>(tp - tris);
+  stats_.triangles_binned += binned;
+  stats_.binned_inputs += binned;
+  // The rest of the lane's triangles were culled by their facing.
+  stats_.culled_backface += done - t - binned - (stats_.culled_zero_area - zero_before) -
+                            (stats_.culled_offscreen - off_before);
+  return done;
+}
+
+// A drawn triangle's vertices whose colour waits for their first use, lit (lit Gouraud). The
+// common case inline: diffuse directional lights in model space, a unit normal, one colour.
+void FrontEnd::light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
+  const ObjectLights* const ol =
+      d.colors.object != nullptr && !d.colors.object->specular && !d.colors.split ? d.colors.object
+                                                                                  : nullptr;
+  for (size_t k = 0; k < 3; ++k) {
+    const size_t at = d.base + tri[k];
+    ScreenVertex& v = vertices_[at];
+    if (v.color_pending == 0) continue;
+    v.color_pending = 0;
+    if (ol != nullptr) {
+      const Normal16& n = d.mesh.normals[tri[k]];
+      const uint32_t len2 = normal_len2(n);
+      if (unit_len2(len2)) [[likely]] {
+        v.color = light_object_diffuse(*ol, n, len2);
+        continue;
+      }
+    }
+    const LitColor lc = d.stage.light(d.mesh, d.colors, tri[k], false);
+    v.color = lc.primary;
+    if (d.colors.split) tex_[at].spec = lc.secondary;
+  }
 }
 
 // A triangle's corners through the vertex cache: vi gets their cache slots in the store. Two
@@ -598,10 +707,11 @@ std::array<uint16_t, 3> FrontEnd::cache_corners(MeshDraw& d, const std::array<ui
       if (taken(slot)) slot ^= 1;
       if (taken(slot)) slot = 2 * kCacheSets + k;
       const size_t at = cache_first_ + slot;
-      if (d.stage.transform_one(d.mesh, d.colors, i, vertices_[at],
-                                cache_surfaces_ ? &surfaces_[at] : nullptr,
-                                cache_tex_ ? &tex_[at] : nullptr))
-        ++stats_.vertices_wide;
+      stats_.vertices_wide += d.stage
+                                  .transform_range(d.mesh, d.colors, i, 1, &vertices_[at],
+                                                   cache_surfaces_ ? &surfaces_[at] : nullptr,
+                                                   cache_tex_ ? &tex_[at] : nullptr)
+                                  .wide;
       cache_[slot] = i | kNoCacheEntry << 16;
       ++stats_.vertices_transformed;
     }

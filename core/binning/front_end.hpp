@@ -153,7 +153,9 @@ class FrontEnd {
   struct MeshDraw;  // one draw()'s context (front_end.cpp)
   // draw()'s loop body and its two ends (front_end.cpp, always inlined into draw()).
   template <bool kCached>
-  [[gnu::noinline]] void triangle_loop(MeshDraw& d, uint32_t triangles);
+  [[gnu::noinline]] void triangle_loop(MeshDraw& d);
+  [[gnu::noinline]] uint32_t lane_triangles(MeshDraw& d, uint32_t t);
+  [[gnu::noinline]] void light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   template <bool kCached>
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],

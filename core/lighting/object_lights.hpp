@@ -20,6 +20,9 @@ struct ObjectLights {
   // error by the shininess), model space, unit within 2^-12 (the rotation's rigidity tolerance).
   int32_t l[kMaxLights][3] = {};
   int32_t h[kMaxLights][3] = {};
+  uint32_t kd[kMaxLights][3] = {};  // PreparedLighting's Ld Kd, Q1.15
+  uint32_t base[3] = {};            // PreparedLighting's base (emission and ambient), Q1.15
+  uint8_t count = 0;
   bool specular = false;  // a light whose specular product (Ls Ks) is not zero
 };
 
@@ -41,42 +44,76 @@ constexpr bool unit_normal(const Normal16& n) {
   return unit_len2(normal_len2(n));
 }
 
+// 1 / |n| by one Newton step from 1, k = (3 - |n|^2) / 2 in Q1.30 (within 2^-24 of 1 / |n| for
+// unit_len2(len2)): 2^30 +- 2^17.
+constexpr int32_t inverse_length(uint32_t len2) {
+  return static_cast<int32_t>(((3u << 28) - len2) << 1);
+}
+
+// The diffuse sums of normal (nx, ny, nz) (Q1.14, negated for a back face) with 1 / |n| = k:
+// prim[c] = base[c] + sum over lights of max(N.L, 0) Ld Kd. N.L = (n . l) k, where n . l is a sum
+// of three products below 2^30 (|n| |l| <= 1 + 2^-11 in Q2.30); N.L / 2^14 (Q1.16, at most
+// 2^16 + 64) times Kd (<= 2^15) is below 2^31 + 2^22. Returns the lights' N.L in ndl (Q2.30; 0
+// where not positive), for the specular term.
+[[gnu::always_inline]] inline void object_diffuse(const ObjectLights& ol, int32_t nx, int32_t ny,
+                                                  int32_t nz, int32_t k, uint32_t (&prim)[3],
+                                                  int32_t (&ndl)[kMaxLights]) {
+  prim[0] = ol.base[0];
+  prim[1] = ol.base[1];
+  prim[2] = ol.base[2];
+  for (int i = 0; i < ol.count; ++i) {
+    const int32_t* l = ol.l[i];
+    int32_t d = nx * l[0] + ny * l[1] + nz * l[2];  // Q2.30
+    ndl[i] = 0;
+    if (d <= 0) continue;  // no diffuse, and GL gives no specular where N.L <= 0
+    d = mul_hi(d, k) * 4;  // Q2.30 again, below 2^30 + 2^20
+    ndl[i] = d;
+    const auto d16 = static_cast<uint32_t>(d) >> 14;
+    for (int c = 0; c < 3; ++c) prim[c] += (d16 * ol.kd[i][c] + (1u << 15)) >> 16;
+  }
+}
+
+constexpr uint16_t clamp_one(uint32_t x) {
+  return static_cast<uint16_t>(x > Color15::kOne ? Color15::kOne : x);
+}
+
 // The lit colours of normal n (Normal16, len2 = normal_len2(n) and unit_len2(len2)), negated when
-// back: light_directional_split's model for the model-space directions. n's length is corrected
-// by one Newton step of 1 / |n|, k = (3 - |n|^2) / 2 (Q1.30, within 2^-24 of 1 / |n|), applied to
-// the dot products rather than the normal: N.L = (n . l) k, where n . l is a sum of three
-// products below 2^30 (|n| |l| <= 1 + 2^-11 in Q2.30).
+// back: light_directional_split's model for the model-space directions, n's length corrected by
+// inverse_length() on the dot products rather than on the normal.
 inline LitColor light_object(const PreparedLighting& pl, const ObjectLights& ol, const Normal16& n,
                              uint32_t len2, bool back) {
-  uint32_t prim[3] = {static_cast<uint32_t>(pl.base[0]), static_cast<uint32_t>(pl.base[1]),
-                      static_cast<uint32_t>(pl.base[2])};
-  uint32_t spec[3] = {0, 0, 0};
   const int32_t nx = back ? -n.x : n.x, ny = back ? -n.y : n.y, nz = back ? -n.z : n.z;
-  const auto k = static_cast<int32_t>(((3u << 28) - len2) << 1);  // 2^30 +- 2^17
-  for (int i = 0; i < pl.count; ++i) {
-    const PreparedLighting::Light& li = pl.lights[static_cast<size_t>(i)];
-    const int32_t* l = ol.l[i];
-    int32_t ndl = nx * l[0] + ny * l[1] + nz * l[2];  // Q2.30
-    if (ndl <= 0) continue;  // no diffuse, and GL gives no specular where N.L <= 0
-    ndl = mul_hi(ndl, k) * 4;  // Q2.30 again, below 2^30 + 2^20
-    const auto d16 = static_cast<uint32_t>(ndl) >> 14;  // Q1.16, <= 2^16 + 64
-    // Kd <= 2^15: the product is below 2^31 + 2^22.
-    for (int c = 0; c < 3; ++c) prim[c] += (d16 * li.kd[c] + (1u << 15)) >> 16;
-    if (!ol.specular) continue;
-    // n . h in 64 bits (products below 2^45), Q2.44, then Q2.30.
-    const int32_t* h = ol.h[i];
-    const int64_t ndh44 = mul_wide(nx, h[0]) + mul_wide(ny, h[1]) + mul_wide(nz, h[2]);
-    if (ndh44 <= 0) continue;
-    int32_t ndh = mul_hi(static_cast<int32_t>(ndh44 >> 14), k) * 4;  // below 2^30 + 2^20
-    if (ndh > (1 << 30)) ndh = 1 << 30;
-    const uint32_t sp = DefaultPowTable::pow_q15(static_cast<uint32_t>(ndh), pl.shininess_q8);
-    for (int c = 0; c < 3; ++c) spec[c] += (sp * uint32_t{li.ks[c]} + (1u << 14)) >> 15;
+  const int32_t k = inverse_length(len2);
+  uint32_t prim[3];
+  int32_t ndl[kMaxLights];
+  object_diffuse(ol, nx, ny, nz, k, prim, ndl);
+  uint32_t spec[3] = {0, 0, 0};
+  if (ol.specular) {
+    for (int i = 0; i < ol.count; ++i) {
+      if (ndl[i] <= 0) continue;
+      // n . h in 64 bits (products below 2^45), Q2.44, then Q2.30.
+      const int32_t* h = ol.h[i];
+      const int64_t ndh44 = mul_wide(nx, h[0]) + mul_wide(ny, h[1]) + mul_wide(nz, h[2]);
+      if (ndh44 <= 0) continue;
+      int32_t ndh = mul_hi(static_cast<int32_t>(ndh44 >> 14), k) * 4;  // below 2^30 + 2^20
+      if (ndh > (1 << 30)) ndh = 1 << 30;
+      const uint32_t sp = DefaultPowTable::pow_q15(static_cast<uint32_t>(ndh), pl.shininess_q8);
+      const PreparedLighting::Light& li = pl.lights[static_cast<size_t>(i)];
+      for (int c = 0; c < 3; ++c) spec[c] += (sp * uint32_t{li.ks[c]} + (1u << 14)) >> 15;
+    }
   }
-  auto clamp = [](uint32_t x) {
-    return static_cast<uint16_t>(x > Color15::kOne ? Color15::kOne : x);
-  };
-  return {{clamp(prim[0]), clamp(prim[1]), clamp(prim[2])},
-          {clamp(spec[0]), clamp(spec[1]), clamp(spec[2])}};
+  return {{clamp_one(prim[0]), clamp_one(prim[1]), clamp_one(prim[2])},
+          {clamp_one(spec[0]), clamp_one(spec[1]), clamp_one(spec[2])}};
+}
+
+// The diffuse-only colour (no light with a specular product: !ol.specular) of a unit normal n
+// (unit_len2(len2)), front side: light_object's primary colour (its secondary is 0).
+[[gnu::always_inline]] inline Color15 light_object_diffuse(const ObjectLights& ol,
+                                                           const Normal16& n, uint32_t len2) {
+  uint32_t prim[3];
+  int32_t ndl[kMaxLights];
+  object_diffuse(ol, n.x, n.y, n.z, inverse_length(len2), prim, ndl);
+  return {clamp_one(prim[0]), clamp_one(prim[1]), clamp_one(prim[2])};
 }
 
 }  // namespace lr

@@ -5,7 +5,8 @@
 // instead (about 15 instructions, no call).
 //
 //   mul_hi(a, b)       floor(a b / 2^32), signed       (SMMUL / the high word of SMULL)
-//   mla_hi(a, b, acc)  acc + floor(a b / 2^32)         (SMMLA; wraps modulo 2^32 like it)
+//   mla_hi(a, b, acc)  acc + floor(a b / 2^32)         (SMMLA where the core has it (the DSP
+//                                                      extension); wraps modulo 2^32 like it)
 //   mul_hi_u(a, b)     floor(a b / 2^32), unsigned     (the high word of UMULL)
 //   mul_wide(a, b)     a b as int64                    (SMULL)
 //
@@ -15,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 namespace lr {
 
@@ -65,6 +67,14 @@ constexpr int32_t mul_hi(int32_t a, int32_t b) {
 }
 
 constexpr int32_t mla_hi(int32_t a, int32_t b, int32_t acc) {
+#if defined(__ARM_FEATURE_DSP)
+  // GCC 12 emits SMULL and an ADD for the sum below: SMMLA is the same integer in one.
+  if (!std::is_constant_evaluated()) {
+    int32_t r;
+    asm("smmla %0, %1, %2, %3" : "=r"(r) : "r"(a), "r"(b), "r"(acc));
+    return r;
+  }
+#endif
   return static_cast<int32_t>(static_cast<uint32_t>(acc) + static_cast<uint32_t>(mul_hi(a, b)));
 }
 

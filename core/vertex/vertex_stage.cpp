@@ -28,13 +28,73 @@ VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guar
       guard_(guard),
       width_(width),
       height_(height),
-      screen_(mvp_, bound, width, height, guard) {
+      screen_(mvp_, &camera.projection, bound, width, height, guard) {
   rigid_ = rigid_normal_rows(nm_, rot_);
 }
 
-bool VertexStage::transform_one(const Mesh& mesh, const VertexColors& colors, size_t i,
-                                ScreenVertex& sv, SurfaceVertex* surface, TexVertex* tex) const {
-  return transform_vertex(mesh, colors, i, sv, surface, tex);
+TransformSummary VertexStage::transform_range(const Mesh& mesh, const VertexColors& draw_colors,
+                                              size_t first, size_t count, ScreenVertex* out,
+                                              SurfaceVertex* surfaces, TexVertex* tex) const {
+  const VertexColors colors = draw_colors;  // a copy: kept in registers across the calls below
+  const Vec3* positions = mesh.positions.data() + first;
+  const bool plain = surfaces == nullptr && tex == nullptr;
+  // Lit vertices: colour 0 (lit Gouraud: lit on first use, light(); flat: per triangle).
+  const Color15 fixed = colors.lit ? Color15{} : colors.material;
+  const Rgb8* mesh_colors =
+      colors.lit || mesh.colors.empty() ? nullptr : mesh.colors.data() + first;
+  const uint8_t pending = colors.pending ? 1 : 0;
+  uint32_t wide = 0, outcodes = 0;
+  for (size_t k = 0; k < count; ++k) {
+    ScreenVertex& sv = out[k];
+    // The short path (32-bit rows, one reciprocal of w), else the exact one on 64-bit clip
+    // coordinates.
+    if (!screen_.project(positions[k], sv)) [[unlikely]] {
+      project_exact(positions[k], sv);
+      ++wide;
+    }
+    outcodes |= sv.outcode;
+    sv.color_pending = pending;
+    if (plain) [[likely]] {
+      sv.color = mesh_colors != nullptr ? from_rgb8(mesh_colors[k]) : fixed;
+    } else {
+      attributes(mesh, colors, first + k, sv, surfaces != nullptr ? &surfaces[k] : nullptr,
+                 tex != nullptr ? &tex[k] : nullptr);
+    }
+  }
+  return {wide, static_cast<uint8_t>(outcodes)};
+}
+
+void VertexStage::project_exact(const Vec3& p, ScreenVertex& sv) const {
+  const ClipCoord c = clip(p);
+  sv.outcode = outcode(c, guard_);
+  if (sv.outcode == 0) project(c, sv);
+}
+
+void VertexStage::attributes(const Mesh& mesh, const VertexColors& colors, size_t i,
+                             ScreenVertex& sv, SurfaceVertex* surface, TexVertex* tex) const {
+  if (tex != nullptr) {
+    tex->u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
+    tex->v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
+    tex->spec = Color15{};
+  }
+  if (surface != nullptr) {
+    sv.color = Color15{};
+    SurfaceVertex& su = *surface;
+    const Normal16& nn = mesh.normals[i];
+    su.normal = transform_normal_call(nm_, nn.x, nn.y, nn.z);
+    su.position = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
+    if (colors.tangents) {
+      transform_tangent(model_, mesh.tangents[i], su.tangent);
+      su.handedness = mesh.tangents[i].w < 0 ? -16384 : 16384;
+    } else {
+      su.tangent[0] = su.tangent[1] = su.tangent[2] = 0;
+      su.handedness = 16384;
+    }
+  } else if (!colors.lit) {
+    sv.color = mesh.colors.empty() ? colors.material : from_rgb8(mesh.colors[i]);
+  } else {
+    sv.color = Color15{};  // lit Gouraud: lit on first use (light()); flat: per triangle
+  }
 }
 
 bool VertexStage::project(const ClipCoord& c, ScreenVertex& v) const {

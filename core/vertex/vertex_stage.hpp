@@ -101,17 +101,16 @@ class VertexStage {
   // The mesh's vertices into out[0, n) (and surfaces[0, n) for Phong, tex[0, n) for draws
   // with texture coordinates; else nullptr): transformed, clip-tested (outcode), projected and
   // snapped when inside every plane.
-  [[gnu::always_inline]] TransformSummary transform(const Mesh& mesh, const VertexColors& colors,
-                                                    ScreenVertex* out, SurfaceVertex* surfaces,
-                                                    TexVertex* tex) const;
-  // One vertex: mesh vertex i into sv (and *surface, *tex when not nullptr), as transform().
-  // True when the exact path projected it.
-  [[gnu::always_inline]] bool transform_vertex(const Mesh& mesh, const VertexColors& colors,
-                                               size_t i, ScreenVertex& sv, SurfaceVertex* surface,
-                                               TexVertex* tex) const;
-  // The same out of line: transform() and the vertex cache (FrontEnd::cache_corners) call it.
-  bool transform_one(const Mesh& mesh, const VertexColors& colors, size_t i, ScreenVertex& sv,
-                     SurfaceVertex* surface, TexVertex* tex) const;
+  TransformSummary transform(const Mesh& mesh, const VertexColors& colors, ScreenVertex* out,
+                             SurfaceVertex* surfaces, TexVertex* tex) const {
+    return transform_range(mesh, colors, 0, mesh.positions.size(), out, surfaces, tex);
+  }
+  // Mesh vertices [first, first + count) into out[0, count) (surfaces, tex likewise), as
+  // transform(): the one copy of the per-vertex code, for whole meshes and the vertex cache's
+  // misses (FrontEnd::cache_corners, count 1).
+  [[gnu::noinline]] TransformSummary transform_range(const Mesh& mesh, const VertexColors& colors,
+                                                     size_t first, size_t count, ScreenVertex* out,
+                                                     SurfaceVertex* surfaces, TexVertex* tex) const;
 
   // The directional lights of pl in model space into out when the model matrix is rigid (false:
   // it is not, and lighting stays in world space).
@@ -167,6 +166,11 @@ class VertexStage {
   Mat4 nm_;
   NormalRotation rot_;  // nm_'s rows normalised, when rigid_
   bool rigid_ = false;
+  // The exact path of one vertex (64-bit clip coordinates, outcode, project), and the
+  // attributes of a vertex of a textured or Phong draw: out of the per-vertex loop.
+  [[gnu::noinline]] void project_exact(const Vec3& p, ScreenVertex& sv) const;
+  [[gnu::noinline]] void attributes(const Mesh& mesh, const VertexColors& colors, size_t i,
+                                    ScreenVertex& sv, SurfaceVertex* surface, TexVertex* tex) const;
   GuardBand guard_;
   int32_t width_, height_;
   ScreenTransform screen_;  // the short path (after mvp_: made from it)
@@ -194,62 +198,5 @@ inline LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p
 // in front of the eye even when a vertex is behind it): true when front-facing, i.e.
 // counter-clockwise in NDC (front_facing() in screen_vertex.hpp is the same rule on the display).
 bool front_facing_clip(const ClipCoord (&c)[3]);
-
-// One copy of the per-vertex code (transform_one), shared with the vertex cache's misses.
-inline TransformSummary VertexStage::transform(const Mesh& mesh, const VertexColors& draw_colors,
-                                               ScreenVertex* out, SurfaceVertex* surfaces,
-                                               TexVertex* tex) const {
-  const VertexColors colors = draw_colors;  // a copy: kept in registers across the calls below
-  const size_t n = mesh.positions.size();
-  uint32_t wide = 0;
-  uint32_t outcodes = 0;
-  for (size_t i = 0; i < n; ++i) {
-    wide += transform_one(mesh, colors, i, out[i], surfaces != nullptr ? &surfaces[i] : nullptr,
-                          tex != nullptr ? &tex[i] : nullptr)
-                ? 1u
-                : 0u;
-    outcodes |= out[i].outcode;
-  }
-  return {wide, static_cast<uint8_t>(outcodes)};
-}
-
-inline bool VertexStage::transform_vertex(const Mesh& mesh, const VertexColors& colors, size_t i,
-                                          ScreenVertex& sv, SurfaceVertex* surface,
-                                          TexVertex* tex) const {
-  sv.color_pending = colors.pending ? 1 : 0;
-  // The short path (32-bit rows, one reciprocal of w), else the exact one on 64-bit clip
-  // coordinates.
-  bool wide = false;
-  if (!screen_.project(mesh.positions[i], sv)) [[unlikely]] {
-    const ClipCoord c = clip(mesh.positions[i]);
-    sv.outcode = outcode(c, guard_);
-    if (sv.outcode == 0) project(c, sv);
-    wide = true;
-  }
-  if (tex != nullptr) {
-    tex->u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
-    tex->v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
-    tex->spec = Color15{};
-  }
-  if (surface != nullptr) {
-    sv.color = Color15{};
-    SurfaceVertex& su = *surface;
-    const Normal16& nn = mesh.normals[i];
-    su.normal = transform_normal_call(nm_, nn.x, nn.y, nn.z);
-    su.position = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
-    if (colors.tangents) {
-      transform_tangent(model_, mesh.tangents[i], su.tangent);
-      su.handedness = mesh.tangents[i].w < 0 ? -16384 : 16384;
-    } else {
-      su.tangent[0] = su.tangent[1] = su.tangent[2] = 0;
-      su.handedness = 16384;
-    }
-  } else if (!colors.lit) {
-    sv.color = mesh.colors.empty() ? colors.material : from_rgb8(mesh.colors[i]);
-  } else {
-    sv.color = Color15{};  // lit Gouraud: lit on first use (light()); flat: per triangle
-  }
-  return wide;
-}
 
 }  // namespace lr

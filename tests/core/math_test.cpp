@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "lineraster/core/binning/edge_table.hpp"
 #include "lineraster/core/math/divide.hpp"
 #include "lineraster/core/math/pow_table.hpp"
 #include "lineraster/core/math/reciprocal.hpp"
@@ -318,6 +319,19 @@ TEST(Reciprocal, RecipQ61IsWithinTwoUnitsOfTheQuotient) {
   for (int i = 0; i < 300000; ++i) check(static_cast<uint32_t>(next()) | (1u << 31));
   std::printf("recip_q61: worst distance from floor(2^61 / d): %lld\n",
               static_cast<long long>(worst));
+}
+
+// The edge table's strip of a row without a division: (r ceil(2^17 / h)) >> 17 = r / h for every
+// row of the largest viewport and every strip height.
+TEST(EdgeTable, StripOfRowIsTheQuotientForEveryRowAndStripHeight) {
+  for (int h = 1; h <= 32; ++h) {
+    EdgeTable table;
+    std::vector<BinnedTriangle> tris(4);
+    std::vector<uint16_t> buckets(kMaxViewport);
+    ASSERT_TRUE(table.configure(tris, {}, buckets, {}, kMaxViewport, kMaxViewport, h));
+    for (int32_t r = 0; r < kMaxViewport; ++r)
+      ASSERT_EQ(table.strip_of_row(r), static_cast<size_t>(r / h)) << r << " / " << h;
+  }
 }
 
 // The Armv6-M high words (four 16 x 16 products) equal the 64-bit products' for the operands
