@@ -141,6 +141,20 @@ class EdgeTable {
     size_t count_, end_;
   };
 
+  // The same for a hand-written appender (the front end's lane on Armv7E-M): the arrays, the
+  // strip reciprocal (strip_of_row), the count and the room; set_size() writes the count back.
+  struct Raw {
+    BinnedTriangle* triangles;
+    uint16_t* buckets;
+    uint32_t strip_reciprocal;
+    uint32_t count, capacity;
+  };
+  Raw raw() {
+    return {triangles_.data(), buckets_.data(), strip_reciprocal_, static_cast<uint32_t>(count_),
+            static_cast<uint32_t>(triangles_.size())};
+  }
+  void set_size(size_t count) { count_ = count; }
+
   // Appends a triangle to the bucket of the strip of row r0 and returns it for the caller to
   // fill in (its `next` is set here). Not full().
   BinnedTriangle& add(int32_t r0) {

@@ -155,7 +155,9 @@ class FrontEnd {
   template <bool kCached>
   [[gnu::noinline]] void triangle_loop(MeshDraw& d);
   [[gnu::noinline]] uint32_t lane_triangles(MeshDraw& d, uint32_t t);
+  [[gnu::noinline]] uint32_t lane_run_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] void light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri);
+  [[gnu::noinline]] void light_vertex(MeshDraw& d, uint32_t i);
   template <bool kCached>
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],

@@ -4,7 +4,8 @@
 // multiply for any int64 product there, so the high words are built from four 16 x 16 products
 // instead (about 15 instructions, no call).
 //
-//   mul_hi(a, b)       floor(a b / 2^32), signed       (SMMUL / the high word of SMULL)
+//   mul_hi(a, b)       floor(a b / 2^32), signed       (SMMUL where the core has it (the DSP
+//                                                      extension), else the high word of SMULL)
 //   mla_hi(a, b, acc)  acc + floor(a b / 2^32)         (SMMLA where the core has it (the DSP
 //                                                      extension); wraps modulo 2^32 like it)
 //   mul_hi_u(a, b)     floor(a b / 2^32), unsigned     (the high word of UMULL)
@@ -63,6 +64,14 @@ inline constexpr bool kSplitWideProducts = false;
 
 constexpr int32_t mul_hi(int32_t a, int32_t b) {
   if constexpr (kSplitWideProducts) return detail::mul_hi_split(a, b);
+#if defined(__ARM_FEATURE_DSP)
+  // GCC 12 sometimes builds this from UMULL and an MLA (when it knows an operand's sign): SMMUL.
+  if (!std::is_constant_evaluated()) {
+    int32_t r;
+    asm("smmul %0, %1, %2" : "=r"(r) : "r"(a), "r"(b));
+    return r;
+  }
+#endif
   return static_cast<int32_t>((int64_t{a} * b) >> 32);
 }
 

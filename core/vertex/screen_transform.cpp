@@ -1,5 +1,7 @@
 #include "lineraster/core/vertex/screen_transform.hpp"
 
+#include <cstddef>
+
 namespace lr {
 namespace {
 
@@ -89,83 +91,207 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, const Mat4* projection, uint32
   int n_max = 9;
   if (n_max > 29 + exy - ew - kShortPathFractionBits)
     n_max = 29 + exy - ew - kShortPathFractionBits;
-  // The z row (not GL's perspective): mul_hi(Z, r) = (z_ndc D) 2^-kz, kz = n_max - cz with
-  // cz = 29 + ez - ew; ez lowered so that kz >= 0, n_max so that kz <= 10 (z in units of 2^10,
-  // 1/64 of a 16-bit depth step).
+  // W = w 2^ew, w's Q16.16 is W >> (ew - 16): the short path for |w| below 2^13 (ew >= 16).
+  if (n_max < 2 || ew < 16) return;
   // GL's perspective: window z from D B / w = mul_hi(c1, r) 2^kz (below), kz the least that keeps
   // c1 = D B 2^(ew - 45 + n_max - kz) in int32; at most 15 (else the z row).
   bool affine = projection != nullptr && is_perspective(*projection);
   const int64_t db = affine ? int64_t{kHalfDepth} * projection->m[2][3].raw : 0;  // < 2^62
-  int kz_affine = 0;
   if (affine) {
     const uint64_t mag = abs64(db);
     const int len = mag == 0 ? 0 : 64 - clz64(mag);
-    kz_affine = len + (ew - 45 + n_max) - 31;
-    if (kz_affine < 0) kz_affine = 0;
-    if (kz_affine > 15) affine = false;
+    kz_ = len + (ew - 45 + n_max) - 31;
+    if (kz_ < 0) kz_ = 0;
+    if (kz_ > 15) affine = false;
   }
+  // The z row: mul_hi(Z, r) = (z_ndc D) 2^-kz, kz = n_max - cz with cz = 29 + ez - ew; ez
+  // lowered so that kz >= 0, n_max so that kz <= 10 (z in units of 2^10, 1/64 of a 16-bit depth
+  // step).
   int ez = exponent[2];
-  if (!affine && n_max > ez - ew + 39) n_max = ez - ew + 39;
-  if (n_max < 2) return;
-  if (!affine && ez > ew - 29 + n_max) ez = ew - 29 + n_max;
+  if (!affine) {
+    if (n_max > ez - ew + 39) n_max = ez - ew + 39;
+    if (n_max < 2) return;
+    if (ez > ew - 29 + n_max) ez = ew - 29 + n_max;
+  }
   // f at most 10 (x - sx and y - sy below 2^21, times 2^f below 2^31): exy lowered if need be.
   if (29 + exy - ew - n_max > 10) exy = n_max + 10 - 29 + ew;
   f_ = 29 + exy - ew - n_max;
   const int e[4] = {exy, exy, ez, ew};
   for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 3; ++j) a_[i][j] = scaled(k[i] * mvp.m[i][j].raw, e[i] - ps_);
-    t_[i] = scaled(k[i] * mvp.m[i][3].raw, e[i] - 16);
+    for (int j = 0; j < 3; ++j) rows_[i].a[j] = scaled(k[i] * mvp.m[i][j].raw, e[i] - ps_);
+    rows_[i].t = scaled(k[i] * mvp.m[i][3].raw, e[i] - 16);
   }
   n_max_ = n_max;
-  w_min_ = int32_t{1} << (31 - n_max);
-  w_range_ = static_cast<uint32_t>(kMaxW - w_min_);
+  w_shift_ = ew - 16;
+  // The w range: the precision's lower end 2^(31 - n_max), kMaxW above.
+  int64_t w_lo = int64_t{1} << (31 - n_max), w_hi = kMaxW;
+  int64_t c0;  // z = c0 + m 2^kz
+  if (affine && perspective_range(*projection, ew, w_lo, w_hi)) {
+    // z_ndc = -A + B / w, window z = D (1 - A) + D B / w (D = kHalfDepth; A, B Q16.16): with
+    // 1 / w = 2^ew / W and r = 2^(61 - n_max) / W, D B / w = mul_hi(c1, r) 2^kz. The w range
+    // holds the depth range.
+    c1_ = scaled(db, ew - 45 + n_max - kz_);
+    c0 = int64_t{kHalfDepth} - ((int64_t{kHalfDepth} * projection->m[2][2].raw + 32768) >> 16);
+    affine_z_ = true;
+  } else {
+    if (affine) {  // a perspective whose planes the w range cannot hold: the z row after all
+      if (n_max > ez - ew + 39) return;
+      if (ez > ew - 29 + n_max) return;
+    }
+    kz_ = n_max - (29 + ez - ew);
+    c0 = kHalfDepth;
+    // Inside the depth range: 0 <= c0 + m 2^kz <= 2 D, m in [ceil(-c0 / 2^kz),
+    // floor((2D - c0) / 2^kz)].
+    const int64_t unit = int64_t{1} << kz_;
+    const int64_t lo = -floor_div(c0, unit), hi = floor_div(2 * int64_t{kHalfDepth} - c0, unit);
+    m_lo_ = static_cast<int32_t>(lo);
+    m_span_ = static_cast<uint32_t>(hi - lo);
+  }
+  c0_ = static_cast<uint32_t>(c0);
+  if (w_hi < w_lo) return;
+  w_lo_ = static_cast<int32_t>(w_lo);
+  w_span_ = static_cast<uint32_t>(w_hi - w_lo);
   acc_x_ = (sx << f_) + (1 << (f_ - 1));
   acc_y_ = (sy << f_) + (1 << (f_ - 1));
   x_lo_ = sx - lx;
   x_span_ = static_cast<uint32_t>(2 * lx);
   y_lo_ = sy - ly;
   y_span_ = static_cast<uint32_t>(2 * ly);
-  int64_t c0;  // z = c0 + m 2^kz
-  if (affine) {
-    // z_ndc = -A + B / w, window z = D (1 - A) + D B / w (D = kHalfDepth; A, B Q16.16): with
-    // 1 / w = 2^ew / W and r = 2^(61 - n_max) / W, D B / w = mul_hi(c1, r) 2^kz.
-    kz_ = kz_affine;
-    c1_ = scaled(db, ew - 45 + n_max - kz_);
-    c0 = int64_t{kHalfDepth} - ((int64_t{kHalfDepth} * projection->m[2][2].raw + 32768) >> 16);
-    affine_z_ = true;
-  } else {
-    kz_ = n_max - (29 + ez - ew);
-    c0 = kHalfDepth;
-  }
-  c0_ = static_cast<uint32_t>(c0);
-  // Inside the depth range: 0 <= c0 + m 2^kz <= 2 D, m in [ceil(-c0 / 2^kz), floor((2D - c0) /
-  // 2^kz)] (c0 within a few times D: both ends far inside int32).
-  const int64_t unit = int64_t{1} << kz_;
-  const auto clamp30 = [](int64_t v) {
-    return v < -(int64_t{1} << 30)  ? -(int64_t{1} << 30)
-           : v > (int64_t{1} << 30) ? int64_t{1} << 30
-                                    : v;
-  };  // |m| < 2^27 + 1: the clamped ends decide as the exact ones
-  const int64_t lo = clamp30(-floor_div(c0, unit)),
-                hi = clamp30(floor_div(2 * int64_t{kHalfDepth} - c0, unit));
-  m_lo_ = static_cast<int32_t>(lo);
-  m_span_ = hi >= lo ? static_cast<uint32_t>(hi - lo) : 0;
-  // W = w 2^ew: w's Q16.16 is W 2^(16 - ew). ew >= 11: the plain bound keeps w below 2^18.
-  w_shift_ = ew - 16;
+  guard_free_ = inside_guard_band(mvp, bound, guard);
   enabled_ = true;
+  run_ = {rows_[3], rows_[0], rows_[1], w_lo_, static_cast<int32_t>(w_span_), n_max_, f_,
+          acc_x_,   acc_y_,   c1_,      ps_,   static_cast<int32_t>(c0_),     kz_,    w_shift_,
+          0};
 }
 
-// The planes a short-path vertex is outside of: x and y (subpixels, y down) against the guard
-// band, m (z = c0 + m 2^kz) against the depth range.
-uint8_t ScreenTransform::outside(int32_t x, int32_t y, int32_t m) const {
-  uint32_t code = 0;
-  if (m < m_lo_) code |= kClipNear;
-  if (static_cast<int64_t>(m) > int64_t{m_lo_} + m_span_) code |= kClipFar;
-  if (x < x_lo_) code |= kClipLeft;
-  if (static_cast<int64_t>(x) > int64_t{x_lo_} + x_span_) code |= kClipRight;
-  if (static_cast<int64_t>(y) > int64_t{y_lo_} + y_span_) code |= kClipBottom;  // y is down
-  if (y < y_lo_) code |= kClipTop;
-  return static_cast<uint8_t>(code);
+size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
+                            const uint32_t (&tail)[2]) const {
+  if constexpr (!kShortPathRun) {
+    size_t k = 0;
+    for (; k < count; ++k) {
+      if (!project(p[k], out[k])) break;
+      __builtin_memcpy(reinterpret_cast<unsigned char*>(&out[k]) + 16, tail, 8);
+    }
+    return k;
+  } else {
+    if (count == 0) return 0;
+    static_assert(sizeof(Vec3) == 12 && sizeof(ScreenVertex) == 24 &&
+                  offsetof(ScreenVertex, color) == 16 && offsetof(ScreenVertex, outcode) == 22);
+    const Vec3* const start = p;
+    const Vec3* const end = p + count;
+    const RunWords* const k = &run_;
+    const uint32_t* const t = tail;
+    // project() for run_ready() draws: each step as there, its integers the same (SMMLA is
+    // mla_hi, SMMUL mul_hi, UMULL's high word mul_hi_u, UDIV recip16, SSAT saturate_signed).
+    asm volatile(
+        "1:\n\t"
+        "ldmia   %[p]!, {r4, r5, r6}\n\t"  // the position, Q16.16
+        "ldr     r8, [%[k], #76]\n\t"      // ps
+        "lsl     r4, r4, r8\n\t"
+        "lsl     r5, r5, r8\n\t"
+        "lsl     r6, r6, r8\n\t"
+        "ldrd    r8, r9, [%[k], #0]\n\t"  // the w row
+        "ldrd    r10, r11, [%[k], #8]\n\t"
+        "smmla   r11, r8, r4, r11\n\t"
+        "smmla   r11, r9, r5, r11\n\t"
+        "smmla   r11, r10, r6, r11\n\t"    // W
+        "ldrd    r8, r9, [%[k], #48]\n\t"  // w_lo, w_span
+        "sub     r8, r11, r8\n\t"
+        "cmp     r8, r9\n\t"
+        "bhi     2f\n\t"                   // not in the short path's range
+        "ldrd    r8, r9, [%[k], #16]\n\t"  // the x row
+        "ldrd    r10, r12, [%[k], #24]\n\t"
+        "smmla   r12, r8, r4, r12\n\t"
+        "smmla   r12, r9, r5, r12\n\t"
+        "smmla   r12, r10, r6, r12\n\t"    // X
+        "ldrd    r8, r9, [%[k], #32]\n\t"  // the y row
+        "ldrd    r10, lr, [%[k], #40]\n\t"
+        "smmla   lr, r8, r4, lr\n\t"
+        "smmla   lr, r9, r5, lr\n\t"
+        "smmla   lr, r10, r6, lr\n\t"  // Y
+        "clz     r4, r11\n\t"          // n
+        "lsl     r5, r11, r4\n\t"      // d = W 2^n
+        "lsr     r6, r5, #16\n\t"
+        "mvn     r8, #0\n\t"
+        "udiv    r6, r8, r6\n\t"   // recip16(d >> 16)
+        "lsl     r6, r6, #13\n\t"  // x0
+        "umull   r8, r9, r5, r6\n\t"
+        "rsb     r9, r9, #0x20000000\n\t"  // eh
+        "lsl     r9, r9, #3\n\t"
+        "smmla   r6, r6, r9, r6\n\t"       // recip_q61(d)
+        "ldrd    r8, r9, [%[k], #56]\n\t"  // n_max, f
+        "sub     r8, r8, r4\n\t"
+        "lsr     r6, r6, r8\n\t"           // r
+        "ldrd    r4, r5, [%[k], #64]\n\t"  // acc_x, acc_y
+        "smmla   r12, r12, r6, r4\n\t"
+        "asr     r12, r12, r9\n\t"
+        "ssat    r12, #23, r12\n\t"  // x
+        "smmla   lr, lr, r6, r5\n\t"
+        "asr     lr, lr, r9\n\t"
+        "ssat    lr, #23, lr\n\t"          // y
+        "ldr     r4, [%[k], #72]\n\t"      // c1
+        "smmul   r4, r4, r6\n\t"           // m
+        "ldrd    r5, r8, [%[k], #80]\n\t"  // c0, kz
+        "lsl     r4, r4, r8\n\t"
+        "add     r4, r4, r5\n\t"       // z
+        "ldr     r5, [%[k], #88]\n\t"  // w_shift
+        "lsr     r11, r11, r5\n\t"     // w, Q16.16
+        "strd    r12, lr, [%[out]]\n\t"
+        "strd    r4, r11, [%[out], #8]\n\t"
+        "ldrd    r4, r5, [%[t]]\n\t"  // colour, outcode 0, pending
+        "strd    r4, r5, [%[out], #16]\n\t"
+        "add     %[out], %[out], #24\n\t"
+        "cmp     %[p], %[end]\n\t"
+        "bne     1b\n\t"
+        "b       3f\n"
+        "2:\n\t"
+        "sub     %[p], %[p], #12\n"  // back to the vertex that left
+        "3:\n"
+        : [p] "+r"(p), [out] "+r"(out)
+        : [end] "r"(end), [k] "r"(k), [t] "r"(t)
+        : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
+    return static_cast<size_t>(p - start);
+  }
+}
+
+// Under GL's perspective, w between the near and far planes' (w_near = B / (A - 1),
+// w_far = B / (A + 1), window z increasing with w when B < 0), a margin of 2^-16 of w (and of
+// the Q16.16 rounding of w_near, w_far) inside: there the computed z stays within its range
+// (its error, a few units of 2^kz, is far below the margin's change of z). w_lo, w_hi narrowed
+// to it (W = w 2^ew); false when the projection's planes are not that (then the z row decides).
+bool ScreenTransform::perspective_range(const Mat4& projection, int ew, int64_t& w_lo,
+                                        int64_t& w_hi) {
+  const int64_t a = projection.m[2][2].raw, bb = projection.m[2][3].raw;
+  if (bb >= 0 || a - Fixed::kOne == 0 || a + Fixed::kOne == 0) return false;
+  const int64_t near = bb * Fixed::kOne / (a - Fixed::kOne);  // Q16.16, |B| 2^16 < 2^47
+  const int64_t far = bb * Fixed::kOne / (a + Fixed::kOne);
+  if (near <= 0 || far <= near) return false;
+  const int sh = ew - 16;                // >= 0: W = w_q16 2^sh
+  const int64_t cap = int64_t{1} << 40;  // beyond kMaxW: only a comparison
+  const int64_t wn = near >= (cap >> sh) ? cap : near << sh;
+  const int64_t wf = far >= (cap >> sh) ? cap : far << sh;
+  const int64_t slack = (int64_t{1} << sh) + 2;  // w_near's and w_far's own rounding
+  const int64_t lo = wn + (wn >> 16) + slack, hi = wf - (wf >> 16) - slack;
+  if (lo > w_lo) w_lo = lo;
+  if (hi < w_hi) w_hi = hi;
+  return true;
+}
+
+// Whether every position within the bound projects inside the guard band: the cube's corners
+// (exact clip coordinates) in front of the eye and within 7/8 of the band (the projection is
+// linear in clip space and the band convex: the cube's inside follows).
+bool ScreenTransform::inside_guard_band(const Mat4& mvp, uint32_t bound, GuardBand guard) {
+  const int32_t hi = static_cast<int32_t>(bound), lo = -hi - 1;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 p{Fixed::from_raw(c & 1 ? hi : lo), Fixed::from_raw(c & 2 ? hi : lo),
+                 Fixed::from_raw(c & 4 ? hi : lo)};
+    const ClipCoord q = transform_point(mvp, p);  // |coordinates| < 2^47 (the plain bound)
+    if (q.w <= 0) return false;
+    const int64_t gx = q.w * guard.gx - ((q.w * guard.gx) >> 3);
+    const int64_t gy = q.w * guard.gy - ((q.w * guard.gy) >> 3);
+    if (q.x > gx || q.x < -gx || q.y > gy || q.y < -gy) return false;
+  }
+  return true;
 }
 
 }  // namespace lr

@@ -44,6 +44,24 @@ TransformSummary VertexStage::transform_range(const Mesh& mesh, const VertexColo
       colors.lit || mesh.colors.empty() ? nullptr : mesh.colors.data() + first;
   const uint8_t pending = colors.pending ? 1 : 0;
   uint32_t wide = 0, outcodes = 0;
+  if (plain && mesh_colors == nullptr && screen_.run_ready()) {
+    // Every vertex's last 8 bytes the same (colour, outcode 0, pending flag): the short path's
+    // run, and the exact path for each vertex it leaves.
+    const uint32_t tail[2] = {uint32_t{fixed.r} | uint32_t{fixed.g} << 16,
+                              uint32_t{fixed.b} | uint32_t{pending} << 24};
+    for (size_t k = 0; k < count;) {
+      k += screen_.run(positions + k, count - k, out + k, tail);
+      if (k == count) break;
+      ScreenVertex& sv = out[k];
+      project_exact(positions[k], sv);
+      ++wide;
+      outcodes |= sv.outcode;
+      sv.color_pending = pending;
+      sv.color = fixed;
+      ++k;
+    }
+    return {wide, static_cast<uint8_t>(outcodes)};
+  }
   for (size_t k = 0; k < count; ++k) {
     ScreenVertex& sv = out[k];
     // The short path (32-bit rows, one reciprocal of w), else the exact one on 64-bit clip
