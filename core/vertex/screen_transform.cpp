@@ -159,6 +159,9 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, const Mat4* projection, uint32
   y_span_ = static_cast<uint32_t>(2 * ly);
   guard_free_ = inside_guard_band(mvp, bound, guard);
   enabled_ = true;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 3; ++j) split_[i][j] = halves(rows_[i].a[j]);
+  c1_split_ = halves(c1_);
   run_ = {rows_[3], rows_[0], rows_[1], w_lo_, static_cast<int32_t>(w_span_), n_max_, f_,
           acc_x_,   acc_y_,   c1_,      ps_,   static_cast<int32_t>(c0_),     kz_,    w_shift_,
           0};

@@ -81,6 +81,10 @@ class ScreenTransform {
   // GL's perspective (glFrustum, gluPerspective): z_clip = A z_eye + B, w_clip = -z_eye.
   static bool is_perspective(const Mat4& projection);
 
+  // project() as cores without a 64-bit product compute it (project() there): public for the
+  // tests, which check that both give the same integers.
+  [[gnu::always_inline]] bool project_halves(const Vec3& p, ScreenVertex& v) const;
+
   // project() over positions [p, p + count) into out (x, y, z, w, and the last 8 bytes from
   // tail: colour, outcode 0, pending flag) while each takes the short path; returns how many
   // did (the next needs the exact path). Hand-allocated registers on cores with the DSP
@@ -112,6 +116,8 @@ class ScreenTransform {
     int32_t w_lo, w_span, n_max, f, acc_x, acc_y, c1, ps, c0, kz, w_shift, pad;
   };
   RunWords run_{};
+  Halves split_[4][3] = {};  // rows_[i].a[j] split (project_halves)
+  Halves c1_split_{};
   int ps_ = 0;  // position shift: |p << ps| <= 2^31
   // The short path when W is in [w_lo, w_lo + w_span]: w_lo >= 2^(31 - n_max) (the precision),
   // w_lo + w_span <= 2^30 - 1 (every shift below defined); under GL's perspective also the near
@@ -137,7 +143,24 @@ class ScreenTransform {
   bool enabled_ = false;
 };
 
+// clz of w for w in [2^22, 2^30) (n in [2, 9], the short path's range) in three compares: the
+// form for cores without CLZ (Armv6-M, where libgcc's takes about 20 instructions).
+constexpr int clz_short_path(uint32_t w) {
+  int n = 2;
+  if (w < (1u << 26)) {
+    n += 4;
+    w <<= 4;
+  }
+  if (w < (1u << 28)) {
+    n += 2;
+    w <<= 2;
+  }
+  if (w < (1u << 29)) n += 1;
+  return n;
+}
+
 inline bool ScreenTransform::project(const Vec3& p, ScreenVertex& v) const {
+  if constexpr (kSplitWideProducts) return project_halves(p, v);
   // C++20 shifts are modular: a position beyond the bound gives a wrong vertex, never UB.
   const int32_t px = p.x.raw << ps_, py = p.y.raw << ps_, pz = p.z.raw << ps_;
   auto row = [&](int i) {
@@ -157,6 +180,49 @@ inline bool ScreenTransform::project(const Vec3& p, ScreenVertex& v) const {
   if (guard_free_) {
     // Inside the band for every position within the bound; the clamp keeps a position beyond
     // it (a wrong Mesh::bound) inside the coordinate budget.
+    xs = saturate_signed<23>(xs);
+    ys = saturate_signed<23>(ys);
+  } else if (static_cast<uint32_t>(xs - x_lo_) > x_span_ ||
+             static_cast<uint32_t>(ys - y_lo_) > y_span_) [[unlikely]] {
+    return false;
+  }
+  if (!affine_z_ && static_cast<uint32_t>(m - m_lo_) > m_span_) [[unlikely]]
+    return false;
+  v.x = xs;
+  v.y = ys;
+  v.z = c0_ + (static_cast<uint32_t>(m) << kz_);
+  v.w = static_cast<uint32_t>(w) >> w_shift_;
+  v.outcode = 0;
+  return true;
+}
+
+// project() with split products (cores without a 64-bit product): each matrix entry, c1 and the
+// accumulators split once per draw, each position coordinate and the reciprocal once per vertex;
+// the same integers.
+inline bool ScreenTransform::project_halves(const Vec3& p, ScreenVertex& v) const {
+  const Halves px = halves(p.x.raw << ps_), py = halves(p.y.raw << ps_),
+               pz = halves(p.z.raw << ps_);
+  auto row = [&](int i) {
+    const Halves* a = split_[i];
+    return static_cast<int32_t>(static_cast<uint32_t>(rows_[i].t) +
+                                static_cast<uint32_t>(mul_hi_halves(a[2], pz)) +
+                                static_cast<uint32_t>(mul_hi_halves(a[1], py)) +
+                                static_cast<uint32_t>(mul_hi_halves(a[0], px)));
+  };
+  const int32_t w = row(3);
+  if (static_cast<uint32_t>(w) - static_cast<uint32_t>(w_lo_) > w_span_) return false;
+  const int32_t x = row(0), y = row(1);
+  const int n = clz_short_path(static_cast<uint32_t>(w));
+  const Halves r =
+      halves(static_cast<int32_t>(recip_q61(static_cast<uint32_t>(w) << n) >> (n_max_ - n)));
+  int32_t xs = static_cast<int32_t>(static_cast<uint32_t>(acc_x_) +
+                                    static_cast<uint32_t>(mul_hi_halves(halves(x), r))) >>
+               f_;
+  int32_t ys = static_cast<int32_t>(static_cast<uint32_t>(acc_y_) +
+                                    static_cast<uint32_t>(mul_hi_halves(halves(y), r))) >>
+               f_;
+  const int32_t m = affine_z_ ? mul_hi_halves(c1_split_, r) : mul_hi_halves(halves(row(2)), r);
+  if (guard_free_) {
     xs = saturate_signed<23>(xs);
     ys = saturate_signed<23>(ys);
   } else if (static_cast<uint32_t>(xs - x_lo_) > x_span_ ||

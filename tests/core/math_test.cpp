@@ -299,7 +299,8 @@ TEST(Reciprocal, Recip32AndTheTwoByOneDivisionEqualTheDivisions) {
 
 // The vertex stage's reciprocal of w: within two units of 2^61 / d for every top half of the
 // divisor (what its recip16 seed sees), each with its smallest, largest and a random low half, and
-// for random divisors. Its parts (recip16, the high-word products) are exact on every core.
+// for random divisors; its 32-bit-product form (Armv6-M) the same integer. Its parts (recip16,
+// the high-word products) are exact on every core.
 TEST(Reciprocal, RecipQ61IsWithinTwoUnitsOfTheQuotient) {
   XorShift64 next{0x2545F4914F6CDD1Du};
   int64_t worst = 0;
@@ -309,6 +310,8 @@ TEST(Reciprocal, RecipQ61IsWithinTwoUnitsOfTheQuotient) {
     // x in [2^61 / d - 2, 2^61 / d + 2): between floor - 2 and floor + 2.
     ASSERT_GE(x, y - 2) << d;
     ASSERT_LE(x, y + 2) << d;
+    // The form for cores without a 64-bit product: the same integer.
+    ASSERT_EQ(detail::recip_q61_split(d), recip_q61(d)) << d;
     worst = std::max(worst, x > y ? x - y : y - x);
   };
   for (uint32_t top = 1u << 15; top < (1u << 16); ++top) {
@@ -351,6 +354,8 @@ TEST(WideMul, SplitHighWordsEqualTheSixtyFourBitProducts) {
   auto check = [](int32_t a, int32_t b) {
     const int64_t p = int64_t{a} * b;
     ASSERT_EQ(detail::mul_hi_split(a, b), static_cast<int32_t>(p >> 32)) << a << " * " << b;
+    ASSERT_EQ(mul_hi_halves(halves(a), halves(b)), static_cast<int32_t>(p >> 32))
+        << a << " * " << b;
     ASSERT_EQ(mul_hi(a, b), static_cast<int32_t>(p >> 32)) << a << " * " << b;
     ASSERT_EQ(detail::mul_wide_split(a, b), p) << a << " * " << b;
     ASSERT_EQ(mla_hi(a, b, 12345), static_cast<int32_t>((p >> 32) + 12345)) << a << " * " << b;

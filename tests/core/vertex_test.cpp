@@ -156,7 +156,8 @@ RandomDraw random_draw(std::mt19937_64& rng) {
 // half a subpixel plus 2^-kShortPathFractionBits plus 2^-19 of their distance from the centre,
 // z within 2^12 of 2^32 (1/16 of a 16-bit step), w within 2^-19 of itself. It hands the exact
 // path the vertices outside a plane and those of small w, and almost never one inside every plane
-// in the draw's far half.
+// in the draw's far half. Its split-product form (project_halves: the Cortex-M0+'s) gives the same
+// integers.
 TEST(ShortPath, AgreesWithTheQuotientsOfItsClipCoordinates) {
   std::mt19937_64 rng(36);
   const int width = 320, height = 240;
@@ -201,7 +202,17 @@ TEST(ShortPath, AgreesWithTheQuotientsOfItsClipCoordinates) {
                           std::abs(qz) < dz * (1 - 1.0 / 1024);
       ScreenVertex v;
       v.outcode = 0xEE;
-      if (!st.project(d.positions[k], v)) {
+      // The split-product form (Armv6-M's) gives the same integers.
+      ScreenVertex vh;
+      vh.outcode = 0xEE;
+      const bool taken = st.project(d.positions[k], v);
+      ASSERT_EQ(st.project_halves(d.positions[k], vh), taken) << draw << " " << k;
+      ASSERT_EQ(vh.x, v.x);
+      ASSERT_EQ(vh.y, v.y);
+      ASSERT_EQ(vh.z, v.z);
+      ASSERT_EQ(vh.w, v.w);
+      ASSERT_EQ(vh.outcode, v.outcode);
+      if (!taken) {
         ++exact_path;
         EXPECT_EQ(v.outcode, 0xEE);
         if (inside && w > max_w / 2) ++exact_far;
