@@ -1,12 +1,14 @@
 // The core's umbrella header: everything a program needs to render a frame (renderer, storage,
-// camera, meshes, materials, lights, textures, the strip sink it implements). Including the
-// parts one by one compiles faster; this is for a first program and for examples.
+// camera, meshes, materials, lights, textures, the strip sink it implements, the frame-buffer
+// sink). Including the parts one by one compiles faster; this is for a first program and for
+// examples.
 #pragma once
 
 #include "lineraster/core/lighting/lighting.hpp"
 #include "lineraster/core/math/fixed.hpp"
 #include "lineraster/core/math/mat4.hpp"
 #include "lineraster/core/output/color.hpp"
+#include "lineraster/core/output/frame_buffer_sink.hpp"
 #include "lineraster/core/output/frame_stats.hpp"
 #include "lineraster/core/output/pixel_format.hpp"
 #include "lineraster/core/output/status.hpp"

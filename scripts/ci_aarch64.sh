@@ -2,8 +2,9 @@
 # 64-bit ARM Linux run (bit-identical frames on every platform, as scripts/ci_armhf.sh for 32-bit
 # ARM): builds the core and the core's tests for arm64 (the aarch64 preset:
 # toolchain/aarch64-linux-gnu.cmake, LR_DISPLAY_BACKENDS and LR_BENCH off) and runs them under
-# qemu-aarch64. core_frame_hash_test compares each frame's hash with the x86-64 value, so a pass
-# means the AArch64 frames equal the x86-64 ones byte for byte.
+# qemu-aarch64. core_frame_hash_test compares each pinned scene's frame hash with the x86-64
+# debug build's, computed first in this run (scripts/lib/x86_frame_hashes.sh), so a pass means
+# the AArch64 frames equal the x86-64 ones byte for byte.
 #
 # Only the core's test executables are built (tests/core/CMakeLists.txt; they pull in lr_core,
 # lr_hal, lr_host and lr_reference): the whole suite takes several times longer to compile on
@@ -16,6 +17,7 @@
 # Usage: scripts/ci_aarch64.sh            (from any directory; scripts/setup.sh test installs
 #                                          g++-aarch64-linux-gnu and qemu-user)
 #   LR_AARCH64_TESTS="core_frame_hash_test" scripts/ci_aarch64.sh   run a subset
+#   LR_HOST_FRAME_HASH_TEST   the x86-64 frame-hash test (default: build/debug's, built if needed)
 # GoogleTest, libpng and zlib for arm64: scripts/armhf_sysroot.sh --arch arm64 (a private
 # folder, build/arm64-sysroot; the host's dpkg is not touched).
 # Exit status: 0 on success, 1 on any failure (with a message saying which).
@@ -28,8 +30,8 @@ build="$repo_root/build/aarch64"
 jobs=$(nproc)
 start=$SECONDS
 tests=(core_math_test core_raster_rules_test core_accuracy_test core_clipping_test
-       core_capacity_test core_depth_test core_golden_test core_watertight_test core_texture_test
-       core_phong_test core_phong_accuracy_test core_frame_hash_test)
+       core_capacity_test core_depth_test core_watertight_test core_texture_test
+       core_phong_test core_phong_accuracy_test core_frame_hash_test core_frame_accuracy_test)
 if [ -n "${LR_AARCH64_TESTS:-}" ]; then
   read -r -a tests <<<"$LR_AARCH64_TESTS"
 fi
@@ -59,6 +61,12 @@ cmake --preset "$preset" -DLR_DISPLAY_BACKENDS=OFF -DLR_BENCH=OFF >/dev/null \
 cmake --build --preset "$preset" -j"$jobs" --target "${tests[@]}" \
   || fail "aarch64 build failed (see the compiler output above)"
 elapsed "configure + build (${#tests[@]} test executables)" "$t"
+
+# The x86-64 frames' hashes, which core_frame_hash_test under qemu-aarch64 compares with its own.
+# shellcheck source=scripts/lib/x86_frame_hashes.sh
+source scripts/lib/x86_frame_hashes.sh
+export LR_FRAME_HASHES="$build/frame_hashes_x86_64.txt"
+lr_x86_frame_hashes "$LR_FRAME_HASHES" || fail "no x86-64 frame hashes to compare with"
 
 # One executable under the emulator; one line saying how it went (its output in the log).
 run_one() {  # target

@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # 32-bit ARM Linux run (frames bit-identical on every platform): builds the core, the
 # host simulator and the tests for armhf (the armhf preset: toolchain/arm-linux-gnueabihf.cmake)
-# and runs them through CTest under qemu-arm. core_frame_hash_test compares each frame's hash
-# with the x86-64 value, so a pass means the ARM frames equal the x86-64 ones byte for byte.
+# and runs them through CTest under qemu-arm. core_frame_hash_test compares each pinned scene's
+# frame hash with the x86-64 debug build's, computed first in this run
+# (scripts/lib/x86_frame_hashes.sh), so a pass means the ARM frames equal the x86-64 ones byte
+# for byte.
 #
 # Usage: scripts/ci_armhf.sh            (from any directory; scripts/setup.sh test installs
 #                                        g++-arm-linux-gnueabihf and qemu-user)
 #   LR_ARMHF_CTEST_ARGS="-R FrameHash" scripts/ci_armhf.sh   run a subset
+#   LR_HOST_FRAME_HASH_TEST   the x86-64 frame-hash test (default: build/debug's, built if needed)
 # GoogleTest, libpng and zlib for armhf: scripts/armhf_sysroot.sh (a private folder; the host's
 # dpkg is not touched). Not built for ARM: the benchmarks (LR_BENCH OFF), the GL check (no Mesa
 # in the sysroot), the stress suite (__int128) -- see tests/CMakeLists.txt.
@@ -40,6 +43,12 @@ t=$SECONDS
 cmake --preset "$preset" >/dev/null || fail "configure of preset $preset failed"
 cmake --build --preset "$preset" -j"$jobs" || fail "armhf build failed (see the compiler output above)"
 elapsed "configure + build" "$t"
+
+# The x86-64 frames' hashes, which core_frame_hash_test under qemu-arm compares with its own.
+# shellcheck source=scripts/lib/x86_frame_hashes.sh
+source scripts/lib/x86_frame_hashes.sh
+export LR_FRAME_HASHES="$repo_root/build/$preset/frame_hashes_x86_64.txt"
+lr_x86_frame_hashes "$LR_FRAME_HASHES" || fail "no x86-64 frame hashes to compare with"
 
 t=$SECONDS
 # shellcheck disable=SC2086  # word splitting of the extra arguments is intended

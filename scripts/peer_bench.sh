@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # The peer scenes as a benchmark of the project (tests/data/peer/README.md: the six scenes on
-# which TGX, small3dlib and TinyGL were measured on a Cortex-M4F). Runs lr_peer (firmware/peer)
-# of each bare-metal build tree under QEMU with the instruction-counting plugin
-# (scripts/icount.sh) and checks that every case line (frame checksum and frame statistics)
-# equals the host build's (lr_peer_host), byte for byte; then attributes each frame's
-# instructions to source folders (scripts/icount_profile.py --by folder) and prints one Markdown
-# table per core (scripts/peer_tables.py), with the PSNR of each frame against the double
-# reference (lr_peer_psnr, host).
+# which TGX, small3dlib and TinyGL were measured on a Cortex-M4F). Runs the two images of
+# firmware/peer of each bare-metal build tree, lr_peer (every span routine linked) and
+# lr_peer_spans (each scene's renderer restricted to the span set of its draw state), under QEMU
+# with the instruction-counting plugin (scripts/icount.sh) and checks that every case line (frame
+# checksum and frame statistics) equals the host build's (lr_peer_host), byte for byte; then
+# attributes each frame's instructions to source folders (scripts/icount_profile.py --by folder)
+# and prints one Markdown table per core and image (scripts/peer_tables.py), with the PSNR of
+# each frame against the double reference and, for the RGB565 frame, against Mesa with the
+# pixels covered by one of the two only (lr_peer_psnr, host; tests/firmware_host/peer_figures.hpp
+# says how they are measured).
 # Benchmark figures: printed, never compared with a threshold. Builds nothing: every program must
 # have been built (the message says which target is missing).
 #
@@ -34,7 +37,7 @@
 #   LR_PEER_HOST   the host build (default build/debug/tests/firmware_host/lr_peer_host)
 #   LR_PEER_PSNR   the reference comparison (default build/debug/tests/firmware_host/lr_peer_psnr)
 #   LR_ICOUNT_PLUGIN  the plugin (scripts/icount.sh's default otherwise)
-# Tables also go to out/peer_bench/<tree>.md.
+# Tables also go to out/peer_bench/<tree>.md (lr_peer) and <tree>.spans.md (lr_peer_spans).
 set -euo pipefail
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
@@ -73,44 +76,59 @@ if ((!check_only)); then
 fi
 
 tables=()
+titles=()
 for tree in "${trees[@]}"; do
   list="$tree/firmware/images.txt"
   [[ -f "$list" ]] || fail "$list missing (configure $tree: LR_HOST_TOOLS_DIR=\$PWD/build/debug cmake --preset $(basename "$tree"))"
-  line="$(grep '^lr_peer ' "$list" || true)"
-  [[ -n "$line" ]] || fail "no lr_peer image in $list (reconfigure $tree from a source tree with firmware/peer)"
-  read -r _ board machine elf <<<"$line"
-  [[ -f "$elf" ]] || fail "$elf not built (cmake --build $tree --target lr_peer)"
   core="$(basename "$tree")"
-  t0=$SECONDS
-  run="$(bash scripts/icount.sh --machine "$machine" "$elf" lr_bench_marker)" \
-    || { echo "$run" >&2; fail "lr_peer failed under QEMU ($tree)"; }
-  target_cases="$(grep '^lr_bench: case ' <<<"$run")"
-  [[ -n "$target_cases" && "$target_cases" == "$host_cases" ]] \
-    || fail "$core frames differ from the host's:"$'\n'"$(diff <(echo "$host_cases") <(echo "$target_cases") || true)"
-  echo "peer_bench: $core ($board): $(grep -c '^lr_bench: case ' <<<"$run") frames identical to the host's ($((SECONDS - t0)) s)"
-  ((check_only)) && continue
+  # lr_peer: every span routine linked; lr_peer_spans: each scene's span set. Both must draw the
+  # host's frames.
+  for image in lr_peer lr_peer_spans; do
+    line="$(grep "^$image " "$list" || true)"
+    [[ -n "$line" ]] || fail "no $image image in $list (reconfigure $tree from a source tree with firmware/peer)"
+    read -r _ board machine elf <<<"$line"
+    [[ -f "$elf" ]] || fail "$elf not built (cmake --build $tree --target $image)"
+    if [[ $image == lr_peer ]]; then
+      label="$core"
+      linked="every span routine linked"
+      title="$core"
+    else
+      label="$core.spans"
+      linked="each scene's span set linked"
+      title="$core, each scene's span set (lr_peer_spans)"
+    fi
+    t0=$SECONDS
+    run="$(bash scripts/icount.sh --machine "$machine" "$elf" lr_bench_marker)" \
+      || { echo "$run" >&2; fail "$image failed under QEMU ($tree)"; }
+    target_cases="$(grep '^lr_bench: case ' <<<"$run")"
+    [[ -n "$target_cases" && "$target_cases" == "$host_cases" ]] \
+      || fail "$core $image frames differ from the host's:"$'\n'"$(diff <(echo "$host_cases") <(echo "$target_cases") || true)"
+    echo "peer_bench: $core ($board) $image: $(grep -c '^lr_bench: case ' <<<"$run") frames identical to the host's ($((SECONDS - t0)) s)"
+    ((check_only)) && continue
 
-  echo "$run" >"$out/$core.run.txt"
-  t0=$SECONDS
-  python3 scripts/icount_profile.py --machine "$machine" "$elf" --by folder >"$out/$core.profile.txt" \
-    || fail "icount_profile.py failed on $elf"
-  echo "peer_bench: $core: profiles of every frame ($((SECONDS - t0)) s)"
-  table="$out/$core.md"
-  {
-    echo "**$core** (lr_peer on QEMU $machine), 320x240 RGB565, strips of 8 rows, default settings (frame = begin_frame + draw + render; the sink does no per-pixel work). Each stage: instructions per frame (per unit$([[ $core == cortex-m4f ]] && echo "; the M4F budget")). PSNR: the core's RGB888 frame against the double reference over the pixels both cover (host)."
+    echo "$run" >"$out/$label.run.txt"
+    t0=$SECONDS
+    python3 scripts/icount_profile.py --machine "$machine" "$elf" --by folder >"$out/$label.profile.txt" \
+      || fail "icount_profile.py failed on $elf"
+    echo "peer_bench: $core $image: profiles of every frame ($((SECONDS - t0)) s)"
+    table="$out/$label.md"
+    {
+      echo "**$core** ($image on QEMU $machine: $linked), 320x240 RGB565, strips of 8 rows, default settings (frame = begin_frame + draw + render; the sink does no per-pixel work). Each stage: instructions per frame (per unit$([[ $core == cortex-m4f ]] && echo "; the M4F budget")). PSNR: the core's RGB888 frame against the double reference over the pixels both cover (host). vs Mesa: the RGB565 frame against Mesa's RGB888 frame over the whole frame (the background as the panel shows it), and the pixels covered by one of the two only (host)."
+      echo
+      python3 scripts/peer_tables.py "$core" "$out/$label.run.txt" "$out/$label.profile.txt" "$out/psnr.txt"
+    } >"$table" || fail "could not make the tables ($tree, $image)"
+    cat "$table"
     echo
-    python3 scripts/peer_tables.py "$core" "$out/$core.run.txt" "$out/$core.profile.txt" "$out/psnr.txt"
-  } >"$table" || fail "could not make the tables ($tree)"
-  cat "$table"
-  echo
-  tables+=("$table")
+    tables+=("$table")
+    titles+=("$title")
+  done
 done
 
 if ((write_docs)); then
-  for table in "${tables[@]}"; do
-    echo "## $(basename "$table" .md)"
+  for i in "${!tables[@]}"; do
+    echo "## ${titles[$i]}"
     echo
-    cat "$table"
+    cat "${tables[$i]}"
     echo
   done | python3 scripts/write_measurements.py peer_scenes "bash scripts/peer_bench.sh --write-docs" \
     "The peer scenes on Cortex-M4F and M0+"

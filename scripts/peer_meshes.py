@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes the two peer-scene meshes that are built in code rather than loaded
-(../shared/peer-scenes/README.md; tests/data/peer/README.md): tests/data/peer/cube.obj and
+(tests/data/peer/README.md): tests/data/peer/cube.obj and
 tests/data/peer/ground.obj. Their outputs are committed (a few hundred bytes each); run this
 again only to change them.
 

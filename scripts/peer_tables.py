@@ -7,7 +7,7 @@ output): one Markdown table per core from
 
 usage: scripts/peer_tables.py CORE RUN PROFILE PSNR
 
-CORE cortex-m4f gets the TGX figures (../shared/peer-scenes/README.md, Cortex-M4F) and the M4F
+CORE cortex-m4f gets the TGX figures (tests/data/peer/README.md, Cortex-M4F) and the M4F
 budgets of the issue "Fast on the chip" beside the counts; other cores get the counts alone.
 The stage mapping and the budgets are documented in scripts/peer_bench.sh's header.
 """
@@ -128,9 +128,9 @@ def main(argv):
             "per pixel written", "per input triangle"]
     if m4f:
         head += ["TGX (M4F)", "ratio to TGX"]
-    head += ["PSNR (within 1 level)"]
+    head += ["PSNR (within 1 level)", "vs Mesa: PSNR, coverage mismatch"]
     print("| " + " | ".join(head) + " |")
-    print("|---|" + "---:|" * (len(head) - 2) + "---|")
+    print("|---|" + "---:|" * (len(head) - 3) + "---|---|")
     no_lines = []
     for name, ins, st in cases:
         written, tris = int(st["pixels_written"]), int(st["triangles_in"])
@@ -167,6 +167,10 @@ def main(argv):
         if p:
             same = "" if not textured else (f"; {p['psnr_same_texels']} dB with the RGB565 texels")
             cells.append(f"{p['psnr']} dB ({p['within1']} %){same}")
+        else:
+            cells.append("-")
+        if p and "mesa_psnr565" in p:
+            cells.append(f"{p['mesa_psnr565']} dB, {p['mesa_coverage_diff']} px")
         else:
             cells.append("-")
         print("| " + " | ".join(cells) + " |")

@@ -3,7 +3,7 @@
 # Usage: scripts/setup.sh [demo|test]   (demo: what rendering needs; test: everything)
 set -euo pipefail
 what=${1:-test}
-pkgs=(g++ make cmake libpng-dev libjpeg-dev)
+pkgs=(g++ make cmake libpng-dev libjpeg-dev libgif-dev)  # libgif-dev: lineraster-sim's GIF (optional)
 if [ "$what" = test ]; then
   pkgs+=(libgtest-dev libbenchmark-dev valgrind libosmesa6-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
          libstdc++-arm-none-eabi-newlib qemu-system-arm

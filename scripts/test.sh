@@ -72,7 +72,7 @@ step "bare metal: footprint (flash, RAM, worst-case and measured stack) for M0+ 
 cmake --preset cortex-m4f-size -DLR_HOST_TOOLS_DIR="$LR_HOST_TOOLS_DIR" >/dev/null
 bash scripts/footprint.sh build/cortex-m0plus build/cortex-m4f build/cortex-m4f-size
 
-step "consumers: add_subdirectory, FetchContent, find_package and a Cortex-M4F package under QEMU, each drawing the examples' frame"
+step "consumers: add_subdirectory, FetchContent; find_package of lr::core, lr::hal, lr::host and a header from the installed lineraster-asset (host tools on); a Cortex-M4F package under QEMU; each checked"
 bash scripts/consumers.sh build/consumers
 
 step "32-bit ARM Linux build + tests under qemu-arm, frames hashed against x86-64's"

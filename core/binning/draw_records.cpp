@@ -7,10 +7,7 @@ namespace lr {
 Status FrontEnd::add_draw_record(const DrawState& state, bool has_color_planes, uint32_t triangles,
                                  uint8_t& index) {
   // Without a draw record the whole draw is dropped, and counted.
-  if (draw_count_ >= draws_.size()) {
-    refuse(triangles, false);
-    return Status::kCapacity;
-  }
+  if (draw_count_ >= draws_.size()) return refuse(Status::kCapacity, triangles, false);
   DrawRecord r;
   r.depth = state.depth_test;
   r.flat = state.shading == Shading::kFlat;
@@ -34,6 +31,28 @@ Status FrontEnd::add_draw_record(const DrawState& state, bool has_color_planes, 
   index = static_cast<uint8_t>(draw_count_);
   draws_[draw_count_++] = r;
   return Status::kOk;
+}
+
+Status FrontEnd::refuse(Status why, uint32_t triangles, bool vertex_store) {
+  if (refused_ == Status::kOk) refused_ = why;
+  switch (why) {
+    case Status::kInvalidArgument:
+      ++stats_.draws_refused_invalid;
+      break;
+    case Status::kNotLinked:
+      ++stats_.draws_refused_not_linked;
+      break;
+    case Status::kMissingStore:
+      ++stats_.draws_refused_missing_store;
+      break;
+    default:  // kCapacity
+      ++stats_.draws_refused_capacity;
+      (vertex_store ? refused_vertices_ : refused_triangles_) += triangles;
+      (vertex_store ? stats_.dropped_vertex_capacity : stats_.dropped_triangle_capacity) +=
+          triangles;
+      break;
+  }
+  return why;
 }
 
 Status FrontEnd::phong_record(FrontEnd& fe, const DrawState& state, const PreparedLighting& pl,

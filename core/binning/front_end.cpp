@@ -75,13 +75,16 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
 Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int strip_height,
                            AdmitFn admit, PhongRecordFn phong) {
   configured_ = false;
+  phase_ = Phase::kIdle;
   if (width < 1 || height < 1 || width > kMaxViewport || height > kMaxViewport)
     return Status::kInvalidArgument;
   if (strip_height < 1 || strip_height > 32) return Status::kInvalidArgument;
-  if (s.draws.empty() || s.draws.size() > 256) return Status::kInvalidArgument;
+  if (s.draws.size() > 256) return Status::kInvalidArgument;
+  // A renderer without a vertex, triangle or draw record could take no draw at all.
+  if (s.draws.empty() || s.vertices.empty() || s.triangles.empty()) return Status::kStoreTooSmall;
   if (!edges_.configure(s.triangles, s.triangle_colors, s.buckets, s.strip_inputs, width, height,
                         strip_height))
-    return Status::kInvalidArgument;
+    return Status::kStoreTooSmall;
   vertices_ =
       s.vertices.size() > kMaxStoreEntries ? s.vertices.first(kMaxStoreEntries) : s.vertices;
   draws_ = s.draws;
@@ -103,7 +106,8 @@ Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int 
 }
 
 Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 background) {
-  if (!configured_) return Status::kInvalidArgument;
+  if (!configured_) return Status::kNotConfigured;
+  phase_ = Phase::kIdle;  // until this frame is begun: a failed begin abandons the last frame
   if (lights.count > kMaxLights) return Status::kInvalidArgument;
   camera_ = camera;
   lights_ = lights;
@@ -134,6 +138,8 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
   stats_.bands = 1;
   stats_.bytes_per_vertex = sizeof(ScreenVertex);
   stats_.bytes_per_binned_triangle = sizeof(BinnedTriangle);
+  refused_ = Status::kOk;
+  phase_ = Phase::kOpen;
   return Status::kOk;
 }
 
@@ -460,28 +466,27 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
 }
 Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& material,
                       const DrawState& state) {
-  if (!configured_) return Status::kInvalidArgument;
+  if (const Status st = frame_status(); st != Status::kOk) return st;
+  // Refused whole, with nothing added and only the draw counted: arguments that disagree, a
+  // state the renderer links no routine for, a store the draw needs that was not given.
   DrawPlan plan;
-  if (plan_draw(mesh, state, lights_, plan) != Status::kOk) return Status::kInvalidArgument;
-  // A state the renderer links no routine for is refused (nothing added, nothing counted).
-  if (!admitted(state, plan.kind)) return Status::kInvalidArgument;
+  if (plan_draw(mesh, state, lights_, plan) != Status::kOk) return refuse(Status::kInvalidArgument);
+  if (!admitted(state, plan.kind)) return refuse(Status::kNotLinked);
+  const bool triangle_colors = !plan.gouraud && !plan.kind.phong;  // flat: colours per triangle
+  if ((plan.uv && tex_.empty()) || ((plan.textured || plan.kind.phong) && !active_extra_) ||
+      (plan.kind.phong &&
+       (surfaces_.empty() || pixel_lights_.empty() ||
+        (state.pixel_lighting == PixelLighting::kTable && lighting_tables_.empty()))) ||
+      (triangle_colors && !edges_.has_colors()))
+    return refuse(Status::kMissingStore);
   const size_t n = mesh.positions.size();
   const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
   stats_.triangles_in += tri_count;
   // A mesh larger than the stores needs room for the vertex cache (docs/bands.md).
   if ((n > vertices_.size() && vertices_.size() < kMinCachedStore) ||
       (plan.kind.phong && n > surfaces_.size() && surfaces_.size() < kMinCachedStore) ||
-      (plan.uv && n > tex_.size() && tex_.size() < kMinCachedStore) ||
-      ((plan.textured || plan.kind.phong) && !active_extra_)) {
-    refuse(tri_count, true);
-    return Status::kCapacity;
-  }
-  // Flat shading: each triangle's colours need their store.
-  const bool triangle_colors = !plan.gouraud && !plan.kind.phong;
-  if (triangle_colors && !edges_.has_colors()) {
-    refuse(tri_count, false);
-    return Status::kCapacity;
-  }
+      (plan.uv && n > tex_.size() && tex_.size() < kMinCachedStore))
+    return refuse(Status::kCapacity, tri_count, true);
   uint8_t draw_index = 0;
   if (add_draw_record(state, plan.kind.color_planes, tri_count, draw_index) != Status::kOk)
     return Status::kCapacity;
@@ -497,8 +502,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
     pl = PreparedLighting{};
   if (plan.kind.phong && phong_(*this, state, pl, draws_[draw_index]) != Status::kOk) {
     --draw_count_;
-    refuse(tri_count, false);
-    return Status::kCapacity;
+    return refuse(Status::kCapacity, tri_count, false);
   }
   if (edges_.signing()) sign_draw(draw_index, plan.kind.phong ? &material : nullptr);
   DrawCall& call = draws_[draw_index].call;
@@ -990,23 +994,18 @@ bool FrontEnd::persist(uint16_t& index) {
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
                              std::span<const std::array<uint16_t, 3>> triangles,
                              const DrawState& state, std::span<const TexVertex> tex) {
-  if (!configured_) return Status::kInvalidArgument;
+  if (const Status st = frame_status(); st != Status::kOk) return st;
   const bool uv = state.texture != nullptr;
-  if (uv && tex.size() != vertices.size()) return Status::kInvalidArgument;
+  if (uv && tex.size() != vertices.size()) return refuse(Status::kInvalidArgument);
   if (!uv) tex = {};
   const bool gouraud = state.shading == Shading::kGouraud;
-  if (!admitted(state, {false, gouraud, !lights_.normal_only()})) return Status::kInvalidArgument;
+  if (!admitted(state, {false, gouraud, !lights_.normal_only()})) return refuse(Status::kNotLinked);
+  if ((uv && (tex_.empty() || !active_extra_)) || (!gouraud && !edges_.has_colors()))
+    return refuse(Status::kMissingStore);
   const auto tri_count = static_cast<uint32_t>(triangles.size());
   stats_.triangles_in += tri_count;
-  if (vertices.size() > vertices_.size() ||
-      (uv && (vertices.size() > tex_.size() || !active_extra_))) {
-    refuse(tri_count, true);
-    return Status::kCapacity;
-  }
-  if (!gouraud && !edges_.has_colors()) {
-    refuse(tri_count, false);
-    return Status::kCapacity;
-  }
+  if (vertices.size() > vertices_.size() || (uv && vertices.size() > tex_.size()))
+    return refuse(Status::kCapacity, tri_count, true);
   uint8_t draw_index = 0;
   if (add_draw_record(state, gouraud, tri_count, draw_index) != Status::kOk)
     return Status::kCapacity;
@@ -1103,6 +1102,10 @@ void FrontEnd::begin_bands() {
   fresh.triangles_in = stats_.triangles_in;
   fresh.dropped_triangle_capacity = refused_triangles_;
   fresh.dropped_vertex_capacity = refused_vertices_;
+  fresh.draws_refused_invalid = stats_.draws_refused_invalid;
+  fresh.draws_refused_not_linked = stats_.draws_refused_not_linked;
+  fresh.draws_refused_missing_store = stats_.draws_refused_missing_store;
+  fresh.draws_refused_capacity = stats_.draws_refused_capacity;
   fresh.bytes_per_vertex = stats_.bytes_per_vertex;
   fresh.bytes_per_binned_triangle = stats_.bytes_per_binned_triangle;
   fresh.bytes_per_active_triangle = stats_.bytes_per_active_triangle;
@@ -1130,9 +1133,32 @@ void FrontEnd::replay(uint8_t index) {
   run_mesh(index, c.mesh, c.model, material, state, plan, pl);
 }
 
+void FrontEnd::save_binning_counts() {
+  const FrameStats& s = stats_;
+  band_before_ = {
+      s.culled_backface,  s.culled_zero_area,        s.culled_offscreen,          s.clipped_away,
+      s.rejected_invalid, s.dropped_vertex_capacity, s.dropped_triangle_capacity, s.binned_inputs,
+      s.clipped,          s.triangles_binned,        s.vertices_transformed};
+}
+
+void FrontEnd::restore_binning_counts() {
+  const BinningCounts& b = band_before_;
+  FrameStats& s = stats_;
+  s.culled_backface = b.culled_backface;
+  s.culled_zero_area = b.culled_zero_area;
+  s.culled_offscreen = b.culled_offscreen;
+  s.clipped_away = b.clipped_away;
+  s.rejected_invalid = b.rejected_invalid;
+  s.dropped_vertex_capacity = b.dropped_vertex_capacity;
+  s.dropped_triangle_capacity = b.dropped_triangle_capacity;
+  s.binned_inputs = b.binned_inputs;
+  s.clipped = b.clipped;
+  s.triangles_binned = b.triangles_binned;
+  s.vertices_transformed = b.vertices_transformed;
+}
+
 Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
-  FrameStats& before = band_before_;
-  before = stats_;
+  save_binning_counts();
   banding_ = true;
   overflow_ = false;
   band_r0_ = s0 * strip_height_;
@@ -1147,7 +1173,7 @@ Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
   overflow_ = true;  // the frame still needs bands
   stats_.triangles_binned -= band_carried_;
   if (!fit && !keep_partial) {
-    stats_ = before;
+    restore_binning_counts();
     ++stats_.band_retries;
     return Status::kCapacity;
   }
@@ -1158,7 +1184,7 @@ Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
     const uint32_t wide = stats_.vertices_wide;
     const uint32_t dropped_triangles = stats_.dropped_triangle_capacity;
     const uint32_t dropped_vertices = stats_.dropped_vertex_capacity;
-    stats_ = before;
+    restore_binning_counts();
     stats_.triangles_binned = binned;
     stats_.vertices_transformed = transformed;
     stats_.vertices_wide = wide;

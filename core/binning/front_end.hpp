@@ -74,18 +74,35 @@ constexpr LightSet zero_lights() {
 
 class FrontEnd {
  public:
-  // Checks the stores against the viewport (width, height in [1, kMaxViewport]) and strip
-  // height (1..32). Must succeed before begin_frame. admit: the renderer's test of a draw's
-  // span state (nullptr: every draw is admitted); phong: how Phong draws get their records
-  // (nullptr: Phong draws are refused).
+  // Checks the viewport (width, height in [1, kMaxViewport]), the strip height (1..32) and the
+  // draw records (at most 256): kInvalidArgument; then the stores against them: kStoreTooSmall.
+  // Must succeed before begin_frame; leaves no frame begun (on failure: not configured).
+  // admit: the renderer's test of a draw's span state (nullptr: every draw is admitted); phong:
+  // how Phong draws get their records (nullptr: Phong draws are refused).
   Status configure(const FrontEndStorage& storage, int width, int height, int strip_height,
                    AdmitFn admit = nullptr, PhongRecordFn phong = &FrontEnd::phong_record);
   // Refuses every call until the next successful configure().
   void deconfigure() { configured_ = false; }
   bool configured() const { return configured_; }
 
-  // Starts a frame: clears the stores and the statistics.
+  // Starts a frame: clears the stores and the statistics. kNotConfigured before configure();
+  // kInvalidArgument for more than kMaxLights lights (no frame is begun then: a frame begun
+  // before is abandoned).
   Status begin_frame(const Camera& camera, const LightSet& lights, Rgb8 background);
+
+  // Where the frame is: kOk while one is begun and not rendered (draws are taken), else the
+  // status naming why not: kNotConfigured, kNoFrame (none begun since configure(), or the last
+  // begin_frame() failed), kFrameRendered (render() ended it).
+  Status frame_status() const {
+    if (!configured_) return Status::kNotConfigured;
+    if (phase_ == Phase::kIdle) return Status::kNoFrame;
+    return phase_ == Phase::kRendered ? Status::kFrameRendered : Status::kOk;
+  }
+  // The renderer ends the frame as its render() starts: whatever render() returns, the next
+  // draw or render needs a begin_frame().
+  void end_frame() { phase_ = Phase::kRendered; }
+  // The status of this frame's first refused draw (kOk: none was refused): what render() returns.
+  Status refused() const { return refused_; }
 
   // Adds a mesh (see Renderer::draw).
   Status draw(const Mesh& mesh, const Mat4& model, const Material& material,
@@ -185,12 +202,12 @@ class FrontEnd {
   // (from draw_first_triangle_ on) refer to (with their surfaces and texture entries when the
   // draw has them), and renumbers those triangles.
   void compact_vertices(size_t first_vertex, bool surfaces, bool tex);
-  // A draw that no band can take (draw records, per-pixel lighting pools, a mesh larger than
-  // the vertex store): counted as dropped, in this frame's statistics for good.
-  void refuse(uint32_t triangles, bool vertex_store) {
-    (vertex_store ? refused_vertices_ : refused_triangles_) += triangles;
-    (vertex_store ? stats_.dropped_vertex_capacity : stats_.dropped_triangle_capacity) += triangles;
-  }
+  // A draw refused whole, for `why` (draw_records.cpp): counted in the reason's draws_refused_*,
+  // and the frame's first refusal kept for render(). kCapacity (draw records, per-pixel
+  // lighting pools, a mesh larger than a store below the vertex cache's minimum: no band can
+  // take it) also counts its triangles as dropped, in this frame's statistics for good. Returns
+  // `why`.
+  Status refuse(Status why, uint32_t triangles = 0, bool vertex_store = false);
 
   // rows: the triangle's first and last row when classify() already passed it (its tests are
   // not repeated), else nullptr.
@@ -240,15 +257,30 @@ class FrontEnd {
   size_t vertex_count_ = 0, draw_count_ = 0;
   size_t pixel_light_count_ = 0, table_words_used_ = 0;
   bool configured_ = false;
+  // The frame's phase (frame_status()), and its first refused draw's status.
+  enum class Phase : uint8_t { kIdle, kOpen, kRendered };
+  Phase phase_ = Phase::kIdle;
+  Status refused_ = Status::kOk;
   AdmitFn admit_ = nullptr;
   PhongRecordFn phong_ = nullptr;
   // Bands: the stores overflowed (the rest of the frame is only recorded), binning a band
   // (vertices are compacted per draw), the band's rows, and the refused draws' triangles.
   bool overflow_ = false, banding_ = false;
   int32_t band_r0_ = 0, band_r1_ = 0;
-  uint32_t band_carried_ = 0;       // the band's triangles from above it
-  bool band_dropped_ = false;       // the band is one strip and dropped triangles
-  FrameStats band_before_{};        // the statistics before the band (here, not on the stack)
+  uint32_t band_carried_ = 0;  // the band's triangles from above it
+  bool band_dropped_ = false;  // the band is one strip and dropped triangles
+  // The statistics binning changes (nothing else changes while a band is binned), as they were
+  // before the band: kept here, not on the stack, and not the whole FrameStats (RAM: the
+  // micro:bit's 16 KB holds a renderer with a few bytes to spare).
+  struct BinningCounts {
+    uint32_t culled_backface, culled_zero_area, culled_offscreen, clipped_away, rejected_invalid,
+        dropped_vertex_capacity, dropped_triangle_capacity, binned_inputs, clipped,
+        triangles_binned, vertices_transformed;
+  };
+  BinningCounts band_before_{};
+  // Out of line: inlined, they widened bin_band's frame, which is on the deepest stack path.
+  [[gnu::noinline]] void save_binning_counts();
+  [[gnu::noinline]] void restore_binning_counts();
   size_t draw_first_triangle_ = 0;  // the running draw's first binned triangle
   // Working memory of one draw, kept here rather than on the stack (the worst-case stack is a
   // budget of its own, and these are the largest locals of the deepest path): the draw's

@@ -6,8 +6,10 @@
 namespace lr {
 
 struct FrameStats {
-  // Triangles given to draw(), and what became of them (each input triangle is counted in
-  // exactly one of binned_inputs, culled_*, clipped_away, rejected_invalid, dropped_*). Except
+  // Triangles given to draw() and draw_screen() (but those of draws refused for another reason
+  // than kCapacity, which count in draws_refused_* alone), and what became of them (each input
+  // triangle is counted in exactly one of binned_inputs, culled_*, clipped_away,
+  // rejected_invalid, dropped_*). Except
   // below the minimum capacities (render() returns kCapacity, docs/bands.md): a triangle
   // dropped from one band may be drawn in another, so dropped_* counts the drops of every band
   // and the sum may exceed triangles_in.
@@ -19,6 +21,14 @@ struct FrameStats {
   uint32_t rejected_invalid = 0;  // vertex index out of range
   uint32_t dropped_vertex_capacity = 0;
   uint32_t dropped_triangle_capacity = 0;
+  // Draws refused whole, one counter per reason: draw() or draw_screen() returned that status
+  // and added nothing (docs/api-errors.md). render() then returns the status of the frame's first
+  // refused draw. Only a kCapacity refusal counts its triangles (in triangles_in and dropped_*):
+  // the others count the draw alone.
+  uint32_t draws_refused_invalid = 0;        // kInvalidArgument: the draw's arguments disagree
+  uint32_t draws_refused_not_linked = 0;     // kNotLinked: a state outside the renderer's SpanSet
+  uint32_t draws_refused_missing_store = 0;  // kMissingStore: a store the draw needs is missing
+  uint32_t draws_refused_capacity = 0;       // kCapacity: a store it needs is full or too small
   uint32_t binned_inputs = 0;  // inputs that reached the edge table (at least one piece)
   // Pieces: triangles made by clipping, and what reached the edge table.
   uint32_t clipped = 0;           // input triangles that crossed a clip plane and were cut

@@ -1,7 +1,9 @@
 // Pixel formats of strip buffers: a template parameter of the renderer and the display path.
 //
 // Each format says how one pixel is stored (Storage), how many bytes it puts on the wire and
-// how an 8-bit colour becomes a stored pixel. Conversion to RGB565 rounds to nearest
+// how an 8-bit colour becomes a stored pixel. Rgb565Be is the SPI panels' (hal/); Rgb565 and
+// Xrgb8888 are those of frame buffers and GUI canvases (core/output/frame_buffer_sink.hpp,
+// docs/framebuffer.md); Rgb888 is the host tools'. Conversion to RGB565 rounds to nearest
 // (r5 = (31 r8 + 127) / 255: docs/numerics.md#colour-conversions) through tables built at
 // compile time.
 #pragma once
@@ -34,16 +36,16 @@ consteval std::array<uint8_t, 512> make_565_table() {
 }
 inline constexpr std::array<uint8_t, 512> kTo565 = make_565_table();
 inline constexpr size_t kTo6Offset = 256;
-}  // namespace detail
 
-// RGB565 stored big-endian (the byte order on the SPI wire): the first byte in memory is the
-// high byte on any CPU, so a strip can go out by DMA as it is.
-struct Rgb565Be {
+// The RGB565 formats: the 16-bit value r5 << 11 | g6 << 5 | b5, stored in the CPU's byte order
+// (kWireOrder false) or with its high byte first in memory on any CPU (kWireOrder true).
+template <bool kWireOrder>
+struct Rgb565Format {
   using Storage = uint16_t;
   static constexpr int kBytesPerPixel = 2;
-  // The stored value whose memory bytes are (v >> 8, v & 0xFF).
+  // The stored pixel of an RGB565 value v (0..65535).
   static constexpr Storage from_value(unsigned v) {
-    if constexpr (std::endian::native == std::endian::little) {
+    if constexpr (kWireOrder && std::endian::native == std::endian::little) {
       return static_cast<Storage>(((v & 0xFFu) << 8) | ((v >> 8) & 0xFFu));
     } else {
       return static_cast<Storage>(v);
@@ -51,7 +53,6 @@ struct Rgb565Be {
   }
   static constexpr unsigned to_value(Storage s) { return from_value(s); }  // a swap is its inverse
   static constexpr Storage encode(Rgb8 c) {
-    using detail::kTo565, detail::kTo6Offset;
     return from_value((unsigned{kTo565[c.r]} << 11) | (unsigned{kTo565[kTo6Offset + c.g]} << 5) |
                       kTo565[c.b]);
   }
@@ -59,8 +60,8 @@ struct Rgb565Be {
   // 6-bit table's offset folded into to_byte's rounding constant, one table address.
   static constexpr Storage encode15(uint32_t r15, uint32_t g15, uint32_t b15) {
     constexpr uint32_t kRound = Color15::kOne / 2;
-    constexpr uint32_t kGreen = kRound + (detail::kTo6Offset << Color15::kFracBits);
-    const uint8_t* t = detail::kTo565.data();
+    constexpr uint32_t kGreen = kRound + (kTo6Offset << Color15::kFracBits);
+    const uint8_t* t = kTo565.data();
     const unsigned r5 = t[(r15 * 255u + kRound) >> Color15::kFracBits];
     const unsigned g6 = t[(g15 * 255u + kGreen) >> Color15::kFracBits];
     const unsigned b5 = t[(b15 * 255u + kRound) >> Color15::kFracBits];
@@ -75,6 +76,18 @@ struct Rgb565Be {
             static_cast<uint8_t>((b5 << 3) | (b5 >> 2))};
   }
 };
+}  // namespace detail
+
+// RGB565 stored big-endian (the byte order on the SPI wire): the first byte in memory is the
+// high byte on any CPU, so a strip can go out by DMA as it is. LVGL's RGB565_SWAPPED
+// (LV_COLOR_16_SWAP 1 in LVGL 8).
+struct Rgb565Be : detail::Rgb565Format<true> {};
+
+// RGB565 in the CPU's byte order: a uint16_t holding r5 << 11 | g6 << 5 | b5, low byte first in
+// memory on a little-endian CPU (Cortex-M, x86, RISC-V). What frame buffers and canvases hold:
+// LVGL's LV_COLOR_FORMAT_RGB565 (LVGL 8: LV_COLOR_16_SWAP 0), Adafruit_GFX's GFXcanvas16,
+// the STM32 LTDC's and DMA2D's RGB565 (docs/framebuffer.md). Rgb565Be byte-swapped on such a CPU.
+struct Rgb565 : detail::Rgb565Format<false> {};
 
 // 24-bit RGB, one byte per channel in R, G, B order: host frames and 18/24-bit panels.
 struct Rgb888 {
@@ -85,6 +98,28 @@ struct Rgb888 {
     return {to_byte(r15), to_byte(g15), to_byte(b15)};
   }
   static constexpr Rgb8 decode(Storage s) { return s; }
+};
+
+// 32-bit XRGB: a uint32_t holding 0xFFRRGGBB in the CPU's byte order, so that memory holds B, G,
+// R, 0xFF on a little-endian CPU: there, what LVGL's LV_COLOR_FORMAT_XRGB8888 holds
+// (lv_canvas_set_px writes 0xFF in its unused byte) and Linux's DRM_FORMAT_XRGB8888 (defined
+// little-endian). The unused byte is 0xFF, not 0, so that a reader that takes it for alpha
+// (LVGL's ARGB8888, the STM32 LTDC's ARGB8888, DRM_FORMAT_ARGB8888) sees an opaque pixel.
+// Channels are Rgb888's bytes: no rounding beyond to_byte's.
+struct Xrgb8888 {
+  using Storage = uint32_t;
+  static constexpr int kBytesPerPixel = 4;
+  static constexpr Storage kOpaque = 0xFF000000u;  // the unused (alpha) byte: 0xFF
+  static constexpr Storage encode(Rgb8 c) {
+    return kOpaque | (Storage{c.r} << 16) | (Storage{c.g} << 8) | c.b;
+  }
+  static constexpr Storage encode15(uint32_t r15, uint32_t g15, uint32_t b15) {
+    return encode({to_byte(r15), to_byte(g15), to_byte(b15)});
+  }
+  // The colour of a stored pixel; the unused byte is ignored.
+  static constexpr Rgb8 decode(Storage s) {
+    return {static_cast<uint8_t>(s >> 16), static_cast<uint8_t>(s >> 8), static_cast<uint8_t>(s)};
+  }
 };
 
 }  // namespace lr

@@ -1,11 +1,12 @@
 // The renderer: a front end (vertex stage and binning) and a strip loop, composed.
 //
-// Renderer<PF, K, kSpans>: PF the strip's pixel format (Rgb565Be, Rgb888), K the strip height in
-// rows (1..32, compile time), kSpans the span states it links routines for (span_state.hpp:
-// kAllSpans by default; draws outside the set are refused). draw() and draw_screen() go to the
-// front end (core/binning/front_end.hpp), which bins the frame; render() hands the binned frame
-// to the strip loop (core/raster/strip_loop.hpp), which rasterizes it strip by strip into the
-// sink. RAM: the caller's FrameStorage; nothing is allocated, nothing holds a frame.
+// Renderer<PF, K, kSpans>: PF the strip's pixel format (core/output/pixel_format.hpp: Rgb565Be,
+// Rgb565, Xrgb8888, Rgb888), K the strip height in rows (1..32, compile time), kSpans the span
+// states it links routines for (span_state.hpp: kAllSpans by default; draws outside the set are
+// refused). draw() and draw_screen() go to the front end (core/binning/front_end.hpp), which
+// bins the frame; render() hands the binned frame to the strip loop (core/raster/strip_loop.hpp),
+// which rasterizes it strip by strip into the sink. RAM: the caller's FrameStorage; nothing is
+// allocated, nothing holds a frame.
 #pragma once
 
 #include <algorithm>
@@ -31,17 +32,26 @@ class Renderer {
   using Pixel = typename PF::Storage;
   static constexpr int kStripHeight = K;
 
-  // Checks the storage against the viewport (width, height in [1, kMaxViewport]) and the strip
-  // height K. Must succeed before begin_frame.
+  // Every call names what it refuses (docs/api-errors.md): a call out of order changes nothing
+  // and returns kNotConfigured (before a successful configure), kNoFrame (draw or render with
+  // no frame begun) or kFrameRendered (draw or render after render, before begin_frame).
+
+  // Checks the viewport (width, height in [1, kMaxViewport]) and the stores' index limits (at
+  // most 256 draw records, 65535 active slots): kInvalidArgument; then the stores against the
+  // viewport and the strip height K (FrameCapacities' sizes): kStoreTooSmall. Must succeed
+  // before begin_frame. Success leaves no frame begun; failure leaves the renderer not
+  // configured (every call kNotConfigured until a configure succeeds).
   Status configure(const FrameStorage& storage, int width, int height) {
-    if (!strip_.configure(storage.strip_loop(), width)) {
-      front_.deconfigure();
-      return Status::kInvalidArgument;
-    }
-    return front_.configure(storage.front_end(), width, height, K, &admits<kSpans>, phong_record());
+    Status st =
+        front_.configure(storage.front_end(), width, height, K, &admits<kSpans>, phong_record());
+    if (st == Status::kOk) st = strip_.configure(storage.strip_loop(), width);
+    if (st != Status::kOk) front_.deconfigure();
+    return st;
   }
 
-  // Starts a frame: clears the stores and the statistics.
+  // Starts a frame: clears the stores and the statistics. kNotConfigured before configure;
+  // kInvalidArgument for more than kMaxLights lights, and then no frame is begun (a frame begun
+  // before is abandoned). begin_frame may start over a frame begun or rendered.
   Status begin_frame(const Camera& camera, const LightSet& lights, Rgb8 background) {
     const Status st = front_.begin_frame(camera, lights, background);
     if (st == Status::kOk)
@@ -52,14 +62,17 @@ class Renderer {
 
   // Adds a mesh. The mesh's arrays must stay valid until render() returns: a frame larger than
   // the stores is drawn in bands, which read them again (docs/bands.md); the Mesh, the matrix,
-  // the material and the state are copied. kCapacity (the draw is dropped and counted) when no
-  // draw record is left, the mesh is larger than a vertex store too small for the vertex cache
-  // (docs/bands.md), a textured mesh is larger than a FrameStorage::tex_vertices store too small
-  // for the cache (none given: any textured mesh), or a Phong draw's lighting pools are full.
-  // kInvalidArgument (nothing added)
-  // when the mesh's arrays disagree in size, Gouraud lighting is asked of a mesh without normals,
-  // or the renderer's SpanSet does not admit the draw's span state or its textures
-  // (span_state.hpp).
+  // the material and the state are copied. A refused draw adds nothing, is counted in its
+  // reason's FrameStats::draws_refused_*, and makes render() return its status (the frame's
+  // first refusal's): kInvalidArgument when the mesh's arrays disagree in size, Gouraud
+  // lighting is asked of a mesh without normals, or a texture or lighting table is invalid;
+  // kNotLinked when the renderer's SpanSet does not admit the draw's span state or its textures
+  // (span_state.hpp; Phong in a renderer without Phong spans); kMissingStore when a store the
+  // draw needs was not given (FrameStorage: textured draws tex_vertices and active_extra, Phong
+  // draws surfaces, pixel_lights, active_extra and for kTable lighting_tables, flat-shaded
+  // draws triangle_colors); kCapacity (its triangles counted as dropped too) when no draw
+  // record is left, the mesh is larger than a vertex (surface, texture-entry) store too small
+  // for the vertex cache (docs/bands.md), or a Phong draw's lighting pools are full.
   Status draw(const Mesh& mesh, const Mat4& model, const Material& material,
               const DrawState& state) {
     return front_.draw(mesh, model, material, state);
@@ -68,10 +81,10 @@ class Renderer {
   // Adds triangles already in screen space (snapped subpixel positions, depth, colour):
   // for 2D overlays and for tests of the raster rules. Lighting does not apply. A textured
   // state needs `tex`, one entry per vertex (texture coordinates, secondary colour); others
-  // ignore it. The arrays must stay valid until render() returns. kCapacity as draw() (and
-  // when the vertices outnumber the tex_vertices store); kInvalidArgument (nothing added) when
-  // the renderer's SpanSet does not admit the draw's span state, or a textured state's `tex`
-  // is not as long as `vertices`.
+  // ignore it. The arrays must stay valid until render() returns. Refused as draw() is:
+  // kInvalidArgument when a textured state's `tex` is not as long as `vertices`; kNotLinked,
+  // kMissingStore as draw(); kCapacity when no draw record is left or the vertices outnumber
+  // the vertex store (or, textured, the tex_vertices store).
   Status draw_screen(std::span<const ScreenVertex> vertices,
                      std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state,
                      std::span<const TexVertex> tex = {}) {
@@ -79,10 +92,13 @@ class Renderer {
   }
 
   // Rasterizes the frame built since begin_frame(), in bands when it did not fit the stores
-  // (docs/bands.md). kCapacity when a single strip needed more binned triangles or vertices
-  // than the stores hold: that strip is drawn with what fit and the rest counted as dropped.
-  // On a sink error the frame is abandoned and the sink's status returned; the renderer is
-  // ready for the next frame either way.
+  // (docs/bands.md), and ends it: whatever it returns, the next draw or render needs a
+  // begin_frame() (kFrameRendered until then). When a draw of the frame was refused, the frame
+  // is drawn without it and the first refused draw's status returned (kInvalidArgument,
+  // kNotLinked, kMissingStore or kCapacity; FrameStats::draws_refused_* count them). Else
+  // kCapacity when a single strip needed more binned triangles or vertices than the stores
+  // hold: that strip is drawn with what fit and the rest counted as dropped. On a sink error
+  // the frame is abandoned and the sink's status returned.
   // With FrameStorage::strip_inputs, a sink that retains_frame() and no depth sink, strips whose
   // inputs equal the last rendered frame's are not rendered: the sink is told to keep() them.
   // The renderer assumes the sink shows its last frame: after rendering into another sink (or
@@ -127,7 +143,10 @@ class Renderer {
 // either way: it is inlined here once.
 template <class PF, int K, SpanSet kSpans>
 Status Renderer<PF, K, kSpans>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
-  if (!front_.configured()) return Status::kInvalidArgument;
+  // Only a begun frame has an edge table to walk: configure() leaves the buckets as the caller
+  // gave them, and render() consumes them.
+  if (const Status open = front_.frame_status(); open != Status::kOk) return open;
+  front_.end_frame();
   FrameStats& stats = front_.mutable_stats();
   const bool bands = front_.needs_bands();
   const bool first_binned = front_.first_band_binned();
@@ -159,15 +178,19 @@ Status Renderer<PF, K, kSpans>::render(StripSink<PF>& sink, DepthSink* depth_sin
   }
   st = strip_.end(sink, complete);
   if (st != Status::kOk) return st;
+  if (front_.refused() != Status::kOk) return front_.refused();
   return complete ? Status::kOk : Status::kCapacity;
 }
 
 #ifdef LR_EXTERN_RENDERERS
-// Hosted builds (core/CMakeLists.txt) link the renderers with every span routine, for both
-// pixel formats and every strip height lineraster-sim offers, from lr_core
-// (raster/renderer_instances_*.cpp) instead of compiling the strip loop and all span routines
-// again in each program. Bare-metal builds instantiate where they are used, so that render()
-// can be inlined into its caller and the sink's calls made direct.
+// Hosted builds (core/CMakeLists.txt) link the renderers with every span routine, for the two
+// pixel formats of the host tools (Rgb565Be, Rgb888) and every strip height lineraster-sim
+// offers, from lr_core (raster/renderer_instances_*.cpp) instead of compiling the strip loop and
+// all span routines again in each program. Bare-metal builds instantiate where they are used, so
+// that render() can be inlined into its caller and the sink's calls made direct. The frame-buffer
+// formats (Rgb565, Xrgb8888) are instantiated where they are used in every build: no tool of the
+// project uses them, and their 12 instances would add some 40 s of compilation (Release) to
+// every hosted build of lr_core for programs that use one or two.
 extern template class Renderer<Rgb565Be, 1>;
 extern template class Renderer<Rgb565Be, 2>;
 extern template class Renderer<Rgb565Be, 4>;

@@ -46,16 +46,17 @@ class StripLoop {
  public:
   using Pixel = typename PF::Storage;
 
-  // Checks the stores against the viewport width; forgets the strip signatures.
-  bool configure(const StripStorage& s, int width) {
-    if (s.depth.size() < static_cast<size_t>(width) * static_cast<size_t>(K)) return false;
-    if (s.active.empty() || s.active_index.size() < 2 * s.active.size() ||
-        s.active.size() > kMaxStoreEntries)
-      return false;
-    if (!s.active_extra.empty() && s.active_extra.size() < s.active.size()) return false;
+  // Checks the stores against the viewport width (kStoreTooSmall; kInvalidArgument: an active
+  // list beyond its index type); forgets the strip signatures. On failure nothing changes.
+  Status configure(const StripStorage& s, int width) {
+    if (s.active.size() > kMaxStoreEntries) return Status::kInvalidArgument;
+    if (s.depth.size() < static_cast<size_t>(width) * static_cast<size_t>(K) || s.active.empty() ||
+        s.active_index.size() < 2 * s.active.size() ||
+        (!s.active_extra.empty() && s.active_extra.size() < s.active.size()))
+      return Status::kStoreTooSmall;
     storage_ = s;
     inputs_known_ = false;
-    return true;
+    return Status::kOk;
   }
 
   // Rasterizes `frame` into the sink, counting into `stats` (see Renderer::render). Always

@@ -11,9 +11,17 @@
 // Each case's line is in lr_bench's format ("lr_bench: case NAME ..." after the case's two
 // markers), the protocol scripts/icount_profile.py reads, followed by the frame statistics by
 // name. Nothing between the markers calls semihosting or takes an exception.
+//
+// Two images of this file (firmware/peer/CMakeLists.txt):
+//   lr_peer        one renderer with every span routine linked (kAllSpans, the default);
+//   lr_peer_spans  (LR_PEER_SCENE_SPANS) one renderer per case, each restricted to the span set
+//                  of its case's draw state (scenes.hpp: scene_spans), as an application that
+//                  draws only that scene links it. Its frames must equal lr_peer's.
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <tuple>
+#include <utility>
 
 #include "firmware/common/bench_case.hpp"
 #include "firmware/common/ordered_sink.hpp"
@@ -59,7 +67,28 @@ lr::StaticFrameStorage<kCapacities> g_store;
 // Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
 alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_strips{};
 
+#ifdef LR_PEER_SCENE_SPANS
+template <size_t I>
+using CaseRenderer = lr::Renderer<PF, kStripRows, peer::scene_spans(peer::kCases[I])>;
+template <class Indices>
+struct CaseRenderers;
+template <size_t... I>
+struct CaseRenderers<std::index_sequence<I...>> {
+  using type = std::tuple<CaseRenderer<I>...>;
+};
+CaseRenderers<std::make_index_sequence<peer::kCases.size()>>::type g_renderers;
+// The renderer of case I.
+template <size_t I>
+auto& renderer() {
+  return std::get<I>(g_renderers);
+}
+#else
 lr::Renderer<PF, kStripRows> g_renderer;
+template <size_t>
+auto& renderer() {
+  return g_renderer;
+}
+#endif
 
 lr::fw::ChecksumConsumer<PF> g_checksum;
 lr::fw::OrderedStripSink<PF, lr::fw::ChecksumConsumer<PF>> g_sink(g_strips[0], g_strips[1],
@@ -85,12 +114,13 @@ struct Prepared {
   std::span<const lr::Mesh> meshes;
 };
 
-bool prepare(const peer::PeerCase& c, Prepared& p) {
+template <class R>
+bool prepare(R& renderer, const peer::PeerCase& c, Prepared& p) {
   const size_t active = c.geometry == peer::Geometry::kBunnyX ? kActive : kActiveSmall;
   lr::FrameStorage storage = g_store.storage();
   storage.active = storage.active.first(active);
   storage.active_index = storage.active_index.first(2 * active);
-  if (!check(g_renderer.configure(storage, peer::kWidth, peer::kHeight), "configure")) return false;
+  if (!check(renderer.configure(storage, peer::kWidth, peer::kHeight), "configure")) return false;
   if (!peer::make_camera(c, p.camera)) {
     sh::write("lr_peer: projection rejected\n");
     return false;
@@ -103,27 +133,31 @@ bool prepare(const peer::PeerCase& c, Prepared& p) {
 }
 
 // The measured work: one whole frame.
-[[gnu::noinline]] lr::Status render_frame(const peer::PeerCase& c, const Prepared& p,
+template <class R>
+[[gnu::noinline]] lr::Status render_frame(R& renderer, const peer::PeerCase& c, const Prepared& p,
                                           lr::DepthSink* depth) {
-  lr::Status s = g_renderer.begin_frame(p.camera, c.lights, peer::kBackground);
+  lr::Status s = renderer.begin_frame(p.camera, c.lights, peer::kBackground);
   for (size_t d = 0; d < p.meshes.size() && s == lr::Status::kOk; ++d)
-    s = g_renderer.draw(p.meshes[d], p.model, c.material, p.state);
-  return s == lr::Status::kOk ? g_renderer.render(g_sink, depth) : s;
+    s = renderer.draw(p.meshes[d], p.model, c.material, p.state);
+  return s == lr::Status::kOk ? renderer.render(g_sink, depth) : s;
 }
 
-bool run_case(const peer::PeerCase& c) {
+template <size_t I>
+bool run_case() {
+  const peer::PeerCase& c = peer::kCases[I];
+  auto& r = renderer<I>();
   Prepared p;
-  if (!prepare(c, p)) return false;
+  if (!prepare(r, c, p)) return false;
   CoveredPixels covered;
   g_checksum.enabled = true;
-  if (!check(render_frame(c, p, &covered), c.name)) return false;
+  if (!check(render_frame(r, c, p, &covered), c.name)) return false;
   const uint32_t sum = g_checksum.hash.value;
-  const lr::FrameStats st = g_renderer.stats();
+  const lr::FrameStats st = r.stats();
   const uint32_t dropped = st.dropped_vertex_capacity + st.dropped_triangle_capacity;
 
   g_checksum.enabled = false;
   lr_bench_marker();
-  const lr::Status s = render_frame(c, p, nullptr);
+  const lr::Status s = render_frame(r, c, p, nullptr);
   lr_bench_marker();
   if (!check(s, c.name)) return false;
 
@@ -160,12 +194,23 @@ bool run_case(const peer::PeerCase& c) {
   return dropped == 0 && st.pixels_written > 0 && off <= peer::kCoverageSlack;
 }
 
+template <size_t... I>
+bool run_cases(std::index_sequence<I...>) {
+  bool ok = true;
+  ((ok = run_case<I>() && ok), ...);
+  return ok;
+}
+
 }  // namespace
 
 int main() {
-  sh::write("lr_peer: the peer scenes, 320x240 RGB565, strips of 8 rows\n");
-  bool ok = true;
-  for (const peer::PeerCase& c : peer::kCases) ok = run_case(c) && ok;
+#ifdef LR_PEER_SCENE_SPANS
+  sh::write(
+      "lr_peer: the peer scenes, 320x240 RGB565, strips of 8 rows, each case's span set linked\n");
+#else
+  sh::write("lr_peer: the peer scenes, 320x240 RGB565, strips of 8 rows, every span routine\n");
+#endif
+  const bool ok = run_cases(std::make_index_sequence<peer::kCases.size()>());
   sh::write(ok ? "lr_peer: PASS\n" : "lr_peer: FAIL\n");
   return ok ? 0 : 1;
 }

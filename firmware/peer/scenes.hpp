@@ -23,6 +23,7 @@
 #include "lineraster/core/scene/camera.hpp"
 #include "lineraster/core/scene/draw_state.hpp"
 #include "lineraster/core/scene/material.hpp"
+#include "lineraster/core/span/span_state.hpp"
 
 namespace lr::fw::peer {
 
@@ -119,6 +120,30 @@ consteval std::array<PeerCase, kScenes.size()> to_cases() {
 }
 
 inline constexpr std::array<PeerCase, kScenes.size()> kCases = to_cases();
+
+// The span set of a case's draw state (core/span/span_state.hpp), RGB565 textures repeated: a
+// renderer restricted to it links the case's span routine and texel fetcher and no other
+// (lr_peer_spans, firmware/peer/main.cpp with LR_PEER_SCENE_SPANS). The state as the front end
+// derives it (core/span/admission.cpp): the bunny is lit Gouraud (colour planes), the cube and
+// the ground plane textured; a draw outside the set would be refused.
+consteval SpanSet scene_spans(const PeerCase& c) {
+  SpanState s;
+  s.depth = c.state.depth_test;
+  if (c.state.lighting) {
+    s.family = SpanFamily::kUntextured;
+    s.colors = c.state.perspective == Perspective::kAffine ? ColorPlanes::kAffine
+                                                           : ColorPlanes::kPerspective;
+  } else {
+    s.family = SpanFamily::kTextured;
+    s.persp = c.state.perspective == Perspective::kExact    ? TexPersp::kExact
+              : c.state.perspective == Perspective::kAffine ? TexPersp::kAffine
+                                                            : TexPersp::kSpan;
+    s.env = c.state.sampler.env;
+    s.mip = c.state.sampler.mip;
+    s.filter = c.state.sampler.filter;
+  }
+  return span_set_of(s).only(TexelFormat::kRgb565).only_wraps(Wrap::kRepeat, Wrap::kRepeat);
+}
 
 // The camera of every scene: identity view (eye at the origin looking down -z), fovy 60, the
 // scene's near and far planes. False if perspective() rejects them.

@@ -15,6 +15,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "lineraster/host_sim/formats/output_file.hpp"
+
 namespace lr::host {
 namespace {
 
@@ -55,38 +57,6 @@ std::string lower_extension(const std::string& path) {
     if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
   }
   return ext;
-}
-
-// Writes through FILE.tmp: `body` writes the content to the open file and returns false (with
-// `what` set) on failure; the file is renamed over `path` only when everything succeeded.
-template <typename Body>
-bool write_atomically(const std::string& path, std::string& error, Body&& body) {
-  const std::string tmp = path + ".tmp";
-  std::FILE* f = open_file(tmp, "wb");
-  if (!f) return fail(error, path, std::string("cannot open for writing: ") + std::strerror(errno));
-  std::string what;
-  bool ok = body(f, what);
-  if (ok && std::fflush(f) != 0) {
-    ok = false;
-    what = std::string("write failed: ") + std::strerror(errno);
-  }
-  if (ok && std::ferror(f) != 0) {
-    ok = false;
-    what = "write failed";
-  }
-  if (std::fclose(f) != 0 && ok) {
-    ok = false;
-    what = std::string("write failed: ") + std::strerror(errno);
-  }
-  if (ok && std::rename(tmp.c_str(), path.c_str()) != 0) {
-    ok = false;
-    what = std::string("cannot rename temporary file: ") + std::strerror(errno);
-  }
-  if (!ok) {
-    std::remove(tmp.c_str());
-    return fail(error, path, what);
-  }
-  return true;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -142,7 +112,7 @@ bool png_write_all(PngWriteCtx* c) {
 
 bool write_png_data(const std::string& path, const uint8_t* data, int width, int height,
                     int bit_depth, int color_type, size_t stride, bool swap16, std::string& error) {
-  return write_atomically(path, error, [&](std::FILE* f, std::string& what) {
+  return write_output(path, error, [&](std::FILE* f, std::string& what) {
     PngWriteCtx ctx{};
     std::snprintf(ctx.msg.text, sizeof ctx.msg.text, "libpng error");
     ctx.fp = f;
@@ -369,7 +339,7 @@ bool write_png_gray16(const std::string& path, int width, int height,
 
 bool write_ppm(const std::string& path, const ImageRgb8& image, std::string& error) {
   if (!image_ok(image)) return fail(error, path, image_problem(image));
-  return write_atomically(path, error, [&](std::FILE* f, std::string& what) {
+  return write_output(path, error, [&](std::FILE* f, std::string& what) {
     const std::string header =
         "P6\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n255\n";
     if (std::fwrite(header.data(), 1, header.size(), f) != header.size() ||

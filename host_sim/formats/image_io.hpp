@@ -1,8 +1,9 @@
 // Image files for the host simulator: PNG (libpng) and binary/ASCII PPM. Host only.
 //
 // Every function returns false on failure with `error` set to one line "FILE: what is wrong" and,
-// for readers, `out` left untouched. Writers never leave a partial file: they write FILE.tmp and
-// rename it over FILE once complete (FILE.tmp is removed on failure).
+// for readers, `out` left untouched. Writers write regular files only and never leave a partial
+// file: through output_file.hpp (a temporary file beside the target, renamed over it once
+// complete; a device, FIFO, socket or directory is refused, a symbolic link followed).
 // Readers accept images up to 16384 pixels per side and 64 Mpixel in all (larger: error), so a
 // corrupt header cannot make them allocate gigabytes.
 #pragma once

@@ -14,16 +14,19 @@ namespace {
 constexpr const char* kUsage =
     "usage: lineraster-asset --obj FILE [--texture FILE.png] [--format rgb565|rgb888|l8|palette8]\n"
     "  [--mipmaps] [--fit | --fit-box] [--subdivide N] [--locality] --name IDENT --out FILE.hpp\n"
+    "       lineraster-asset --version | --help\n"
     "Writes a C++ header with the mesh (Q16.16 positions, Q1.14 normals, Q12.20 uvs, indices,\n"
     "materials) and the texture (level 0 and, with --mipmaps, its mip chain) as constexpr data in\n"
-    "namespace IDENT. Without --texture, the first material's map_Kd is used (if any).\n"
+    "namespace IDENT. Without --texture, each material's own map_Kd (if any).\n"
     "--subdivide N: each triangle split in 4 at its edge midpoints, N times (0..4), before the "
     "fit.\n"
     "--fit: centred on the bounding box, farthest vertex at distance 1; --fit-box: centred on the\n"
     "bounding box, uniformly scaled so that its largest half extent is 1 (inside [-1, 1]^3).\n"
     "--locality: triangles sorted by the Z-order of their centroids, vertices numbered by first\n"
     "use (for meshes larger than the renderer's vertex store: its vertex cache hits more).\n"
-    "Defaults: --format rgb565, no mipmaps, no fit, no subdivision, the file's order.\n";
+    "Defaults: --format rgb565, no mipmaps, no fit, no subdivision, the file's order.\n"
+    "--out: a regular file, new or replaced whole; a device, FIFO, socket, directory or one of\n"
+    "the input files is refused. --version: the version; --help: this text.\n";
 
 int fail(const std::string& msg) {
   std::fprintf(stderr, "lineraster-asset: %s\n", msg.c_str());
@@ -56,7 +59,7 @@ std::string quoted_command_line(int argc, char** argv) {
 struct AssetArgs {
   lr::host::AssetOptions asset;
   std::string out;
-  bool help = false, have_name = false;
+  bool help = false, version = false, have_name = false;
 };
 
 using lr::host::OptionArg;
@@ -76,6 +79,11 @@ OptionError help(AssetArgs& a, const OptionArg&) {
 const Row kOptions[] = {
     {"--help", OptionKind::kStop, help},
     {"-h", OptionKind::kStop, help},
+    {"--version", OptionKind::kStop,
+     [](AssetArgs& a, const OptionArg&) {
+       a.version = true;
+       return OptionError{};
+     }},
     {"--obj", OptionKind::kValue,
      [](AssetArgs& a, const OptionArg& v) {
        a.asset.obj_path = v.value;
@@ -146,6 +154,10 @@ int main(int argc, char** argv) {
     return fail(error);
   if (args.help) {
     std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (args.version) {
+    std::printf("lineraster-asset %s\n", LR_VERSION);
     return 0;
   }
   lr::host::AssetOptions& o = args.asset;

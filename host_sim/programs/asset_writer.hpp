@@ -69,8 +69,9 @@ bool load_asset(const AssetOptions& options, AssetData& out, std::string& error)
 // The header text for loaded data.
 std::string asset_header_text(const AssetOptions& options, const AssetData& data);
 
-// load_asset + asset_header_text, then writes the header through OUT.tmp renamed over
-// `out_path` (no output on any failure). False with a one-line error.
+// load_asset + asset_header_text, then writes the header to `out_path` under output_file.hpp's
+// rules (a regular file, replaced atomically; never a device, FIFO, socket or directory, never
+// one of the files it reads; no output on any failure). False with a one-line error.
 bool write_asset_header(const AssetOptions& options, const std::string& out_path,
                         std::string& error, std::vector<std::string>* warnings = nullptr);
 

@@ -1,5 +1,6 @@
-// lineraster-sim: renders an OBJ with the fixed-point core to PNG or PPM, optionally through a
-// panel (--display). The options: sim_options.cpp.
+// lineraster-sim: renders an OBJ with the fixed-point core to PNG or PPM (or a turntable of
+// frames to files or an animated GIF), optionally through a panel (--display). The options:
+// sim_options.cpp; where the frames go: frame_output.hpp.
 // Any wrong option or bad file: one line on stderr, exit status 2, no output written. Work
 // dropped for lack of store space: the image is written, a warning says what, exit status 3.
 #include <chrono>
@@ -14,6 +15,7 @@
 #include "lineraster/host_sim/emulator/panel_emulator.hpp"
 #include "lineraster/host_sim/formats/image_io.hpp"
 #include "lineraster/host_sim/formats/obj_loader.hpp"
+#include "lineraster/host_sim/programs/frame_output.hpp"
 #include "lineraster/host_sim/programs/panel_output.hpp"
 #include "lineraster/host_sim/programs/sim_options.hpp"
 #include "lineraster/host_sim/scene/mesh_prep.hpp"
@@ -135,10 +137,11 @@ void print_totals(int frames, uint64_t pixels, const PanelTotals* panel, double 
 }
 
 // One frame, or --frames N turning the model about y: each frame rendered, then sent to the
-// panel (opened after the first frame rendered: a bad scene leaves it alone). `result` is the
-// last frame.
+// panel (opened after the first frame rendered: a bad scene leaves it alone), then to the
+// outputs that take every frame (--out-pattern, a GIF). `result` is the last frame.
 bool render_frames(SimOptions& o, const lr::host::HostMesh& mesh, lr::host::PanelOutput& panel,
-                   RenderResult& result, Dropped& dropped, std::string& error) {
+                   lr::host::FrameOutputs& outputs, RenderResult& result, Dropped& dropped,
+                   std::string& error) {
   const bool to_panel = o.display.kind != lr::host::DisplayKind::kNone;
   const double base_rotation = o.scene.model_rotate_y;
   const int count = o.frames > 0 ? o.frames : 1;
@@ -162,6 +165,8 @@ bool render_frames(SimOptions& o, const lr::host::HostMesh& mesh, lr::host::Pane
       if (!panel.send(result.image, error)) return false;
       sent = panel.totals() - before;
     }
+    if (!outputs.add(f, panel.emulator() ? panel.emulator()->image() : result.image, error))
+      return false;
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     ms_total += ms;
@@ -189,19 +194,15 @@ void report_emulator_warnings(const lr::host::PanelOutput& panel) {
     std::fprintf(stderr, "lineraster-sim: warning: bus: %s\n", m.c_str());
 }
 
-// The image (the emulated panel's, when there is one) and the depth image; neither is left
-// behind when the other fails.
-bool write_outputs(const SimOptions& o, const lr::host::PanelOutput& panel, RenderResult& result,
-                   std::string& error) {
-  const lr::host::ImageRgb8 shown =
-      panel.emulator() ? panel.emulator()->image() : std::move(result.image);
-  if (!lr::host::write_image(o.out, shown, error)) return false;
-  if (!o.depth_out.empty() && !lr::host::write_png_gray16(o.depth_out, o.scene.width,
-                                                          o.scene.height, result.depth, error)) {
-    std::remove(o.out.c_str());
-    return false;
-  }
-  return true;
+// Every file the run reads, that no output may be: the OBJ, its MTL files, the textures and maps.
+std::vector<std::string> input_files(const SimOptions& o, const lr::host::HostMesh& mesh) {
+  std::vector<std::string> in{o.obj};
+  in.insert(in.end(), mesh.material_libraries.begin(), mesh.material_libraries.end());
+  for (const lr::host::HostMaterial& m : mesh.materials)
+    if (!m.map_kd.empty()) in.push_back(m.map_kd);
+  for (const std::string* f : {&o.scene.texture, &o.scene.envmap, &o.scene.normalmap})
+    if (!f->empty()) in.push_back(*f);
+  return in;
 }
 
 void print_stats(const SimOptions& o, const RenderResult& result) {
@@ -210,7 +211,9 @@ void print_stats(const SimOptions& o, const RenderResult& result) {
       "{\"width\":%d,\"height\":%d,\"strip_height\":%d,\"triangles_in\":%u,\"binned_inputs\":%u,"
       "\"culled_backface\":%u,\"culled_zero_area\":%u,\"culled_offscreen\":%u,\"clipped\":%u,"
       "\"clipped_away\":%u,\"rejected_invalid\":%u,\"dropped_vertex_capacity\":%u,"
-      "\"dropped_triangle_capacity\":%u,\"triangles_binned\":%u,"
+      "\"dropped_triangle_capacity\":%u,\"draws_refused_invalid\":%u,"
+      "\"draws_refused_not_linked\":%u,\"draws_refused_missing_store\":%u,"
+      "\"draws_refused_capacity\":%u,\"triangles_binned\":%u,"
       "\"vertices_transformed\":%u,\"strips\":%u,\"empty_strips\":%u,\"strip_passes\":%u,"
       "\"triangles_set_up\":%u,"
       "\"triangles_without_pixels\":%u,\"spans\":%u,"
@@ -220,10 +223,12 @@ void print_stats(const SimOptions& o, const RenderResult& result) {
       o.scene.width, o.scene.height, result.strip_height, s.triangles_in, s.binned_inputs,
       s.culled_backface, s.culled_zero_area, s.culled_offscreen, s.clipped, s.clipped_away,
       s.rejected_invalid, s.dropped_vertex_capacity, s.dropped_triangle_capacity,
-      s.triangles_binned, s.vertices_transformed, s.strips, s.empty_strips, s.strip_passes,
-      s.triangles_set_up, s.triangles_without_pixels, s.spans, s.pixels_tested, s.pixels_written,
-      s.max_active, static_cast<ull>(result.bytes), s.bytes_per_vertex, s.bytes_per_binned_triangle,
-      s.bytes_per_active_triangle, s.bytes_per_strip);
+      s.draws_refused_invalid, s.draws_refused_not_linked, s.draws_refused_missing_store,
+      s.draws_refused_capacity, s.triangles_binned, s.vertices_transformed, s.strips,
+      s.empty_strips, s.strip_passes, s.triangles_set_up, s.triangles_without_pixels, s.spans,
+      s.pixels_tested, s.pixels_written, s.max_active, static_cast<ull>(result.bytes),
+      s.bytes_per_vertex, s.bytes_per_binned_triangle, s.bytes_per_active_triangle,
+      s.bytes_per_strip);
 }
 
 }  // namespace
@@ -236,17 +241,26 @@ int main(int argc, char** argv) {
     std::fputs(lr::host::sim_usage(), stdout);
     return 0;
   }
+  if (o.version) {
+    std::printf("lineraster-sim %s\n", LR_VERSION);
+    return 0;
+  }
   lr::host::HostMesh mesh;
   if (!lr::host::load_obj(o.obj, mesh, error)) return fail(error);
+  // Every output name is checked before anything is rendered or written.
+  lr::host::FrameOutputs outputs(o);
+  if (!outputs.check(input_files(o, mesh), error)) return fail(error);
   warn_all(mesh.warnings);
   if (o.subdivisions > 0) mesh = lr::host::subdivide(mesh, o.subdivisions);
   lr::host::PanelOutput panel;
   RenderResult result;
   Dropped dropped;
-  if (!render_frames(o, mesh, panel, result, dropped, error)) return fail(error);
+  if (!render_frames(o, mesh, panel, outputs, result, dropped, error)) return fail(error);
   report_emulator_warnings(panel);
   warn_all(result.warnings);
-  if (!write_outputs(o, panel, result, error)) return fail(error);
+  const lr::host::ImageRgb8 shown =
+      panel.emulator() ? panel.emulator()->image() : std::move(result.image);
+  if (!outputs.finish(shown, result.depth, error)) return fail(error);
   if (o.stats) print_stats(o, result);
   report_empty(result, o);
   return report_dropped(dropped, o);

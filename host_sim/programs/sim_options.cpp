@@ -12,15 +12,17 @@
 #include "lineraster/core/lighting/lighting.hpp"
 #include "lineraster/core/scene/material.hpp"
 #include "lineraster/host_sim/formats/texture_load.hpp"
+#include "lineraster/host_sim/programs/gif_writer.hpp"
 #include "lineraster/host_sim/programs/option_table.hpp"
 
 namespace lr::host {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: lineraster-sim --obj FILE [--out FILE.png|.ppm] [--width N] [--height N] [--fovy DEG]\n"
-    "  [--near Z] [--far Z] [--eye x,y,z] [--target x,y,z] [--up x,y,z] [--fit] [--model-scale S]\n"
-    "  [--model-rotate-y DEG] [--model-translate x,y,z] [--shading flat|gouraud|phong] [--unlit]\n"
+    "usage: lineraster-sim --obj FILE [--out FILE.png|.ppm|.gif] [--width N] [--height N]\n"
+    "  [--fovy DEG] [--near Z] [--far Z] [--eye x,y,z] [--target x,y,z] [--up x,y,z] [--fit]\n"
+    "  [--model-scale S] [--model-rotate-x DEG] [--model-rotate-y DEG] [--model-rotate-z DEG]\n"
+    "  [--model-translate x,y,z] [--shading flat|gouraud|phong] [--unlit]\n"
     "  [--light-dir x,y,z] [--light dir:x,y,z[:r,g,b]] [--light point:x,y,z[:r,g,b[:c,l,q]]]\n"
     "  [--global-ambient r,g,b] [--local-viewer] [--two-sided] [--material NAME]\n"
     "  [--ambient r,g,b] [--diffuse r,g,b] [--specular r,g,b] [--shininess N] [--bg r,g,b]\n"
@@ -28,19 +30,27 @@ constexpr const char* kUsage =
     "  [--stats] [--texture FILE.png] [--filter nearest|bilinear] [--wrap repeat|clamp]\n"
     "  [--perspective exact|span8|span16|span32|affine] [--mipmap none|nearest|linear]\n"
     "  [--texture-format rgb565|rgb888|l8|palette8] [--subdivide N] [--stores V,T,A]\n"
+    "  [--frames N] [--out-pattern NAME_%03d.png] [--gif-delay CS] [--version] [--help]\n"
     "Phong only (--shading phong): [--lighting exact|table] [--lighting-table N]\n"
     "  [--lighting-table-filter nearest|bilinear] [--envmap FILE.png] [--normalmap FILE.png]\n"
     "--light: repeatable, at most 4, not with --light-dir; colour r,g,b default 1,1,1; c,l,q:\n"
     "  GL attenuation 1 / (c + l d + q d^2), default 1,0,0. --lighting default exact;\n"
     "  --lighting-table: 8..256 cells per side, default 32, bilinear; needs --lighting table.\n"
-    "Panels: [--display emulator:PANEL] [--display ft232h[:SERIAL]] [--panel PANEL] [--frames N]\n"
+    "--model-rotate-x/-y/-z DEG: the model turned about z first, then x, then y (a Z-up model\n"
+    "  stands upright with --model-rotate-x -90); model = translate * Ry * Rx * Rz * scale.\n"
+    "Panels: [--display emulator:PANEL] [--display ft232h[:SERIAL]] [--panel PANEL]\n"
     "  [--display spidev:DEVICE,dc=CHIP:LINE,rst=CHIP:LINE[,bl=CHIP:LINE][,hz=N]]\n"
     "PANEL: st7789:240x240|240x320|135x240|320x240[:ROT] or ili9341:240x320|320x240[:ROT], ROT\n"
     "  0|90|180|270 (default 0); the frame is the panel's size. spidev and ft232h need --panel.\n"
-    "--frames N: N frames turning the model 360/N degrees about y each, statistics per frame.\n"
+    "--frames N: N frames turning the model 360/N degrees about y each, statistics per frame;\n"
+    "  --out gets the last frame, or all of them as an animated GIF when it ends in .gif\n"
+    "  (--gif-delay CS: hundredths of a second per frame, 2..6000, default 4);\n"
+    "  --out-pattern writes each frame to its own file (one %d, %0Nd or %Nd: the frame number\n"
+    "  from 0; .png or .ppm), and then --out only when it is given.\n"
     "--subdivide N: split each triangle in 4 at its edge midpoints, N times (0..4).\n"
     "--stores V,T,A: the renderer's vertex, binned-triangle and active-triangle stores (default\n"
     "  65535,65534,4096), as a firmware's; a frame that needs more is drawn in bands.\n"
+    "Outputs are regular files only: a device, FIFO, socket, directory or input file is refused.\n"
     "Exit status: 0 drawn; 2 bad input, nothing written; 3 written, but work was dropped for\n"
     "  lack of store space (a warning says what).\n";
 
@@ -262,10 +272,26 @@ OptionError help(SimOptions& o, const OptionArg&) {
   return {};
 }
 
+OptionError version(SimOptions& o, const OptionArg&) {
+  o.version = true;
+  return {};
+}
+
 OptionError out_file(SimOptions& o, const OptionArg& a) {
   o.out = a.value;
-  if (extension(o.out) != "png" && extension(o.out) != "ppm")
-    return "--out: the file name must end in .png or .ppm";
+  o.out_given = true;
+  const std::string ext = extension(o.out);
+  if (ext != "png" && ext != "ppm" && ext != "gif")
+    return "--out: the file name must end in .png, .ppm or .gif";
+  if (ext == "gif" && !gif_supported()) return "--out: " + gif_missing_error(o.out);
+  return {};
+}
+
+OptionError out_pattern(SimOptions& o, const OptionArg& a) {
+  std::string why;
+  if (!parse_frame_pattern(a.value, o.out_pattern, why)) return a.bad(why);
+  const std::string ext = extension(o.out_pattern.name(0));
+  if (ext != "png" && ext != "ppm") return a.bad("the file name must end in .png or .ppm");
   return {};
 }
 
@@ -304,10 +330,12 @@ OptionError near_plane(SimOptions& o, const OptionArg& a) {
   return {};
 }
 
-OptionError model_rotate_y(SimOptions& o, const OptionArg& a) {
+// --model-rotate-x/-y/-z: degrees, any finite value (taken modulo 360).
+template <double SceneOptions::*Field>
+OptionError model_rotate(SimOptions& o, const OptionArg& a) {
   double d = 0;
   if (OptionError e = number(a, d); !e.empty()) return e;
-  o.scene.model_rotate_y = std::fmod(d, 360.0);
+  o.scene.*Field = std::fmod(d, 360.0);
   return {};
 }
 
@@ -403,9 +431,16 @@ constexpr OptionKind kFlag = OptionKind::kFlag, kValue = OptionKind::kValue;
 const Row kOptions[] = {
     {"--help", OptionKind::kStop, help},
     {"-h", OptionKind::kStop, help},
+    {"--version", OptionKind::kStop, version},
     // Input, output, frame.
     {"--obj", kValue, text<&SimOptions::obj>},
     {"--out", kValue, out_file},
+    {"--out-pattern", kValue, out_pattern},
+    {"--gif-delay", kValue,
+     [](SimOptions& o, const OptionArg& a) {
+       o.gif_delay_given = true;
+       return int_in(a, kMinGifDelay, kMaxGifDelay, o.gif_delay);
+     }},
     {"--depth-out", kValue, depth_file},
     {"--stats", kFlag, flag<&SimOptions::stats>},
     {"--width", kValue,
@@ -435,7 +470,9 @@ const Row kOptions[] = {
     {"--fit", kFlag, scene_flag<&SceneOptions::fit>},
     {"--model-scale", kValue,
      [](SimOptions& o, const OptionArg& a) { return number(a, o.scene.model_scale); }},
-    {"--model-rotate-y", kValue, model_rotate_y},
+    {"--model-rotate-x", kValue, model_rotate<&SceneOptions::model_rotate_x>},
+    {"--model-rotate-y", kValue, model_rotate<&SceneOptions::model_rotate_y>},
+    {"--model-rotate-z", kValue, model_rotate<&SceneOptions::model_rotate_z>},
     {"--model-translate", kValue, scene_vec3<&SceneOptions::model_translate>},
     {"--subdivide", kValue,
      [](SimOptions& o, const OptionArg& a) { return int_in(a, 0, 4, o.subdivisions); }},
@@ -549,11 +586,28 @@ bool check_panel(SimOptions& o, std::string& error) {
   return true;
 }
 
+// The output options that need others.
+bool check_outputs(const SimOptions& o, std::string& error) {
+  if (o.out_pattern.given && o.frames == 0) {
+    error = "--out-pattern needs --frames N";
+    return false;
+  }
+  if (o.gif_delay_given && !o.gif_out()) {
+    error = "--gif-delay needs --out FILE.gif";
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+bool SimOptions::gif_out() const {
+  return writes_out() && extension(out) == "gif";
+}
 
 bool parse_sim_options(int argc, const char* const* argv, SimOptions& out, std::string& error) {
   if (!parse_options<SimOptions>(kOptions, argc, argv, "(see --help)", out, error)) return false;
-  if (out.help) return true;
+  if (out.help || out.version) return true;
   if (out.obj.empty()) {
     error = "--obj FILE is required (see --help)";
     return false;
@@ -562,7 +616,7 @@ bool parse_sim_options(int argc, const char* const* argv, SimOptions& out, std::
     error = "--far must be greater than --near";
     return false;
   }
-  return check_lights(out, error) && check_panel(out, error);
+  return check_lights(out, error) && check_panel(out, error) && check_outputs(out, error);
 }
 
 const char* sim_usage() {

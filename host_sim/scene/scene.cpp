@@ -305,8 +305,10 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
   BasicFrameStorage<std::vector> store(caps);
   const FrameStorage storage = store.storage();
   auto renderer = std::make_unique<Renderer<PF, K>>();
-  if (renderer->configure(storage, o.width, o.height) != Status::kOk) {
-    error = "viewport: width and height must be 1.." + std::to_string(kMaxViewport);
+  if (const Status cs = renderer->configure(storage, o.width, o.height); cs != Status::kOk) {
+    error = cs == Status::kInvalidArgument
+                ? "viewport: width and height must be 1.." + std::to_string(kMaxViewport)
+                : std::string("stores: ") + to_string(cs);
     return false;
   }
   Fixed fovy, near, far;
@@ -335,16 +337,25 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
     return false;
   }
   Rgb8 bg = to_rgb8(to_color15(o.background));
-  renderer->begin_frame(cam, lights, bg);
+  if (const Status bs = renderer->begin_frame(cam, lights, bg); bs != Status::kOk) {
+    error = std::string("begin_frame: ") + to_string(bs);
+    return false;
+  }
 
-  Fixed scale, rot;
+  Fixed scale, rot_y, rot_x, rot_z;
   Vec3 tr;
-  if (!to_fixed(o.model_scale, scale) || !to_fixed(o.model_rotate_y, rot) ||
+  if (!to_fixed(o.model_scale, scale) || !to_fixed(o.model_rotate_y, rot_y) ||
+      !to_fixed(o.model_rotate_x, rot_x) || !to_fixed(o.model_rotate_z, rot_z) ||
       !fixed_vec(o.model_translate, tr)) {
     error = "model: a transform value is not finite or outside the core's range";
     return false;
   }
-  Mat4 model = translate(tr) * rotate_y(rot) * lr::scale(scale);
+  // Turned about z, then x, then y (SceneOptions); a rotation of 0 is left out, so a frame
+  // without x and z rotations is the same matrix, bit for bit, as before they existed.
+  Mat4 model = translate(tr) * rotate_y(rot_y);
+  if (rot_x.raw != 0) model = model * rotate_x(rot_x);
+  if (rot_z.raw != 0) model = model * rotate_z(rot_z);
+  model = model * lr::scale(scale);
   DrawState st;
   st.shading = o.shading;
   st.lighting = !o.unlit;
@@ -374,8 +385,9 @@ bool render_k(const std::vector<FixedDraw>& draws, const DrawTextures& textures,
   CaptureDisplay<PF> display(static_cast<size_t>(caps.width) * K);  // one strip
   DepthCapture depth_capture;
   depth_capture.resize(o.width, o.height);
-  // kCapacity: a strip held more than the stores (the frame is what fit; the statistics count
-  // what was dropped, and the caller is told: RenderResult::incomplete).
+  // kCapacity: a draw was refused for a full store, or a strip held more than the stores (the
+  // frame is what fit; the statistics count what was dropped, and the caller is told:
+  // RenderResult::incomplete). A draw refused for any other reason failed above.
   Status s = renderer->render(display, &depth_capture);
   if (s != Status::kOk && s != Status::kCapacity) {
     error = std::string("render: ") + to_string(s) + " " + display.error();

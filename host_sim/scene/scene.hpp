@@ -43,7 +43,11 @@ struct SceneOptions {
   double fovy = 60.0, near = 0.1, far = 100.0;
   Vec3d eye{0, 0, 3}, target{0, 0, 0}, up{0, 1, 0};
   bool fit = false;
-  double model_scale = 1.0, model_rotate_y = 0.0;
+  // The model transform: translate * rotate_y * rotate_x * rotate_z * scale (* the fit), so a
+  // vertex is turned about z first, then x, then y (degrees, GL's right-handed rotations): x and
+  // z set the model upright (a Z-up model: rotate_x -90), y turns it about the vertical axis
+  // (the turntable of --frames). Unity's Euler angles compose in the same order.
+  double model_scale = 1.0, model_rotate_y = 0.0, model_rotate_x = 0.0, model_rotate_z = 0.0;
   Vec3d model_translate{0, 0, 0};
   Shading shading = Shading::kGouraud;  // kFlat, kGouraud or kPhong (lit per pixel)
   bool unlit = false;
@@ -98,8 +102,9 @@ struct RenderResult {
   std::vector<std::string> warnings;  // what the scene's files asked for and was left out
 };
 
-// The model transform the options describe, applied to positions in double:
-// translate * rotate_y * scale * fit. Used by the reference renderer's tests too.
+// The fit of the model transform the options describe (applied to positions in double):
+// translate * rotate_y * rotate_x * rotate_z * scale * fit. Used by the reference renderer's
+// tests too.
 struct ModelTransform {
   Vec3d fit_center{0, 0, 0};
   double fit_scale = 1.0;

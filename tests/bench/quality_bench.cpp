@@ -32,13 +32,21 @@
 //
 // Modes:
 //   --table FILE.csv                   one CSV row per configuration (median of 21 timed frames)
+//   --check RECORD.csv                 the errors only (no timing): every configuration's PSNR
+//                                      (as the table rounds it) against the record
+//                                      (docs/measurements/quality_bench_psnr.csv); exit status 1
+//                                      when one is more than 0.5 dB worse or the record and the
+//                                      configurations differ (the CTest test
+//                                      QualityBench.NoRowWorseThanRecorded)
+//   --check RECORD.csv --raise         the same, then (when it passes) writes each better row's
+//                                      new PSNR into the record: rows only move up
 //   --list                             the configurations, one per line, as --once arguments
 //   --once SCENE SHADING PERSP STRIP FILTER MIP FORMAT
 //                                      one frame through quality_bench_frame() only, for
 //                                      valgrind --tool=callgrind
 //                                      --toggle-collect='*quality_bench_frame*'
 //                                      (FILTER, MIP, FORMAT "-" for untextured scenes)
-// Benchmarks print figures; they never pass or fail on time.
+// Benchmarks print figures; they never pass or fail on time (--check fails on accuracy only).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -215,8 +223,9 @@ void compare(const host::ImageRgb8& img, const std::vector<uint16_t>& depth, con
   }
 }
 
+// timed_runs: frames timed (0: none); errors: whether to measure the error against the reference.
 template <int K>
-Row measure_k(const Config& c, int timed_runs) {
+Row measure_k(const Config& c, int timed_runs, bool errors) {
   const host::SceneOptions o = scene_options(c);
   const host::HostMesh& mesh = scene_mesh(c.scene);
   const Prepared p = prepare(mesh, o);
@@ -226,17 +235,19 @@ Row measure_k(const Config& c, int timed_runs) {
   auto f = std::make_unique<Frame<Rgb565Be, K>>();
   NullSink<Rgb565Be> sink(size_t(kWidth) * K);
   if (quality_bench_frame(*f, p, sink) != Status::kOk) die("render failed: " + c.key(' '));
-  if (timed_runs == 0) return row;
-  std::vector<double> ns;
-  for (int run = 0; run < timed_runs; ++run) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const Status st = quality_bench_frame(*f, p, sink);
-    const auto t1 = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(st);
-    ns.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count());
+  if (timed_runs > 0) {
+    std::vector<double> ns;
+    for (int run = 0; run < timed_runs; ++run) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const Status st = quality_bench_frame(*f, p, sink);
+      const auto t1 = std::chrono::steady_clock::now();
+      benchmark::DoNotOptimize(st);
+      ns.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count());
+    }
+    std::nth_element(ns.begin(), ns.begin() + timed_runs / 2, ns.end());
+    row.host_ns = ns[size_t(timed_runs / 2)];
   }
-  std::nth_element(ns.begin(), ns.begin() + timed_runs / 2, ns.end());
-  row.host_ns = ns[size_t(timed_runs / 2)];
+  if (!errors) return row;
   const FrameStats& st = f->renderer.stats();
   row.pixels = st.pixels_written;
   row.triangles_binned = st.triangles_binned;
@@ -269,14 +280,14 @@ Row measure_k(const Config& c, int timed_runs) {
   return row;
 }
 
-Row measure(const Config& c, int timed_runs) {
+Row measure(const Config& c, int timed_runs, bool errors = true) {
   switch (c.strip) {
     case 1:
-      return measure_k<1>(c, timed_runs);
+      return measure_k<1>(c, timed_runs, errors);
     case 8:
-      return measure_k<8>(c, timed_runs);
+      return measure_k<8>(c, timed_runs, errors);
     case 32:
-      return measure_k<32>(c, timed_runs);
+      return measure_k<32>(c, timed_runs, errors);
   }
   die("strip height must be 1, 8 or 32");
 }
@@ -321,8 +332,101 @@ int run_once(int argc, char** argv) {
                  "rgb565|rgb888|-\n");
     return 2;
   }
-  measure(c, 0);
+  measure(c, 0, false);
   return 0;
+}
+
+// The record: "key,psnr_db" per configuration (key: scene .. format joined by ','), lines
+// starting with '#' and the header skipped. False with the reason when unreadable.
+bool read_record(const char* path, std::map<std::string, double>& out, std::string& error) {
+  std::FILE* in = std::fopen(path, "r");
+  if (!in) {
+    error = std::string(path) + ": cannot open";
+    return false;
+  }
+  char line[256];
+  int n = 0;
+  bool ok = true;
+  while (ok && std::fgets(line, sizeof line, in)) {
+    ++n;
+    std::string l(line);
+    while (!l.empty() && (l.back() == '\n' || l.back() == '\r')) l.pop_back();
+    if (l.empty() || l[0] == '#' || l.rfind("scene,", 0) == 0) continue;
+    const size_t comma = l.rfind(',');
+    char* end = nullptr;
+    const double psnr = comma == std::string::npos ? 0 : std::strtod(l.c_str() + comma + 1, &end);
+    ok = comma != std::string::npos && end != l.c_str() + comma + 1 && *end == '\0' &&
+         out.emplace(l.substr(0, comma), psnr).second;
+    if (!ok) error = std::string(path) + ":" + std::to_string(n) + ": not a new KEY,PSNR: " + l;
+  }
+  std::fclose(in);
+  return ok;
+}
+
+// Every configuration's PSNR against the record: a configuration more than kCheckMargin dB worse
+// than recorded, or one the record lacks (or a record row no configuration has), fails.
+constexpr double kCheckMargin = 0.5;  // dB, issue 36: "within 0.5 dB of today's or better"
+
+// raise: rewrite the record with each row's better value (a row never goes down), keeping its
+// comment lines; only when no row is worse, missing or unknown.
+int run_check(const char* path, bool raise) {
+  std::map<std::string, double> record;
+  std::string error;
+  if (!read_record(path, record, error)) die(error);
+  std::vector<std::pair<std::string, double>> raised;  // every configuration, in order
+  int worse = 0, better = 0, missing = 0, checked = 0;
+  double lowest = 1e9;
+  for (const Config& c : all_configs()) {
+    const std::string key = c.key(',');
+    const auto it = record.find(key);
+    const Row r = measure(c, 0);
+    const double psnr = std::round(r.psnr * 100.0) / 100.0;  // as the table shows it
+    if (it == record.end()) {
+      std::printf("quality_check: %s: %.2f dB, not in the record\n", key.c_str(), psnr);
+      ++missing;
+      continue;
+    }
+    ++checked;
+    raised.emplace_back(key, std::max(psnr, it->second));
+    const double delta = psnr - it->second;
+    lowest = std::min(lowest, delta);
+    if (delta < -kCheckMargin) {
+      std::printf("quality_check: WORSE %s: %.2f dB, recorded %.2f dB (%+.2f)\n", key.c_str(), psnr,
+                  it->second, delta);
+      ++worse;
+    } else if (delta > 0.005) {
+      ++better;
+      std::printf("quality_check: better %s: %.2f dB, recorded %.2f dB (%+.2f)\n", key.c_str(),
+                  psnr, it->second, delta);
+    }
+    record.erase(it);
+  }
+  for (const auto& [key, psnr] : record)
+    std::printf("quality_check: %s: recorded (%.2f dB) but not a configuration\n", key.c_str(),
+                psnr);
+  std::printf(
+      "quality_check: %d configurations against %s: %d more than %.1f dB worse, %d better "
+      "(record them), %d missing, %zu unknown; largest loss %.2f dB\n",
+      checked, path, worse, kCheckMargin, better, missing, record.size(),
+      lowest < 0 ? -lowest : 0.0);
+  const bool pass = worse == 0 && missing == 0 && record.empty() && checked > 0;
+  std::printf("quality_check: %s\n", pass ? "PASS" : "FAIL");
+  if (pass && raise && better > 0) {
+    std::vector<std::string> comments;
+    std::FILE* in = std::fopen(path, "r");
+    char line[256];
+    while (in && std::fgets(line, sizeof line, in))
+      if (line[0] == '#') comments.emplace_back(line);
+    if (in) std::fclose(in);
+    std::FILE* out = std::fopen(path, "w");
+    if (!out) die(std::string(path) + ": cannot write");
+    for (const std::string& c : comments) std::fputs(c.c_str(), out);
+    std::fputs("scene,shading,perspective,strip,filter,mip,format,psnr_db\n", out);
+    for (const auto& [key, psnr] : raised) std::fprintf(out, "%s,%.2f\n", key.c_str(), psnr);
+    std::fclose(out);
+    std::printf("quality_check: raised %d rows of %s\n", better, path);
+  }
+  return pass ? 0 : 1;
 }
 
 }  // namespace
@@ -334,6 +438,11 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (argc == 3 && std::strcmp(argv[1], "--table") == 0) return run_table(argv[2]);
-  std::fprintf(stderr, "usage: lr_quality_bench --table FILE.csv | --list | --once (see --list)\n");
+  if (argc == 3 && std::strcmp(argv[1], "--check") == 0) return run_check(argv[2], false);
+  if (argc == 4 && std::strcmp(argv[1], "--check") == 0 && std::strcmp(argv[3], "--raise") == 0)
+    return run_check(argv[2], true);
+  std::fprintf(stderr,
+               "usage: lr_quality_bench --table FILE.csv | --check RECORD.csv [--raise] | --list | "
+               "--once (see --list)\n");
   return 2;
 }

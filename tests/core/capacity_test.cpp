@@ -82,7 +82,10 @@ TEST(Capacity, VertexStoreFullDropsTheWholeDraw) {
             Status::kOk);
   EXPECT_EQ(small.renderer().draw_screen(b.vertices, b.triangles, test::coverage_state()),
             Status::kCapacity);
-  host::ImageRgb8 got = small.render();
+  Status rendered = Status::kOk;
+  host::ImageRgb8 got = small.render(&rendered);
+  EXPECT_EQ(rendered, Status::kCapacity);  // the refused draw
+  EXPECT_EQ(small.renderer().stats().draws_refused_capacity, 1u);
   EXPECT_EQ(small.renderer().stats().dropped_vertex_capacity, 8u);
   EXPECT_EQ(small.renderer().stats().triangles_in, 12u);
   CoreHarness<8> ref(64, 64);
@@ -92,8 +95,9 @@ TEST(Capacity, VertexStoreFullDropsTheWholeDraw) {
 }
 
 // Textured draws keep their texture coordinates in the TexVertex store (FrameStorage::
-// tex_vertices): without one a textured draw is refused with kCapacity and counted, an
-// untextured one is drawn; draw_screen's texture entries must match its vertices.
+// tex_vertices): without one a textured draw is refused with kMissingStore and counted (as a
+// draw: its triangles are not in triangles_in), an untextured one is drawn; draw_screen's
+// texture entries must match its vertices. render() reports the first refused draw.
 TEST(Capacity, TexturedDrawsNeedTheTexVertexStore) {
   host::ImageRgb8 img;
   img.width = img.height = 1;
@@ -121,7 +125,8 @@ TEST(Capacity, TexturedDrawsNeedTheTexVertexStore) {
                                           std::span(uv).first(5)),
               Status::kInvalidArgument);  // one entry short: nothing added, nothing counted
     EXPECT_EQ(core.renderer().stats().triangles_in, 2u);
-    const Status want = tex_store == 0 ? Status::kCapacity : Status::kOk;
+    EXPECT_EQ(core.renderer().stats().draws_refused_invalid, 1u);
+    const Status want = tex_store == 0 ? Status::kMissingStore : Status::kOk;
     EXPECT_EQ(core.renderer().draw_screen(second.vertices, second.triangles, textured, uv), want);
     // A textured mesh: refused before anything is transformed.
     const std::vector<Vec3> pos(3);
@@ -131,10 +136,13 @@ TEST(Capacity, TexturedDrawsNeedTheTexVertexStore) {
     DrawState unlit_textured = textured;
     unlit_textured.lighting = false;
     EXPECT_EQ(core.renderer().draw(mesh, Mat4::identity(), Material{}, unlit_textured), want);
-    const host::ImageRgb8 got = core.render();
+    Status rendered = Status::kOk;
+    const host::ImageRgb8 got = core.render(&rendered);
+    EXPECT_EQ(rendered, Status::kInvalidArgument);  // the short draw_screen, refused first
     const FrameStats& s = core.renderer().stats();
-    EXPECT_EQ(s.triangles_in, 5u);
-    EXPECT_EQ(s.dropped_vertex_capacity, tex_store == 0 ? 3u : 0u);
+    EXPECT_EQ(s.triangles_in, tex_store == 0 ? 2u : 5u);
+    EXPECT_EQ(s.draws_refused_missing_store, tex_store == 0 ? 2u : 0u);
+    EXPECT_EQ(s.dropped_vertex_capacity, 0u);
     // The untextured square is drawn either way; the textured one only with the store.
     const size_t first = 6 * 64 + 6, third = (3 + 28 + 4) * 64 + (4 + 30 + 4);
     EXPECT_EQ(test::id_of(got, first), 0);
@@ -236,8 +244,8 @@ TEST(Capacity, InvalidIndicesAndCoordinatesAreRejectedAndCounted) {
 }
 
 // A renderer on `s` without one of its optional stores, begun: configure() first refuses the
-// store `short_size` entries long (too short for what it goes with), then takes none. nullptr
-// when a step fails (the expectations say which).
+// store `short_size` entries long (too short for what it goes with: kStoreTooSmall), then
+// takes none. nullptr when a step fails (the expectations say which).
 template <class T>
 std::unique_ptr<Renderer<Rgb888, 8>> begun_without(FrameStorage s,
                                                    std::span<T> FrameStorage::*store,
@@ -245,7 +253,7 @@ std::unique_ptr<Renderer<Rgb888, 8>> begun_without(FrameStorage s,
   std::vector<T> too_short(short_size);
   s.*store = too_short;
   auto r = std::make_unique<Renderer<Rgb888, 8>>();
-  EXPECT_EQ(r->configure(s, 64, 64), Status::kInvalidArgument);
+  EXPECT_EQ(r->configure(s, 64, 64), Status::kStoreTooSmall);
   s.*store = {};
   if (r->configure(s, 64, 64) != Status::kOk || r->begin_frame({}, {}, {0, 0, 0}) != Status::kOk)
     return nullptr;
@@ -253,8 +261,8 @@ std::unique_ptr<Renderer<Rgb888, 8>> begun_without(FrameStorage s,
 }
 
 // The planes of textured and Phong triangles live in FrameStorage::active_extra: without it
-// those draws are refused (kCapacity, counted) and untextured ones drawn; a store smaller than
-// the active list is a configuration error.
+// those draws are refused (kMissingStore, counted) and untextured ones drawn; a store smaller
+// than the active list is a configuration error.
 TEST(Capacity, TexturedAndPhongDrawsNeedTheActiveExtraStore) {
   FrameCapacities caps{.width = 64,
                        .height = 64,
@@ -280,23 +288,24 @@ TEST(Capacity, TexturedAndPhongDrawsNeedTheActiveExtraStore) {
   textured.texture = &tex.texture;
   const ScreenScene sq = squares(1);
   const std::vector<TexVertex> uv(sq.vertices.size());
-  EXPECT_EQ(r->draw_screen(sq.vertices, sq.triangles, textured, uv), Status::kCapacity);
+  EXPECT_EQ(r->draw_screen(sq.vertices, sq.triangles, textured, uv), Status::kMissingStore);
   const std::vector<Vec3> pos(3);
   const std::vector<Normal16> nrm(3, Normal16{0, 0, 16384});
   const std::vector<std::array<uint16_t, 3>> tri = {{0, 1, 2}};
   DrawState phong;
   phong.shading = Shading::kPhong;
   EXPECT_EQ(r->draw(Mesh{pos, nrm, {}, {}, tri, {}}, Mat4::identity(), Material{}, phong),
-            Status::kCapacity);
+            Status::kMissingStore);
   EXPECT_EQ(r->draw_screen(sq.vertices, sq.triangles, test::coverage_state()), Status::kOk);
-  EXPECT_EQ(r->stats().dropped_vertex_capacity, 3u);
-  EXPECT_EQ(r->stats().triangles_in, 5u);
+  EXPECT_EQ(r->stats().draws_refused_missing_store, 2u);
+  EXPECT_EQ(r->stats().dropped_vertex_capacity, 0u);
+  EXPECT_EQ(r->stats().triangles_in, 2u);
 }
 
 // A flat-shaded triangle's colours live in FrameStorage::triangle_colors (a Gouraud triangle is
-// 8 bytes without them): without the store flat draws are refused (kCapacity, counted as
-// triangles dropped) and Gouraud ones drawn; a store smaller than the triangles' is a
-// configuration error.
+// 8 bytes without them): without the store flat draws are refused (kMissingStore, counted) and
+// Gouraud ones drawn, and render() reports the refusal; a store smaller than the triangles' is
+// a configuration error.
 TEST(Capacity, FlatDrawsNeedTheTriangleColorStore) {
   FrameCapacities caps{.width = 64,
                        .height = 64,
@@ -309,7 +318,8 @@ TEST(Capacity, FlatDrawsNeedTheTriangleColorStore) {
   const auto r = begun_without(store.storage(), &FrameStorage::triangle_colors, 15);
   ASSERT_NE(r, nullptr);
   const ScreenScene sq = squares(1);
-  EXPECT_EQ(r->draw_screen(sq.vertices, sq.triangles, test::coverage_state()), Status::kCapacity);
+  EXPECT_EQ(r->draw_screen(sq.vertices, sq.triangles, test::coverage_state()),
+            Status::kMissingStore);
   const std::vector<Vec3> pos = {{Fixed{}, Fixed{}, Fixed::from_int(-2)},
                                  {Fixed::from_int(1), Fixed{}, Fixed::from_int(-2)},
                                  {Fixed{}, Fixed::from_int(1), Fixed::from_int(-2)}};
@@ -318,14 +328,15 @@ TEST(Capacity, FlatDrawsNeedTheTriangleColorStore) {
   DrawState flat_lit;
   flat_lit.shading = Shading::kFlat;
   EXPECT_EQ(r->draw(Mesh{pos, nrm, {}, {}, tri, {}}, Mat4::identity(), Material{}, flat_lit),
-            Status::kCapacity);
+            Status::kMissingStore);
   DrawState gouraud = test::coverage_state();
   gouraud.shading = Shading::kGouraud;
   EXPECT_EQ(r->draw_screen(sq.vertices, sq.triangles, gouraud), Status::kOk);
-  EXPECT_EQ(r->stats().dropped_triangle_capacity, 3u);
-  EXPECT_EQ(r->stats().triangles_in, 5u);
+  EXPECT_EQ(r->stats().draws_refused_missing_store, 2u);
+  EXPECT_EQ(r->stats().dropped_triangle_capacity, 0u);
+  EXPECT_EQ(r->stats().triangles_in, 2u);
   host::CaptureDisplay<Rgb888> display(64 * 8);
-  EXPECT_EQ(r->render(display), Status::kOk);
+  EXPECT_EQ(r->render(display), Status::kMissingStore);
   EXPECT_EQ(r->stats().pixels_written, 100u);  // the Gouraud square, 10 x 10
 }
 
@@ -383,13 +394,13 @@ TEST(Capacity, BadConfigurationIsRefused) {
   FrameStorage s = store.storage();
   s.buckets = s.buckets.first(3);
   auto r = std::make_unique<Renderer<Rgb888, 8>>();
-  EXPECT_EQ(r->configure(s, 64, 64), Status::kInvalidArgument);  // 8 strips need 8 buckets
+  EXPECT_EQ(r->configure(s, 64, 64), Status::kStoreTooSmall);  // 8 strips need 8 buckets
   s.buckets = store.storage().buckets;
   EXPECT_EQ(r->configure(s, 64, 64), Status::kOk);
-  EXPECT_EQ(r->configure(s, 65, 64), Status::kInvalidArgument);  // depth too small for the width
+  EXPECT_EQ(r->configure(s, 65, 64), Status::kStoreTooSmall);  // depth too small for the width
   EXPECT_EQ(r->configure(s, 0, 64), Status::kInvalidArgument);
   s.active_index = s.active_index.first(7);
-  EXPECT_EQ(r->configure(s, 64, 64), Status::kInvalidArgument);
+  EXPECT_EQ(r->configure(s, 64, 64), Status::kStoreTooSmall);
 }
 
 TEST(StripHeight, OneEightAndThirtyTwoGiveIdenticalFrames) {

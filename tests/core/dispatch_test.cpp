@@ -165,8 +165,9 @@ class RigBase {
  public:
   virtual ~RigBase() = default;
   FrontEnd& r() { return *builder_; }
-  host::ImageRgb8 render() {
-    EXPECT_EQ(render_frame(), Status::kOk);
+  // want: what render() returns (a frame with a refused draw: the refusal's status).
+  host::ImageRgb8 render(Status want = Status::kOk) {
+    EXPECT_EQ(render_frame(), want);
     return display_.image();
   }
 
@@ -213,13 +214,17 @@ class AdmitRig final : public RigBase {
  public:
   explicit AdmitRig(AdmitFn admit, PhongRecordFn phong = &FrontEnd::phong_record) {
     builder_ = &front_;
-    EXPECT_TRUE(strip_.configure(storage().strip_loop(), kW));
+    EXPECT_EQ(strip_.configure(storage().strip_loop(), kW), Status::kOk);
     EXPECT_EQ(front_.configure(storage().front_end(), kW, kH, kK, admit, phong), Status::kOk);
   }
 
  private:
+  // What Renderer::render does around the strip loop (a frame that fits: one band).
   Status render_frame() override {
-    return strip_.render(front_.frame(), front_.mutable_stats(), display_, nullptr);
+    if (const Status open = front_.frame_status(); open != Status::kOk) return open;
+    front_.end_frame();
+    const Status st = strip_.render(front_.frame(), front_.mutable_stats(), display_, nullptr);
+    return st == Status::kOk ? front_.refused() : st;
   }
   FrontEnd front_;
   StripLoop<PF, kK> strip_;
@@ -534,32 +539,46 @@ void check_state_with(size_t I, RigBase& small) {
   EXPECT_GT(count_fg(want), 100) << "state " << I;
   EXPECT_TRUE(want.rgb == got.rgb) << "state " << I << ": frames differ";
 
-  // Other states are refused, with nothing added or counted.
+  // Other states are refused, with nothing added and only the draws counted: kNotLinked where
+  // the full set takes the draw (a state whose arguments the quad does not meet, a normal map
+  // without tangents, is kInvalidArgument in both).
   ASSERT_EQ(draw_scene(small, u), Status::kOk);
+  ASSERT_EQ(draw_scene(full, u), Status::kOk);
   const FrameStats before = small.r().stats();
+  uint32_t not_linked = 0;
+  Status first_refusal = Status::kOk;
   for (size_t j : {(I + 1) % kSpanStateCount, (I + kSpanStateCount / 2) % kSpanStateCount,
                    (I + 7) % kSpanStateCount}) {
     const DrawSetup v = setup_for(kSpanStates[j], a);
+    const Status in_full =
+        full.r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), v.material, v.state);
+    ASSERT_TRUE(in_full == Status::kOk || in_full == Status::kInvalidArgument) << "state " << j;
+    const Status refusal = in_full == Status::kOk ? Status::kNotLinked : in_full;
     EXPECT_EQ(small.r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), v.material, v.state),
-              Status::kInvalidArgument)
+              refusal)
         << "state " << I << " admitted state " << j;
+    not_linked += refusal == Status::kNotLinked ? 1u : 0u;
+    if (first_refusal == Status::kOk) first_refusal = refusal;
   }
   // The same state with a texture of another format, or another wrap, is refused too.
   if (state.family == SpanFamily::kTextured || state.texture) {
     DrawState s = u.state;
     s.texture = &other_format_texture();
     EXPECT_EQ(small.r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), u.material, s),
-              Status::kInvalidArgument);
+              Status::kNotLinked);
     s = u.state;
     s.sampler.wrap_t = Wrap::kClampToEdge;
     EXPECT_EQ(small.r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), u.material, s),
-              Status::kInvalidArgument);
+              Status::kNotLinked);
   }
   const FrameStats& after = small.r().stats();
   EXPECT_EQ(after.triangles_in, before.triangles_in);
   EXPECT_EQ(after.triangles_binned, before.triangles_binned);
   EXPECT_EQ(after.vertices_transformed, before.vertices_transformed);
-  EXPECT_TRUE(small.render().rgb == got.rgb) << "state " << I;
+  EXPECT_EQ(after.draws_refused_not_linked - before.draws_refused_not_linked,
+            not_linked + (state.family == SpanFamily::kTextured || state.texture ? 2u : 0u));
+  EXPECT_EQ(after.draws_refused_invalid - before.draws_refused_invalid, 3u - not_linked);
+  EXPECT_TRUE(small.render(first_refusal).rgb == got.rgb) << "state " << I;
 }
 
 // The admission function of restricted(state), per state of the enumeration.
@@ -705,11 +724,12 @@ TEST(SpanDispatch, AFrontEndWithoutPhongRecordsRefusesPhongDrawsOnly) {
     EXPECT_TRUE(without.render().rgb == want.rgb) << "family " << static_cast<int>(f);
   }
   const DrawSetup p = setup_for(first_state(SpanFamily::kPhong), a);
-  ASSERT_EQ(draw_scene(without, p, true, false), Status::kInvalidArgument);
+  ASSERT_EQ(draw_scene(without, p, true, false), Status::kNotLinked);
   const FrameStats& s = without.r().stats();
   EXPECT_EQ(s.triangles_in, 0u);
   EXPECT_EQ(s.vertices_transformed, 0u);
-  EXPECT_EQ(count_fg(without.render()), 0);
+  EXPECT_EQ(s.draws_refused_not_linked, 1u);
+  EXPECT_EQ(count_fg(without.render(Status::kNotLinked)), 0);
   AdmitRig with(nullptr);
   ASSERT_EQ(draw_scene(with, p), Status::kOk);
   EXPECT_GT(count_fg(with.render()), 100);
@@ -999,15 +1019,15 @@ void check_fetcher_with(size_t I, RigBase& small) {
   DrawState s = u.state;
   s.texture = &format_texture(static_cast<TexelFormat>((static_cast<size_t>(format) + 1) % 4));
   EXPECT_EQ(small.r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
-            Status::kInvalidArgument);
+            Status::kNotLinked);
   s = u.state;
   s.sampler.wrap_s = ws == Wrap::kRepeat ? Wrap::kClampToEdge : Wrap::kRepeat;
   EXPECT_EQ(small.r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
-            Status::kInvalidArgument);
+            Status::kNotLinked);
   s = u.state;
   s.sampler.filter = filter == Filter::kNearest ? Filter::kBilinear : Filter::kNearest;
   EXPECT_EQ(small.r().draw(near_quad().mesh(), Mat4::identity(), u.material, s),
-            Status::kInvalidArgument);
+            Status::kNotLinked);
 }
 
 // The smallest set holding fetcher I (fetch_index): the sweep's state with its filter, its

@@ -156,16 +156,16 @@ TEST(FrameStorage, TooSmallCapacitiesAreReported) {
   // Sized for a smaller viewport, or another strip height: configure() refuses it.
   BasicFrameStorage<std::vector> store(kCaps);
   Renderer<Rgb888, 8> r;
-  EXPECT_EQ(r.configure(store.storage(), kCaps.width + 1, kCaps.height), Status::kInvalidArgument);
-  EXPECT_EQ(r.configure(store.storage(), kCaps.width, kCaps.height + 8), Status::kInvalidArgument);
+  EXPECT_EQ(r.configure(store.storage(), kCaps.width + 1, kCaps.height), Status::kStoreTooSmall);
+  EXPECT_EQ(r.configure(store.storage(), kCaps.width, kCaps.height + 8), Status::kStoreTooSmall);
   FrameCapacities short_strips = kCaps;
   short_strips.strip_height = 4;  // a depth strip of 4 rows for a renderer of 8
   BasicFrameStorage<std::vector> four(short_strips);
-  EXPECT_EQ(r.configure(four.storage(), kCaps.width, kCaps.height), Status::kInvalidArgument);
+  EXPECT_EQ(r.configure(four.storage(), kCaps.width, kCaps.height), Status::kStoreTooSmall);
   FrameCapacities no_draws = kCaps;
   no_draws.draws = 0;
   BasicFrameStorage<std::vector> none(no_draws);
-  EXPECT_EQ(r.configure(none.storage(), kCaps.width, kCaps.height), Status::kInvalidArgument);
+  EXPECT_EQ(r.configure(none.storage(), kCaps.width, kCaps.height), Status::kStoreTooSmall);
 
   // Too few vertices for a draw: accepted, and the draw is dropped and counted.
   FrameCapacities few = kCaps;

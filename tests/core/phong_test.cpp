@@ -368,18 +368,20 @@ TEST(Phong, WithoutRoomInItsStoresADrawIsDroppedAndCounted) {
   ASSERT_EQ(r.configure(mem.storage(), 320, 240), Status::kOk);
   ASSERT_EQ(r.begin_frame(front_camera(), lights, {}), Status::kOk);
   st.pixel_lighting = PixelLighting::kTable;
-  EXPECT_EQ(r.draw(mesh, Mat4::identity(), shiny(), st), Status::kCapacity);
-  EXPECT_EQ(r.stats().dropped_triangle_capacity, n);
+  EXPECT_EQ(r.draw(mesh, Mat4::identity(), shiny(), st), Status::kMissingStore);
+  EXPECT_EQ(r.stats().draws_refused_missing_store, 1u);
+  EXPECT_EQ(r.stats().dropped_triangle_capacity, 0u);
   // Exact lighting needs no table; a second material finds the prepared-lighting store full.
   st.pixel_lighting = PixelLighting::kExact;
   EXPECT_EQ(r.draw(mesh, Mat4::identity(), shiny(), st), Status::kOk);
   Material other = shiny();
   other.shininess_q8 = 5 * 256;
   EXPECT_EQ(r.draw(mesh, Mat4::identity(), other, st), Status::kCapacity);
-  EXPECT_EQ(r.stats().dropped_triangle_capacity, 2 * n);
-  // What fit renders.
+  EXPECT_EQ(r.stats().dropped_triangle_capacity, n);
+  EXPECT_EQ(r.stats().draws_refused_capacity, 1u);
+  // What fit renders; render() names the first refused draw's reason.
   host::CaptureDisplay<Rgb888> display(320 * 8);
-  EXPECT_EQ(r.render(display), Status::kOk);
+  EXPECT_EQ(r.render(display), Status::kMissingStore);
   EXPECT_GT(r.stats().pixels_written, 10000u);
 }
 

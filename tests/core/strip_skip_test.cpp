@@ -317,7 +317,7 @@ TEST(StripSkip, SignatureStorageIsChecked) {
   ASSERT_EQ(s.strip_inputs.size(), kWords);
   s.strip_inputs = s.strip_inputs.first(kWords - 1);  // one word short
   Renderer<PF, kK> r;
-  EXPECT_EQ(r.configure(s, kW, kH), Status::kInvalidArgument);
+  EXPECT_EQ(r.configure(s, kW, kH), Status::kStoreTooSmall);
   s.strip_inputs = store.storage().strip_inputs;
   EXPECT_EQ(r.configure(s, kW, kH), Status::kOk);
 }

@@ -280,12 +280,22 @@ void run(const Header& h, Bytes& in) {
   for (auto& t : stris) t = {index(), index(), index()};
 
   LR_FUZZ_CHECK(renderer->begin_frame(cam, lights, Rgb8{h.b[13], h.b[14], h.b[15]}) == Status::kOk);
-  uint32_t expected_in = 0;
+  uint32_t expected_in = 0, refused = 0;
+  Status first_refusal = Status::kOk;
   auto counted = [&](Status s, size_t n) {
-    // A rejected draw (kInvalidArgument) adds nothing; anything else counts every triangle.
-    // Once the stores have overflowed, later draws are only recorded: their outcomes are
-    // counted when render() bins the frame in bands (checked after it), not here.
-    if (s != Status::kInvalidArgument) expected_in += static_cast<uint32_t>(n);
+    // A draw refused for its arguments or its stores adds nothing (the draw alone is counted);
+    // one drawn or refused for capacity counts every triangle. Once the stores have overflowed,
+    // later draws are only recorded: their outcomes are counted when render() bins the frame
+    // in bands (checked after it), not here.
+    LR_FUZZ_CHECK(s == Status::kOk || s == Status::kCapacity || s == Status::kInvalidArgument ||
+                  s == Status::kMissingStore);
+    if (s == Status::kOk || s == Status::kCapacity) expected_in += static_cast<uint32_t>(n);
+    if (s != Status::kOk) ++refused;
+    if (s != Status::kOk && first_refusal == Status::kOk) first_refusal = s;
+    const FrameStats& fs = renderer->stats();
+    LR_FUZZ_CHECK(fs.draws_refused_invalid + fs.draws_refused_missing_store +
+                      fs.draws_refused_capacity + fs.draws_refused_not_linked ==
+                  refused);
     LR_FUZZ_CHECK(renderer->stats().triangles_in == expected_in);
     if (renderer->front_end().needs_bands())
       LR_FUZZ_CHECK(outcomes(renderer->stats()) <= expected_in);
@@ -306,12 +316,16 @@ void run(const Header& h, Bytes& in) {
   depth_capture.resize(width, height);
   const Status st = renderer->render(display, (h.b[2] & 8) ? &depth_capture : nullptr);
   const FrameStats& s = renderer->stats();
-  // Stores below the minimum (docs/bands.md: a strip that needs more than they hold) are the
-  // one case render() reports: kCapacity, with the drop counted. Anything else is a failure.
+  // A refused draw makes render() return the first refusal's status. Else stores below the
+  // minimum (docs/bands.md: a strip that needs more than they hold) are the one case render()
+  // reports: kCapacity, with the drop counted. Anything else is a failure.
   const bool dropped = s.dropped_vertex_capacity + s.dropped_triangle_capacity != 0;
-  if (st != Status::kOk && !(st == Status::kCapacity && dropped))
+  const bool expected = first_refusal != Status::kOk
+                            ? st == first_refusal
+                            : st == Status::kOk || (st == Status::kCapacity && dropped);
+  if (!expected)
     std::fprintf(stderr, "render: status %d, %s\n", static_cast<int>(st), display.error().c_str());
-  LR_FUZZ_CHECK(st == Status::kOk || (st == Status::kCapacity && dropped));
+  LR_FUZZ_CHECK(expected);
 
   static const bool verbose = std::getenv("LR_FUZZ_VERBOSE") != nullptr;
   if (verbose) {
@@ -324,7 +338,8 @@ void run(const Header& h, Bytes& in) {
                  s.strip_passes, s.pixels_written, s.pixels_tested);
   }
   // Below the minimum a triangle may be dropped in one band and drawn in another (frame_stats.hpp).
-  if (st == Status::kOk)
+  // A frame binned once counts each triangle once.
+  if (st == Status::kOk || s.bands <= 1)
     LR_FUZZ_CHECK(s.triangles_in == outcomes(s));
   else
     LR_FUZZ_CHECK(s.triangles_in <= outcomes(s));
@@ -332,7 +347,7 @@ void run(const Header& h, Bytes& in) {
   LR_FUZZ_CHECK(display.strips() == s.strips);
   LR_FUZZ_CHECK(s.empty_strips <= s.strips);
   // (Below the minimum an input counted as binned may have had every piece dropped.)
-  if (st == Status::kOk) LR_FUZZ_CHECK(s.binned_inputs <= s.triangles_binned);
+  if (!dropped) LR_FUZZ_CHECK(s.binned_inputs <= s.triangles_binned);
   LR_FUZZ_CHECK(s.clipped <= s.triangles_in);
   LR_FUZZ_CHECK(s.max_active <= n_active);
   LR_FUZZ_CHECK(s.pixels_written <= s.pixels_tested);

@@ -143,7 +143,11 @@ void draw(const host::HostMesh& mesh, const host::SceneOptions& o) {
 
 bool render_gl(const host::HostMesh& mesh, const host::SceneOptions& o, GlFrame& out,
                std::string& error) {
-  const ref::RefParams p = test::ref_params(mesh, o);
+  return render_gl(mesh, o, test::ref_params(mesh, o), out, error);
+}
+
+bool render_gl(const host::HostMesh& mesh, const host::SceneOptions& o, const ref::RefParams& p,
+               GlFrame& out, std::string& error) {
   OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   if (ctx == nullptr) {
     error = "OSMesaCreateContextExt failed";

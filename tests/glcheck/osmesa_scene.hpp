@@ -13,6 +13,7 @@
 
 #include "lineraster/host_sim/formats/host_mesh.hpp"
 #include "lineraster/host_sim/scene/scene.hpp"
+#include "tests/reference/ref_renderer.hpp"
 
 namespace lr::glcheck {
 
@@ -30,5 +31,11 @@ struct GlFrame {
 // OSMesa fails.
 bool render_gl(const host::HostMesh& mesh, const host::SceneOptions& o, GlFrame& out,
                std::string& error);
+
+// The same with the matrices and light directions of `p` instead of those `o` describes (for
+// scenes whose model transform the options cannot say, such as the peer scenes' rotations about
+// x); everything else still comes from `o`.
+bool render_gl(const host::HostMesh& mesh, const host::SceneOptions& o, const ref::RefParams& p,
+               GlFrame& out, std::string& error);
 
 }  // namespace lr::glcheck

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "lineraster/host_sim/formats/texture_load.hpp"
 #include "lineraster/host_sim/scene/scene.hpp"
@@ -24,7 +25,10 @@ inline ref::RefParams ref_params(const host::HostMesh& mesh, const host::SceneOp
   ref::Mat4d fit =
       ref::mul(ref::scale({mt.fit_scale, mt.fit_scale, mt.fit_scale}),
                ref::translate({-mt.fit_center[0], -mt.fit_center[1], -mt.fit_center[2]}));
-  p.model = ref::mul(ref::mul(ref::translate(o.model_translate), ref::rotate_y(o.model_rotate_y)),
+  const ref::Mat4d rotation =
+      ref::mul(ref::rotate_y(o.model_rotate_y),
+               ref::mul(ref::rotate_x(o.model_rotate_x), ref::rotate_z(o.model_rotate_z)));
+  p.model = ref::mul(ref::mul(ref::translate(o.model_translate), rotation),
                      ref::mul(ref::scale({o.model_scale, o.model_scale, o.model_scale}), fit));
   p.view = ref::look_at(o.eye, o.target, o.up);
   p.projection = ref::perspective(o.fovy, double(o.width) / o.height, o.near, o.far);
@@ -127,6 +131,82 @@ inline void measure(bool depth_test, Comparison& c) {
   }
 }
 
+// Whether render_scene draws mesh with its MTL materials (one draw per material).
+inline bool uses_mesh_materials(const host::HostMesh& mesh, const host::SceneOptions& o) {
+  if (!o.use_mesh_materials) return false;
+  for (int32_t m : mesh.triangle_material)
+    if (m >= 0 && size_t(m) < mesh.materials.size()) return true;
+  return false;
+}
+
+// The reference of a mesh drawn with its MTL materials, as render_scene draws it: the triangles
+// of each material (in first-use order, the options' material for triangles without one) rendered
+// with that material's colours and map_Kd (loaded as render_scene loads it, unless the options
+// give a texture), the frames composited by depth (LESS: a later material's pixel wins where it
+// is nearer). `base` holds everything else. Owners are the mesh's triangle indices.
+inline bool render_reference_by_material(const host::HostMesh& mesh, const host::SceneOptions& o,
+                                         const ref::RefParams& base, ref::RefFrame& out,
+                                         std::string& error) {
+  std::vector<int32_t> order;  // materials in first-use order
+  std::vector<std::vector<uint32_t>> groups;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    int32_t m = t < mesh.triangle_material.size() ? mesh.triangle_material[t] : -1;
+    if (m >= 0 && size_t(m) >= mesh.materials.size()) m = -1;
+    size_t g = 0;
+    while (g < order.size() && order[g] != m) ++g;
+    if (g == order.size()) {
+      order.push_back(m);
+      groups.emplace_back();
+    }
+    groups[g].push_back(uint32_t(t));
+  }
+  for (size_t g = 0; g < groups.size(); ++g) {
+    host::HostMesh part = mesh;
+    part.triangles.clear();
+    part.triangle_material.clear();
+    for (uint32_t t : groups[g]) {
+      part.triangles.push_back(mesh.triangles[t]);
+      part.triangle_material.push_back(order[g]);
+    }
+    ref::RefParams rp = base;
+    ref::RefTexture rt;
+    if (order[g] >= 0) {
+      const host::HostMaterial& hm = mesh.materials[size_t(order[g])];
+      rp.material = {hm.ambient, hm.diffuse, hm.specular, hm.emission, hm.shininess};
+      if (o.texture_object == nullptr && o.texture.empty()) {
+        rp.texture = nullptr;
+        if (!hm.map_kd.empty() && mesh.has_uvs()) {
+          host::HostTexture loaded;
+          if (!host::load_texture(hm.map_kd, o.texture_format, o.mipmap != MipMode::kNone, loaded,
+                                  error))
+            return false;
+          rt = ref::from_core(loaded.texture);
+          rp.texture = &rt;
+        }
+      }
+    }
+    ref::RefFrame f;
+    ref::render(part, rp, f);
+    if (g == 0) {
+      out = f;
+      for (int32_t& owner : out.owner)
+        if (owner >= 0) owner = int32_t(groups[g][size_t(owner)]);
+      continue;
+    }
+    for (size_t p = 0; p < f.owner.size(); ++p) {
+      if (f.owner[p] < 0) continue;
+      if (out.owner[p] >= 0 && base.depth_test && !(f.depth[p] < out.depth[p])) continue;
+      out.color[p] = f.color[p];
+      for (size_t k = 0; k < 3; ++k) out.rgb8[3 * p + k] = f.rgb8[3 * p + k];
+      out.depth[p] = f.depth[p];
+      out.owner[p] = int32_t(groups[g][size_t(f.owner[p])]);
+      out.lod[p] = f.lod[p];
+      out.normal[p] = f.normal[p];
+    }
+  }
+  return true;
+}
+
 inline bool compare_scene(const host::HostMesh& mesh, const host::SceneOptions& o, Comparison& c,
                           std::string& error) {
   if (!host::render_scene(mesh, o, c.core, error)) return false;
@@ -146,22 +226,28 @@ inline bool compare_scene(const host::HostMesh& mesh, const host::SceneOptions& 
     rp.filter = ref::from_core(o.filter);
     rp.wrap_s = rp.wrap_t = ref::from_core(o.wrap);
   }
+  Sampler smp;
+  smp.filter = o.filter;
+  smp.wrap_s = smp.wrap_t = o.wrap;
+  smp.mip = o.mipmap;
+  smp.env = o.unlit ? TexEnv::kReplace : TexEnv::kModulate;
   if (o.texture_object != nullptr) {
     rt = ref::from_core(*o.texture_object);
     rp.texture = &rt;
-    Sampler smp;
-    smp.filter = o.filter;
-    smp.wrap_s = smp.wrap_t = o.wrap;
-    smp.mip = o.mipmap;
-    smp.env = o.unlit ? TexEnv::kReplace : TexEnv::kModulate;
     ref::set_sampler(rp, smp);
   }
-  if (!o.normalmap.empty() && mesh.tangents.empty()) {
-    host::HostMesh with_tangents = mesh;  // as the scene computes them
+  host::HostMesh with_tangents;
+  const bool tangents = !o.normalmap.empty() && mesh.tangents.empty();
+  if (tangents) {
+    with_tangents = mesh;  // as the scene computes them
     host::compute_tangents(with_tangents);
-    ref::render(with_tangents, rp, c.reference);
+  }
+  const host::HostMesh& drawn = tangents ? with_tangents : mesh;
+  if (uses_mesh_materials(mesh, o)) {
+    ref::set_sampler(rp, smp);  // for the materials' textures
+    if (!render_reference_by_material(drawn, o, rp, c.reference, error)) return false;
   } else {
-    ref::render(mesh, rp, c.reference);
+    ref::render(drawn, rp, c.reference);
   }
   measure(o.depth_test, c);
   return true;
