@@ -50,13 +50,8 @@ uint32_t position_bound(const Vec3* positions, size_t n) {
   return b;
 }
 
-bool ScreenTransform::is_perspective(const Mat4& p) {
-  return p.m[2][0].raw == 0 && p.m[2][1].raw == 0 && p.m[3][0].raw == 0 && p.m[3][1].raw == 0 &&
-         p.m[3][2].raw == -Fixed::kOne && p.m[3][3].raw == 0;
-}
-
-ScreenTransform::ScreenTransform(const Mat4& mvp, const Mat4* projection, uint32_t bound, int width,
-                                 int height, GuardBand guard) {
+ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int height,
+                                 GuardBand guard) {
   // Coordinates lie in [-(bound + 1), bound]; with bound < 2^(31 - ps) they stay in int32 when
   // shifted by ps, and bound 2^ps >= 2^30 (so a row's factors fit int32, below).
   if (bound > 0x7FFFFFFFu) bound = 0x7FFFFFFFu;  // no int32 coordinate is beyond
@@ -93,26 +88,13 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, const Mat4* projection, uint32
     n_max = 29 + exy - ew - kShortPathFractionBits;
   // W = w 2^ew, w's Q16.16 is W >> (ew - 16): the short path for |w| below 2^13 (ew >= 16).
   if (n_max < 2 || ew < 16) return;
-  // GL's perspective: window z from D B / w = mul_hi(c1, r) 2^kz (below), kz the least that keeps
-  // c1 = D B 2^(ew - 45 + n_max - kz) in int32; at most 15 (else the z row).
-  bool affine = projection != nullptr && is_perspective(*projection);
-  const int64_t db = affine ? int64_t{kHalfDepth} * projection->m[2][3].raw : 0;  // < 2^62
-  if (affine) {
-    const uint64_t mag = abs64(db);
-    const int len = mag == 0 ? 0 : 64 - clz64(mag);
-    kz_ = len + (ew - 45 + n_max) - 31;
-    if (kz_ < 0) kz_ = 0;
-    if (kz_ > 15) affine = false;
-  }
   // The z row: mul_hi(Z, r) = (z_ndc D) 2^-kz, kz = n_max - cz with cz = 29 + ez - ew; ez
   // lowered so that kz >= 0, n_max so that kz <= 10 (z in units of 2^10, 1/64 of a 16-bit depth
   // step).
   int ez = exponent[2];
-  if (!affine) {
-    if (n_max > ez - ew + 39) n_max = ez - ew + 39;
-    if (n_max < 2) return;
-    if (ez > ew - 29 + n_max) ez = ew - 29 + n_max;
-  }
+  if (n_max > ez - ew + 39) n_max = ez - ew + 39;
+  if (n_max < 2) return;
+  if (ez > ew - 29 + n_max) ez = ew - 29 + n_max;
   // f at most 10 (x - sx and y - sy below 2^21, times 2^f below 2^31): exy lowered if need be.
   if (29 + exy - ew - n_max > 10) exy = n_max + 10 - 29 + ew;
   f_ = 29 + exy - ew - n_max;
@@ -123,31 +105,13 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, const Mat4* projection, uint32
   }
   n_max_ = n_max;
   w_shift_ = ew - 16;
+  kz_ = n_max - (29 + ez - ew);
+  c0_ = kHalfDepth;
+  // Inside the depth range: 0 <= D + m 2^kz <= 2 D, m in [-floor(D / 2^kz), floor(D / 2^kz)].
+  m_lo_ = -static_cast<int32_t>(kHalfDepth >> kz_);
+  m_span_ = 2 * (kHalfDepth >> kz_);
   // The w range: the precision's lower end 2^(31 - n_max), kMaxW above.
-  int64_t w_lo = int64_t{1} << (31 - n_max), w_hi = kMaxW;
-  int64_t c0;  // z = c0 + m 2^kz
-  if (affine && perspective_range(*projection, ew, w_lo, w_hi)) {
-    // z_ndc = -A + B / w, window z = D (1 - A) + D B / w (D = kHalfDepth; A, B Q16.16): with
-    // 1 / w = 2^ew / W and r = 2^(61 - n_max) / W, D B / w = mul_hi(c1, r) 2^kz. The w range
-    // holds the depth range.
-    c1_ = scaled(db, ew - 45 + n_max - kz_);
-    c0 = int64_t{kHalfDepth} - ((int64_t{kHalfDepth} * projection->m[2][2].raw + 32768) >> 16);
-    affine_z_ = true;
-  } else {
-    if (affine) {  // a perspective whose planes the w range cannot hold: the z row after all
-      if (n_max > ez - ew + 39) return;
-      if (ez > ew - 29 + n_max) return;
-    }
-    kz_ = n_max - (29 + ez - ew);
-    c0 = kHalfDepth;
-    // Inside the depth range: 0 <= c0 + m 2^kz <= 2 D, m in [ceil(-c0 / 2^kz),
-    // floor((2D - c0) / 2^kz)].
-    const int64_t unit = int64_t{1} << kz_;
-    const int64_t lo = -floor_div(c0, unit), hi = floor_div(2 * int64_t{kHalfDepth} - c0, unit);
-    m_lo_ = static_cast<int32_t>(lo);
-    m_span_ = static_cast<uint32_t>(hi - lo);
-  }
-  c0_ = static_cast<uint32_t>(c0);
+  const int64_t w_lo = int64_t{1} << (31 - n_max), w_hi = kMaxW;
   if (w_hi < w_lo) return;
   w_lo_ = static_cast<int32_t>(w_lo);
   w_span_ = static_cast<uint32_t>(w_hi - w_lo);
@@ -161,10 +125,14 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, const Mat4* projection, uint32
   enabled_ = true;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 3; ++j) split_[i][j] = halves(rows_[i].a[j]);
-  c1_split_ = halves(c1_);
-  run_ = {rows_[3], rows_[0], rows_[1], w_lo_, static_cast<int32_t>(w_span_), n_max_, f_,
-          acc_x_,   acc_y_,   c1_,      ps_,   static_cast<int32_t>(c0_),     kz_,    w_shift_,
-          0};
+  run_ = {rows_[3], rows_[0],
+          rows_[1], rows_[2],
+          w_lo_,    static_cast<int32_t>(w_span_),
+          n_max_,   f_,
+          acc_x_,   acc_y_,
+          ps_,      static_cast<int32_t>(c0_),
+          kz_,      w_shift_,
+          m_lo_,    static_cast<int32_t>(m_span_)};
 }
 
 size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
@@ -178,6 +146,8 @@ size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
     return k;
   } else {
     if (count == 0) return 0;
+    static_assert(sizeof(RunWords) == 112 && offsetof(RunWords, w_lo) == 64 &&
+                  offsetof(RunWords, ps) == 88 && offsetof(RunWords, m_lo) == 104);
     static_assert(sizeof(Vec3) == 12 && sizeof(ScreenVertex) == 24 &&
                   offsetof(ScreenVertex, color) == 16 && offsetof(ScreenVertex, outcode) == 22);
     const Vec3* const start = p;
@@ -189,29 +159,34 @@ size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
     asm volatile(
         "1:\n\t"
         "ldmia   %[p]!, {r4, r5, r6}\n\t"  // the position, Q16.16
-        "ldr     r8, [%[k], #76]\n\t"      // ps
+        "ldr     r8, [%[k], #88]\n\t"      // ps
         "lsl     r4, r4, r8\n\t"
         "lsl     r5, r5, r8\n\t"
         "lsl     r6, r6, r8\n\t"
         "ldrd    r8, r9, [%[k], #0]\n\t"  // the w row
         "ldrd    r10, r11, [%[k], #8]\n\t"
-        "smmla   r11, r8, r4, r11\n\t"
+        "smmla   r11, r10, r6, r11\n\t"
         "smmla   r11, r9, r5, r11\n\t"
-        "smmla   r11, r10, r6, r11\n\t"    // W
-        "ldrd    r8, r9, [%[k], #48]\n\t"  // w_lo, w_span
+        "smmla   r11, r8, r4, r11\n\t"     // W
+        "ldrd    r8, r9, [%[k], #64]\n\t"  // w_lo, w_span
         "sub     r8, r11, r8\n\t"
         "cmp     r8, r9\n\t"
         "bhi     2f\n\t"                   // not in the short path's range
         "ldrd    r8, r9, [%[k], #16]\n\t"  // the x row
         "ldrd    r10, r12, [%[k], #24]\n\t"
-        "smmla   r12, r8, r4, r12\n\t"
+        "smmla   r12, r10, r6, r12\n\t"
         "smmla   r12, r9, r5, r12\n\t"
-        "smmla   r12, r10, r6, r12\n\t"    // X
+        "smmla   r12, r8, r4, r12\n\t"     // X
         "ldrd    r8, r9, [%[k], #32]\n\t"  // the y row
         "ldrd    r10, lr, [%[k], #40]\n\t"
-        "smmla   lr, r8, r4, lr\n\t"
+        "smmla   lr, r10, r6, lr\n\t"
         "smmla   lr, r9, r5, lr\n\t"
-        "smmla   lr, r10, r6, lr\n\t"  // Y
+        "smmla   lr, r8, r4, lr\n\t"       // Y
+        "ldrd    r8, r9, [%[k], #56]\n\t"  // the z row: a2, t
+        "smmla   r9, r8, r6, r9\n\t"
+        "ldrd    r8, r10, [%[k], #48]\n\t"  // a0, a1
+        "smmla   r9, r10, r5, r9\n\t"
+        "smmla   r10, r8, r4, r9\n\t"  // Z
         "clz     r4, r11\n\t"          // n
         "lsl     r5, r11, r4\n\t"      // d = W 2^n
         "lsr     r6, r5, #16\n\t"
@@ -222,25 +197,28 @@ size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
         "rsb     r9, r9, #0x20000000\n\t"  // eh
         "lsl     r9, r9, #3\n\t"
         "smmla   r6, r6, r9, r6\n\t"       // recip_q61(d)
-        "ldrd    r8, r9, [%[k], #56]\n\t"  // n_max, f
+        "ldrd    r8, r9, [%[k], #72]\n\t"  // n_max, f
         "sub     r8, r8, r4\n\t"
         "lsr     r6, r6, r8\n\t"           // r
-        "ldrd    r4, r5, [%[k], #64]\n\t"  // acc_x, acc_y
+        "ldrd    r4, r5, [%[k], #80]\n\t"  // acc_x, acc_y
         "smmla   r12, r12, r6, r4\n\t"
         "asr     r12, r12, r9\n\t"
         "ssat    r12, #23, r12\n\t"  // x
         "smmla   lr, lr, r6, r5\n\t"
         "asr     lr, lr, r9\n\t"
-        "ssat    lr, #23, lr\n\t"          // y
-        "ldr     r4, [%[k], #72]\n\t"      // c1
-        "smmul   r4, r4, r6\n\t"           // m
-        "ldrd    r5, r8, [%[k], #80]\n\t"  // c0, kz
-        "lsl     r4, r4, r8\n\t"
-        "add     r4, r4, r5\n\t"       // z
-        "ldr     r5, [%[k], #88]\n\t"  // w_shift
-        "lsr     r11, r11, r5\n\t"     // w, Q16.16
+        "ssat    lr, #23, lr\n\t"           // y
+        "smmul   r10, r10, r6\n\t"          // m
+        "ldrd    r4, r5, [%[k], #104]\n\t"  // m_lo, m_span: the depth range
+        "sub     r4, r10, r4\n\t"
+        "cmp     r4, r5\n\t"
+        "bhi     2f\n\t"
+        "ldrd    r4, r5, [%[k], #92]\n\t"  // c0, kz
+        "lsl     r10, r10, r5\n\t"
+        "add     r10, r10, r4\n\t"      // z
+        "ldr     r5, [%[k], #100]\n\t"  // w_shift
+        "lsr     r11, r11, r5\n\t"      // w, Q16.16
         "strd    r12, lr, [%[out]]\n\t"
-        "strd    r4, r11, [%[out], #8]\n\t"
+        "strd    r10, r11, [%[out], #8]\n\t"
         "ldrd    r4, r5, [%[t]]\n\t"  // colour, outcode 0, pending
         "strd    r4, r5, [%[out], #16]\n\t"
         "add     %[out], %[out], #24\n\t"
@@ -255,29 +233,6 @@ size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
         : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
     return static_cast<size_t>(p - start);
   }
-}
-
-// Under GL's perspective, w between the near and far planes' (w_near = B / (A - 1),
-// w_far = B / (A + 1), window z increasing with w when B < 0), a margin of 2^-16 of w (and of
-// the Q16.16 rounding of w_near, w_far) inside: there the computed z stays within its range
-// (its error, a few units of 2^kz, is far below the margin's change of z). w_lo, w_hi narrowed
-// to it (W = w 2^ew); false when the projection's planes are not that (then the z row decides).
-bool ScreenTransform::perspective_range(const Mat4& projection, int ew, int64_t& w_lo,
-                                        int64_t& w_hi) {
-  const int64_t a = projection.m[2][2].raw, bb = projection.m[2][3].raw;
-  if (bb >= 0 || a - Fixed::kOne == 0 || a + Fixed::kOne == 0) return false;
-  const int64_t near = bb * Fixed::kOne / (a - Fixed::kOne);  // Q16.16, |B| 2^16 < 2^47
-  const int64_t far = bb * Fixed::kOne / (a + Fixed::kOne);
-  if (near <= 0 || far <= near) return false;
-  const int sh = ew - 16;                // >= 0: W = w_q16 2^sh
-  const int64_t cap = int64_t{1} << 40;  // beyond kMaxW: only a comparison
-  const int64_t wn = near >= (cap >> sh) ? cap : near << sh;
-  const int64_t wf = far >= (cap >> sh) ? cap : far << sh;
-  const int64_t slack = (int64_t{1} << sh) + 2;  // w_near's and w_far's own rounding
-  const int64_t lo = wn + (wn >> 16) + slack, hi = wf - (wf >> 16) - slack;
-  if (lo > w_lo) w_lo = lo;
-  if (hi < w_hi) w_hi = hi;
-  return true;
 }
 
 // Whether every position within the bound projects inside the guard band: the cube's corners

@@ -7,20 +7,17 @@
 // half width in subpixels, y: minus the half height, z: half the depth range kDepthMax / 2, w: 1)
 // and scaled by a power of two chosen from the row and the draw's position bound, so that no sum
 // can leave int32; positions are shifted up to use 31 bits. Per vertex:
-//   X, Y, W = rows . (P, 1)                 sums of three mla_hi each
+//   X, Y, Z, W = rows . (P, 1)              sums of three mla_hi each
 //   n = clz(W), r = recip_q61(W << n) >> (n_max - n)      about 2^(61 - n_max) / W
 //   x = mla_hi(X, r, (sx << f) + 2^(f - 1)) >> f          display subpixels, rounded
 //   y = mla_hi(Y, r, (sy << f) + 2^(f - 1)) >> f
-//   z = c0 + mul_hi(Z, r) 2^kz                            Z: the z row, or a constant when the
-//                                                         projection is GL's perspective (window
-//                                                         z is affine in 1 / w there)
+//   z = kDepthMax / 2 + mul_hi(Z, r) 2^kz                 window depth
 // A vertex is projected here only when it is inside every plane with w large enough for that
-// precision: w in a range (the precision's lower end, and under GL's perspective the near and far
-// planes, a margin of 2^-16 inside), x and y in the guard band (a test per vertex, unless the
-// cube of the draw's position bound lies inside the band: then only a clamp), z in the depth
-// range (GL's perspective: implied by w). Every other vertex (near the eye, behind it, outside
-// a plane, or a draw whose clip coordinates may reach the exact path's range limit) is left to
-// the caller's exact path (VertexStage::project on 64-bit clip coordinates, and the exact
+// precision: w in a range (the precision's lower end), x and y in the guard band (a test per
+// vertex, unless the cube of the draw's position bound lies inside the band: then only a clamp),
+// z in the depth range. Every other vertex (near the eye, behind it,
+// outside a plane, or a draw whose clip coordinates may reach the exact path's range limit) is
+// left to the caller's exact path (VertexStage::project on 64-bit clip coordinates, and the exact
 // outcode), which it counts (FrameStats::vertices_wide). Derivation and bounds:
 // docs/numerics.md#the-short-path.
 #pragma once
@@ -59,12 +56,10 @@ uint32_t position_bound(const Vec3* positions, size_t n);
 
 class ScreenTransform {
  public:
-  // mvp: the draw's model-view-projection (Q16.16); projection: its projection, when it is GL's
-  // perspective (z affine in 1 / w: is_perspective()), else nullptr; bound: every coordinate of
-  // the positions it will be given lies in [-bound - 1, bound] (position_bound, or Mesh::bound);
-  // the viewport (1..kMaxViewport) and its guard band.
-  ScreenTransform(const Mat4& mvp, const Mat4* projection, uint32_t bound, int width, int height,
-                  GuardBand guard);
+  // mvp: the draw's model-view-projection (Q16.16); bound: every coordinate of the positions it
+  // will be given lies in [-bound - 1, bound] (position_bound, or Mesh::bound); the viewport
+  // (1..kMaxViewport) and its guard band.
+  ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int height, GuardBand guard);
 
   // Whether any vertex can take the short path (false: the draw's clip coordinates may reach the
   // exact path's range limit, or its rows leave no precision for it).
@@ -78,9 +73,6 @@ class ScreenTransform {
   // (never undefined behaviour, never one outside the coordinate budget).
   [[gnu::always_inline]] bool project(const Vec3& p, ScreenVertex& v) const;
 
-  // GL's perspective (glFrustum, gluPerspective): z_clip = A z_eye + B, w_clip = -z_eye.
-  static bool is_perspective(const Mat4& projection);
-
   // project() as cores without a 64-bit product compute it (project() there): public for the
   // tests, which check that both give the same integers.
   [[gnu::always_inline]] bool project_halves(const Vec3& p, ScreenVertex& v) const;
@@ -88,17 +80,16 @@ class ScreenTransform {
   // project() over positions [p, p + count) into out (x, y, z, w, and the last 8 bytes from
   // tail: colour, outcode 0, pending flag) while each takes the short path; returns how many
   // did (the next needs the exact path). Hand-allocated registers on cores with the DSP
-  // extension and Thumb-2 (kShortPathRun), for draws under GL's perspective that need no guard
-  // test (run_ready()): the same integers as project(), in about 60 instructions a vertex where
-  // GCC 12's code for project() takes about 95 (it reloads and spills the draw's constants).
-  bool run_ready() const { return affine_z_ && guard_free_; }
+  // extension, Thumb-2 and a divider (kShortPathRun), for draws that need no guard test
+  // (run_ready()): the same integers as project(), in about 68 instructions a vertex where GCC
+  // 12's code for project() takes about 100 (it reloads and spills the draw's constants).
+  bool run_ready() const { return guard_free_; }
   size_t run(const Vec3* p, size_t count, ScreenVertex* out, const uint32_t (&tail)[2]) const;
 
  private:
   static constexpr int32_t kMaxW = (int32_t{1} << 30) - 1;  // row sums are below 2^29 + 5
   static constexpr uint32_t kHalfDepth = kDepthMax / 2;     // 65535 * 2^15
 
-  static bool perspective_range(const Mat4& projection, int ew, int64_t& w_lo, int64_t& w_hi);
   static bool inside_guard_band(const Mat4& mvp, uint32_t bound, GuardBand guard);
 
   // Rows x, y, z, w: a[j] = K_i m_ij 2^(E_i - ps), |a| < 2^31; t = K_i t_i 2^(E_i - 16),
@@ -109,19 +100,18 @@ class ScreenTransform {
     int32_t t;     // its translation
   };
   RowWords rows_[4] = {};
-  // The words run() reads, in the order it reads them (ldrd pairs): rows w, x, y, then w_lo,
-  // w_span, n_max, f, acc_x, acc_y, c1, ps, c0, kz, w_shift.
+  // The words run() reads, in the order it reads them (ldrd pairs): rows w, x, y, z, then w_lo,
+  // w_span, n_max, f, acc_x, acc_y, ps, c0, kz, w_shift, m_lo, m_span.
   struct alignas(8) RunWords {
-    RowWords w, x, y;
-    int32_t w_lo, w_span, n_max, f, acc_x, acc_y, c1, ps, c0, kz, w_shift, pad;
+    RowWords w, x, y, z;
+    int32_t w_lo, w_span, n_max, f, acc_x, acc_y, ps, c0, kz, w_shift, m_lo, m_span;
   };
   RunWords run_{};
   Halves split_[4][3] = {};  // rows_[i].a[j] split (project_halves)
-  Halves c1_split_{};
-  int ps_ = 0;  // position shift: |p << ps| <= 2^31
+  int ps_ = 0;               // position shift: |p << ps| <= 2^31
   // The short path when W is in [w_lo, w_lo + w_span]: w_lo >= 2^(31 - n_max) (the precision),
-  // w_lo + w_span <= 2^30 - 1 (every shift below defined); under GL's perspective also the near
-  // and far planes. Disabled: only W = INT32_MIN, which no row sum reaches (nor the zero rows).
+  // w_lo + w_span <= 2^30 - 1 (every shift below defined). Disabled: only W = INT32_MIN, which
+  // no row sum reaches (nor the zero rows).
   int32_t w_lo_ = INT32_MIN;
   uint32_t w_span_ = 0;
   int n_max_ = 0;      // in [2, 9]
@@ -133,11 +123,9 @@ class ScreenTransform {
   int32_t y_lo_ = 0;
   uint32_t y_span_ = 0;
   bool guard_free_ = false;  // no x, y test: the bound's cube is inside the guard band
-  bool affine_z_ = false;    // z from c1 (GL's perspective; the w range holds the depth range)
-  int32_t c1_ = 0;           // affine z: m = mul_hi(c1, r) is D B / w in units of 2^kz
   uint32_t c0_ = 0;          // z = c0 + m 2^kz (wrapping: exact inside the depth range)
-  int kz_ = 0;               // in [0, 15]
-  int32_t m_lo_ = 0;         // the z row: the depth range is m in [m_lo, m_lo + m_span]
+  int kz_ = 0;               // in [0, 10]
+  int32_t m_lo_ = 0;         // the depth range: m in [m_lo, m_lo + m_span]
   uint32_t m_span_ = 0;
   int w_shift_ = 0;  // clip w in Q16.16: W >> w_shift (>= 0)
   bool enabled_ = false;
@@ -170,13 +158,12 @@ inline bool ScreenTransform::project(const Vec3& p, ScreenVertex& v) const {
   const int32_t w = row(3);
   // One compare: w in the range keeps n = clz(w) in [2, n_max], every shift below defined.
   if (static_cast<uint32_t>(w) - static_cast<uint32_t>(w_lo_) > w_span_) return false;
-  const int32_t x = row(0), y = row(1);
-  const int32_t zs = affine_z_ ? c1_ : row(2);
+  const int32_t x = row(0), y = row(1), z = row(2);
   const int n = clz32(static_cast<uint32_t>(w));
   const auto r = static_cast<int32_t>(recip_q61(static_cast<uint32_t>(w) << n) >> (n_max_ - n));
   int32_t xs = mla_hi(x, r, acc_x_) >> f_;
   int32_t ys = mla_hi(y, r, acc_y_) >> f_;
-  const int32_t m = mul_hi(zs, r);
+  const int32_t m = mul_hi(z, r);
   if (guard_free_) {
     // Inside the band for every position within the bound; the clamp keeps a position beyond
     // it (a wrong Mesh::bound) inside the coordinate budget.
@@ -186,7 +173,7 @@ inline bool ScreenTransform::project(const Vec3& p, ScreenVertex& v) const {
              static_cast<uint32_t>(ys - y_lo_) > y_span_) [[unlikely]] {
     return false;
   }
-  if (!affine_z_ && static_cast<uint32_t>(m - m_lo_) > m_span_) [[unlikely]]
+  if (static_cast<uint32_t>(m - m_lo_) > m_span_) [[unlikely]]
     return false;
   v.x = xs;
   v.y = ys;
@@ -196,9 +183,8 @@ inline bool ScreenTransform::project(const Vec3& p, ScreenVertex& v) const {
   return true;
 }
 
-// project() with split products (cores without a 64-bit product): each matrix entry, c1 and the
-// accumulators split once per draw, each position coordinate and the reciprocal once per vertex;
-// the same integers.
+// project() with split products (cores without a 64-bit product): each matrix entry split once
+// per draw, each position coordinate and the reciprocal once per vertex; the same integers.
 inline bool ScreenTransform::project_halves(const Vec3& p, ScreenVertex& v) const {
   const Halves px = halves(p.x.raw << ps_), py = halves(p.y.raw << ps_),
                pz = halves(p.z.raw << ps_);
@@ -221,7 +207,7 @@ inline bool ScreenTransform::project_halves(const Vec3& p, ScreenVertex& v) cons
   int32_t ys = static_cast<int32_t>(static_cast<uint32_t>(acc_y_) +
                                     static_cast<uint32_t>(mul_hi_halves(halves(y), r))) >>
                f_;
-  const int32_t m = affine_z_ ? mul_hi_halves(c1_split_, r) : mul_hi_halves(halves(row(2)), r);
+  const int32_t m = mul_hi_halves(halves(row(2)), r);
   if (guard_free_) {
     xs = saturate_signed<23>(xs);
     ys = saturate_signed<23>(ys);
@@ -229,7 +215,7 @@ inline bool ScreenTransform::project_halves(const Vec3& p, ScreenVertex& v) cons
              static_cast<uint32_t>(ys - y_lo_) > y_span_) [[unlikely]] {
     return false;
   }
-  if (!affine_z_ && static_cast<uint32_t>(m - m_lo_) > m_span_) [[unlikely]]
+  if (static_cast<uint32_t>(m - m_lo_) > m_span_) [[unlikely]]
     return false;
   v.x = xs;
   v.y = ys;

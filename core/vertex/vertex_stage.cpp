@@ -28,7 +28,7 @@ VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guar
       guard_(guard),
       width_(width),
       height_(height),
-      screen_(mvp_, &camera.projection, bound, width, height, guard) {
+      screen_(mvp_, bound, width, height, guard) {
   rigid_ = rigid_normal_rows(nm_, rot_);
 }
 

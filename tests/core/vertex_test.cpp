@@ -120,8 +120,6 @@ TEST(Projection, EqualsRoundDivOnRandomClipCoordinates) {
 // under a random model matrix (rotated, scaled, maybe unevenly, translated), its positions.
 struct RandomDraw {
   Mat4 mvp;
-  Mat4 projection;
-  bool perspective = false;  // pass the projection (the short path's z from 1 / w)
   std::vector<Vec3> positions;
 };
 
@@ -141,8 +139,6 @@ RandomDraw random_draw(std::mt19937_64& rng) {
   if (rng() % 3 == 0) model = model * scale(Vec3{fx(0.5 + pos(rng)), fx(1), fx(0.5 + pos(rng))});
   RandomDraw d;
   d.mvp = cam.projection * cam.view * model;
-  d.projection = cam.projection;
-  d.perspective = rng() % 2 == 0;
   const double r = std::min(extent, 30000.0);
   for (int i = 0; i < 400; ++i)
     d.positions.push_back({fx(r * u(rng)), fx(r * u(rng)), fx(r * u(rng))});
@@ -150,14 +146,12 @@ RandomDraw random_draw(std::mt19937_64& rng) {
 }
 
 // The short path's vertices against the exact quotients of the same Q16.16 model-view-projection
-// (evaluated in double: every product is exact, each sum within 2^-50 of itself; z from the
-// projection's A and B under GL's perspective, from the z row otherwise): only vertices inside
-// every plane, with outcode 0; x and y within
-// half a subpixel plus 2^-kShortPathFractionBits plus 2^-19 of their distance from the centre,
-// z within 2^12 of 2^32 (1/16 of a 16-bit step), w within 2^-19 of itself. It hands the exact
-// path the vertices outside a plane and those of small w, and almost never one inside every plane
-// in the draw's far half. Its split-product form (project_halves: the Cortex-M0+'s) gives the same
-// integers.
+// (evaluated in double: every product is exact, each sum within 2^-50 of itself): only vertices
+// inside every plane, with outcode 0; x and y within half a subpixel plus 2^-kShortPathFractionBits
+// plus 2^-19 of their distance from the centre, z within 2^12 of 2^32 (1/16 of a 16-bit step), w
+// within 2^-19 of itself. It hands the exact path the vertices outside a plane and those of small
+// w, and almost never one inside every plane in the draw's far half. Its split-product form
+// (project_halves: the Cortex-M0+'s) gives the same integers.
 TEST(ShortPath, AgreesWithTheQuotientsOfItsClipCoordinates) {
   std::mt19937_64 rng(36);
   const int width = 320, height = 240;
@@ -167,9 +161,8 @@ TEST(ShortPath, AgreesWithTheQuotientsOfItsClipCoordinates) {
   int short_path = 0, exact_path = 0, exact_far = 0, disabled = 0, guard_free = 0;
   for (int draw = 0; draw < 3000; ++draw) {
     const RandomDraw d = random_draw(rng);
-    const ScreenTransform st(d.mvp, d.perspective ? &d.projection : nullptr,
-                             position_bound(d.positions.data(), d.positions.size()), width, height,
-                             g);
+    const ScreenTransform st(d.mvp, position_bound(d.positions.data(), d.positions.size()), width,
+                             height, g);
     if (!st.enabled()) {
       ++disabled;
       continue;
@@ -189,11 +182,7 @@ TEST(ShortPath, AgreesWithTheQuotientsOfItsClipCoordinates) {
     }
     for (size_t k = 0; k < d.positions.size(); ++k) {
       const auto [x, y, z, w] = clip[k];
-      // GL's perspective: window z from 1 / w (z_ndc = -A + B / w), as the short path takes it.
-      const double qz =
-          d.perspective
-              ? dz * (-d.projection.m[2][2].raw / 65536.0 + d.projection.m[2][3].raw / 65536.0 / w)
-              : dz * z / w;
+      const double qz = dz * z / w;
       const double qx = sx * x / w, qy = -sy * y / w;
       const double lx = g.gx * sx, ly = g.gy * sy;
       // Inside every plane by a margin of 2^-10 of its extent (and in front of the eye).
@@ -268,8 +257,7 @@ TEST(ShortPath, TakesEveryVertexOfThePeerScene) {
     p.push_back({Fixed::from_raw(static_cast<int32_t>(rng() % 131073) - 65536),
                  Fixed::from_raw(static_cast<int32_t>(rng() % 131073) - 65536),
                  Fixed::from_raw(static_cast<int32_t>(rng() % 131073) - 65536)});
-  const ScreenTransform st(mvp, &cam.projection, position_bound(p.data(), p.size()), 320, 240,
-                           GuardBand{25, 34});
+  const ScreenTransform st(mvp, position_bound(p.data(), p.size()), 320, 240, GuardBand{25, 34});
   ASSERT_TRUE(st.enabled());
   for (const Vec3& q : p) {
     ScreenVertex v;
@@ -286,9 +274,9 @@ TEST(ShortPath, DrawsNearTheExactPathsRangeAreLeftToIt) {
   mvp.m[3][3] = Fixed{};
   mvp.m[3][2] = Fixed::from_int(1);
   const uint32_t bound = 4000u << 16;
-  EXPECT_TRUE(ScreenTransform(mvp, nullptr, bound, 320, 240, GuardBand{25, 34}).enabled());
+  EXPECT_TRUE(ScreenTransform(mvp, bound, 320, 240, GuardBand{25, 34}).enabled());
   mvp.m[3][2] = Fixed::from_int(256);  // w up to 1024000 > 2^19
-  EXPECT_FALSE(ScreenTransform(mvp, nullptr, bound, 320, 240, GuardBand{25, 34}).enabled());
+  EXPECT_FALSE(ScreenTransform(mvp, bound, 320, 240, GuardBand{25, 34}).enabled());
 }
 
 // Lights in model space: a rigid model's lit colours against GL's model evaluated in double
