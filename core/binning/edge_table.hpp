@@ -46,18 +46,53 @@ class EdgeTable {
     return true;
   }
 
-  // Empties every bucket; with signatures, starts each strip's from the frame's.
+  // Empties every bucket; with signatures, starts each strip's from the frame's. The row window
+  // is the viewport, no band is binned.
   void begin_frame(uint32_t frame_signature) {
     frame_signature_ = frame_signature;
-    begin_band(0, strips_);
+    empty(0, strips_);
+    window_ = {0, height_ - 1, false, false, 0};
   }
-  // Empties the store and every bucket; with signatures, restarts those of strips [s0, s1).
+  // Binning a band of strips [s0, s1) (docs/bands.md): empties the store and every bucket; with
+  // signatures, restarts those of strips [s0, s1); the row window is the band's rows.
   void begin_band(int s0, int s1) {
-    count_ = 0;
-    for (int i = 0; i < strips_; ++i) buckets_[static_cast<size_t>(i)] = kNoTriangle;
-    if (signing())
-      for (int i = s0; i < s1; ++i) strip_inputs_[static_cast<size_t>(i)] = frame_signature_;
+    empty(s0, s1);
+    const int end = s1 * strip_height_ < height_ ? s1 * strip_height_ : height_;
+    window_ = {s0 * strip_height_, end - 1, true, false, 0};
   }
+
+  // The row window: the rows of the band being binned. Outside bands it is the viewport (and
+  // classify() clamps to that already). banding(): a band is binned (or the frame's first one,
+  // once the store filled up: start_banding()).
+  bool banding() const { return window_.banding; }
+  void start_banding() { window_.banding = true; }
+  int32_t window_first() const { return window_.r0; }
+  int32_t window_last() const { return window_.r1; }
+  // Whether rows [r0, r1] are all outside the window (a band's triangle of another band).
+  bool outside_window(int32_t r0, int32_t r1) const {
+    return window_.banding && (r1 < window_.r0 || r0 > window_.r1);
+  }
+  // Rows [r0, r1] clamped to the window.
+  void clamp_to_window(int32_t& r0, int32_t& r1) const {
+    if (r0 < window_.r0) r0 = window_.r0;
+    if (r1 > window_.r1) r1 = window_.r1;
+  }
+  // The strip after the window's last.
+  int window_end() const { return window_.r1 / strip_height_ + 1; }
+  // A triangle added whose first row is above the window: counted in its own band.
+  void note_carried(int32_t first_row) {
+    if (window_.banding && first_row < window_.r0) ++window_.carried;
+  }
+  uint32_t carried() const { return window_.carried; }
+  // The window is one strip and a triangle did not fit: it was dropped.
+  bool dropped() const { return window_.dropped; }
+  void set_dropped() { window_.dropped = true; }
+  // The table full while a band is binned: the window ends at a strip boundary above, evicting
+  // the triangles that start below it (keeping the strips whose triangles fill up to 3/4 of the
+  // store, at least the first). vertices: the store the triangles refer to (their first rows);
+  // mark: as evict_from(); in_window: the count of evicted triangles that started in the
+  // window (the others were carried). False when the window is one strip.
+  bool shrink_window(std::span<const ScreenVertex> vertices, size_t& mark, uint32_t& in_window);
 
   // The binner's tests: kBinned when the triangle would be binned (capacity aside), with its
   // first and last row (clamped to the viewport) in r0, r1. Facing first (most culled triangles
@@ -201,6 +236,21 @@ class EdgeTable {
  private:
   // A triangle's `next` while evict_from() removes it (no index is this large: configure()).
   static constexpr uint16_t kEvicted = kNoTriangle - 1;
+
+  void empty(int s0, int s1) {
+    count_ = 0;
+    for (int i = 0; i < strips_; ++i) buckets_[static_cast<size_t>(i)] = kNoTriangle;
+    if (signing())
+      for (int i = s0; i < s1; ++i) strip_inputs_[static_cast<size_t>(i)] = frame_signature_;
+  }
+
+  struct Window {
+    int32_t r0, r1;    // the rows
+    bool banding;      // a band is binned
+    bool dropped;      // the window is one strip and dropped triangles
+    uint32_t carried;  // the band's triangles from above it
+  };
+  Window window_{0, 0, false, false, 0};
 
   std::span<BinnedTriangle> triangles_{};
   std::span<TriangleColors> colors_{};

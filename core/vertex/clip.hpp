@@ -8,6 +8,7 @@
 // vertex are rejected and counted, never drawn wrong.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 
@@ -57,5 +58,11 @@ uint8_t outcode(const ClipCoord& c, GuardBand g);
 // clipping).
 using ClipPolygon = std::span<ClipVertex, kMaxClipVertices>;
 int clip_polygon(ClipPolygon poly, ClipPolygon scratch, int n, uint8_t planes, GuardBand g);
+
+// The clipper's memory: a polygon and its scratch (the caller keeps them off the stack).
+struct ClipBuffers {
+  std::array<ClipVertex, kMaxClipVertices> polygon{};
+  std::array<ClipVertex, kMaxClipVertices> scratch{};
+};
 
 }  // namespace lr
