@@ -187,7 +187,6 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
 // One triangle of a draw: culled, lit (lit Gouraud: its vertices on first use; flat: its face),
 // clipped when it crosses a plane, and binned. This and the two ends below are always inlined
 // into draw(): one loop body, whose locals share one stack frame.
-template <bool kCached>
 void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   const size_t n = d.mesh.positions.size();
   if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
@@ -196,7 +195,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   }
   uint16_t vi[3] = {static_cast<uint16_t>(d.base + tri[0]), static_cast<uint16_t>(d.base + tri[1]),
                     static_cast<uint16_t>(d.base + tri[2])};
-  if constexpr (kCached) {
+  if (d.cached) {
     // By value: vi stays in registers.
     const std::array<uint16_t, 3> c = store_.cache_corners(
         d.stage, d.mesh, d.colors, tri, stats_.vertices_transformed, stats_.vertices_wide);
@@ -258,7 +257,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   d.flat_colors(tri, *sv[2], back, flat, flat_spec);
   if (oc_or == 0) {
     bin_inside(d, vi, sv, back && d.plan.gouraud, flat, flat_spec, classified ? rows : nullptr,
-               kCached);
+               d.cached);
     return;
   }
   clip_and_bin(d, vi, sv, clip, oc_or, back && d.plan.gouraud, flat, flat_spec);
@@ -490,10 +489,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   d.clipping = cached || clip_outcodes != 0;
   if (colors.object != nullptr && !colors.object->specular && !colors.split)
     d.diffuse_lights = colors.object;
-  if (cached)
-    triangle_loop<true>(d);
-  else
-    triangle_loop<false>(d);
+  triangle_loop(d);
   if (cached) store_.end_cache();
   if (edges_.banding()) compact_vertices(base, phong, uv);
 }
@@ -501,16 +497,15 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
 // The triangle loop, out of line: one loop body in each stack frame, not both in run_mesh's.
 // The common triangle takes the lane (below); every other one, and every triangle of a draw
 // through the vertex cache, draw_triangle().
-template <bool kCached>
 void FrontEnd::triangle_loop(MeshDraw& d) {
   const auto count = static_cast<uint32_t>(d.mesh.triangles.size());
-  const bool lane = !kCached && !d.plan.two_sided && !draw_colors_ && !edges_.signing();
+  const bool lane = !d.cached && !d.plan.two_sided && !draw_colors_ && !edges_.signing();
   for (uint32_t t = 0; t < count; ++t) {
     if (lane) {
       t = lane_triangles(d, t);
       if (t == count) break;
     }
-    draw_triangle<kCached>(d, d.mesh.triangles[t]);
+    draw_triangle(d, d.mesh.triangles[t]);
   }
 }
 

@@ -167,15 +167,15 @@ class FrontEnd {
   }
 
  private:
-  struct MeshDraw;  // one draw()'s context (front_end.cpp)
-  // draw()'s loop body and its two ends (front_end.cpp, always inlined into draw()).
-  template <bool kCached>
+  struct MeshDraw;  // one draw()'s context (mesh_draw.hpp)
+  // The triangle loop, out of line (one stack frame for its body), one copy for every draw
+  // (through the vertex cache or not); the lane (lane.cpp) for its common triangles, and
+  // draw_triangle(), always inlined into it, with its two ends, for the rest.
   [[gnu::noinline]] void triangle_loop(MeshDraw& d);
   [[gnu::noinline]] uint32_t lane_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] uint32_t lane_run_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] void light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::noinline]] void light_vertex(MeshDraw& d, uint32_t i);
-  template <bool kCached>
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
                                                 ScreenVertex* const (&sv)[3], bool back_copies,
