@@ -494,19 +494,26 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   if (edges_.banding()) compact_vertices(base, phong, uv);
 }
 
-// The triangle loop, out of line: one loop body in each stack frame, not both in run_mesh's.
-// The common triangle takes the lane (below); every other one, and every triangle of a draw
-// through the vertex cache, draw_triangle().
+// The triangle loop: the lane (lane.cpp) for a draw's common triangles, general_triangles() for
+// the others and for every triangle of a draw the lane does not take (two-sided, flat-shaded,
+// through the vertex cache, signed). Out of line and small: the lane's frames and the general
+// path's are never on the stack together.
 void FrontEnd::triangle_loop(MeshDraw& d) {
   const auto count = static_cast<uint32_t>(d.mesh.triangles.size());
-  const bool lane = !d.cached && !d.plan.two_sided && !draw_colors_ && !edges_.signing();
-  for (uint32_t t = 0; t < count; ++t) {
-    if (lane) {
-      t = lane_triangles(d, t);
-      if (t == count) break;
-    }
-    draw_triangle(d, d.mesh.triangles[t]);
+  if (d.cached || d.plan.two_sided || draw_colors_ || edges_.signing()) {
+    general_triangles(d, 0, count);
+    return;
   }
+  for (uint32_t t = 0; t < count;) {
+    t = lane_triangles(d, t);
+    if (t < count) t = general_triangles(d, t, t + 1);
+  }
+}
+
+// Triangles [t, end) through draw_triangle(), inlined here: one stack frame for its locals.
+uint32_t FrontEnd::general_triangles(MeshDraw& d, uint32_t t, uint32_t end) {
+  for (; t < end; ++t) draw_triangle(d, d.mesh.triangles[t]);
+  return t;
 }
 
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,

@@ -168,14 +168,14 @@ class FrontEnd {
 
  private:
   struct MeshDraw;  // one draw()'s context (mesh_draw.hpp)
-  // The triangle loop, out of line (one stack frame for its body), one copy for every draw
-  // (through the vertex cache or not); the lane (lane.cpp) for its common triangles, and
-  // draw_triangle(), always inlined into it, with its two ends, for the rest.
+  // The triangle loop (front_end.cpp): the lane (lane.cpp) for its common triangles, and
+  // general_triangles(), one copy of draw_triangle() with its two ends always inlined into it
+  // (one stack frame), for the rest and for every draw the lane does not take.
   [[gnu::noinline]] void triangle_loop(MeshDraw& d);
+  [[gnu::noinline]] uint32_t general_triangles(MeshDraw& d, uint32_t t, uint32_t end);
   [[gnu::noinline]] uint32_t lane_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] uint32_t lane_run_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] void light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri);
-  [[gnu::noinline]] void light_vertex(MeshDraw& d, uint32_t i);
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
                                                 ScreenVertex* const (&sv)[3], bool back_copies,

@@ -315,7 +315,7 @@ uint32_t FrontEnd::lane_run_triangles(MeshDraw& d, uint32_t t) {
 
 // A drawn triangle's vertices whose colour waits for their first use, lit (lit Gouraud). The
 // common case here: diffuse directional lights in model space, a unit normal, one colour; the
-// others in light_vertex(), out of line so that this one stays small.
+// others through VertexStage::light (out of line).
 void FrontEnd::light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   const ObjectLights* const ol = d.diffuse_lights;
   ScreenVertex* const base = store_.vertices_at(d.base);
@@ -333,14 +333,10 @@ void FrontEnd::light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
         continue;
       }
     }
-    light_vertex(d, i);
+    const LitColor lc = d.stage.light(d.mesh, d.colors, i, false);
+    v.color = lc.primary;
+    if (d.colors.split) store_.tex(d.base + i).spec = lc.secondary;
   }
-}
-
-void FrontEnd::light_vertex(MeshDraw& d, uint32_t i) {
-  const LitColor lc = d.stage.light(d.mesh, d.colors, i, false);
-  store_.vertex(d.base + i).color = lc.primary;
-  if (d.colors.split) store_.tex(d.base + i).spec = lc.secondary;
 }
 
 }  // namespace lr

@@ -55,7 +55,7 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
   // Coordinates lie in [-(bound + 1), bound]; with bound < 2^(31 - ps) they stay in int32 when
   // shifted by ps, and bound 2^ps >= 2^30 (so a row's factors fit int32, below).
   if (bound > 0x7FFFFFFFu) bound = 0x7FFFFFFFu;  // no int32 coordinate is beyond
-  ps_ = bound == 0 ? 30 : clz32(bound) - 1;
+  const int ps = bound == 0 ? 30 : clz32(bound) - 1;
   const uint32_t b = bound + 1;  // the largest magnitude, <= 2^31
   const int32_t sx = width * kHalfPixel, sy = height * kHalfPixel;
   const int32_t lx = guard.gx * sx, ly = guard.gy * sy;  // <= 2^20 (G W <= 8192)
@@ -97,42 +97,36 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
   if (ez > ew - 29 + n_max) ez = ew - 29 + n_max;
   // f at most 10 (x - sx and y - sy below 2^21, times 2^f below 2^31): exy lowered if need be.
   if (29 + exy - ew - n_max > 10) exy = n_max + 10 - 29 + ew;
-  f_ = 29 + exy - ew - n_max;
+  Words& w = k_;
+  w.f = 29 + exy - ew - n_max;
   const int e[4] = {exy, exy, ez, ew};
+  RowWords* const rows[4] = {&w.x, &w.y, &w.z, &w.w};
   for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 3; ++j) rows_[i].a[j] = scaled(k[i] * mvp.m[i][j].raw, e[i] - ps_);
-    rows_[i].t = scaled(k[i] * mvp.m[i][3].raw, e[i] - 16);
+    for (int j = 0; j < 3; ++j) rows[i]->a[j] = scaled(k[i] * mvp.m[i][j].raw, e[i] - ps);
+    rows[i]->t = scaled(k[i] * mvp.m[i][3].raw, e[i] - 16);
   }
-  n_max_ = n_max;
-  w_shift_ = ew - 16;
-  kz_ = n_max - (29 + ez - ew);
-  c0_ = kHalfDepth;
+  if constexpr (kSplitWideProducts)
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 3; ++j) split_[i][j] = halves(rows[i]->a[j]);
+  w.ps = ps;
+  w.n_max = n_max;
+  w.w_shift = ew - 16;
+  w.kz = n_max - (29 + ez - ew);
+  w.c0 = kHalfDepth;
   // Inside the depth range: 0 <= D + m 2^kz <= 2 D, m in [-floor(D / 2^kz), floor(D / 2^kz)].
-  m_lo_ = -static_cast<int32_t>(kHalfDepth >> kz_);
-  m_span_ = 2 * (kHalfDepth >> kz_);
+  w.m_lo = -static_cast<int32_t>(kHalfDepth >> w.kz);
+  w.m_span = 2 * (kHalfDepth >> w.kz);
   // The w range: the precision's lower end 2^(31 - n_max), kMaxW above.
-  const int64_t w_lo = int64_t{1} << (31 - n_max), w_hi = kMaxW;
-  if (w_hi < w_lo) return;
-  w_lo_ = static_cast<int32_t>(w_lo);
-  w_span_ = static_cast<uint32_t>(w_hi - w_lo);
-  acc_x_ = (sx << f_) + (1 << (f_ - 1));
-  acc_y_ = (sy << f_) + (1 << (f_ - 1));
-  x_lo_ = sx - lx;
-  x_span_ = static_cast<uint32_t>(2 * lx);
-  y_lo_ = sy - ly;
-  y_span_ = static_cast<uint32_t>(2 * ly);
+  w.w_lo = int32_t{1} << (31 - n_max);
+  w.w_span = static_cast<uint32_t>(kMaxW - w.w_lo);
+  w.acc_x = (sx << w.f) + (1 << (w.f - 1));
+  w.acc_y = (sy << w.f) + (1 << (w.f - 1));
+  w.x_lo = sx - lx;
+  w.x_span = static_cast<uint32_t>(2 * lx);
+  w.y_lo = sy - ly;
+  w.y_span = static_cast<uint32_t>(2 * ly);
   guard_free_ = inside_guard_band(mvp, bound, guard);
   enabled_ = true;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 3; ++j) split_[i][j] = halves(rows_[i].a[j]);
-  run_ = {rows_[3], rows_[0],
-          rows_[1], rows_[2],
-          w_lo_,    static_cast<int32_t>(w_span_),
-          n_max_,   f_,
-          acc_x_,   acc_y_,
-          ps_,      static_cast<int32_t>(c0_),
-          kz_,      w_shift_,
-          m_lo_,    static_cast<int32_t>(m_span_)};
 }
 
 size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
@@ -146,13 +140,16 @@ size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
     return k;
   } else {
     if (count == 0) return 0;
-    static_assert(sizeof(RunWords) == 112 && offsetof(RunWords, w_lo) == 64 &&
-                  offsetof(RunWords, ps) == 88 && offsetof(RunWords, m_lo) == 104);
+    static_assert(offsetof(Words, w) == 0 && offsetof(Words, x) == 16 && offsetof(Words, y) == 32 &&
+                  offsetof(Words, z) == 48 && offsetof(Words, w_lo) == 64 &&
+                  offsetof(Words, n_max) == 72 && offsetof(Words, acc_x) == 80 &&
+                  offsetof(Words, ps) == 88 && offsetof(Words, c0) == 92 &&
+                  offsetof(Words, kz) == 96 && offsetof(Words, m_lo) == 104);
     static_assert(sizeof(Vec3) == 12 && sizeof(ScreenVertex) == 24 &&
                   offsetof(ScreenVertex, color) == 16 && offsetof(ScreenVertex, outcode) == 22);
     const Vec3* const start = p;
     const Vec3* const end = p + count;
-    const RunWords* const k = &run_;
+    const Words* const k = &k_;
     const uint32_t* const t = tail;
     // project() for run_ready() draws: each step as there, its integers the same (SMMLA is
     // mla_hi, SMMUL mul_hi, UMULL's high word mul_hi_u, UDIV recip16, SSAT saturate_signed).

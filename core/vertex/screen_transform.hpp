@@ -24,6 +24,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include "lineraster/core/math/fixed.hpp"
 #include "lineraster/core/math/mat4.hpp"
@@ -99,35 +100,47 @@ class ScreenTransform {
     int32_t a[3];  // the row's factors of x, y, z
     int32_t t;     // its translation
   };
-  RowWords rows_[4] = {};
-  // The words run() reads, in the order it reads them (ldrd pairs): rows w, x, y, z, then w_lo,
-  // w_span, n_max, f, acc_x, acc_y, ps, c0, kz, w_shift, m_lo, m_span.
-  struct alignas(8) RunWords {
-    RowWords w, x, y, z;
-    int32_t w_lo, w_span, n_max, f, acc_x, acc_y, ps, c0, kz, w_shift, m_lo, m_span;
+  // Everything a vertex reads, in the order run() reads it (ldrd pairs; its offsets in its code).
+  struct alignas(8) Words {
+    RowWords w, x, y, z;  // 0, 16, 32, 48
+    // The short path when W is in [w_lo, w_lo + w_span]: w_lo >= 2^(31 - n_max) (the precision),
+    // w_lo + w_span <= 2^30 - 1 (every shift below defined). Disabled: only W = INT32_MIN, which
+    // no row sum reaches (nor the zero rows).
+    int32_t w_lo = INT32_MIN;  // 64
+    uint32_t w_span = 0;
+    int32_t n_max = 0;    // 72: in [2, 9]
+    int32_t f = 0;        // fraction bits of x and y before the rounding shift, in [5, 10]
+    int32_t acc_x = 0;    // 80: (sx << f) + 2^(f - 1): sx the viewport's centre, subpixels
+    int32_t acc_y = 0;    // (sy << f) + 2^(f - 1)
+    int32_t ps = 0;       // 88: position shift: |p << ps| <= 2^31
+    uint32_t c0 = 0;      // 92: z = c0 + m 2^kz (wrapping: exact inside the depth range)
+    int32_t kz = 0;       // 96: in [0, 10]
+    int32_t w_shift = 0;  // clip w in Q16.16: W >> w_shift (>= 0)
+    int32_t m_lo = 0;     // 104: the depth range: m in [m_lo, m_lo + m_span]
+    uint32_t m_span = 0;
+    int32_t x_lo = 0;  // 112: the guard band: x in [x_lo, x_lo + x_span], subpixels
+    uint32_t x_span = 0;
+    int32_t y_lo = 0;
+    uint32_t y_span = 0;
+    const RowWords& row(int i) const { return i == 0 ? x : i == 1 ? y : i == 2 ? z : w; }
   };
-  RunWords run_{};
-  Halves split_[4][3] = {};  // rows_[i].a[j] split (project_halves)
-  int ps_ = 0;               // position shift: |p << ps| <= 2^31
-  // The short path when W is in [w_lo, w_lo + w_span]: w_lo >= 2^(31 - n_max) (the precision),
-  // w_lo + w_span <= 2^30 - 1 (every shift below defined). Disabled: only W = INT32_MIN, which
-  // no row sum reaches (nor the zero rows).
-  int32_t w_lo_ = INT32_MIN;
-  uint32_t w_span_ = 0;
-  int n_max_ = 0;      // in [2, 9]
-  int f_ = 0;          // fraction bits of x and y before the rounding shift, in [5, 10]
-  int32_t acc_x_ = 0;  // (sx << f) + 2^(f - 1): sx the viewport's centre, subpixels
-  int32_t acc_y_ = 0;  // (sy << f) + 2^(f - 1)
-  int32_t x_lo_ = 0;   // the guard band: x in [x_lo, x_lo + x_span], subpixels
-  uint32_t x_span_ = 0;
-  int32_t y_lo_ = 0;
-  uint32_t y_span_ = 0;
+  Words k_{};
+  // The rows' factors split into halves once (project_halves), on cores without a 64-bit
+  // product only; elsewhere split per use (the tests run project_halves on the host).
+  struct NoSplit {  // (indexable, so that the code for the split arrays compiles everywhere)
+    struct Row {
+      Halves operator[](int) const { return {}; }
+    };
+    Row operator[](int) const { return {}; }
+  };
+  [[no_unique_address]] std::conditional_t<kSplitWideProducts, Halves[4][3], NoSplit> split_{};
+  Halves split(int i, int j) const {
+    if constexpr (kSplitWideProducts)
+      return split_[i][j];
+    else
+      return halves(k_.row(i).a[j]);
+  }
   bool guard_free_ = false;  // no x, y test: the bound's cube is inside the guard band
-  uint32_t c0_ = 0;          // z = c0 + m 2^kz (wrapping: exact inside the depth range)
-  int kz_ = 0;               // in [0, 10]
-  int32_t m_lo_ = 0;         // the depth range: m in [m_lo, m_lo + m_span]
-  uint32_t m_span_ = 0;
-  int w_shift_ = 0;  // clip w in Q16.16: W >> w_shift (>= 0)
   bool enabled_ = false;
 };
 
@@ -149,36 +162,36 @@ constexpr int clz_short_path(uint32_t w) {
 
 inline bool ScreenTransform::project(const Vec3& p, ScreenVertex& v) const {
   if constexpr (kSplitWideProducts) return project_halves(p, v);
+  const Words& k = k_;
   // C++20 shifts are modular: a position beyond the bound gives a wrong vertex, never UB.
-  const int32_t px = p.x.raw << ps_, py = p.y.raw << ps_, pz = p.z.raw << ps_;
-  auto row = [&](int i) {
-    const RowWords& q = rows_[i];
+  const int32_t px = p.x.raw << k.ps, py = p.y.raw << k.ps, pz = p.z.raw << k.ps;
+  auto row = [&](const RowWords& q) {
     return mla_hi(q.a[0], px, mla_hi(q.a[1], py, mla_hi(q.a[2], pz, q.t)));
   };
-  const int32_t w = row(3);
+  const int32_t w = row(k.w);
   // One compare: w in the range keeps n = clz(w) in [2, n_max], every shift below defined.
-  if (static_cast<uint32_t>(w) - static_cast<uint32_t>(w_lo_) > w_span_) return false;
-  const int32_t x = row(0), y = row(1), z = row(2);
+  if (static_cast<uint32_t>(w) - static_cast<uint32_t>(k.w_lo) > k.w_span) return false;
+  const int32_t x = row(k.x), y = row(k.y), z = row(k.z);
   const int n = clz32(static_cast<uint32_t>(w));
-  const auto r = static_cast<int32_t>(recip_q61(static_cast<uint32_t>(w) << n) >> (n_max_ - n));
-  int32_t xs = mla_hi(x, r, acc_x_) >> f_;
-  int32_t ys = mla_hi(y, r, acc_y_) >> f_;
+  const auto r = static_cast<int32_t>(recip_q61(static_cast<uint32_t>(w) << n) >> (k.n_max - n));
+  int32_t xs = mla_hi(x, r, k.acc_x) >> k.f;
+  int32_t ys = mla_hi(y, r, k.acc_y) >> k.f;
   const int32_t m = mul_hi(z, r);
   if (guard_free_) {
     // Inside the band for every position within the bound; the clamp keeps a position beyond
     // it (a wrong Mesh::bound) inside the coordinate budget.
     xs = saturate_signed<23>(xs);
     ys = saturate_signed<23>(ys);
-  } else if (static_cast<uint32_t>(xs - x_lo_) > x_span_ ||
-             static_cast<uint32_t>(ys - y_lo_) > y_span_) [[unlikely]] {
+  } else if (static_cast<uint32_t>(xs - k.x_lo) > k.x_span ||
+             static_cast<uint32_t>(ys - k.y_lo) > k.y_span) [[unlikely]] {
     return false;
   }
-  if (static_cast<uint32_t>(m - m_lo_) > m_span_) [[unlikely]]
+  if (static_cast<uint32_t>(m - k.m_lo) > k.m_span) [[unlikely]]
     return false;
   v.x = xs;
   v.y = ys;
-  v.z = c0_ + (static_cast<uint32_t>(m) << kz_);
-  v.w = static_cast<uint32_t>(w) >> w_shift_;
+  v.z = k.c0 + (static_cast<uint32_t>(m) << k.kz);
+  v.w = static_cast<uint32_t>(w) >> k.w_shift;
   v.outcode = 0;
   return true;
 }
@@ -186,41 +199,41 @@ inline bool ScreenTransform::project(const Vec3& p, ScreenVertex& v) const {
 // project() with split products (cores without a 64-bit product): each matrix entry split once
 // per draw, each position coordinate and the reciprocal once per vertex; the same integers.
 inline bool ScreenTransform::project_halves(const Vec3& p, ScreenVertex& v) const {
-  const Halves px = halves(p.x.raw << ps_), py = halves(p.y.raw << ps_),
-               pz = halves(p.z.raw << ps_);
+  const Words& k = k_;
+  const Halves px = halves(p.x.raw << k.ps), py = halves(p.y.raw << k.ps),
+               pz = halves(p.z.raw << k.ps);
   auto row = [&](int i) {
-    const Halves* a = split_[i];
-    return static_cast<int32_t>(static_cast<uint32_t>(rows_[i].t) +
-                                static_cast<uint32_t>(mul_hi_halves(a[2], pz)) +
-                                static_cast<uint32_t>(mul_hi_halves(a[1], py)) +
-                                static_cast<uint32_t>(mul_hi_halves(a[0], px)));
+    return static_cast<int32_t>(static_cast<uint32_t>(k.row(i).t) +
+                                static_cast<uint32_t>(mul_hi_halves(split(i, 2), pz)) +
+                                static_cast<uint32_t>(mul_hi_halves(split(i, 1), py)) +
+                                static_cast<uint32_t>(mul_hi_halves(split(i, 0), px)));
   };
   const int32_t w = row(3);
-  if (static_cast<uint32_t>(w) - static_cast<uint32_t>(w_lo_) > w_span_) return false;
+  if (static_cast<uint32_t>(w) - static_cast<uint32_t>(k.w_lo) > k.w_span) return false;
   const int32_t x = row(0), y = row(1);
   const int n = clz_short_path(static_cast<uint32_t>(w));
   const Halves r =
-      halves(static_cast<int32_t>(recip_q61(static_cast<uint32_t>(w) << n) >> (n_max_ - n)));
-  int32_t xs = static_cast<int32_t>(static_cast<uint32_t>(acc_x_) +
+      halves(static_cast<int32_t>(recip_q61(static_cast<uint32_t>(w) << n) >> (k.n_max - n)));
+  int32_t xs = static_cast<int32_t>(static_cast<uint32_t>(k.acc_x) +
                                     static_cast<uint32_t>(mul_hi_halves(halves(x), r))) >>
-               f_;
-  int32_t ys = static_cast<int32_t>(static_cast<uint32_t>(acc_y_) +
+               k.f;
+  int32_t ys = static_cast<int32_t>(static_cast<uint32_t>(k.acc_y) +
                                     static_cast<uint32_t>(mul_hi_halves(halves(y), r))) >>
-               f_;
+               k.f;
   const int32_t m = mul_hi_halves(halves(row(2)), r);
   if (guard_free_) {
     xs = saturate_signed<23>(xs);
     ys = saturate_signed<23>(ys);
-  } else if (static_cast<uint32_t>(xs - x_lo_) > x_span_ ||
-             static_cast<uint32_t>(ys - y_lo_) > y_span_) [[unlikely]] {
+  } else if (static_cast<uint32_t>(xs - k.x_lo) > k.x_span ||
+             static_cast<uint32_t>(ys - k.y_lo) > k.y_span) [[unlikely]] {
     return false;
   }
-  if (static_cast<uint32_t>(m - m_lo_) > m_span_) [[unlikely]]
+  if (static_cast<uint32_t>(m - k.m_lo) > k.m_span) [[unlikely]]
     return false;
   v.x = xs;
   v.y = ys;
-  v.z = c0_ + (static_cast<uint32_t>(m) << kz_);
-  v.w = static_cast<uint32_t>(w) >> w_shift_;
+  v.z = k.c0 + (static_cast<uint32_t>(m) << k.kz);
+  v.w = static_cast<uint32_t>(w) >> k.w_shift;
   v.outcode = 0;
   return true;
 }

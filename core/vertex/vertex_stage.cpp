@@ -82,6 +82,46 @@ TransformSummary VertexStage::transform_range(const Mesh& mesh, const VertexColo
   return {wide, static_cast<uint8_t>(outcodes)};
 }
 
+LitColor VertexStage::light(const Mesh& mesh, const VertexColors colors, size_t i,
+                            bool back) const {
+  if (colors.object != nullptr) {
+    const uint32_t len2 = normal_len2(mesh.normals[i]);
+    if (unit_len2(len2)) {
+      const LitColor c =
+          light_object(*colors.lighting, *colors.object, mesh.normals[i], len2, back);
+      if (colors.split) return c;
+      return {sum_clamped(c.primary, c.secondary), Color15{}};
+    }
+  }
+  Unit30 nw = world_normal(mesh.normals[i]);
+  if (back) nw = negate(nw);
+  if (!colors.need_position) {
+    if (colors.split) return light_directional_split(*colors.lighting, nw);
+    return {light_directional(*colors.lighting, nw), Color15{}};
+  }
+  const Vec3 pw = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
+  if (colors.split) return light_point_split(*colors.lighting, nw, pw);
+  return {light_point(*colors.lighting, nw, pw), Color15{}};
+}
+
+LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1,
+                                 const Vec3& p2, bool back) const {
+  const Unit30 fm = face_normal_model(p0, p1, p2);
+  Unit30 fw = transform_normal_call(nm_, fm.x, fm.y, fm.z);
+  if (back) fw = negate(fw);
+  Vec3 centroid{};
+  if (colors.need_position) {
+    const Vec3 w0 = transform_affine(model_, p0), w1 = transform_affine(model_, p1),
+               w2 = transform_affine(model_, p2);
+    centroid = {
+        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.x.raw} + w1.x.raw + w2.x.raw) / 3)),
+        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.y.raw} + w1.y.raw + w2.y.raw) / 3)),
+        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.z.raw} + w1.z.raw + w2.z.raw) / 3))};
+  }
+  if (colors.split) return light_point_split(*colors.lighting, fw, centroid);
+  return {light_point(*colors.lighting, fw, centroid), Color15{}};
+}
+
 void VertexStage::project_exact(const Vec3& p, ScreenVertex& sv) const {
   const ClipCoord c = clip(p);
   sv.outcode = outcode(c, guard_);

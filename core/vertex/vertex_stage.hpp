@@ -121,32 +121,16 @@ class VertexStage {
   }
 
   // Lit colour(s) of mesh vertex i, with the normal negated or not (two-sided back faces): the
-  // secondary colour apart when colors.split, else 0.
+  // secondary colour apart when colors.split, else 0. Out of line: one copy for its callers (the
+  // front end's lighting on first use, back faces).
   // (colors by value here and in light_face: the caller's copy stays in registers.)
-  LitColor light(const Mesh& mesh, const VertexColors colors, size_t i, bool back) const {
-    if (colors.object != nullptr) {
-      const uint32_t len2 = normal_len2(mesh.normals[i]);
-      if (unit_len2(len2)) {
-        const LitColor c =
-            light_object(*colors.lighting, *colors.object, mesh.normals[i], len2, back);
-        if (colors.split) return c;
-        return {sum_clamped(c.primary, c.secondary), Color15{}};
-      }
-    }
-    Unit30 nw = world_normal(mesh.normals[i]);
-    if (back) nw = negate(nw);
-    if (!colors.need_position) {
-      if (colors.split) return light_directional_split(*colors.lighting, nw);
-      return {light_directional(*colors.lighting, nw), Color15{}};
-    }
-    const Vec3 pw = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
-    if (colors.split) return light_point_split(*colors.lighting, nw, pw);
-    return {light_point(*colors.lighting, nw, pw), Color15{}};
-  }
+  [[gnu::noinline]] LitColor light(const Mesh& mesh, const VertexColors colors, size_t i,
+                                   bool back) const;
 
   // The lit colour of a flat-shaded triangle (face normal, centroid) of model-space corners.
-  LitColor light_face(VertexColors colors, const Vec3& p0, const Vec3& p1, const Vec3& p2,
-                      bool back) const;
+  // Out of line: its 64-bit locals stay off the triangle loop's frame.
+  [[gnu::noinline]] LitColor light_face(VertexColors colors, const Vec3& p0, const Vec3& p1,
+                                        const Vec3& p2, bool back) const;
 
   ClipCoord clip(const Vec3& model_position) const { return transform_point(mvp_, model_position); }
   // Projects and snaps a clip-space point inside every plane; false when w <= 0.
@@ -175,24 +159,6 @@ class VertexStage {
   int32_t width_, height_;
   ScreenTransform screen_;  // the short path (after mvp_: made from it)
 };
-
-inline LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1,
-                                        const Vec3& p2, bool back) const {
-  const Unit30 fm = face_normal_model(p0, p1, p2);
-  Unit30 fw = transform_normal_call(nm_, fm.x, fm.y, fm.z);
-  if (back) fw = negate(fw);
-  Vec3 centroid{};
-  if (colors.need_position) {
-    const Vec3 w0 = transform_affine(model_, p0), w1 = transform_affine(model_, p1),
-               w2 = transform_affine(model_, p2);
-    centroid = {
-        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.x.raw} + w1.x.raw + w2.x.raw) / 3)),
-        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.y.raw} + w1.y.raw + w2.y.raw) / 3)),
-        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.z.raw} + w1.z.raw + w2.z.raw) / 3))};
-  }
-  if (colors.split) return light_point_split(*colors.lighting, fw, centroid);
-  return {light_point(*colors.lighting, fw, centroid), Color15{}};
-}
 
 // Facing of a clip-space triangle from the sign of det[x y w] (homogeneous: valid for the part
 // in front of the eye even when a vertex is behind it): true when front-facing, i.e.
