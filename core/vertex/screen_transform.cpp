@@ -131,14 +131,15 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
 
 size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
                             const uint32_t (&tail)[2]) const {
-  if constexpr (!kShortPathRun) {
+  if (!kShortPathRun || !guard_free_) {
     size_t k = 0;
     for (; k < count; ++k) {
       if (!project(p[k], out[k])) break;
       __builtin_memcpy(reinterpret_cast<unsigned char*>(&out[k]) + 16, tail, 8);
     }
     return k;
-  } else {
+  }
+  if constexpr (kShortPathRun) {
     if (count == 0) return 0;
     static_assert(offsetof(Words, w) == 0 && offsetof(Words, x) == 16 && offsetof(Words, y) == 32 &&
                   offsetof(Words, z) == 48 && offsetof(Words, w_lo) == 64 &&
@@ -151,7 +152,7 @@ size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
     const Vec3* const end = p + count;
     const Words* const k = &k_;
     const uint32_t* const t = tail;
-    // project() for run_ready() draws: each step as there, its integers the same (SMMLA is
+    // project() on the short path: each step as there, its integers the same (SMMLA is
     // mla_hi, SMMUL mul_hi, UMULL's high word mul_hi_u, UDIV recip16, SSAT saturate_signed).
     asm volatile(
         "1:\n\t"
@@ -230,6 +231,7 @@ size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
         : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
     return static_cast<size_t>(p - start);
   }
+  return 0;  // (not reached: the loop above)
 }
 
 // Whether every position within the bound projects inside the guard band: the cube's corners

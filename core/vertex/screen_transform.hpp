@@ -80,11 +80,11 @@ class ScreenTransform {
 
   // project() over positions [p, p + count) into out (x, y, z, w, and the last 8 bytes from
   // tail: colour, outcode 0, pending flag) while each takes the short path; returns how many
-  // did (the next needs the exact path). Hand-allocated registers on cores with the DSP
-  // extension, Thumb-2 and a divider (kShortPathRun), for draws that need no guard test
-  // (run_ready()): the same integers as project(), in about 68 instructions a vertex where GCC
-  // 12's code for project() takes about 100 (it reloads and spills the draw's constants).
-  bool run_ready() const { return guard_free_; }
+  // did (the next needs the exact path). The one copy of project()'s code in an image; on cores
+  // with the DSP extension, Thumb-2 and a divider (kShortPathRun), for draws that need no guard
+  // test (guard_free()), hand-allocated registers instead: the same integers, in about 68
+  // instructions a vertex where GCC 12's code for project() takes about 100 (it reloads and
+  // spills the draw's constants).
   size_t run(const Vec3* p, size_t count, ScreenVertex* out, const uint32_t (&tail)[2]) const;
 
  private:

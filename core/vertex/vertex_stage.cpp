@@ -43,41 +43,35 @@ TransformSummary VertexStage::transform_range(const Mesh& mesh, const VertexColo
   const Rgb8* mesh_colors =
       colors.lit || mesh.colors.empty() ? nullptr : mesh.colors.data() + first;
   const uint8_t pending = colors.pending ? 1 : 0;
-  uint32_t wide = 0, outcodes = 0;
-  if (plain && mesh_colors == nullptr && screen_.run_ready()) {
-    // Every vertex's last 8 bytes the same (colour, outcode 0, pending flag): the short path's
-    // run, and the exact path for each vertex it leaves.
-    const uint32_t tail[2] = {uint32_t{fixed.r} | uint32_t{fixed.g} << 16,
-                              uint32_t{fixed.b} | uint32_t{pending} << 24};
-    for (size_t k = 0; k < count;) {
-      k += screen_.run(positions + k, count - k, out + k, tail);
-      if (k == count) break;
-      ScreenVertex& sv = out[k];
-      project_exact(positions[k], sv);
-      ++wide;
-      outcodes |= sv.outcode;
-      sv.color_pending = pending;
-      sv.color = fixed;
-      ++k;
-    }
-    return {wide, static_cast<uint8_t>(outcodes)};
-  }
-  for (size_t k = 0; k < count; ++k) {
-    ScreenVertex& sv = out[k];
-    // The short path (32-bit rows, one reciprocal of w), else the exact one on 64-bit clip
-    // coordinates.
-    if (!screen_.project(positions[k], sv)) [[unlikely]] {
-      project_exact(positions[k], sv);
-      ++wide;
-    }
-    outcodes |= sv.outcode;
-    sv.color_pending = pending;
-    if (plain) [[likely]] {
-      sv.color = mesh_colors != nullptr ? from_rgb8(mesh_colors[k]) : fixed;
+  // The last 8 bytes of a vertex without its own colour: the colour, outcode 0, pending flag.
+  const uint32_t tail[2] = {uint32_t{fixed.r} | uint32_t{fixed.g} << 16,
+                            uint32_t{fixed.b} | uint32_t{pending} << 24};
+  // A vertex's own colour or attributes, after its position.
+  auto finish = [&](size_t k) {
+    if (plain) {
+      if (mesh_colors != nullptr) out[k].color = from_rgb8(mesh_colors[k]);
     } else {
-      attributes(mesh, colors, first + k, sv, surfaces != nullptr ? &surfaces[k] : nullptr,
+      attributes(mesh, colors, first + k, out[k], surfaces != nullptr ? &surfaces[k] : nullptr,
                  tex != nullptr ? &tex[k] : nullptr);
     }
+  };
+  uint32_t wide = 0, outcodes = 0;
+  for (size_t k = 0; k < count;) {
+    // The short path's run (32-bit rows, one reciprocal of w), then the exact path (64-bit clip
+    // coordinates) for the vertex it leaves.
+    const size_t end = k + screen_.run(positions + k, count - k, out + k, tail);
+    if (mesh_colors != nullptr || !plain)
+      for (; k < end; ++k) finish(k);
+    k = end;
+    if (k == count) break;
+    ScreenVertex& sv = out[k];
+    project_exact(positions[k], sv);
+    ++wide;
+    outcodes |= sv.outcode;
+    sv.color_pending = pending;
+    sv.color = fixed;
+    finish(k);
+    ++k;
   }
   return {wide, static_cast<uint8_t>(outcodes)};
 }
