@@ -332,7 +332,7 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
       poly[k].u = poly[k].v = 0;
     }
     if (d.plan.kind.phong) poly[k].surface = store_.surface(vi[k]);
-    poly[k].corner = static_cast<int8_t>(k);
+    poly[k].corner = static_cast<uint8_t>(k + 1);
     poly[k].outcode = sv[k]->outcode;
   }
   const int m = clip_polygon(poly, ClipPolygon(clip_.scratch.data(), kMaxClipVertices), 3, oc_or,
@@ -353,8 +353,8 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
     ScreenVertex& nv = store_.vertex(at);
     // A corner the clipper kept is inside every plane (outcode 0: projected already): the
     // same position as in the triangles around it that need no clipping.
-    if (poly[k].corner >= 0) {
-      nv = *sv[poly[k].corner];
+    if (poly[k].corner != 0) {
+      nv = *sv[poly[k].corner - 1];
       ++projected;
     } else if (d.stage.project(poly[k].p, nv)) {
       ++projected;

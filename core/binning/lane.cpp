@@ -329,7 +329,7 @@ void FrontEnd::light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
       const Normal16& n = normals[i];
       const uint32_t len2 = normal_len2(n);
       if (unit_len2(len2)) [[likely]] {
-        v.color = light_object_diffuse(*ol, n, len2);
+        v.color = light_object_diffuse(*d.colors.lighting, *ol, n, len2);
         continue;
       }
     }

@@ -48,13 +48,11 @@ void prepare_object_lights(const PreparedLighting& pl, const NormalRotation& row
   out = ObjectLights{};
   const NormalRotation r = orthonormal(rows);
   out.count = pl.count;
-  for (int c = 0; c < 3; ++c) out.base[c] = static_cast<uint32_t>(pl.base[c]);
   for (int i = 0; i < pl.count; ++i) {
     const PreparedLighting::Light& li = pl.lights[static_cast<size_t>(i)];
     to_model(r, li.l, 44, out.l[i]);  // Q1.16
     to_model(r, li.h, 30, out.h[i]);  // Q1.30
     if ((li.ks[0] | li.ks[1] | li.ks[2]) != 0) out.specular = true;
-    for (int c = 0; c < 3; ++c) out.kd[i][c] = li.kd[c];
   }
 }
 

@@ -15,13 +15,13 @@
 
 namespace lr {
 
+// The directions only: the colours (base, Ld Kd, Ls Ks) are read from the PreparedLighting they
+// were made from (no copy in the renderer object, whose every byte counts in 16 KB of RAM).
 struct ObjectLights {
   // Towards each light (Q1.16) and its half vector (Q1.30: the specular power magnifies its
   // error by the shininess), model space, unit within 2^-12 (the rotation's rigidity tolerance).
   int32_t l[kMaxLights][3] = {};
   int32_t h[kMaxLights][3] = {};
-  uint32_t kd[kMaxLights][3] = {};  // PreparedLighting's Ld Kd, Q1.15
-  uint32_t base[3] = {};            // PreparedLighting's base (emission and ambient), Q1.15
   uint8_t count = 0;
   bool specular = false;  // a light whose specular product (Ls Ks) is not zero
 };
@@ -51,16 +51,17 @@ constexpr int32_t inverse_length(uint32_t len2) {
 }
 
 // The diffuse sums of normal (nx, ny, nz) (Q1.14, negated for a back face) with 1 / |n| = k:
-// prim[c] = base[c] + sum over lights of max(N.L, 0) Ld Kd. N.L = (n . l) k, where n . l is a sum
-// of three products below 2^30 (|n| |l| <= 1 + 2^-11 in Q2.30); N.L / 2^14 (Q1.16, at most
-// 2^16 + 64) times Kd (<= 2^15) is below 2^31 + 2^22. Returns the lights' N.L in ndl (Q2.30; 0
-// where not positive), for the specular term.
-[[gnu::always_inline]] inline void object_diffuse(const ObjectLights& ol, int32_t nx, int32_t ny,
+// prim[c] = pl.base[c] + sum over lights of max(N.L, 0) Ld Kd. N.L = (n . l) k, where n . l is a
+// sum of three products below 2^30 (|n| |l| <= 1 + 2^-11 in Q2.30); N.L / 2^14 (Q1.16, at most 2^16
+// + 64) times Kd (<= 2^15) is below 2^31 + 2^22. Returns the lights' N.L in ndl (Q2.30; 0 where not
+// positive), for the specular term.
+[[gnu::always_inline]] inline void object_diffuse(const PreparedLighting& pl,
+                                                  const ObjectLights& ol, int32_t nx, int32_t ny,
                                                   int32_t nz, int32_t k, uint32_t (&prim)[3],
                                                   int32_t (&ndl)[kMaxLights]) {
-  prim[0] = ol.base[0];
-  prim[1] = ol.base[1];
-  prim[2] = ol.base[2];
+  prim[0] = static_cast<uint32_t>(pl.base[0]);
+  prim[1] = static_cast<uint32_t>(pl.base[1]);
+  prim[2] = static_cast<uint32_t>(pl.base[2]);
   for (int i = 0; i < ol.count; ++i) {
     const int32_t* l = ol.l[i];
     int32_t d = nx * l[0] + ny * l[1] + nz * l[2];  // Q2.30
@@ -69,7 +70,8 @@ constexpr int32_t inverse_length(uint32_t len2) {
     d = mul_hi(d, k) * 4;  // Q2.30 again, below 2^30 + 2^20
     ndl[i] = d;
     const auto d16 = static_cast<uint32_t>(d) >> 14;
-    for (int c = 0; c < 3; ++c) prim[c] += (d16 * ol.kd[i][c] + (1u << 15)) >> 16;
+    const uint16_t* const kd = pl.lights[static_cast<size_t>(i)].kd;
+    for (int c = 0; c < 3; ++c) prim[c] += (d16 * kd[c] + (1u << 15)) >> 16;
   }
 }
 
@@ -86,7 +88,7 @@ inline LitColor light_object(const PreparedLighting& pl, const ObjectLights& ol,
   const int32_t k = inverse_length(len2);
   uint32_t prim[3];
   int32_t ndl[kMaxLights];
-  object_diffuse(ol, nx, ny, nz, k, prim, ndl);
+  object_diffuse(pl, ol, nx, ny, nz, k, prim, ndl);
   uint32_t spec[3] = {0, 0, 0};
   if (ol.specular) {
     for (int i = 0; i < ol.count; ++i) {
@@ -108,11 +110,12 @@ inline LitColor light_object(const PreparedLighting& pl, const ObjectLights& ol,
 
 // The diffuse-only colour (no light with a specular product: !ol.specular) of a unit normal n
 // (unit_len2(len2)), front side: light_object's primary colour (its secondary is 0).
-[[gnu::always_inline]] inline Color15 light_object_diffuse(const ObjectLights& ol,
+[[gnu::always_inline]] inline Color15 light_object_diffuse(const PreparedLighting& pl,
+                                                           const ObjectLights& ol,
                                                            const Normal16& n, uint32_t len2) {
   uint32_t prim[3];
   int32_t ndl[kMaxLights];
-  object_diffuse(ol, n.x, n.y, n.z, inverse_length(len2), prim, ndl);
+  object_diffuse(pl, ol, n.x, n.y, n.z, inverse_length(len2), prim, ndl);
   return {clamp_one(prim[0]), clamp_one(prim[1]), clamp_one(prim[2])};
 }
 

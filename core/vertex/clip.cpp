@@ -81,7 +81,7 @@ ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, int64_t d_in, 
   for (int k = 0; k < 3; ++k)
     r.surface.tangent[k] = static_cast<int16_t>(lerp32(sa.tangent[k], sb.tangent[k]));
   r.surface.handedness = sa.handedness;
-  r.corner = -1;
+  r.corner = 0;
   r.outcode = 0;
   return r;
 }
@@ -106,8 +106,8 @@ int clip_polygon(ClipPolygon poly, ClipPolygon scratch, int n, uint8_t planes, G
       const ClipVertex& a = poly[static_cast<size_t>(k)];
       const ClipVertex& b = poly[static_cast<size_t>((k + 1) % n)];
       int64_t da = distance(a.p, i, g), db = distance(b.p, i, g);
-      const bool ina = a.corner >= 0 ? !(a.outcode & (1u << i)) : da >= 0;
-      const bool inb = b.corner >= 0 ? !(b.outcode & (1u << i)) : db >= 0;
+      const bool ina = a.corner != 0 ? !(a.outcode & (1u << i)) : da >= 0;
+      const bool inb = b.corner != 0 ? !(b.outcode & (1u << i)) : db >= 0;
       // A convex polygon gains at most one vertex per plane; the bound only guards against
       // rounding making a sliver non-convex.
       if (ina && m < kMaxClipVertices) scratch[static_cast<size_t>(m++)] = a;

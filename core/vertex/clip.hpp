@@ -41,10 +41,12 @@ struct ClipVertex {
   Color15 spec;
   int32_t u = 0, v = 0;     // texture coordinates, Q12.20
   SurfaceVertex surface{};  // per-pixel lighting: interpolated linearly like the colours
-  // A corner of the input triangle (0..2) or a point made by clipping (-1). A corner's side of
-  // each plane is its outcode's, the vertex stage's decision, so that a corner kept by the
-  // clipper is the vertex its unclipped neighbours use; a made point's is its distance's sign.
-  int8_t corner = -1;
+  // 1 + a corner of the input triangle (1..3), or 0: a point made by clipping (0 by default,
+  // so that the front end's clip buffers are zero bytes and a static renderer goes to .bss). A
+  // corner's side of each plane is its outcode's, the vertex stage's decision, so that a corner
+  // kept by the clipper is the vertex its unclipped neighbours use; a made point's is its
+  // distance's sign.
+  uint8_t corner = 0;
   uint8_t outcode = 0;  // a corner's
 };
 

@@ -12,8 +12,9 @@ struct Wide {
     lo += v;
     if (lo < v) ++hi;
   }
-  // += u b, u < 2^64, b < 2^32: u = u1 2^32 + u0, u0 b < 2^64, u1 b < 2^64.
-  void add_mul(uint64_t u, uint32_t b) {
+  // += u b, u < 2^64, b < 2^32: u = u1 2^32 + u0, u0 b < 2^64, u1 b < 2^64. Out of line (a
+  // per-draw step: one copy, not 24, in small images).
+  [[gnu::noinline]] void add_mul(uint64_t u, uint32_t b) {
     const uint64_t l = (u & 0xFFFFFFFFu) * b, h = (u >> 32) * b;
     add(l);
     add(h << 32);
@@ -24,7 +25,7 @@ struct Wide {
 
 // c 2^sh as int32, rounded to nearest (|c| 2^sh < 2^31 by the caller's bound; the rounding may
 // reach 2^31, which saturates).
-int32_t scaled(int64_t c, int sh) {
+[[gnu::noinline]] int32_t scaled(int64_t c, int sh) {
   const uint64_t m = abs64(c);
   uint64_t v;
   if (sh >= 0)
