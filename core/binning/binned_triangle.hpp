@@ -15,8 +15,8 @@ namespace lr {
 inline constexpr uint16_t kNoTriangle = 0xFFFF;
 inline constexpr size_t kMaxStoreEntries = 0xFFFF;  // indices are uint16; 0xFFFF = none
 
-// 8 bytes.
-struct BinnedTriangle {
+// 8 bytes, word-aligned (the front end's lane stores one with a doubleword store).
+struct alignas(4) BinnedTriangle {
   uint16_t v[3];  // vertex store indices
   uint16_t next;  // next triangle of the same bucket (lists are built by prepending, so
                   // they run from the latest submission to the earliest)

@@ -119,12 +119,12 @@ struct DrawKind {
 // The front end refuses a draw it does not admit; nullptr admits every draw.
 using AdmitFn = bool (*)(const DrawState& state, const DrawKind& kind);
 
-class FrontEnd;
+class DrawRecords;
 struct PreparedLighting;
-// The per-pixel lighting part of a Phong draw's record (FrontEnd::phong_record): a renderer
+// The per-pixel lighting part of a Phong draw's record (DrawRecords::phong_record): a renderer
 // without Phong spans passes nullptr and links none of it (lighting tables included); the front
 // end then refuses Phong draws.
-using PhongRecordFn = Status (*)(FrontEnd& fe, const DrawState& state, const PreparedLighting& pl,
-                                 DrawRecord& r);
+using PhongRecordFn = Status (*)(DrawRecords& records, const DrawState& state,
+                                 const PreparedLighting& pl, DrawRecord& r);
 
 }  // namespace lr

@@ -1,17 +1,14 @@
-// The front end's draw records: one per draw, from its state; per-pixel lighting shared between
-// draws of equal materials; the record's signature for skipping unchanged strips.
-#include "lineraster/core/binning/front_end.hpp"
+#include "lineraster/core/binning/draw_records.hpp"
+
+#include "lineraster/core/binning/strip_inputs.hpp"
 
 namespace lr {
 
-Status FrontEnd::add_draw_record(const DrawState& state, bool has_color_planes, uint32_t triangles,
-                                 uint8_t& index) {
-  // Without a draw record the whole draw is dropped, and counted.
-  if (draw_count_ >= draws_.size()) return refuse(Status::kCapacity, triangles, false);
+uint8_t DrawRecords::add(const DrawState& state, bool has_color_planes, uint16_t first_vertex) {
   DrawRecord r;
   r.depth = state.depth_test;
   r.flat = state.shading == Shading::kFlat;
-  r.first_vertex = static_cast<uint16_t>(vertex_count_);  // until it is binned
+  r.first_vertex = first_vertex;  // until it is binned
   r.filter = state.sampler.filter;
   r.wrap_s = state.sampler.wrap_s;
   r.wrap_t = state.sampler.wrap_t;
@@ -28,40 +25,13 @@ Status FrontEnd::add_draw_record(const DrawState& state, bool has_color_planes, 
                                                              : 0;
   }
   r.colors = color_planes_of(state, has_color_planes);
-  index = static_cast<uint8_t>(draw_count_);
-  draws_[draw_count_++] = r;
-  return Status::kOk;
+  const auto index = static_cast<uint8_t>(count_);
+  draws_[count_++] = r;
+  return index;
 }
 
-Status FrontEnd::refuse(Status why, uint32_t triangles, bool vertex_store) {
-  if (refused_ == Status::kOk) refused_ = why;
-  switch (why) {
-    case Status::kInvalidArgument:
-      ++stats_.draws_refused_invalid;
-      break;
-    case Status::kNotLinked:
-      ++stats_.draws_refused_not_linked;
-      break;
-    case Status::kMissingStore:
-      ++stats_.draws_refused_missing_store;
-      break;
-    default:  // kCapacity
-      ++stats_.draws_refused_capacity;
-      (vertex_store ? refused_vertices_ : refused_triangles_) += triangles;
-      (vertex_store ? stats_.dropped_vertex_capacity : stats_.dropped_triangle_capacity) +=
-          triangles;
-      break;
-  }
-  return why;
-}
-
-Status FrontEnd::phong_record(FrontEnd& fe, const DrawState& state, const PreparedLighting& pl,
-                              DrawRecord& r) {
-  return fe.add_phong_state(state, pl, r);
-}
-
-Status FrontEnd::add_phong_state(const DrawState& state, const PreparedLighting& pl,
-                                 DrawRecord& r) {
+Status DrawRecords::add_phong_state(const DrawState& state, const PreparedLighting& pl,
+                                    DrawRecord& r) {
   // Prepared lighting: shared by the draws of equal materials.
   const PreparedLighting* shared = nullptr;
   for (size_t i = 0; i < pixel_light_count_; ++i)
@@ -73,10 +43,10 @@ Status FrontEnd::add_phong_state(const DrawState& state, const PreparedLighting&
   }
   r.phong = true;
   r.method = state.pixel_lighting;
-  r.two_sided = lights_.two_sided;
+  r.two_sided = two_sided_;
   r.position = pl.needs_position();
   r.lighting = shared;
-  r.view = &camera_.view;
+  r.view = view_;
   r.flat = false;
   r.colors = ColorPlanes::kNone;
   r.envmap = state.envmap;
@@ -87,7 +57,7 @@ Status FrontEnd::add_phong_state(const DrawState& state, const PreparedLighting&
   const uint16_t size = state.table.size;
   r.table_bilinear = state.table.bilinear;
   // Tables of equal prepared lighting, size and layout are shared.
-  for (size_t i = 0; i < draw_count_; ++i) {
+  for (size_t i = 0; i < count_; ++i) {
     const DrawRecord& o = draws_[i];
     if (&o != &r && o.phong && o.method == PixelLighting::kTable && o.lighting == shared &&
         o.table.size == size && o.table.split == split) {
@@ -106,7 +76,7 @@ Status FrontEnd::add_phong_state(const DrawState& state, const PreparedLighting&
   return Status::kOk;
 }
 
-void FrontEnd::sign_draw(uint8_t index, const Material* per_pixel_material) {
+void DrawRecords::sign(uint8_t index, const Material* per_pixel_material) {
   DrawRecord& d = draws_[index];
   InputHash h;
   h.add(d);

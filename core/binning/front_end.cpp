@@ -1,32 +1,13 @@
 #include "lineraster/core/binning/front_end.hpp"
 
+#include "lineraster/core/binning/mesh_draw.hpp"
+
 #include "lineraster/core/lighting/lighting_table.hpp"
 #include "lineraster/core/vertex/vertex_stage.hpp"
 
 namespace lr {
 
-// What draw() decides about a draw from its state, its mesh and the lights.
-struct DrawPlan {
-  DrawKind kind;
-  bool lit = false;
-  bool gouraud = false;  // per-vertex colours: lit Gouraud, or unlit and interpolated
-  bool textured = false;
-  bool uv = false;         // the vertices have TexVertex entries (DrawRecord::uv)
-  bool split = false;      // textured, lit, modulated: primary and specular colours apart
-  bool two_sided = false;  // Gouraud and flat: back faces lit with the negated normal
-};
-
 namespace {
-
-// ScreenVertex::color_pending of a vertex a band's triangle refers to (compact_vertices), and
-// the link of one no triangle refers to.
-constexpr uint8_t kKeptVertex = 2;
-constexpr uint16_t kNoLink = 0xFFFF;
-
-Rgb8 to_rgb8_sat(Color15 c) {
-  auto b = [](uint16_t v) { return to_byte(clamp_c15(v)); };
-  return {b(c.r), b(c.g), b(c.b)};
-}
 
 // The checks of draw() (kInvalidArgument: nothing is added, nothing counted), and its plan.
 Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& lights, DrawPlan& p) {
@@ -85,15 +66,9 @@ Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int 
   if (!edges_.configure(s.triangles, s.triangle_colors, s.buckets, s.strip_inputs, width, height,
                         strip_height))
     return Status::kStoreTooSmall;
-  vertices_ =
-      s.vertices.size() > kMaxStoreEntries ? s.vertices.first(kMaxStoreEntries) : s.vertices;
-  draws_ = s.draws;
-  surfaces_ = s.surfaces;
+  store_.configure(s.vertices, s.surfaces, s.tex_vertices, kMaxStoreEntries);
+  records_.configure(s.draws, s.lighting_tables, s.pixel_lights);
   active_extra_ = s.active_extra;
-  tex_ = s.tex_vertices.size() > kMaxStoreEntries ? s.tex_vertices.first(kMaxStoreEntries)
-                                                  : s.tex_vertices;
-  lighting_tables_ = s.lighting_tables;
-  pixel_lights_ = s.pixel_lights;
   width_ = width;
   height_ = height;
   strip_height_ = strip_height;
@@ -112,15 +87,10 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
   camera_ = camera;
   lights_ = lights;
   background_ = background;
-  vertex_count_ = draw_count_ = 0;
-  vertex_limit_ = vertices_.size();
-  cache_first_ = 0;
-  overflow_ = banding_ = band_dropped_ = false;
-  band_r0_ = 0;
-  band_r1_ = height_ - 1;
-  band_carried_ = 0;
+  store_.clear();
+  records_.begin_frame(&camera_.view, lights_.two_sided);
+  overflow_ = false;
   refused_triangles_ = refused_vertices_ = 0;
-  pixel_light_count_ = table_words_used_ = 0;
   // What every strip depends on: the viewport, the background, the camera (per-pixel lighting
   // and environment maps read it) and the lights (per-pixel lighting).
   uint32_t frame_signature = 0;
@@ -146,9 +116,9 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
 template <bool kCached>
 Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
                       Cull cull, const int32_t* rows) {
-  const ScreenVertex& v0 = vertices_[a];
-  const ScreenVertex& v1 = vertices_[b];
-  const ScreenVertex& v2 = vertices_[c];
+  const ScreenVertex& v0 = store_.vertex(a);
+  const ScreenVertex& v1 = store_.vertex(b);
+  const ScreenVertex& v2 = store_.vertex(c);
   int32_t classified[2] = {0, 0};
   if (rows == nullptr) {
     const Outcome result = edges_.classify(v0, v1, v2, cull, classified[0], classified[1]);
@@ -159,38 +129,37 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
   int32_t r0 = rows[0], r1 = rows[1];
   // Binning a band: another band's triangle is binned there; one from above starts here.
   // (One pass: the band is the viewport, to which classify() clamped the rows already.)
-  if (banding_) [[unlikely]] {
-    if (r1 < band_r0_ || r0 > band_r1_) return Outcome::kBinned;
-    if (r0 < band_r0_) r0 = band_r0_;
-    if (r1 > band_r1_) r1 = band_r1_;
+  if (edges_.banding()) [[unlikely]] {
+    if (edges_.outside_window(r0, r1)) return Outcome::kBinned;
+    edges_.clamp_to_window(r0, r1);
   }
   while (edges_.full()) {
     // The band (the first one: the whole frame, until now) ends higher up, until it is one
     // strip (below the minimum: the triangle is dropped, and counted). From now on each draw
     // keeps only the vertices its binned triangles use.
-    banding_ = true;
+    edges_.start_banding();
     if (!shrink_band()) {
-      band_dropped_ = true;
+      edges_.set_dropped();
       return Outcome::kCapacity;
     }
-    if (r0 > band_r1_) return Outcome::kBinned;
-    if (r1 > band_r1_) r1 = band_r1_;
+    if (r0 > edges_.window_last()) return Outcome::kBinned;
+    if (r1 > edges_.window_last()) r1 = edges_.window_last();
   }
   if (edges_.signing()) {
-    const DrawRecord& d = draws_[draw];
+    const DrawRecord& d = records_[draw];
     InputHash h(d.inputs);
     h.add(v0);
     h.add(v1);
     h.add(v2);
     if (d.phong) {
-      h.add(surfaces_[a]);
-      h.add(surfaces_[b]);
-      h.add(surfaces_[c]);
+      h.add(store_.surface(a));
+      h.add(store_.surface(b));
+      h.add(store_.surface(c));
     }
     if (d.uv) {
-      h.add(tex_[a]);
-      h.add(tex_[b]);
-      h.add(tex_[c]);
+      h.add(store_.tex(a));
+      h.add(store_.tex(b));
+      h.add(store_.tex(c));
     }
     h.add(flat);
     h.add(flat_spec);
@@ -198,15 +167,14 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
   }
   // Through the vertex cache: the triangle's vertices are copied out of it on first use.
   if constexpr (kCached) {
-    if (!persist(a) || !persist(b) || !persist(c)) {
+    if (!store_.persist(a) || !store_.persist(b) || !store_.persist(c)) {
       overflow_ = true;
       return Outcome::kVertexCapacity;
     }
   }
   // A triangle from above the band was counted in its own band: not counted again (only once
   // it is added: a dropped one was never counted here).
-  if (banding_ && rows[0] < band_r0_) [[unlikely]]
-    ++band_carried_;
+  edges_.note_carried(rows[0]);
   BinnedTriangle& t = edges_.add(r0);
   t.v[0] = a;
   t.v[1] = b;
@@ -216,45 +184,9 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
   return Outcome::kBinned;
 }
 
-// What draw()'s triangle loop reads of its draw.
-struct FrontEnd::MeshDraw {
-  const Mesh& mesh;
-  const DrawState& state;
-  const VertexStage& stage;
-  // Copies of the draw's plan and colours, not references to them.
-  const DrawPlan plan;
-  const VertexColors colors;
-  const size_t base;  // the mesh's first vertex store entry
-  const uint8_t draw;
-  const bool cached;  // the mesh goes through the vertex cache (FrontEnd::cache_corners)
-  // Back faces' colours (two-sided Gouraud): written before use on each back face; one set per
-  // draw, because a value-initialised local per triangle cost a 120-byte memset each.
-  LitColor back_colors[3] = {};
-
-  // The colours of a triangle without colour planes: flat shading (lit by its face normal, or
-  // the last vertex's colour), or an unlit mesh's one colour.
-  [[gnu::always_inline]] void flat_colors(const std::array<uint16_t, 3>& tri,
-                                          const ScreenVertex& last, bool back, Rgb8& flat,
-                                          Rgb8& flat_spec) const {
-    if (!plan.gouraud && !plan.kind.phong) {
-      if (plan.lit) {
-        const LitColor lc = stage.light_face(colors, mesh.positions[tri[0]], mesh.positions[tri[1]],
-                                             mesh.positions[tri[2]], back);
-        flat = to_rgb8_sat(lc.primary);
-        if (plan.split) flat_spec = to_rgb8_sat(lc.secondary);
-      } else {
-        flat = to_rgb8_sat(last.color);  // GL's provoking vertex: the last one
-      }
-    } else if (!plan.kind.color_planes && !plan.kind.phong) {
-      flat = to_rgb8_sat(colors.material);
-    }
-  }
-};
-
 // One triangle of a draw: culled, lit (lit Gouraud: its vertices on first use; flat: its face),
 // clipped when it crosses a plane, and binned. This and the two ends below are always inlined
 // into draw(): one loop body, whose locals share one stack frame.
-template <bool kCached>
 void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   const size_t n = d.mesh.positions.size();
   if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
@@ -263,13 +195,15 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   }
   uint16_t vi[3] = {static_cast<uint16_t>(d.base + tri[0]), static_cast<uint16_t>(d.base + tri[1]),
                     static_cast<uint16_t>(d.base + tri[2])};
-  if constexpr (kCached) {
-    const std::array<uint16_t, 3> c = cache_corners(d, tri);  // by value: vi stays in registers
+  if (d.cached) {
+    // By value: vi stays in registers.
+    const std::array<uint16_t, 3> c = store_.cache_corners(
+        d.stage, d.mesh, d.colors, tri, stats_.vertices_transformed, stats_.vertices_wide);
     vi[0] = c[0];
     vi[1] = c[1];
     vi[2] = c[2];
   }
-  ScreenVertex* const sv[3] = {&vertices_[vi[0]], &vertices_[vi[1]], &vertices_[vi[2]]};
+  ScreenVertex* const sv[3] = {&store_.vertex(vi[0]), &store_.vertex(vi[1]), &store_.vertex(vi[2])};
   const uint8_t oc_or = sv[0]->outcode | sv[1]->outcode | sv[2]->outcode;
   const uint8_t oc_and = sv[0]->outcode & sv[1]->outcode & sv[2]->outcode;
   if (oc_or & kClipOutOfRange) {
@@ -293,7 +227,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
         return;
       }
       // Another band's triangle: binned there, not lit here.
-      if (banding_ && (rows[1] < band_r0_ || rows[0] > band_r1_)) {
+      if (edges_.outside_window(rows[0], rows[1])) {
         count_outcome(stats_, true, Outcome::kBinned);
         return;
       }
@@ -302,7 +236,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
       if (sv[k]->color_pending) {
         const LitColor lc = d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], false);
         sv[k]->color = lc.primary;
-        if (d.colors.split) tex_[vi[k]].spec = lc.secondary;
+        if (d.colors.split) store_.tex(vi[k]).spec = lc.secondary;
         sv[k]->color_pending = 0;
       }
     }
@@ -323,7 +257,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   d.flat_colors(tri, *sv[2], back, flat, flat_spec);
   if (oc_or == 0) {
     bin_inside(d, vi, sv, back && d.plan.gouraud, flat, flat_spec, classified ? rows : nullptr,
-               kCached);
+               d.cached);
     return;
   }
   clip_and_bin(d, vi, sv, clip, oc_or, back && d.plan.gouraud, flat, flat_spec);
@@ -338,7 +272,7 @@ void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&
   if (back_copies) {
     // Binning a band: a triangle of another band gets no copies (they would fill the store with
     // vertices no triangle of the band uses). Its tests are bin()'s, done once here.
-    if (banding_ && rows == nullptr) [[unlikely]] {
+    if (edges_.banding() && rows == nullptr) [[unlikely]] {
       const Outcome r =
           edges_.classify(*sv[0], *sv[1], *sv[2], d.state.cull, classified[0], classified[1]);
       if (r != Outcome::kBinned) {
@@ -347,27 +281,27 @@ void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&
       }
       rows = classified;
     }
-    if (banding_ && (rows[1] < band_r0_ || rows[0] > band_r1_)) [[unlikely]] {
+    if (edges_.banding() && edges_.outside_window(rows[0], rows[1])) [[unlikely]] {
       count_outcome(stats_, true, Outcome::kBinned);
       return;
     }
-    if (!vertices_fit(3) || (d.plan.uv && !tex_fit(3))) {
+    if (!store_.vertices_fit(3) || (d.plan.uv && !store_.tex_fit(3))) {
       overflow_ = true;
       count_outcome(stats_, false, Outcome::kVertexCapacity);
       return;
     }
+    const size_t first = store_.take(3);
     for (int k = 0; k < 3; ++k) {
-      const size_t at = vertex_count_ + static_cast<size_t>(k);
-      ScreenVertex& nv = vertices_[at];
+      const size_t at = first + static_cast<size_t>(k);
+      ScreenVertex& nv = store_.vertex(at);
       nv = *sv[k];
       nv.color = d.back_colors[k].primary;
       if (d.plan.uv) {
-        tex_[at] = tex_[vi[k]];
-        tex_[at].spec = d.back_colors[k].secondary;
+        store_.tex(at) = store_.tex(vi[k]);
+        store_.tex(at).spec = d.back_colors[k].secondary;
       }
       vi[k] = static_cast<uint16_t>(at);
     }
-    vertex_count_ += 3;
   }
   // Corners in the vertex cache (back-face copies are in the store already).
   const Outcome r =
@@ -384,12 +318,12 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
                             const ClipCoord (&clip)[3], uint8_t oc_or, bool back_colored, Rgb8 flat,
                             Rgb8 flat_spec) {
   ++stats_.clipped;
-  const ClipPolygon poly(clip_polygon_.data(), kMaxClipVertices);
+  const ClipPolygon poly(clip_.polygon.data(), kMaxClipVertices);
   for (size_t k = 0; k < 3; ++k) {
     poly[k].p = clip[k];
     poly[k].color = back_colored ? d.back_colors[k].primary : sv[k]->color;
     if (d.plan.uv) {
-      const TexVertex& tv = tex_[vi[k]];
+      const TexVertex& tv = store_.tex(vi[k]);
       poly[k].spec = back_colored ? d.back_colors[k].secondary : tv.spec;
       poly[k].u = tv.u;
       poly[k].v = tv.v;
@@ -397,41 +331,48 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
       poly[k].spec = Color15{};
       poly[k].u = poly[k].v = 0;
     }
-    if (d.plan.kind.phong) poly[k].surface = surfaces_[vi[k]];
+    if (d.plan.kind.phong) poly[k].surface = store_.surface(vi[k]);
+    poly[k].corner = static_cast<uint8_t>(k + 1);
+    poly[k].outcode = sv[k]->outcode;
   }
-  const int m = clip_polygon(poly, ClipPolygon(clip_scratch_.data(), kMaxClipVertices), 3, oc_or,
+  const int m = clip_polygon(poly, ClipPolygon(clip_.scratch.data(), kMaxClipVertices), 3, oc_or,
                              d.stage.guard());
   if (m < 3) {
     ++stats_.clipped_away;
     return;
   }
-  if (!vertices_fit(static_cast<size_t>(m)) ||
-      (d.plan.kind.phong && !surfaces_fit(static_cast<size_t>(m))) ||
-      (d.plan.uv && !tex_fit(static_cast<size_t>(m)))) {
+  if (!store_.mesh_fits(static_cast<size_t>(m), d.plan.kind.phong, d.plan.uv)) {
     overflow_ = true;
     ++stats_.dropped_vertex_capacity;
     return;
   }
-  const auto first = static_cast<uint16_t>(vertex_count_);
+  const auto first = static_cast<uint16_t>(store_.count());
   int projected = 0;
   for (size_t k = 0; k < static_cast<size_t>(m); ++k) {
-    const size_t at = vertex_count_ + k;
-    ScreenVertex& nv = vertices_[at];
+    const size_t at = first + k;
+    ScreenVertex& nv = store_.vertex(at);
+    // A corner the clipper kept is inside every plane (outcode 0: projected already): the
+    // same position as in the triangles around it that need no clipping.
+    if (poly[k].corner != 0) {
+      nv = *sv[poly[k].corner - 1];
+      ++projected;
+    } else if (d.stage.project(poly[k].p, nv)) {
+      ++projected;
+    }
     nv.color = poly[k].color;
     nv.outcode = 0;
     nv.color_pending = 0;
-    if (d.stage.project(poly[k].p, nv)) ++projected;
-    if (d.plan.kind.phong) surfaces_[at] = poly[k].surface;
-    if (d.plan.uv) tex_[at] = TexVertex{poly[k].u, poly[k].v, poly[k].spec, 0};
+    if (d.plan.kind.phong) store_.surface(at) = poly[k].surface;
+    if (d.plan.uv) store_.tex(at) = TexVertex{poly[k].u, poly[k].v, poly[k].spec, 0};
   }
   if (projected != m) {
     ++stats_.clipped_away;
     return;
   }
   // Binning a band: a polygon wholly outside it is not kept (its vertices would fill the store).
-  if (banding_ && polygon_outside_band(first, m, d.state.cull)) [[unlikely]]
+  if (edges_.banding() && polygon_outside_band(first, m, d.state.cull)) [[unlikely]]
     return;
-  vertex_count_ += static_cast<size_t>(m);
+  store_.take(static_cast<size_t>(m));
   bool binned = false;
   Outcome last = Outcome::kClippedAway, dropped = Outcome::kBinned;
   for (int k = 1; k + 1 < m; ++k) {
@@ -460,26 +401,26 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   if (plan_draw(mesh, state, lights_, plan) != Status::kOk) return refuse(Status::kInvalidArgument);
   if (!admitted(state, plan.kind)) return refuse(Status::kNotLinked);
   const bool triangle_colors = !plan.gouraud && !plan.kind.phong;  // flat: colours per triangle
-  if ((plan.uv && tex_.empty()) || ((plan.textured || plan.kind.phong) && !active_extra_) ||
+  if ((plan.uv && !store_.has_tex()) || ((plan.textured || plan.kind.phong) && !active_extra_) ||
       (plan.kind.phong &&
-       (surfaces_.empty() || pixel_lights_.empty() ||
-        (state.pixel_lighting == PixelLighting::kTable && lighting_tables_.empty()))) ||
+       (!store_.has_surfaces() || !records_.has_pixel_lights() ||
+        (state.pixel_lighting == PixelLighting::kTable && !records_.has_lighting_tables()))) ||
       (triangle_colors && !edges_.has_colors()))
     return refuse(Status::kMissingStore);
   const size_t n = mesh.positions.size();
   const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
   stats_.triangles_in += tri_count;
   // A mesh larger than the stores needs room for the vertex cache (docs/bands.md).
-  if ((n > vertices_.size() && vertices_.size() < kMinCachedStore) ||
-      (plan.kind.phong && n > surfaces_.size() && surfaces_.size() < kMinCachedStore) ||
-      (plan.uv && n > tex_.size() && tex_.size() < kMinCachedStore))
+  if (!store_.takes_mesh(n, plan.kind.phong, plan.uv))
     return refuse(Status::kCapacity, tri_count, true);
-  uint8_t draw_index = 0;
-  if (add_draw_record(state, plan.kind.color_planes, tri_count, draw_index) != Status::kOk)
-    return Status::kCapacity;
-  draws_[draw_index].triangle_colors = triangle_colors;
+  // Without a draw record the whole draw is dropped, and counted.
+  if (records_.full()) return refuse(Status::kCapacity, tri_count, false);
+  const uint8_t draw_index =
+      records_.add(state, plan.kind.color_planes, static_cast<uint16_t>(store_.count()));
+  DrawRecord& record = records_[draw_index];
+  record.triangle_colors = triangle_colors;
   if (!triangle_colors && !plan.kind.color_planes && !plan.kind.phong)
-    draws_[draw_index].color = to_rgb8_sat(material.diffuse);
+    record.color = to_rgb8_sat(material.diffuse);
 
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   PreparedLighting& pl = lighting_;
@@ -487,12 +428,12 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
     prepare_lighting(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
-  if (plan.kind.phong && phong_(*this, state, pl, draws_[draw_index]) != Status::kOk) {
-    --draw_count_;
+  if (plan.kind.phong && phong_(records_, state, pl, record) != Status::kOk) {
+    records_.drop_last();
     return refuse(Status::kCapacity, tri_count, false);
   }
-  if (edges_.signing()) sign_draw(draw_index, plan.kind.phong ? &material : nullptr);
-  DrawCall& call = draws_[draw_index].call;
+  if (edges_.signing()) records_.sign(draw_index, plan.kind.phong ? &material : nullptr);
+  DrawCall& call = record.call;
   call.mesh = mesh;
   call.screen = {};
   call.model = model;
@@ -506,28 +447,19 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
 void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
                         const Material& material, const DrawState& state, const DrawPlan& plan,
                         const PreparedLighting& pl) {
-  draws_[index].first_vertex = static_cast<uint16_t>(vertex_count_);
-  draw_colors_ = draws_[index].triangle_colors;
+  records_[index].first_vertex = static_cast<uint16_t>(store_.count());
+  draw_colors_ = records_[index].triangle_colors;
   const size_t n = mesh.positions.size();
   const bool phong = plan.kind.phong, uv = plan.uv;
   // A mesh larger than the free store goes through the vertex cache at the top of the stores.
-  const bool cached = !vertices_fit(n) || (phong && !surfaces_fit(n)) || (uv && !tex_fit(n));
-  if (cached) {
-    size_t top = vertices_.size();
-    if (phong && surfaces_.size() < top) top = surfaces_.size();
-    if (uv && tex_.size() < top) top = tex_.size();
-    if (top < vertex_count_ + kMinCachedStore) {
-      overflow_ = true;
-      stats_.dropped_vertex_capacity += static_cast<uint32_t>(mesh.triangles.size());
-      return;
-    }
-    cache_first_ = top - kCacheSlots;
-    vertex_limit_ = cache_first_;
-    cache_surfaces_ = phong;
-    cache_tex_ = uv;
-    cache_.fill(kNoCacheEntry);
-    cache_lru_ = 0;
+  const bool cached = !store_.mesh_fits(n, phong, uv);
+  if (cached && !store_.begin_cache(phong, uv)) {
+    overflow_ = true;
+    stats_.dropped_vertex_capacity += static_cast<uint32_t>(mesh.triangles.size());
+    return;
   }
+  const VertexStage stage(camera_, model, guard_, width_, height_,
+                          mesh.bound != 0 ? mesh.bound : position_bound(mesh.positions.data(), n));
   VertexColors colors;
   colors.lit = plan.lit;
   colors.pending = plan.lit && plan.gouraud;
@@ -537,86 +469,51 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   colors.tangents = phong && state.normal_map != nullptr;
   colors.material = material.diffuse;
   colors.lighting = &pl;
-  const VertexStage stage(camera_, model, guard_, width_, height_);
-  const size_t base = vertex_count_;
+  // Lit Gouraud under directional lights and a rigid model: the lights turned into model space.
+  if (colors.pending && !colors.need_position && stage.object_lights(pl, object_lights_))
+    colors.object = &object_lights_;
+  const size_t base = store_.count();
   draw_first_triangle_ = edges_.size();
+  uint8_t clip_outcodes = 0;  // the OR of the draw's outcodes (through the cache: unknown)
   if (!cached) {
-    vertex_count_ += n;
+    store_.take(n);
     stats_.vertices_transformed += static_cast<uint32_t>(n);
-    stage.transform(mesh, colors, vertices_.data() + base,
-                    phong ? surfaces_.data() + base : nullptr, uv ? tex_.data() + base : nullptr);
+    const TransformSummary done = stage.transform(mesh, colors, store_.vertices_at(base),
+                                                  phong ? store_.surfaces_at(base) : nullptr,
+                                                  uv ? store_.tex_at(base) : nullptr);
+    stats_.vertices_wide += done.wide;
+    clip_outcodes = done.outcodes;
   }
 
   MeshDraw d{mesh, state, stage, plan, colors, base, index, cached};
-  const auto tri_count = static_cast<uint32_t>(mesh.triangles.size());
-  if (cached)
-    triangle_loop<true>(d, tri_count);
-  else
-    triangle_loop<false>(d, tri_count);
-  if (cached) {
-    cache_first_ = 0;
-    vertex_limit_ = vertices_.size();
-  }
-  if (banding_) compact_vertices(base, phong, uv);
+  d.clipping = cached || clip_outcodes != 0;
+  if (colors.object != nullptr && !colors.object->specular && !colors.split)
+    d.diffuse_lights = colors.object;
+  triangle_loop(d);
+  if (cached) store_.end_cache();
+  if (edges_.banding()) compact_vertices(base, phong, uv);
 }
 
-// The triangle loop, out of line: one loop body in each stack frame, not both in run_mesh's.
-template <bool kCached>
-void FrontEnd::triangle_loop(MeshDraw& d, uint32_t triangles) {
-  for (uint32_t t = 0; t < triangles; ++t) draw_triangle<kCached>(d, d.mesh.triangles[t]);
+// The triangle loop: the lane (lane.cpp) for a draw's common triangles, general_triangles() for
+// the others and for every triangle of a draw the lane does not take (two-sided, flat-shaded,
+// through the vertex cache, signed). Out of line and small: the lane's frames and the general
+// path's are never on the stack together.
+void FrontEnd::triangle_loop(MeshDraw& d) {
+  const auto count = static_cast<uint32_t>(d.mesh.triangles.size());
+  if (d.cached || d.plan.two_sided || draw_colors_ || edges_.signing()) {
+    general_triangles(d, 0, count);
+    return;
+  }
+  for (uint32_t t = 0; t < count;) {
+    t = lane_triangles(d, t);
+    if (t < count) t = general_triangles(d, t, t + 1);
+  }
 }
 
-// A triangle's corners through the vertex cache: vi gets their cache slots in the store. Two
-// ways per set of mesh indices (index modulo the sets): a vertex and the one a grid row below
-// it share a set and both stay. A miss replaces the way used least recently, unless an earlier
-// corner of this triangle holds it; a third corner in one set takes its spare.
-std::array<uint16_t, 3> FrontEnd::cache_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
-  std::array<uint16_t, 3> vi{};
-  for (size_t k = 0; k < 3; ++k) {
-    const uint16_t i = tri[k];
-    const size_t set = i & (kCacheSets - 1);
-    size_t slot = 2 * set;
-    if ((cache_[slot] & 0xFFFF) != i) ++slot;
-    if ((cache_[slot] & 0xFFFF) != i) {
-      const auto taken = [&](size_t s) {
-        for (size_t j = 0; j < k; ++j)
-          if (vi[j] == cache_first_ + s) return true;
-        return false;
-      };
-      slot = 2 * set + ((cache_lru_ >> set) & 1);
-      if (taken(slot)) slot ^= 1;
-      if (taken(slot)) slot = 2 * kCacheSets + k;
-      const size_t at = cache_first_ + slot;
-      d.stage.transform_one(d.mesh, d.colors, i, vertices_[at],
-                            cache_surfaces_ ? &surfaces_[at] : nullptr,
-                            cache_tex_ ? &tex_[at] : nullptr);
-      cache_[slot] = i | kNoCacheEntry << 16;
-      ++stats_.vertices_transformed;
-    }
-    // The other way of the set is replaced next.
-    if (slot < 2 * kCacheSets)
-      cache_lru_ = (cache_lru_ & ~(uint32_t{1} << set)) | uint32_t((slot & 1) ^ 1) << set;
-    vi[k] = static_cast<uint16_t>(cache_first_ + slot);
-  }
-  return vi;
-}
-
-// A cache slot's vertex (and surface) copied into the store below the cache, once per slot
-// fill; index becomes the copy's.
-bool FrontEnd::persist(uint16_t& index) {
-  if (index < cache_first_) return true;  // already in the store (clipping, back faces)
-  uint32_t& e = cache_[index - cache_first_];
-  auto p = static_cast<uint16_t>(e >> 16);
-  if (p == kNoCacheEntry) {
-    if (vertex_count_ >= vertex_limit_) return false;
-    p = static_cast<uint16_t>(vertex_count_++);
-    vertices_[p] = vertices_[index];
-    if (cache_surfaces_) surfaces_[p] = surfaces_[index];
-    if (cache_tex_) tex_[p] = tex_[index];
-    e = (e & 0xFFFF) | uint32_t{p} << 16;
-  }
-  index = p;
-  return true;
+// Triangles [t, end) through draw_triangle(), inlined here: one stack frame for its locals.
+uint32_t FrontEnd::general_triangles(MeshDraw& d, uint32_t t, uint32_t end) {
+  for (; t < end; ++t) draw_triangle(d, d.mesh.triangles[t]);
+  return t;
 }
 
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
@@ -628,18 +525,17 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   if (!uv) tex = {};
   const bool gouraud = state.shading == Shading::kGouraud;
   if (!admitted(state, {false, gouraud, !lights_.normal_only()})) return refuse(Status::kNotLinked);
-  if ((uv && (tex_.empty() || !active_extra_)) || (!gouraud && !edges_.has_colors()))
+  if ((uv && (!store_.has_tex() || !active_extra_)) || (!gouraud && !edges_.has_colors()))
     return refuse(Status::kMissingStore);
   const auto tri_count = static_cast<uint32_t>(triangles.size());
   stats_.triangles_in += tri_count;
-  if (vertices.size() > vertices_.size() || (uv && vertices.size() > tex_.size()))
+  if (vertices.size() > store_.capacity() || (uv && vertices.size() > store_.tex_capacity()))
     return refuse(Status::kCapacity, tri_count, true);
-  uint8_t draw_index = 0;
-  if (add_draw_record(state, gouraud, tri_count, draw_index) != Status::kOk)
-    return Status::kCapacity;
-  draws_[draw_index].triangle_colors = !gouraud;
-  if (edges_.signing()) sign_draw(draw_index, nullptr);
-  DrawCall& call = draws_[draw_index].call;
+  if (records_.full()) return refuse(Status::kCapacity, tri_count, false);
+  const uint8_t draw_index = records_.add(state, gouraud, static_cast<uint16_t>(store_.count()));
+  records_[draw_index].triangle_colors = !gouraud;
+  if (edges_.signing()) records_.sign(draw_index, nullptr);
+  DrawCall& call = records_[draw_index].call;
   call.mesh = Mesh{};
   call.mesh.triangles = triangles;
   call.screen = vertices;
@@ -656,16 +552,16 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
                           std::span<const TexVertex> tex,
                           std::span<const std::array<uint16_t, 3>> triangles,
                           const DrawState& state) {
-  draws_[index].first_vertex = static_cast<uint16_t>(vertex_count_);
-  draw_colors_ = draws_[index].triangle_colors;
+  records_[index].first_vertex = static_cast<uint16_t>(store_.count());
+  draw_colors_ = records_[index].triangle_colors;
   const size_t n = vertices.size();
   const bool uv = !tex.empty();
-  if (!vertices_fit(n) || (uv && !tex_fit(n))) {
+  if (!store_.mesh_fits(n, false, uv)) {
     overflow_ = true;
     stats_.dropped_vertex_capacity += static_cast<uint32_t>(triangles.size());
     return;
   }
-  const size_t base = vertex_count_;
+  const size_t base = store_.take(n);
   draw_first_triangle_ = edges_.size();
   const int32_t limit = (kMaxViewport * 3) << kSubpixelBits;  // inside the coordinate budget
   for (size_t i = 0; i < n; ++i) {
@@ -674,10 +570,9 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
     bool ok = v.x > -limit && v.x < limit && v.y > -limit && v.y < limit && v.z <= kDepthMax;
     v.outcode = ok ? 0 : kClipOutOfRange;
     v.color_pending = 0;
-    vertices_[base + i] = v;
-    if (uv) tex_[base + i] = tex[i];
+    store_.vertex(base + i) = v;
+    if (uv) store_.tex(base + i) = tex[i];
   }
-  vertex_count_ += n;
   for (const std::array<uint16_t, 3>& tri : triangles) {
     if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
       ++stats_.rejected_invalid;
@@ -686,36 +581,37 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
     const uint16_t vi[3] = {static_cast<uint16_t>(base + tri[0]),
                             static_cast<uint16_t>(base + tri[1]),
                             static_cast<uint16_t>(base + tri[2])};
-    if ((vertices_[vi[0]].outcode | vertices_[vi[1]].outcode | vertices_[vi[2]].outcode) != 0) {
+    if ((store_.vertex(vi[0]).outcode | store_.vertex(vi[1]).outcode |
+         store_.vertex(vi[2]).outcode) != 0) {
       ++stats_.rejected_invalid;
       continue;
     }
-    const Rgb8 flat = to_rgb8_sat(vertices_[vi[2]].color);
-    const Rgb8 flat_spec = uv ? to_rgb8_sat(tex_[vi[2]].spec) : Rgb8{};
+    const Rgb8 flat = to_rgb8_sat(store_.vertex(vi[2]).color);
+    const Rgb8 flat_spec = uv ? to_rgb8_sat(store_.tex(vi[2]).spec) : Rgb8{};
     const Outcome r = bin<false>(vi[0], vi[1], vi[2], index, flat, flat_spec, state.cull);
     count_outcome(stats_, r == Outcome::kBinned, r);
   }
-  if (banding_) compact_vertices(base, false, uv);
+  if (edges_.banding()) compact_vertices(base, false, uv);
 }
 
 // A clipped polygon's vertices, projected at [first, first + m) but not yet kept: true when no
 // row of it touches the band, its pieces then counted as bin() would count them. Out of line:
 // one copy for both triangle loops.
 bool FrontEnd::polygon_outside_band(uint16_t first, int m, Cull cull) {
-  int32_t ymin = vertices_[first].y, ymax = ymin;
+  int32_t ymin = store_.vertex(first).y, ymax = ymin;
   for (int k = 1; k < m; ++k) {
-    const int32_t y = vertices_[first + static_cast<size_t>(k)].y;
+    const int32_t y = store_.vertex(first + static_cast<size_t>(k)).y;
     ymin = y < ymin ? y : ymin;
     ymax = y > ymax ? y : ymax;
   }
-  if (last_row_at_or_above(ymax) >= band_r0_ && first_row_below(ymin) <= band_r1_) return false;
+  if (!edges_.outside_window(first_row_below(ymin), last_row_at_or_above(ymax))) return false;
   bool binned = false;
   Outcome last = Outcome::kClippedAway;
   for (int k = 1; k + 1 < m; ++k) {
     int32_t r0 = 0, r1 = 0;
     const auto at = static_cast<size_t>(first) + static_cast<size_t>(k);
-    const Outcome r =
-        edges_.classify(vertices_[first], vertices_[at], vertices_[at + 1], cull, r0, r1);
+    const Outcome r = edges_.classify(store_.vertex(first), store_.vertex(at),
+                                      store_.vertex(at + 1), cull, r0, r1);
     if (r == Outcome::kBinned)
       binned = true;
     else
@@ -743,7 +639,7 @@ void FrontEnd::begin_bands() {
 // One recorded draw run again for the band. Out of line: its locals (the prepared lighting
 // above all) are on the stack only while it runs.
 void FrontEnd::replay(uint8_t index) {
-  const DrawCall& c = draws_[index].call;
+  const DrawCall& c = records_[index].call;
   const DrawState state = c.state.get();
   if (c.is_screen) {
     run_screen(index, c.screen, c.screen_tex, c.mesh.triangles, state);
@@ -787,19 +683,14 @@ void FrontEnd::restore_binning_counts() {
 
 Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
   save_binning_counts();
-  banding_ = true;
   overflow_ = false;
-  band_r0_ = s0 * strip_height_;
-  band_r1_ = (s1 * strip_height_ < height_ ? s1 * strip_height_ : height_) - 1;
-  vertex_count_ = 0;
-  band_carried_ = 0;
-  band_dropped_ = false;
+  store_.clear();
   edges_.begin_band(s0, s1);
-  for (size_t i = 0; i < draw_count_ && (keep_partial || !overflow_); ++i)
+  for (size_t i = 0; i < records_.count() && (keep_partial || !overflow_); ++i)
     replay(static_cast<uint8_t>(i));
   const bool fit = !overflow_;
   overflow_ = true;  // the frame still needs bands
-  stats_.triangles_binned -= band_carried_;
+  stats_.triangles_binned -= edges_.carried();
   if (!fit && !keep_partial) {
     restore_binning_counts();
     ++stats_.band_retries;
@@ -809,11 +700,13 @@ Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
   // the vertices transformed in every band; what was dropped in the bands that dropped it.
   if (s0 != 0) {
     const uint32_t binned = stats_.triangles_binned, transformed = stats_.vertices_transformed;
+    const uint32_t wide = stats_.vertices_wide;
     const uint32_t dropped_triangles = stats_.dropped_triangle_capacity;
     const uint32_t dropped_vertices = stats_.dropped_vertex_capacity;
     restore_binning_counts();
     stats_.triangles_binned = binned;
     stats_.vertices_transformed = transformed;
+    stats_.vertices_wide = wide;
     stats_.dropped_triangle_capacity = dropped_triangles;
     stats_.dropped_vertex_capacity = dropped_vertices;
   }
@@ -822,60 +715,40 @@ Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
 }
 
 bool FrontEnd::shrink_band() {
-  const int s0 = band_r0_ / strip_height_, s1 = band_r1_ / strip_height_ + 1;
-  if (s1 - s0 < 2) return false;
-  // Keep the strips whose triangles fill up to 3/4 of the store (at least the first).
-  const size_t keep = edges_.capacity() - edges_.capacity() / 4;
-  size_t kept = 0;
-  int cut = s0 + 1;
-  for (int s = s0; s < s1 - 1; ++s) {
-    kept += edges_.bucket_size(s);
-    if (kept > keep) break;
-    cut = s + 1;
-  }
-  const auto first_row = [this](const BinnedTriangle& t) {
-    int32_t ymin = vertices_[t.v[0]].y;
-    if (vertices_[t.v[1]].y < ymin) ymin = vertices_[t.v[1]].y;
-    if (vertices_[t.v[2]].y < ymin) ymin = vertices_[t.v[2]].y;
-    return first_row_below(ymin);
-  };
-  edges_.evict_from(
-      cut, draw_first_triangle_,
-      [&](const BinnedTriangle& t) {
-        const int32_t r = first_row(t);
-        return (r > band_r0_ ? r : band_r0_) / strip_height_;
-      },
-      [&](const BinnedTriangle& t) {
-        if (first_row(t) >= band_r0_)
-          --stats_.triangles_binned;
-        else
-          --band_carried_;
-      });
-  band_r1_ = cut * strip_height_ - 1;
+  uint32_t evicted = 0;
+  if (!edges_.shrink_window(store_.vertices(), draw_first_triangle_, evicted)) return false;
+  stats_.triangles_binned -= evicted;
   return true;
 }
 
 void FrontEnd::compact_vertices(size_t first_vertex, bool surfaces, bool tex) {
   const std::span<BinnedTriangle> tris = edges_.triangles().subspan(draw_first_triangle_);
-  for (const BinnedTriangle& t : tris)
-    for (uint16_t v : t.v) vertices_[v].color_pending = kKeptVertex;
-  // The kept vertices' new indices replace their outcode and pending flag (link_of).
-  auto kept = static_cast<uint16_t>(first_vertex);
-  for (size_t i = first_vertex; i < vertex_count_; ++i)
-    set_link(vertices_[i], vertices_[i].color_pending == kKeptVertex ? kept++ : kNoLink);
-  for (BinnedTriangle& t : tris)
-    for (uint16_t& v : t.v) v = link_of(vertices_[v]);
-  size_t out = first_vertex;
-  for (size_t i = first_vertex; i < vertex_count_; ++i) {
-    if (link_of(vertices_[i]) == kNoLink) continue;
-    vertices_[out] = vertices_[i];
-    vertices_[out].outcode = 0;
-    vertices_[out].color_pending = 0;
-    if (surfaces) surfaces_[out] = surfaces_[i];
-    if (tex) tex_[out] = tex_[i];
-    ++out;
+  store_.compact(first_vertex, surfaces, tex, [tris](auto&& f) {
+    for (BinnedTriangle& t : tris)
+      for (uint16_t& v : t.v) f(v);
+  });
+}
+
+Status FrontEnd::refuse(Status why, uint32_t triangles, bool vertex_store) {
+  if (refused_ == Status::kOk) refused_ = why;
+  switch (why) {
+    case Status::kInvalidArgument:
+      ++stats_.draws_refused_invalid;
+      break;
+    case Status::kNotLinked:
+      ++stats_.draws_refused_not_linked;
+      break;
+    case Status::kMissingStore:
+      ++stats_.draws_refused_missing_store;
+      break;
+    default:  // kCapacity
+      ++stats_.draws_refused_capacity;
+      (vertex_store ? refused_vertices_ : refused_triangles_) += triangles;
+      (vertex_store ? stats_.dropped_vertex_capacity : stats_.dropped_triangle_capacity) +=
+          triangles;
+      break;
   }
-  vertex_count_ = out;
+  return why;
 }
 
 }  // namespace lr

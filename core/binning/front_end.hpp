@@ -1,9 +1,12 @@
 // The front half of a frame: the vertex stage and binning, up to the edge table.
 //
 // draw() transforms, lights, clips, projects and snaps a mesh's vertices into the vertex store
-// (core/vertex/vertex_stage.hpp), culls its triangles and bins the survivors by their first
-// strip (core/binning/edge_table.hpp). Nothing here depends on the pixel format or the strip
-// height's type: the strip loop reads what was binned through frame() (a BinnedFrame).
+// (core/vertex/vertex_stage.hpp, vertex_store.hpp), culls its triangles and bins the survivors by
+// their first strip (core/binning/edge_table.hpp), each draw with a record of its state
+// (core/binning/draw_records.hpp). A vertex position goes one way: the mesh, the vertex stage,
+// the vertex store, the triangle loop here, the edge table. Nothing here depends on the pixel
+// format or the strip height's type: the strip loop reads what was binned through frame() (a
+// BinnedFrame).
 #pragma once
 
 #include <array>
@@ -13,9 +16,11 @@
 
 #include "lineraster/core/binning/binned_triangle.hpp"
 #include "lineraster/core/binning/draw_record.hpp"
+#include "lineraster/core/binning/draw_records.hpp"
 #include "lineraster/core/binning/edge_table.hpp"
 #include "lineraster/core/binning/outcome.hpp"
 #include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/lighting/object_lights.hpp"
 #include "lineraster/core/math/mat4.hpp"
 #include "lineraster/core/output/color.hpp"
 #include "lineraster/core/output/frame_stats.hpp"
@@ -27,6 +32,7 @@
 #include "lineraster/core/vertex/clip.hpp"
 #include "lineraster/core/vertex/screen_vertex.hpp"
 #include "lineraster/core/vertex/surface_vertex.hpp"
+#include "lineraster/core/vertex/vertex_store.hpp"
 
 namespace lr {
 
@@ -79,7 +85,7 @@ class FrontEnd {
   // admit: the renderer's test of a draw's span state (nullptr: every draw is admitted); phong:
   // how Phong draws get their records (nullptr: Phong draws are refused).
   Status configure(const FrontEndStorage& storage, int width, int height, int strip_height,
-                   AdmitFn admit = nullptr, PhongRecordFn phong = &FrontEnd::phong_record);
+                   AdmitFn admit = nullptr, PhongRecordFn phong = &DrawRecords::phong_record);
   // Refuses every call until the next successful configure().
   void deconfigure() { configured_ = false; }
   bool configured() const { return configured_; }
@@ -115,9 +121,9 @@ class FrontEnd {
   // its first band, which ends where the store is full (band_end()); when its vertices do not
   // fit, binning stops and the draws are only recorded. The renderer then bins the frame again
   // for one band of strips at a time (bin_band), each holding only what touches it.
-  bool needs_bands() const { return overflow_ || banding_; }
+  bool needs_bands() const { return overflow_ || edges_.banding(); }
   // Whether the first band is binned already (the triangle store overflowed, not the vertices).
-  bool first_band_binned() const { return banding_ && !overflow_; }
+  bool first_band_binned() const { return edges_.banding() && !overflow_; }
   // Restarts the statistics for binning in bands (the triangles given and those of refused
   // draws are kept).
   void begin_bands();
@@ -128,13 +134,13 @@ class FrontEnd {
   // unusable and the statistics as they were (the caller tries a smaller band), unless
   // keep_partial (what fit is kept and the rest counted as dropped).
   Status bin_band(int s0, int s1, bool keep_partial);
-  int band_end() const { return band_r1_ / strip_height_ + 1; }
-  bool band_dropped() const { return band_dropped_; }
+  int band_end() const { return edges_.window_end(); }
+  bool band_dropped() const { return edges_.dropped(); }
 
   const FrameStats& stats() const { return stats_; }
   // The strip loop counts its work into the same statistics.
   FrameStats& mutable_stats() { return stats_; }
-  std::span<const ScreenVertex> screen_vertices() const { return vertices_.first(vertex_count_); }
+  std::span<const ScreenVertex> screen_vertices() const { return store_.vertices(); }
   std::span<const BinnedTriangle> binned_triangles() const { return edges_.triangles(); }
   // Flat-shaded draws' triangles: their colours, indexed like binned_triangles().
   std::span<const TriangleColors> triangle_colors() const { return edges_.colors(); }
@@ -145,12 +151,12 @@ class FrontEnd {
 
   // The frame binned since begin_frame().
   BinnedFrame frame() {
-    return {vertices_.first(vertex_count_),
-            surfaces_,
-            tex_,
+    return {store_.vertices(),
+            store_.surfaces(),
+            store_.tex_entries(),
             edges_.triangles(),
             edges_.colors(),
-            draws_.first(draw_count_),
+            records_.records(),
             edges_.buckets(),
             edges_.strip_inputs(),
             width_,
@@ -160,17 +166,16 @@ class FrontEnd {
             background_};
   }
 
-  // The records of Phong draws (draw_records.cpp): what configure() takes as `phong` from a
-  // renderer with Phong spans.
-  static Status phong_record(FrontEnd& fe, const DrawState& state, const PreparedLighting& pl,
-                             DrawRecord& r);
-
  private:
-  struct MeshDraw;  // one draw()'s context (front_end.cpp)
-  // draw()'s loop body and its two ends (front_end.cpp, always inlined into draw()).
-  template <bool kCached>
-  [[gnu::noinline]] void triangle_loop(MeshDraw& d, uint32_t triangles);
-  template <bool kCached>
+  struct MeshDraw;  // one draw()'s context (mesh_draw.hpp)
+  // The triangle loop (front_end.cpp): the lane (lane.cpp) for its common triangles, and
+  // general_triangles(), one copy of draw_triangle() with its two ends always inlined into it
+  // (one stack frame), for the rest and for every draw the lane does not take.
+  [[gnu::noinline]] void triangle_loop(MeshDraw& d);
+  [[gnu::noinline]] uint32_t general_triangles(MeshDraw& d, uint32_t t, uint32_t end);
+  [[gnu::noinline]] uint32_t lane_triangles(MeshDraw& d, uint32_t t);
+  [[gnu::noinline]] uint32_t lane_run_triangles(MeshDraw& d, uint32_t t);
+  [[gnu::noinline]] void light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
                                                 ScreenVertex* const (&sv)[3], bool back_copies,
@@ -190,14 +195,13 @@ class FrontEnd {
                   std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
   [[gnu::noinline]] void replay(uint8_t index);
   [[gnu::noinline]] bool polygon_outside_band(uint16_t first, int m, Cull cull);
-  // Binning a band whose triangle store is full: ends the band at a strip boundary above,
-  // evicting the triangles that start below it. False when the band is one strip.
+  // The table full: the band (the frame's first, until then) ends higher up (EdgeTable::
+  // shrink_window), its evicted triangles uncounted. False when it is one strip.
   bool shrink_band();
-  // Binning a band: keeps only the vertices from `first_vertex` on that the draw's triangles
-  // (from draw_first_triangle_ on) refer to (with their surfaces and texture entries when the
-  // draw has them), and renumbers those triangles.
+  // Binning a band: the draw's vertices from `first_vertex` on kept only where its triangles
+  // (from draw_first_triangle_ on) refer to them (VertexStore::compact).
   void compact_vertices(size_t first_vertex, bool surfaces, bool tex);
-  // A draw refused whole, for `why` (draw_records.cpp): counted in the reason's draws_refused_*,
+  // A draw refused whole, for `why` (front_end.cpp): counted in the reason's draws_refused_*,
   // and the frame's first refusal kept for render(). kCapacity (draw records, per-pixel
   // lighting pools, a mesh larger than a store below the vertex cache's minimum: no band can
   // take it) also counts its triangles as dropped, in this frame's statistics for good. Returns
@@ -214,31 +218,11 @@ class FrontEnd {
   bool admitted(const DrawState& state, const DrawKind& kind) const {
     return (!kind.phong || phong_ != nullptr) && (admit_ == nullptr || admit_(state, kind));
   }
-  // Draw records (draw_records.cpp): a new record for a draw's state, its per-pixel lighting,
-  // its signature once final.
-  Status add_draw_record(const DrawState& state, bool color_planes, uint32_t triangles,
-                         uint8_t& index);
-  Status add_phong_state(const DrawState& state, const PreparedLighting& pl, DrawRecord& r);
-  void sign_draw(uint8_t index, const Material* per_pixel_material);
-  bool surfaces_fit(size_t vertices) const {
-    return surfaces_.size() >= vertex_count_ && vertices <= surfaces_.size() - vertex_count_;
-  }
-  bool tex_fit(size_t vertices) const {
-    return tex_.size() >= vertex_count_ && vertices <= tex_.size() - vertex_count_;
-  }
-  bool vertices_fit(size_t vertices) const { return vertices <= vertex_limit_ - vertex_count_; }
-  // The vertex cache (docs/bands.md): the corners of a triangle of a mesh larger than the free
-  // store, transformed into the cache on a miss; bin() copies a binned triangle's vertices out
-  // of it (persist: false when the store is full).
-  std::array<uint16_t, 3> cache_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri);
-  bool persist(uint16_t& index);
 
-  std::span<ScreenVertex> vertices_{};
-  std::span<DrawRecord> draws_{};
-  std::span<SurfaceVertex> surfaces_{};
-  std::span<TexVertex> tex_{};
-  std::span<uint32_t> lighting_tables_{};
-  std::span<PreparedLighting> pixel_lights_{};
+  // The stages' own state: the vertex store (vertices, surfaces, texture entries, the vertex
+  // cache), the draw records, the edge table (with the band's row window).
+  VertexStore store_{};
+  DrawRecords records_{};
   EdgeTable edges_{};
   FrameStats stats_{};
   // Every default is zero bytes (configure() and begin_frame() set what a frame uses), so that a
@@ -249,8 +233,6 @@ class FrontEnd {
   Camera camera_{Mat4{}, Mat4{}, Vec3{}};
   LightSet lights_ = zero_lights();
   Rgb8 background_{};
-  size_t vertex_count_ = 0, draw_count_ = 0;
-  size_t pixel_light_count_ = 0, table_words_used_ = 0;
   bool configured_ = false;
   // The frame's phase (frame_status()), and its first refused draw's status.
   enum class Phase : uint8_t { kIdle, kOpen, kRendered };
@@ -258,12 +240,11 @@ class FrontEnd {
   Status refused_ = Status::kOk;
   AdmitFn admit_ = nullptr;
   PhongRecordFn phong_ = nullptr;
-  // Bands: the stores overflowed (the rest of the frame is only recorded), binning a band
-  // (vertices are compacted per draw), the band's rows, and the refused draws' triangles.
-  bool overflow_ = false, banding_ = false;
-  int32_t band_r0_ = 0, band_r1_ = 0;
-  uint32_t band_carried_ = 0;  // the band's triangles from above it
-  bool band_dropped_ = false;  // the band is one strip and dropped triangles
+  bool active_extra_ = false;  // FrontEndStorage::active_extra
+  // Bands: the stores overflowed (the rest of the frame is only recorded), and the refused
+  // draws' triangles (counted in every band's statistics).
+  bool overflow_ = false;
+  uint32_t refused_triangles_ = 0, refused_vertices_ = 0;
   // The statistics binning changes (nothing else changes while a band is binned), as they were
   // before the band: kept here, not on the stack, and not the whole FrameStats (RAM: the
   // micro:bit's 16 KB holds a renderer with a few bytes to spare).
@@ -276,33 +257,16 @@ class FrontEnd {
   // Out of line: inlined, they widened bin_band's frame, which is on the deepest stack path.
   [[gnu::noinline]] void save_binning_counts();
   [[gnu::noinline]] void restore_binning_counts();
-  size_t draw_first_triangle_ = 0;  // the running draw's first binned triangle
+  // The running draw: its first binned triangle, whether its triangles have TriangleColors.
+  size_t draw_first_triangle_ = 0;
+  bool draw_colors_ = false;
   // Working memory of one draw, kept here rather than on the stack (the worst-case stack is a
   // budget of its own, and these are the largest locals of the deepest path): the draw's
-  // prepared lighting, and a clipped polygon with the clipper's scratch.
+  // prepared lighting, its lights in model space (VertexColors::object), a clipped polygon with
+  // the clipper's scratch.
   PreparedLighting lighting_{};
-  std::array<ClipVertex, kMaxClipVertices> clip_polygon_{};
-  std::array<ClipVertex, kMaxClipVertices> clip_scratch_{};
-  bool draw_colors_ = false;  // the running draw's triangles have TriangleColors
-  // The vertex cache: kCacheSets sets of two slots by mesh index, and a spare per corner for a
-  // triangle with three corners in one set. Each entry: the mesh index (low half) and the store
-  // index of its copy (high half; kNoCacheEntry: none yet); cache_lru_: per set, the way to
-  // replace next. It takes the top kCacheSlots entries of the vertex store (and of the
-  // surfaces, for Phong, and of the texture entries, for draws with them) while a cached mesh is
-  // binned; the store below them ends at vertex_limit_.
-  static constexpr size_t kCacheSets = 32;
-  static constexpr size_t kCacheSlots = 2 * kCacheSets + 3;
-  // Smallest store a mesh larger than it can be drawn through: the cache, a clipped polygon and
-  // a triangle's copies.
-  static constexpr size_t kMinCachedStore = kCacheSlots + kMaxClipVertices + 3;
-  static constexpr uint32_t kNoCacheEntry = 0xFFFF;
-  std::array<uint32_t, kCacheSlots> cache_{};
-  size_t cache_first_ = 0;  // while a cached mesh is binned
-  size_t vertex_limit_ = 0;
-  bool cache_surfaces_ = false, cache_tex_ = false;
-  bool active_extra_ = false;  // FrontEndStorage::active_extra
-  uint32_t cache_lru_ = 0;
-  uint32_t refused_triangles_ = 0, refused_vertices_ = 0;
+  ObjectLights object_lights_{};
+  ClipBuffers clip_{};
 };
 
 }  // namespace lr

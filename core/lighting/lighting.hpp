@@ -140,15 +140,19 @@ inline LitColor light_directional_split(const PreparedLighting& pl, const Unit30
           {clamp(spec[0]), clamp(spec[1]), clamp(spec[2])}};
 }
 
+// Primary plus secondary colour, each channel clamped to 1: one colour of a split one.
+constexpr Color15 sum_clamped(Color15 a, Color15 b) {
+  auto sum = [](uint16_t x, uint16_t y) {
+    const uint32_t v = uint32_t{x} + y;
+    return static_cast<uint16_t>(v > Color15::kOne ? Color15::kOne : v);
+  };
+  return {sum(a.r, b.r), sum(a.g, b.g), sum(a.b, b.b)};
+}
+
 // The same summed into one colour (light_point for directional lights and the infinite viewer).
 inline Color15 light_directional(const PreparedLighting& pl, const Unit30& n) {
   const LitColor c = light_directional_split(pl, n);
-  auto sum = [](uint16_t a, uint16_t b) {
-    const uint32_t v = uint32_t{a} + b;
-    return static_cast<uint16_t>(v > Color15::kOne ? Color15::kOne : v);
-  };
-  return {sum(c.primary.r, c.secondary.r), sum(c.primary.g, c.secondary.g),
-          sum(c.primary.b, c.secondary.b)};
+  return sum_clamped(c.primary, c.secondary);
 }
 
 }  // namespace lr

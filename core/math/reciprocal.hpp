@@ -11,10 +11,15 @@
 //   divide_small(n, small_divisor(d, j))  floor(n / d) for d in [2^14, 2^24], n <= 2^31 and
 //               n < 2^15 d (the textured span's per-pixel division): one recip16 shared by the
 //               divisions of a pixel, then a 32-bit multiply and a few corrections each
+//   recip_q61(d)  d in [2^31, 2^32): 2^61 / d within 2 units (relative 2^-28), in
+//               (2^29 - 2, 2^30 + 2): not exact, but the same integers on every core (one
+//               recip16 and one Newton step in high-word products): the vertex stage's 1 / w
 #pragma once
 
 #include <array>
 #include <cstdint>
+
+#include "lineraster/core/math/wide_mul.hpp"
 
 namespace lr {
 
@@ -26,6 +31,7 @@ struct Quotient32 {
   uint32_t r;  // n - q d, in [0, d)
 };
 constexpr Quotient32 divide_2by1(uint64_t n, uint32_t d, uint32_t v);
+constexpr uint32_t recip_q61(uint32_t d);
 
 // A divisor in [2^14, 2^24] prepared for divide_small: on cores with a divider just d.
 struct SmallDivisor {
@@ -173,6 +179,42 @@ constexpr Quotient32 divide_2by1(uint64_t n, uint32_t d, uint32_t v) {
     r -= d;
   }
   return {q1, r};
+}
+
+namespace detail {
+
+// recip_q61 in 32-bit products for cores without a 64-bit one, the same integer. With
+// r = recip16(dh) (dh = d / 2^16, dl = d mod 2^16; r = 2^16 rh + rl, rh in {1, 2}) and
+// x0 = r 2^13: floor(d x0 / 2^32) = floor((dh r + floor(dl r / 2^16)) / 8), where dh r <= 2^32 - 1
+// (r's definition), floor(dl r / 2^16) = dl rh + floor(dl rl / 2^16), and the sum may carry; and
+// floor(x0 8 eh / 2^32) = floor(r eh / 2^16) = rh eh + floor(rl eh / 2^16) (|rl eh| < 2^31).
+constexpr uint32_t recip_q61_split(uint32_t d) {
+  const uint32_t dh = d >> 16, dl = d & 0xFFFFu;
+  const uint32_t r = recip16(dh);
+  const uint32_t rh = r >> 16, rl = r & 0xFFFFu;
+  const uint32_t dlr = dl * rh + ((dl * rl) >> 16);  // floor(dl r / 2^16) < 2^17
+  // dh r + dlr may pass 2^32 (it is about 2^32 (1 + eps)): its carry is bit 29 of the result.
+  const uint32_t sum = dh * r + dlr;
+  const uint32_t hi = (sum >> 3) | (sum < dlr ? 1u << 29 : 0u);  // floor(d x0 / 2^32)
+  const auto eh = static_cast<int32_t>((1u << 29) - hi);
+  const int32_t corr = static_cast<int32_t>(rh) * eh + ((static_cast<int32_t>(rl) * eh) >> 16);
+  return (r << 13) + static_cast<uint32_t>(corr);
+}
+
+}  // namespace detail
+
+// y = 2^61 / d. x0 = recip16(d / 2^16) 2^13 = y (1 + eps) with eps in (-2^-16, 2^-15]: d / 2^16
+// is d's top half (at most 2^-15 below d / 2^16) and recip16 floors (by less than 2^-16). The
+// Newton step x0 + x0 e / 2^61 with e = 2^61 - d x0 gives y (1 - eps^2), within one unit of y.
+// Here e is taken in units of 2^32: eh = 2^29 - floor(d x0 / 2^32) = ceil(e / 2^32), |eh| <= 2^14 +
+// 1, so x0 eh / 2^29 exceeds x0 e / 2^61 by less than x0 / 2^29 <= 2 units, and the product's floor
+// takes at most one: x1 is in [y - 2, y + 2) (docs/numerics.md#projection-and-snapping;
+// tests/core/math_test.cpp checks it).
+constexpr uint32_t recip_q61(uint32_t d) {
+  if constexpr (kSplitWideProducts) return detail::recip_q61_split(d);
+  const uint32_t x0 = recip16(d >> 16) << 13;
+  const auto eh = static_cast<int32_t>((1u << 29) - mul_hi_u(d, x0));
+  return static_cast<uint32_t>(static_cast<int32_t>(x0) + mul_hi(static_cast<int32_t>(x0), eh * 8));
 }
 
 }  // namespace lr

@@ -4,8 +4,10 @@
 // multiply for any int64 product there, so the high words are built from four 16 x 16 products
 // instead (about 15 instructions, no call).
 //
-//   mul_hi(a, b)       floor(a b / 2^32), signed       (SMMUL / the high word of SMULL)
-//   mla_hi(a, b, acc)  acc + floor(a b / 2^32)         (SMMLA; wraps modulo 2^32 like it)
+//   mul_hi(a, b)       floor(a b / 2^32), signed       (SMMUL where the core has it (the DSP
+//                                                      extension), else the high word of SMULL)
+//   mla_hi(a, b, acc)  acc + floor(a b / 2^32)         (SMMLA where the core has it (the DSP
+//                                                      extension); wraps modulo 2^32 like it)
 //   mul_hi_u(a, b)     floor(a b / 2^32), unsigned     (the high word of UMULL)
 //   mul_wide(a, b)     a b as int64                    (SMULL)
 //
@@ -53,6 +55,23 @@ constexpr int64_t mul_wide_split(int32_t a, int32_t b) {
 }
 
 }  // namespace detail
+
+// An int32 as its halves, v = h 2^16 + l with l in [0, 2^16): what the split products use. A
+// value that meets many products (a matrix entry, a reciprocal) is split once.
+struct Halves {
+  int32_t h;
+  uint32_t l;
+};
+constexpr Halves halves(int32_t v) {
+  return {v >> 16, static_cast<uint32_t>(v) & 0xFFFFu};
+}
+// mul_hi from split operands: detail::mul_hi_split's arithmetic, exact (the same integer).
+constexpr int32_t mul_hi_halves(Halves a, Halves b) {
+  const uint32_t ll = a.l * b.l;
+  const int32_t x = a.h * static_cast<int32_t>(b.l) + static_cast<int32_t>(ll >> 16);
+  const int32_t y = (x & 0xFFFF) + static_cast<int32_t>(a.l) * b.h;
+  return a.h * b.h + (x >> 16) + (y >> 16);
+}
 
 #if defined(__ARM_ARCH_6M__)
 inline constexpr bool kSplitWideProducts = true;

@@ -35,6 +35,10 @@ struct FrameStats {
   uint32_t triangles_binned = 0;  // records in the edge table (clipping can make several)
   // Raster work.
   uint32_t vertices_transformed = 0;
+  // Of those, the vertices projected by the exact path on 64-bit clip coordinates: their w is
+  // too small for the 32-bit short path's precision (near the eye or behind it), or their draw
+  // reaches beyond its range (docs/numerics.md#the-short-path).
+  uint32_t vertices_wide = 0;
   uint32_t strips = 0;
   uint32_t empty_strips = 0;    // strips with no active triangle (background fill only)
   uint32_t strips_skipped = 0;  // inputs unchanged since the last frame: not rendered at all

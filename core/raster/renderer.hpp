@@ -125,7 +125,7 @@ class Renderer {
   // Phong records only in a renderer with Phong spans: the others link no lighting tables.
   static constexpr PhongRecordFn phong_record() {
     if constexpr (kSpans.has(SpanFamily::kPhong))
-      return &FrontEnd::phong_record;
+      return &DrawRecords::phong_record;
     else
       return nullptr;
   }

@@ -22,6 +22,22 @@ struct Mesh {
   std::span<const TexCoord> uvs;      // empty, or one per position (textured draws)
   std::span<const std::array<uint16_t, 3>> triangles;
   std::span<const Tangent16> tangents{};  // empty, or one per position (normal-mapped draws)
+  // Optional: the largest |coordinate| of the positions (Q16.16 raw; mesh_bound() gives it), or
+  // 0: the renderer finds a bound itself, a pass over the positions per draw. lineraster-asset
+  // writes it. A bound below a coordinate draws the mesh wrongly (never outside the coordinate
+  // budget); one above it costs precision, not correctness.
+  uint32_t bound = 0;
 };
+
+// Mesh::bound of these positions.
+constexpr uint32_t mesh_bound(std::span<const Vec3> positions) {
+  uint32_t b = 0;
+  for (const Vec3& p : positions)
+    for (const int32_t c : {p.x.raw, p.y.raw, p.z.raw}) {
+      const uint32_t m = c < 0 ? 0u - static_cast<uint32_t>(c) : static_cast<uint32_t>(c);
+      if (m > b) b = m;
+    }
+  return b;
+}
 
 }  // namespace lr

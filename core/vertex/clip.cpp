@@ -35,8 +35,12 @@ int64_t mul_frac30(int64_t a, uint32_t t) {
   return a < 0 ? -static_cast<int64_t>(r) : static_cast<int64_t>(r);
 }
 
-// The point where the segment from `in` (inside, d_in >= 0) to `out` (d_out < 0) meets the plane.
+// The point where the segment from `in` (inside) to `out` (outside) meets the plane. A corner's
+// side is its outcode's: its distance may have the other sign by a rounding step, read as 0
+// (inside) or -1 (outside), so that t stays in [0, 1).
 ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, int64_t d_in, int64_t d_out) {
+  if (d_in < 0) d_in = 0;
+  if (d_out >= 0) d_out = -1;
   uint64_t num = static_cast<uint64_t>(d_in), den = static_cast<uint64_t>(d_in - d_out);  // < 2^62
   int s = 0;
   while ((den >> s) >= (uint64_t{1} << 31)) ++s;
@@ -77,6 +81,8 @@ ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, int64_t d_in, 
   for (int k = 0; k < 3; ++k)
     r.surface.tangent[k] = static_cast<int16_t>(lerp32(sa.tangent[k], sb.tangent[k]));
   r.surface.handedness = sa.handedness;
+  r.corner = 0;
+  r.outcode = 0;
   return r;
 }
 
@@ -100,12 +106,13 @@ int clip_polygon(ClipPolygon poly, ClipPolygon scratch, int n, uint8_t planes, G
       const ClipVertex& a = poly[static_cast<size_t>(k)];
       const ClipVertex& b = poly[static_cast<size_t>((k + 1) % n)];
       int64_t da = distance(a.p, i, g), db = distance(b.p, i, g);
+      const bool ina = a.corner != 0 ? !(a.outcode & (1u << i)) : da >= 0;
+      const bool inb = b.corner != 0 ? !(b.outcode & (1u << i)) : db >= 0;
       // A convex polygon gains at most one vertex per plane; the bound only guards against
       // rounding making a sliver non-convex.
-      if (da >= 0 && m < kMaxClipVertices) scratch[static_cast<size_t>(m++)] = a;
-      if ((da >= 0) != (db >= 0) && m < kMaxClipVertices)
-        scratch[static_cast<size_t>(m++)] =
-            da >= 0 ? intersect(a, b, da, db) : intersect(b, a, db, da);
+      if (ina && m < kMaxClipVertices) scratch[static_cast<size_t>(m++)] = a;
+      if (ina != inb && m < kMaxClipVertices)
+        scratch[static_cast<size_t>(m++)] = ina ? intersect(a, b, da, db) : intersect(b, a, db, da);
     }
     for (int k = 0; k < m; ++k) poly[static_cast<size_t>(k)] = scratch[static_cast<size_t>(k)];
     n = m;

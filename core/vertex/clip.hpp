@@ -8,6 +8,7 @@
 // vertex are rejected and counted, never drawn wrong.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 
@@ -40,16 +41,30 @@ struct ClipVertex {
   Color15 spec;
   int32_t u = 0, v = 0;     // texture coordinates, Q12.20
   SurfaceVertex surface{};  // per-pixel lighting: interpolated linearly like the colours
+  // 1 + a corner of the input triangle (1..3), or 0: a point made by clipping (0 by default,
+  // so that the front end's clip buffers are zero bytes and a static renderer goes to .bss). A
+  // corner's side of each plane is its outcode's, the vertex stage's decision, so that a corner
+  // kept by the clipper is the vertex its unclipped neighbours use; a made point's is its
+  // distance's sign.
+  uint8_t corner = 0;
+  uint8_t outcode = 0;  // a corner's
 };
 
 uint8_t outcode(const ClipCoord& c, GuardBand g);
 
 // Clips the convex polygon poly[0..n) against the planes in `planes`; returns the new vertex
-// count (0: nothing left), the polygon in poly. `scratch` holds each plane's output (the caller
-// owns both: the front end keeps them in its object, not on the stack). Intersections are
-// always computed from the inside vertex towards the outside one, so an edge shared by two
-// triangles is cut at the same point in both (no cracks after clipping).
+// count (0: nothing left), the polygon in poly (the corners it keeps keep their `corner`).
+// `scratch` holds each plane's output (the caller owns both: the front end keeps them in its
+// object, not on the stack). Intersections are always computed from the inside vertex towards the
+// outside one, so an edge shared by two triangles is cut at the same point in both (no cracks after
+// clipping).
 using ClipPolygon = std::span<ClipVertex, kMaxClipVertices>;
 int clip_polygon(ClipPolygon poly, ClipPolygon scratch, int n, uint8_t planes, GuardBand g);
+
+// The clipper's memory: a polygon and its scratch (the caller keeps them off the stack).
+struct ClipBuffers {
+  std::array<ClipVertex, kMaxClipVertices> polygon{};
+  std::array<ClipVertex, kMaxClipVertices> scratch{};
+};
 
 }  // namespace lr

@@ -16,12 +16,13 @@ inline constexpr int32_t kSubpixel = 1 << kSubpixelBits;  // subpixels per pixel
 inline constexpr int32_t kHalfPixel = kSubpixel / 2;
 
 // First row whose centre lies strictly below y (subpixels): rows with centre in (y, ...].
+// (y within the coordinate budget, |y| < 2^23: y - 128 stays in int32; >> floors.)
 constexpr int32_t first_row_below(int32_t y) {
-  return static_cast<int32_t>(floor_div(int64_t{y} - kHalfPixel, kSubpixel)) + 1;
+  return ((y - kHalfPixel) >> kSubpixelBits) + 1;
 }
 // Last row whose centre lies at or above y: rows with centre in (..., y].
 constexpr int32_t last_row_at_or_above(int32_t y) {
-  return static_cast<int32_t>(floor_div(int64_t{y} - kHalfPixel, kSubpixel));
+  return (y - kHalfPixel) >> kSubpixelBits;
 }
 
 // Largest viewport side. Guard-band clipping keeps every snapped coordinate within

@@ -21,19 +21,132 @@ Unit30 transform_normal_call(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
 }
 
 VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width,
-                         int height)
+                         int height, uint32_t bound)
     : model_(model),
       mvp_(camera.projection * camera.view * model),
       nm_(normal_matrix(model)),
       guard_(guard),
       width_(width),
-      height_(height) {
+      height_(height),
+      screen_(mvp_, bound, width, height, guard) {
   rigid_ = rigid_normal_rows(nm_, rot_);
 }
 
-void VertexStage::transform_one(const Mesh& mesh, const VertexColors& colors, size_t i,
-                                ScreenVertex& sv, SurfaceVertex* surface, TexVertex* tex) const {
-  transform_vertex(mesh, colors, i, sv, surface, tex);
+TransformSummary VertexStage::transform_range(const Mesh& mesh, const VertexColors& draw_colors,
+                                              size_t first, size_t count, ScreenVertex* out,
+                                              SurfaceVertex* surfaces, TexVertex* tex) const {
+  const VertexColors colors = draw_colors;  // a copy: kept in registers across the calls below
+  const Vec3* positions = mesh.positions.data() + first;
+  const bool plain = surfaces == nullptr && tex == nullptr;
+  // Lit vertices: colour 0 (lit Gouraud: lit on first use, light(); flat: per triangle).
+  const Color15 fixed = colors.lit ? Color15{} : colors.material;
+  const Rgb8* mesh_colors =
+      colors.lit || mesh.colors.empty() ? nullptr : mesh.colors.data() + first;
+  const uint8_t pending = colors.pending ? 1 : 0;
+  // The last 8 bytes of a vertex without its own colour: the colour, outcode 0, pending flag.
+  const uint32_t tail[2] = {uint32_t{fixed.r} | uint32_t{fixed.g} << 16,
+                            uint32_t{fixed.b} | uint32_t{pending} << 24};
+  // A vertex's own colour or attributes, after its position.
+  auto finish = [&](size_t k) {
+    if (plain) {
+      if (mesh_colors != nullptr) out[k].color = from_rgb8(mesh_colors[k]);
+    } else {
+      attributes(mesh, colors, first + k, out[k], surfaces != nullptr ? &surfaces[k] : nullptr,
+                 tex != nullptr ? &tex[k] : nullptr);
+    }
+  };
+  uint32_t wide = 0, outcodes = 0;
+  for (size_t k = 0; k < count;) {
+    // The short path's run (32-bit rows, one reciprocal of w), then the exact path (64-bit clip
+    // coordinates) for the vertex it leaves.
+    const size_t end = k + screen_.run(positions + k, count - k, out + k, tail);
+    if (mesh_colors != nullptr || !plain)
+      for (; k < end; ++k) finish(k);
+    k = end;
+    if (k == count) break;
+    ScreenVertex& sv = out[k];
+    project_exact(positions[k], sv);
+    ++wide;
+    outcodes |= sv.outcode;
+    sv.color_pending = pending;
+    sv.color = fixed;
+    finish(k);
+    ++k;
+  }
+  return {wide, static_cast<uint8_t>(outcodes)};
+}
+
+LitColor VertexStage::light(const Mesh& mesh, const VertexColors colors, size_t i,
+                            bool back) const {
+  if (colors.object != nullptr) {
+    const uint32_t len2 = normal_len2(mesh.normals[i]);
+    if (unit_len2(len2)) {
+      const LitColor c =
+          light_object(*colors.lighting, *colors.object, mesh.normals[i], len2, back);
+      if (colors.split) return c;
+      return {sum_clamped(c.primary, c.secondary), Color15{}};
+    }
+  }
+  Unit30 nw = world_normal(mesh.normals[i]);
+  if (back) nw = negate(nw);
+  if (!colors.need_position) {
+    if (colors.split) return light_directional_split(*colors.lighting, nw);
+    return {light_directional(*colors.lighting, nw), Color15{}};
+  }
+  const Vec3 pw = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
+  if (colors.split) return light_point_split(*colors.lighting, nw, pw);
+  return {light_point(*colors.lighting, nw, pw), Color15{}};
+}
+
+LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1,
+                                 const Vec3& p2, bool back) const {
+  const Unit30 fm = face_normal_model(p0, p1, p2);
+  Unit30 fw = transform_normal_call(nm_, fm.x, fm.y, fm.z);
+  if (back) fw = negate(fw);
+  Vec3 centroid{};
+  if (colors.need_position) {
+    const Vec3 w0 = transform_affine(model_, p0), w1 = transform_affine(model_, p1),
+               w2 = transform_affine(model_, p2);
+    centroid = {
+        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.x.raw} + w1.x.raw + w2.x.raw) / 3)),
+        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.y.raw} + w1.y.raw + w2.y.raw) / 3)),
+        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.z.raw} + w1.z.raw + w2.z.raw) / 3))};
+  }
+  if (colors.split) return light_point_split(*colors.lighting, fw, centroid);
+  return {light_point(*colors.lighting, fw, centroid), Color15{}};
+}
+
+void VertexStage::project_exact(const Vec3& p, ScreenVertex& sv) const {
+  const ClipCoord c = clip(p);
+  sv.outcode = outcode(c, guard_);
+  if (sv.outcode == 0) project(c, sv);
+}
+
+void VertexStage::attributes(const Mesh& mesh, const VertexColors& colors, size_t i,
+                             ScreenVertex& sv, SurfaceVertex* surface, TexVertex* tex) const {
+  if (tex != nullptr) {
+    tex->u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
+    tex->v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
+    tex->spec = Color15{};
+  }
+  if (surface != nullptr) {
+    sv.color = Color15{};
+    SurfaceVertex& su = *surface;
+    const Normal16& nn = mesh.normals[i];
+    su.normal = transform_normal_call(nm_, nn.x, nn.y, nn.z);
+    su.position = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
+    if (colors.tangents) {
+      transform_tangent(model_, mesh.tangents[i], su.tangent);
+      su.handedness = mesh.tangents[i].w < 0 ? -16384 : 16384;
+    } else {
+      su.tangent[0] = su.tangent[1] = su.tangent[2] = 0;
+      su.handedness = 16384;
+    }
+  } else if (!colors.lit) {
+    sv.color = mesh.colors.empty() ? colors.material : from_rgb8(mesh.colors[i]);
+  } else {
+    sv.color = Color15{};  // lit Gouraud: lit on first use (light()); flat: per triangle
+  }
 }
 
 bool VertexStage::project(const ClipCoord& c, ScreenVertex& v) const {

@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/lighting/object_lights.hpp"
 #include "lineraster/core/math/fixed.hpp"
 #include "lineraster/core/math/mat4.hpp"
 #include "lineraster/core/math/rigid.hpp"
@@ -18,6 +19,7 @@
 #include "lineraster/core/scene/camera.hpp"
 #include "lineraster/core/scene/mesh.hpp"
 #include "lineraster/core/vertex/clip.hpp"
+#include "lineraster/core/vertex/screen_transform.hpp"
 #include "lineraster/core/vertex/screen_vertex.hpp"
 #include "lineraster/core/vertex/surface_vertex.hpp"
 
@@ -73,6 +75,17 @@ struct VertexColors {
   bool tangents = false;       // Phong with a normal map
   Color15 material{};          // unlit meshes without vertex colours
   const PreparedLighting* lighting = nullptr;  // lit draws
+  // Lit Gouraud draws of directional lights under a rigid model matrix: the lights in model
+  // space (VertexStage::object_lights), else nullptr.
+  const ObjectLights* object = nullptr;
+};
+
+// What VertexStage::transform() did: the vertices the exact path projected (the short path's
+// range or precision did not reach them), and the OR of every vertex's outcode (0: no triangle
+// of the draw needs the clipper).
+struct TransformSummary {
+  uint32_t wide = 0;
+  uint8_t outcodes = 0;
 };
 
 // A model-space tangent (Q1.14) to world space (the model's upper 3x3), unit Q1.14.
@@ -80,40 +93,44 @@ void transform_tangent(const Mat4& model, const Tangent16& t, int16_t out[3]);
 
 class VertexStage {
  public:
-  VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width, int height);
+  // bound: every coordinate of the positions the stage will transform lies in [-bound - 1,
+  // bound] (position_bound); the default takes any (the short path then has less precision).
+  VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width, int height,
+              uint32_t bound = 0x7FFFFFFFu);
 
   // The mesh's vertices into out[0, n) (and surfaces[0, n) for Phong, tex[0, n) for draws
   // with texture coordinates; else nullptr): transformed, clip-tested (outcode), projected and
   // snapped when inside every plane.
-  [[gnu::always_inline]] void transform(const Mesh& mesh, const VertexColors& colors,
-                                        ScreenVertex* out, SurfaceVertex* surfaces,
-                                        TexVertex* tex) const;
-  // One vertex: mesh vertex i into sv (and *surface, *tex when not nullptr), as transform().
-  [[gnu::always_inline]] void transform_vertex(const Mesh& mesh, const VertexColors& colors,
-                                               size_t i, ScreenVertex& sv, SurfaceVertex* surface,
-                                               TexVertex* tex) const;
-  // The same out of line: transform() and the vertex cache (FrontEnd::cache_corners) call it.
-  void transform_one(const Mesh& mesh, const VertexColors& colors, size_t i, ScreenVertex& sv,
-                     SurfaceVertex* surface, TexVertex* tex) const;
+  TransformSummary transform(const Mesh& mesh, const VertexColors& colors, ScreenVertex* out,
+                             SurfaceVertex* surfaces, TexVertex* tex) const {
+    return transform_range(mesh, colors, 0, mesh.positions.size(), out, surfaces, tex);
+  }
+  // Mesh vertices [first, first + count) into out[0, count) (surfaces, tex likewise), as
+  // transform(): the one copy of the per-vertex code, for whole meshes and the vertex cache's
+  // misses (FrontEnd::cache_corners, count 1).
+  [[gnu::noinline]] TransformSummary transform_range(const Mesh& mesh, const VertexColors& colors,
+                                                     size_t first, size_t count, ScreenVertex* out,
+                                                     SurfaceVertex* surfaces, TexVertex* tex) const;
 
-  // Lit colour(s) of mesh vertex i, with the normal negated or not (two-sided back faces): the
-  // secondary colour apart when colors.split, else 0.
-  // (colors by value here and in light_face: the caller's copy stays in registers.)
-  LitColor light(const Mesh& mesh, const VertexColors colors, size_t i, bool back) const {
-    Unit30 nw = world_normal(mesh.normals[i]);
-    if (back) nw = negate(nw);
-    if (!colors.need_position) {
-      if (colors.split) return light_directional_split(*colors.lighting, nw);
-      return {light_directional(*colors.lighting, nw), Color15{}};
-    }
-    const Vec3 pw = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
-    if (colors.split) return light_point_split(*colors.lighting, nw, pw);
-    return {light_point(*colors.lighting, nw, pw), Color15{}};
+  // The directional lights of pl in model space into out when the model matrix is rigid (false:
+  // it is not, and lighting stays in world space).
+  bool object_lights(const PreparedLighting& pl, ObjectLights& out) const {
+    if (!rigid_) return false;
+    prepare_object_lights(pl, rot_, out);
+    return true;
   }
 
+  // Lit colour(s) of mesh vertex i, with the normal negated or not (two-sided back faces): the
+  // secondary colour apart when colors.split, else 0. Out of line: one copy for its callers (the
+  // front end's lighting on first use, back faces).
+  // (colors by value here and in light_face: the caller's copy stays in registers.)
+  [[gnu::noinline]] LitColor light(const Mesh& mesh, const VertexColors colors, size_t i,
+                                   bool back) const;
+
   // The lit colour of a flat-shaded triangle (face normal, centroid) of model-space corners.
-  LitColor light_face(VertexColors colors, const Vec3& p0, const Vec3& p1, const Vec3& p2,
-                      bool back) const;
+  // Out of line: its 64-bit locals stay off the triangle loop's frame.
+  [[gnu::noinline]] LitColor light_face(VertexColors colors, const Vec3& p0, const Vec3& p1,
+                                        const Vec3& p2, bool back) const;
 
   ClipCoord clip(const Vec3& model_position) const { return transform_point(mvp_, model_position); }
   // Projects and snaps a clip-space point inside every plane; false when w <= 0.
@@ -133,74 +150,19 @@ class VertexStage {
   Mat4 nm_;
   NormalRotation rot_;  // nm_'s rows normalised, when rigid_
   bool rigid_ = false;
+  // The exact path of one vertex (64-bit clip coordinates, outcode, project), and the
+  // attributes of a vertex of a textured or Phong draw: out of the per-vertex loop.
+  [[gnu::noinline]] void project_exact(const Vec3& p, ScreenVertex& sv) const;
+  [[gnu::noinline]] void attributes(const Mesh& mesh, const VertexColors& colors, size_t i,
+                                    ScreenVertex& sv, SurfaceVertex* surface, TexVertex* tex) const;
   GuardBand guard_;
   int32_t width_, height_;
+  ScreenTransform screen_;  // the short path (after mvp_: made from it)
 };
-
-inline LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1,
-                                        const Vec3& p2, bool back) const {
-  const Unit30 fm = face_normal_model(p0, p1, p2);
-  Unit30 fw = transform_normal_call(nm_, fm.x, fm.y, fm.z);
-  if (back) fw = negate(fw);
-  Vec3 centroid{};
-  if (colors.need_position) {
-    const Vec3 w0 = transform_affine(model_, p0), w1 = transform_affine(model_, p1),
-               w2 = transform_affine(model_, p2);
-    centroid = {
-        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.x.raw} + w1.x.raw + w2.x.raw) / 3)),
-        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.y.raw} + w1.y.raw + w2.y.raw) / 3)),
-        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.z.raw} + w1.z.raw + w2.z.raw) / 3))};
-  }
-  if (colors.split) return light_point_split(*colors.lighting, fw, centroid);
-  return {light_point(*colors.lighting, fw, centroid), Color15{}};
-}
 
 // Facing of a clip-space triangle from the sign of det[x y w] (homogeneous: valid for the part
 // in front of the eye even when a vertex is behind it): true when front-facing, i.e.
 // counter-clockwise in NDC (front_facing() in screen_vertex.hpp is the same rule on the display).
 bool front_facing_clip(const ClipCoord (&c)[3]);
-
-// One copy of the per-vertex code (transform_one), shared with the vertex cache's misses.
-inline void VertexStage::transform(const Mesh& mesh, const VertexColors& draw_colors,
-                                   ScreenVertex* out, SurfaceVertex* surfaces,
-                                   TexVertex* tex) const {
-  const VertexColors colors = draw_colors;  // a copy: kept in registers across the calls below
-  const size_t n = mesh.positions.size();
-  for (size_t i = 0; i < n; ++i)
-    transform_one(mesh, colors, i, out[i], surfaces != nullptr ? &surfaces[i] : nullptr,
-                  tex != nullptr ? &tex[i] : nullptr);
-}
-
-inline void VertexStage::transform_vertex(const Mesh& mesh, const VertexColors& colors, size_t i,
-                                          ScreenVertex& sv, SurfaceVertex* surface,
-                                          TexVertex* tex) const {
-  sv.color_pending = colors.pending ? 1 : 0;
-  const ClipCoord c = clip(mesh.positions[i]);
-  sv.outcode = outcode(c, guard_);
-  if (sv.outcode == 0) project(c, sv);
-  if (tex != nullptr) {
-    tex->u = mesh.uvs.empty() ? 0 : mesh.uvs[i].u;
-    tex->v = mesh.uvs.empty() ? 0 : mesh.uvs[i].v;
-    tex->spec = Color15{};
-  }
-  if (surface != nullptr) {
-    sv.color = Color15{};
-    SurfaceVertex& su = *surface;
-    const Normal16& nn = mesh.normals[i];
-    su.normal = transform_normal_call(nm_, nn.x, nn.y, nn.z);
-    su.position = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
-    if (colors.tangents) {
-      transform_tangent(model_, mesh.tangents[i], su.tangent);
-      su.handedness = mesh.tangents[i].w < 0 ? -16384 : 16384;
-    } else {
-      su.tangent[0] = su.tangent[1] = su.tangent[2] = 0;
-      su.handedness = 16384;
-    }
-  } else if (!colors.lit) {
-    sv.color = mesh.colors.empty() ? colors.material : from_rgb8(mesh.colors[i]);
-  } else {
-    sv.color = Color15{};  // lit Gouraud: lit on first use (light()); flat: per triangle
-  }
-}
 
 }  // namespace lr

@@ -200,10 +200,11 @@ void write_draw(std::string& s, size_t i, const FixedDraw& fd) {
   s += "inline constexpr lr::Material material_" + id + "{\n    " + color15(m.ambient) + ", " +
        color15(m.diffuse) + ", " + color15(m.specular) + ", " + color15(m.emission) + ", " +
        std::to_string(m.shininess_q8) + "};\n";
+  // The bound (Mesh::bound) saves the renderer a pass over the positions per draw.
   s += "inline constexpr lr::Mesh mesh_" + id + "{positions_" + id + ", " +
        (fd.normals.empty() ? "{}" : "normals_" + id) + ", " +
        (fd.colors.empty() ? "{}" : "colors_" + id) + ", " + (fd.uvs.empty() ? "{}" : "uvs_" + id) +
-       ", triangles_" + id + "};\n\n";
+       ", triangles_" + id + ", {}, " + std::to_string(mesh_bound(fd.positions)) + "u};\n\n";
 }
 
 // meshes, materials and textured: one entry per draw.

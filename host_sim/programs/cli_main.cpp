@@ -215,7 +215,8 @@ void print_stats(const SimOptions& o, const RenderResult& result) {
       "\"dropped_triangle_capacity\":%u,\"draws_refused_invalid\":%u,"
       "\"draws_refused_not_linked\":%u,\"draws_refused_missing_store\":%u,"
       "\"draws_refused_capacity\":%u,\"triangles_binned\":%u,"
-      "\"vertices_transformed\":%u,\"strips\":%u,\"empty_strips\":%u,\"strip_passes\":%u,"
+      "\"vertices_transformed\":%u,\"vertices_wide\":%u,\"strips\":%u,\"empty_strips\":%u,"
+      "\"strip_passes\":%u,"
       "\"triangles_set_up\":%u,"
       "\"triangles_without_pixels\":%u,\"spans\":%u,"
       "\"pixels_tested\":%u,\"pixels_written\":%u,\"max_active\":%u,\"bytes_sent\":%llu,"
@@ -225,9 +226,9 @@ void print_stats(const SimOptions& o, const RenderResult& result) {
       s.culled_backface, s.culled_zero_area, s.culled_offscreen, s.clipped, s.clipped_away,
       s.rejected_invalid, s.dropped_vertex_capacity, s.dropped_triangle_capacity,
       s.draws_refused_invalid, s.draws_refused_not_linked, s.draws_refused_missing_store,
-      s.draws_refused_capacity, s.triangles_binned, s.vertices_transformed, s.strips,
-      s.empty_strips, s.strip_passes, s.triangles_set_up, s.triangles_without_pixels, s.spans,
-      s.pixels_tested, s.pixels_written, s.max_active, static_cast<ull>(result.bytes),
+      s.draws_refused_capacity, s.triangles_binned, s.vertices_transformed, s.vertices_wide,
+      s.strips, s.empty_strips, s.strip_passes, s.triangles_set_up, s.triangles_without_pixels,
+      s.spans, s.pixels_tested, s.pixels_written, s.max_active, static_cast<ull>(result.bytes),
       s.bytes_per_vertex, s.bytes_per_binned_triangle, s.bytes_per_active_triangle,
       s.bytes_per_strip);
 }

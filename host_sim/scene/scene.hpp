@@ -127,7 +127,10 @@ struct FixedDraw {
   std::vector<Tangent16> tangents;  // empty when the mesh has none; Q1.14, w = +-16384
   Material material;
   int32_t material_index = -1;  // the HostMesh material it came from, -1 for the options' one
-  Mesh mesh() const { return {positions, normals, colors, uvs, triangles, tangents}; }
+  // With its bound (Mesh::bound), as lineraster-asset writes it: the same frames either way.
+  Mesh mesh() const {
+    return {positions, normals, colors, uvs, triangles, tangents, mesh_bound(positions)};
+  }
 };
 
 // Converts the mesh (with the options' fit applied) to the core's formats, split by material

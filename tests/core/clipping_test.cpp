@@ -31,6 +31,10 @@ TEST(Clipping, WideGroundPlaneThroughTheNearPlaneRendersExactly) {
   std::printf("ground plane (unlit): %s, clipped=%u\n", c.summary().c_str(), c.core.stats.clipped);
   EXPECT_EQ(c.core.stats.clipped, 2u);  // both triangles cross the near plane
   EXPECT_EQ(c.core.stats.binned_inputs, 2u);
+  // The two corners behind the eye take the exact path (FrameStats::vertices_wide), the two far
+  // ones the 32-bit short path.
+  EXPECT_EQ(c.core.stats.vertices_transformed, 4u);
+  EXPECT_EQ(c.core.stats.vertices_wide, 2u);
   // The plane's far edge (50 units away, 1 below the eye) is 2.3 degrees above the view axis:
   // row 120 - 120 tan(2.3) / tan(30) = 112; every row below it is covered edge to edge.
   EXPECT_GE(c.both, size_t(o.width) * 127);

@@ -212,7 +212,7 @@ class Rig final : public RigBase {
 // admission of a restricted renderer without its tables (no template: compiled once).
 class AdmitRig final : public RigBase {
  public:
-  explicit AdmitRig(AdmitFn admit, PhongRecordFn phong = &FrontEnd::phong_record) {
+  explicit AdmitRig(AdmitFn admit, PhongRecordFn phong = &DrawRecords::phong_record) {
     builder_ = &front_;
     EXPECT_EQ(strip_.configure(storage().strip_loop(), kW), Status::kOk);
     EXPECT_EQ(front_.configure(storage().front_end(), kW, kH, kK, admit, phong), Status::kOk);

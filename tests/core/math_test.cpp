@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "lineraster/core/binning/edge_table.hpp"
 #include "lineraster/core/math/divide.hpp"
 #include "lineraster/core/math/pow_table.hpp"
 #include "lineraster/core/math/reciprocal.hpp"
@@ -298,6 +299,46 @@ TEST(Reciprocal, Recip32AndTheTwoByOneDivisionEqualTheDivisions) {
   }
 }
 
+// The vertex stage's reciprocal of w: within two units of 2^61 / d for every top half of the
+// divisor (what its recip16 seed sees), each with its smallest, largest and a random low half, and
+// for random divisors; its 32-bit-product form (Armv6-M) the same integer. Its parts (recip16,
+// the high-word products) are exact on every core.
+TEST(Reciprocal, RecipQ61IsWithinTwoUnitsOfTheQuotient) {
+  XorShift64 next{0x2545F4914F6CDD1Du};
+  int64_t worst = 0;
+  auto check = [&](uint32_t d) {
+    const auto y = static_cast<int64_t>((uint64_t{1} << 61) / d);  // floor(2^61 / d)
+    const auto x = static_cast<int64_t>(recip_q61(d));
+    // x in [2^61 / d - 2, 2^61 / d + 2): between floor - 2 and floor + 2.
+    ASSERT_GE(x, y - 2) << d;
+    ASSERT_LE(x, y + 2) << d;
+    // The form for cores without a 64-bit product: the same integer.
+    ASSERT_EQ(detail::recip_q61_split(d), recip_q61(d)) << d;
+    worst = std::max(worst, x > y ? x - y : y - x);
+  };
+  for (uint32_t top = 1u << 15; top < (1u << 16); ++top) {
+    check(top << 16);
+    check((top << 16) | 0xFFFFu);
+    check((top << 16) | (static_cast<uint32_t>(next()) & 0xFFFFu));
+  }
+  for (int i = 0; i < 300000; ++i) check(static_cast<uint32_t>(next()) | (1u << 31));
+  std::printf("recip_q61: worst distance from floor(2^61 / d): %lld\n",
+              static_cast<long long>(worst));
+}
+
+// The edge table's strip of a row without a division: (r ceil(2^17 / h)) >> 17 = r / h for every
+// row of the largest viewport and every strip height.
+TEST(EdgeTable, StripOfRowIsTheQuotientForEveryRowAndStripHeight) {
+  for (int h = 1; h <= 32; ++h) {
+    EdgeTable table;
+    std::vector<BinnedTriangle> tris(4);
+    std::vector<uint16_t> buckets(kMaxViewport);
+    ASSERT_TRUE(table.configure(tris, {}, buckets, {}, kMaxViewport, kMaxViewport, h));
+    for (int32_t r = 0; r < kMaxViewport; ++r)
+      ASSERT_EQ(table.strip_of_row(r), static_cast<size_t>(r / h)) << r << " / " << h;
+  }
+}
+
 // The Armv6-M high words (four 16 x 16 products) equal the 64-bit products' for the operands
 // at every boundary of the split (0, +-1, +-2^15, +-2^16, the extremes) and for random ones:
 // what makes a Cortex-M0+ frame the same integers as a Cortex-M4F frame.
@@ -315,6 +356,8 @@ TEST(WideMul, SplitHighWordsEqualTheSixtyFourBitProducts) {
   auto check = [](int32_t a, int32_t b) {
     const int64_t p = int64_t{a} * b;
     ASSERT_EQ(detail::mul_hi_split(a, b), static_cast<int32_t>(p >> 32)) << a << " * " << b;
+    ASSERT_EQ(mul_hi_halves(halves(a), halves(b)), static_cast<int32_t>(p >> 32))
+        << a << " * " << b;
     ASSERT_EQ(mul_hi(a, b), static_cast<int32_t>(p >> 32)) << a << " * " << b;
     ASSERT_EQ(detail::mul_wide_split(a, b), p) << a << " * " << b;
     ASSERT_EQ(mla_hi(a, b, 12345), static_cast<int32_t>((p >> 32) + 12345)) << a << " * " << b;

@@ -1,19 +1,31 @@
 // The vertex stage's fast paths against their exact forms: normals under a rigid model matrix
-// against exact normalisation, the projection's 2-by-1 divisions against round_div.
+// against exact normalisation, the projection's 2-by-1 divisions against round_div, the 32-bit
+// short path against the quotients of its clip coordinates, lights in model space against
+// lighting in world space.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <random>
+#include <vector>
 
 #include "lineraster/core/math/mat4.hpp"
 #include "lineraster/core/math/rigid.hpp"
+#include "lineraster/core/math/trig.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "lineraster/core/scene/material.hpp"
+#include "lineraster/core/vertex/screen_transform.hpp"
 #include "lineraster/core/vertex/vertex_stage.hpp"
 
 namespace lr {
 namespace {
 
-Normal16 unit_normal16(double x, double y, double z) {
-  const double l = std::sqrt(x * x + y * y + z * z);
+// (x, y, z) normalised, times `length` (1: a unit normal rounded to Q1.14).
+Normal16 unit_normal16(double x, double y, double z, double length = 1.0) {
+  const double l = std::sqrt(x * x + y * y + z * z) / length;
   auto q = [l](double v) { return static_cast<int16_t>(std::lround(v / l * 16384.0)); };
   return {q(x), q(y), q(z)};
 }
@@ -103,6 +115,263 @@ TEST(Projection, EqualsRoundDivOnRandomClipCoordinates) {
     ++checked;
   }
   EXPECT_GT(checked, 150000);
+}
+
+// A random draw for the short path: a perspective camera looking at a mesh of random extent
+// under a random model matrix (rotated, scaled, maybe unevenly, translated), its positions.
+struct RandomDraw {
+  Mat4 mvp;
+  std::vector<Vec3> positions;
+};
+
+RandomDraw random_draw(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.0, 1.0);
+  auto fx = [](double v) { return Fixed::from_raw(static_cast<int32_t>(std::lround(v * 65536))); };
+  Camera cam;
+  const double near = std::exp2(-4 + 5 * pos(rng));  // 1/16 .. 2
+  const double far = near * std::exp2(3 + 8 * pos(rng));
+  EXPECT_TRUE(perspective(fx(20 + 90 * pos(rng)), fx(4.0 / 3), fx(near), fx(far), cam.projection));
+  const double dist = near + (far - near) * pos(rng) * 0.5;
+  EXPECT_TRUE(look_at({fx(u(rng)), fx(u(rng)), fx(dist)}, {fx(u(rng)), fx(u(rng)), {}},
+                      {{}, Fixed::from_int(1), {}}, cam.view));
+  const double extent = std::exp2(-4 + 12 * pos(rng)) * (0.2 + pos(rng));  // 1/16 .. 4096
+  Mat4 model = translate({fx(u(rng) * extent), fx(u(rng) * extent), fx(u(rng) * extent)}) *
+               rotate_y(fx(180 * u(rng))) * rotate_x(fx(180 * u(rng)));
+  if (rng() % 3 == 0) model = model * scale(Vec3{fx(0.5 + pos(rng)), fx(1), fx(0.5 + pos(rng))});
+  RandomDraw d;
+  d.mvp = cam.projection * cam.view * model;
+  const double r = std::min(extent, 30000.0);
+  for (int i = 0; i < 400; ++i)
+    d.positions.push_back({fx(r * u(rng)), fx(r * u(rng)), fx(r * u(rng))});
+  return d;
+}
+
+// The short path's vertices against the exact quotients of the same Q16.16 model-view-projection
+// (evaluated in double: every product is exact, each sum within 2^-50 of itself): only vertices
+// inside every plane, with outcode 0; x and y within half a subpixel plus 2^-kShortPathFractionBits
+// plus 2^-19 of their distance from the centre, z within 2^12 of 2^32 (1/16 of a 16-bit step), w
+// within 2^-19 of itself. It hands the exact path the vertices outside a plane and those of small
+// w, and almost never one inside every plane in the draw's far half. Its split-product form
+// (project_halves: the Cortex-M0+'s) gives the same integers.
+TEST(ShortPath, AgreesWithTheQuotientsOfItsClipCoordinates) {
+  std::mt19937_64 rng(36);
+  const int width = 320, height = 240;
+  const GuardBand g{8192 / width, 8192 / height};
+  const double sx = width * 128.0, sy = height * 128.0, dz = 65535.0 * 32768.0;
+  double worst_xy = 0, worst_guard = 0, worst_z = 0, worst_w = 0;
+  int short_path = 0, exact_path = 0, exact_far = 0, disabled = 0, guard_free = 0;
+  for (int draw = 0; draw < 3000; ++draw) {
+    const RandomDraw d = random_draw(rng);
+    const ScreenTransform st(d.mvp, position_bound(d.positions.data(), d.positions.size()), width,
+                             height, g);
+    if (!st.enabled()) {
+      ++disabled;
+      continue;
+    }
+    double max_w = 0;
+    std::vector<std::array<double, 4>> clip;
+    for (const Vec3& p : d.positions) {
+      std::array<double, 4> c{};
+      for (int i = 0; i < 4; ++i)
+        c[static_cast<size_t>(i)] =
+            (double(d.mvp.m[i][0].raw) * p.x.raw + double(d.mvp.m[i][1].raw) * p.y.raw +
+             double(d.mvp.m[i][2].raw) * p.z.raw) /
+                4294967296.0 +
+            d.mvp.m[i][3].raw / 65536.0;
+      clip.push_back(c);
+      max_w = std::max(max_w, std::abs(c[3]));
+    }
+    for (size_t k = 0; k < d.positions.size(); ++k) {
+      const auto [x, y, z, w] = clip[k];
+      const double qz = dz * z / w;
+      const double qx = sx * x / w, qy = -sy * y / w;
+      const double lx = g.gx * sx, ly = g.gy * sy;
+      // Inside every plane by a margin of 2^-10 of its extent (and in front of the eye).
+      const bool inside = w > 0 && std::abs(qx) < lx * (1 - 1.0 / 1024) &&
+                          std::abs(qy) < ly * (1 - 1.0 / 1024) &&
+                          std::abs(qz) < dz * (1 - 1.0 / 1024);
+      ScreenVertex v;
+      v.outcode = 0xEE;
+      // The split-product form (Armv6-M's) gives the same integers.
+      ScreenVertex vh;
+      vh.outcode = 0xEE;
+      const bool taken = st.project(d.positions[k], v);
+      ASSERT_EQ(st.project_halves(d.positions[k], vh), taken) << draw << " " << k;
+      ASSERT_EQ(vh.x, v.x);
+      ASSERT_EQ(vh.y, v.y);
+      ASSERT_EQ(vh.z, v.z);
+      ASSERT_EQ(vh.w, v.w);
+      ASSERT_EQ(vh.outcode, v.outcode);
+      if (!taken) {
+        ++exact_path;
+        EXPECT_EQ(v.outcode, 0xEE);
+        if (inside && w > max_w / 2) ++exact_far;
+        continue;
+      }
+      ++short_path;
+      ASSERT_GT(w, 0.0);
+      ASSERT_EQ(v.outcode, 0);
+      const double tx = 0.5 + 1.0 / 32 + std::abs(qx) / 524288,
+                   ty = 0.5 + 1.0 / 32 + std::abs(qy) / 524288;
+      const double tz = 4096 + std::abs(qz) / 524288;
+      const double ex = std::abs(v.x - (sx + qx)), ey = std::abs(v.y - (sy + qy));
+      ASSERT_LE(ex, tx) << draw << " " << k;
+      ASSERT_LE(ey, ty) << draw << " " << k;
+      ASSERT_LE(std::abs(double(v.z) - (dz + qz)), tz) << draw << " " << k;
+      ASSERT_LE(std::abs(double(v.w) - w * 65536), 1 + w * 65536 / 524288) << draw << " " << k;
+      // Inside every plane, up to the tolerances.
+      ASSERT_LE(std::abs(qx), lx + tx) << draw << " " << k;
+      ASSERT_LE(std::abs(qy), ly + ty) << draw << " " << k;
+      ASSERT_LE(std::abs(qz), dz + tz) << draw << " " << k;
+      if (std::abs(qx) < sx && std::abs(qy) < sy)  // on the display
+        worst_xy = std::max({worst_xy, ex - 0.5, ey - 0.5});
+      else
+        worst_guard = std::max({worst_guard, ex - 0.5, ey - 0.5});
+      worst_z = std::max(worst_z, std::abs(double(v.z) - (dz + qz)));
+      worst_w = std::max(worst_w, std::abs(double(v.w) - w * 65536) / (w * 65536));
+      if (st.guard_free()) ++guard_free;
+    }
+  }
+  std::printf(
+      "short path: %d vertices (%d of draws with no guard test), %d exact (%d inside every "
+      "plane and in the far half of w), %d draws disabled; worst x/y beyond half a subpixel %.4f "
+      "on the display, %.4f in the guard band; z %.0f / 2^32, w %.2e relative\n",
+      short_path, guard_free, exact_path, exact_far, disabled, worst_xy, worst_guard, worst_z,
+      worst_w);
+  EXPECT_GT(short_path, 2 * exact_path);  // (random cameras: many vertices near or behind the eye)
+  EXPECT_LT(exact_far, short_path / 1000);
+  EXPECT_GT(guard_free, 10000);
+  EXPECT_LT(disabled, 100);  // (w beyond 2^13 or the range limit: the exact path whole)
+}
+
+// Peer scene S1's draw (docs/measurements/peer_scenes.md): every vertex of a mesh in [-1, 1]^3
+// in front of a 60-degree camera takes the short path, with ten fraction bits or more.
+TEST(ShortPath, TakesEveryVertexOfThePeerScene) {
+  Camera cam;
+  ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(4, 3), Fixed::from_int(1),
+                          Fixed::from_int(10), cam.projection));
+  const Mat4 model = translate({{}, {}, Fixed::from_double(-2.45)}) * rotate_y(Fixed::from_int(20));
+  const Mat4 mvp = cam.projection * cam.view * model;
+  std::mt19937_64 rng(1);
+  std::vector<Vec3> p;
+  for (int i = 0; i < 5000; ++i)
+    p.push_back({Fixed::from_raw(static_cast<int32_t>(rng() % 131073) - 65536),
+                 Fixed::from_raw(static_cast<int32_t>(rng() % 131073) - 65536),
+                 Fixed::from_raw(static_cast<int32_t>(rng() % 131073) - 65536)});
+  const ScreenTransform st(mvp, position_bound(p.data(), p.size()), 320, 240, GuardBand{25, 34});
+  ASSERT_TRUE(st.enabled());
+  for (const Vec3& q : p) {
+    ScreenVertex v;
+    ASSERT_TRUE(st.project(q, v));
+    EXPECT_EQ(v.outcode, 0);
+  }
+}
+
+// A draw whose clip coordinates can reach 2^19 (the exact path's range limit: kClipOutOfRange
+// there) takes the exact path whole.
+TEST(ShortPath, DrawsNearTheExactPathsRangeAreLeftToIt) {
+  // w = z, coordinates up to 4000: the short path.
+  Mat4 mvp = Mat4::identity();
+  mvp.m[3][3] = Fixed{};
+  mvp.m[3][2] = Fixed::from_int(1);
+  const uint32_t bound = 4000u << 16;
+  EXPECT_TRUE(ScreenTransform(mvp, bound, 320, 240, GuardBand{25, 34}).enabled());
+  mvp.m[3][2] = Fixed::from_int(256);  // w up to 1024000 > 2^19
+  EXPECT_FALSE(ScreenTransform(mvp, bound, 320, 240, GuardBand{25, 34}).enabled());
+}
+
+// Lights in model space: a rigid model's lit colours against GL's model evaluated in double
+// (the normal through the inverse transpose of the Q16.16 model matrix, normalised), diffuse and
+// specular (gold: shininess 51.2), both sides: within 4 Q1.15 units (1/32 of an 8-bit level),
+// about as close as lighting in world space (a rotated and renormalised normal) is. A normal
+// that is not unit is refused (unit_normal), the vertex stage then lights it in world space.
+TEST(ObjectLights, MatchGlLightingAsCloselyAsWorldSpaceLighting) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto fx = [](double v) { return Fixed::from_raw(static_cast<int32_t>(std::lround(v * 65536))); };
+  LightSet set;
+  set.count = 3;
+  set.lights[0] = Light::directional({fx(-0.6), fx(0.8), fx(1.0)}, {26000, 24000, 20000});
+  set.lights[1] = Light::directional({fx(0.3), fx(-0.2), fx(0.9)}, {9000, 12000, 16000});
+  set.lights[2] = Light::directional({fx(0.0), fx(1.0), fx(0.1)}, {7000, 7000, 7000});
+  const Material m = to_material(*find_material("gold"));
+  const PreparedLighting pl = prepare_lighting(set, m, {{}, {}, Fixed::from_int(1)}, {});
+  double worst_fast = 0, worst_world = 0;
+  for (int model_i = 0; model_i < 40; ++model_i) {
+    const Mat4 model = translate({fx(3 * u(rng)), {}, fx(-5)}) * rotate_z(fx(180 * u(rng))) *
+                       rotate_y(fx(180 * u(rng))) * rotate_x(fx(180 * u(rng))) *
+                       scale(fx(0.25 + std::abs(u(rng)) * 4));
+    const Camera cam;
+    const VertexStage stage(cam, model, GuardBand{1, 1}, 64, 64);
+    ObjectLights ol;
+    ASSERT_TRUE(stage.object_lights(pl, ol));
+    EXPECT_TRUE(ol.specular);
+    // The inverse transpose of the upper 3x3, in double: the cofactor matrix (its scale does not
+    // matter, the normal is normalised).
+    double a[3][3], cof[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) a[i][j] = model.m[i][j].raw / 65536.0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        cof[i][j] = a[(i + 1) % 3][(j + 1) % 3] * a[(i + 2) % 3][(j + 2) % 3] -
+                    a[(i + 1) % 3][(j + 2) % 3] * a[(i + 2) % 3][(j + 1) % 3];
+    for (int i = 0; i < 2000; ++i) {
+      // Unit normals, and normals near the ends of unit_normal()'s band (|n| up to 1 +- 2^-13),
+      // which 1 / |n| corrects (the specular power would multiply their length's error).
+      const double x = u(rng), y = u(rng), z = u(rng) + 1e-3;
+      double off = (i % 3 == 0 ? 0.0 : i % 3 == 1 ? 1.0 : -1.0) / 8192;
+      Normal16 n = unit_normal16(x, y, z, 1.0 + off);
+      while (!unit_normal(n)) n = unit_normal16(x, y, z, 1.0 + (off *= 0.9));
+      if (off != 0) {
+        ASSERT_GT(std::abs(off), 0.5 / 8192);
+      }
+      const bool back = (i & 1) != 0;
+      const LitColor fast = light_object(pl, ol, n, normal_len2(n), back);
+      Unit30 nw = stage.world_normal(n);
+      if (back) nw = negate(nw);
+      const LitColor world = light_directional_split(pl, nw);
+      double nd[3], len = 0;
+      for (int r = 0; r < 3; ++r) {
+        nd[r] = (cof[r][0] * n.x + cof[r][1] * n.y + cof[r][2] * n.z) * (back ? -1 : 1);
+        len += nd[r] * nd[r];
+      }
+      len = std::sqrt(len);
+      double prim[3] = {double(pl.base[0]), double(pl.base[1]), double(pl.base[2])};
+      double spec[3] = {0, 0, 0};
+      for (int li = 0; li < pl.count; ++li) {
+        const PreparedLighting::Light& L = pl.lights[static_cast<size_t>(li)];
+        const double ndl = (nd[0] * L.l.x + nd[1] * L.l.y + nd[2] * L.l.z) / len / 1073741824.0;
+        if (ndl <= 0) continue;
+        const double ndh = (nd[0] * L.h.x + nd[1] * L.h.y + nd[2] * L.h.z) / len / 1073741824.0;
+        const double sp = ndh > 0 ? std::pow(ndh, pl.shininess_q8 / 256.0) : 0.0;
+        for (int c = 0; c < 3; ++c) {
+          prim[c] += ndl * L.kd[c];
+          spec[c] += sp * L.ks[c];
+        }
+      }
+      for (int c = 0; c < 3; ++c) {
+        const double p = std::min(prim[c], 32768.0), q = std::min(spec[c], 32768.0);
+        worst_fast = std::max({worst_fast, std::abs(channel(fast.primary, c) - p),
+                               std::abs(channel(fast.secondary, c) - q)});
+        worst_world = std::max({worst_world, std::abs(channel(world.primary, c) - p),
+                                std::abs(channel(world.secondary, c) - q)});
+      }
+    }
+  }
+  std::printf("lights in model space: worst channel error %.2f / 2^15 (world space: %.2f)\n",
+              worst_fast, worst_world);
+  EXPECT_LE(worst_fast, 4.0);
+  EXPECT_LE(worst_fast, worst_world + 1.0);
+  EXPECT_FALSE(unit_normal(Normal16{8192, 0, 0}));
+  EXPECT_FALSE(unit_normal(Normal16{16384, 16384, 0}));
+  EXPECT_FALSE(unit_normal(Normal16{-32768, -32768, -32768}));
+  EXPECT_TRUE(unit_normal(Normal16{0, -16384, 0}));
+  // A non-uniform scale is not rigid: no model-space lights.
+  const Camera cam;
+  const Mat4 squash = scale(Vec3{fx(1), fx(2), fx(1)});
+  ObjectLights ol;
+  EXPECT_FALSE(VertexStage(cam, squash, GuardBand{1, 1}, 64, 64)
+                   .object_lights(prepare_lighting(set, m, {{}, {}, Fixed::from_int(1)}, {}), ol));
 }
 
 }  // namespace

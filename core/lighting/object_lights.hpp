@@ -1,0 +1,122 @@
+// Directional lights in a draw's model space: under a rigid model matrix (a rotation times a
+// uniform scale, R the rotation) a world normal is R n, so N.L = n . (R^T L). Turning L and H
+// into model space once per draw leaves a dot product of the mesh's normal per light and vertex:
+// no rotation and no renormalisation (docs/numerics.md#lights-in-model-space). Only for
+// directional lights and the infinite viewer (PreparedLighting::needs_position() false), and only
+// for normals of unit length within kUnitNormalTolerance (the others take the world-space path).
+#pragma once
+
+#include <cstdint>
+
+#include "lineraster/core/lighting/lighting.hpp"
+#include "lineraster/core/math/rigid.hpp"
+#include "lineraster/core/math/vec.hpp"
+#include "lineraster/core/math/wide_mul.hpp"
+
+namespace lr {
+
+// The directions only: the colours (base, Ld Kd, Ls Ks) are read from the PreparedLighting they
+// were made from (no copy in the renderer object, whose every byte counts in 16 KB of RAM).
+struct ObjectLights {
+  // Towards each light (Q1.16) and its half vector (Q1.30: the specular power magnifies its
+  // error by the shininess), model space, unit within 2^-12 (the rotation's rigidity tolerance).
+  int32_t l[kMaxLights][3] = {};
+  int32_t h[kMaxLights][3] = {};
+  uint8_t count = 0;
+  bool specular = false;  // a light whose specular product (Ls Ks) is not zero
+};
+
+// pl's directional lights into model space by the rotation rows of a rigid model
+// (rigid_normal_rows): l_model = R^T l.
+void prepare_object_lights(const PreparedLighting& pl, const NormalRotation& r, ObjectLights& out);
+
+// |n|^2 of a Normal16, Q2.28 (each square below 2^30: no wrap).
+constexpr uint32_t normal_len2(const Normal16& n) {
+  return static_cast<uint32_t>(n.x * n.x) + static_cast<uint32_t>(n.y * n.y) +
+         static_cast<uint32_t>(n.z * n.z);
+}
+// A Normal16 of unit length: |n|^2 within 2^-12 of 1 (a unit vector rounded to Q1.14 is within
+// 2^-13.2).
+constexpr bool unit_len2(uint32_t len2) {
+  return len2 - ((1u << 28) - (1u << 16)) <= (1u << 17);
+}
+constexpr bool unit_normal(const Normal16& n) {
+  return unit_len2(normal_len2(n));
+}
+
+// 1 / |n| by one Newton step from 1, k = (3 - |n|^2) / 2 in Q1.30 (within 2^-24 of 1 / |n| for
+// unit_len2(len2)): 2^30 +- 2^17.
+constexpr int32_t inverse_length(uint32_t len2) {
+  return static_cast<int32_t>(((3u << 28) - len2) << 1);
+}
+
+// The diffuse sums of normal (nx, ny, nz) (Q1.14, negated for a back face) with 1 / |n| = k:
+// prim[c] = pl.base[c] + sum over lights of max(N.L, 0) Ld Kd. N.L = (n . l) k, where n . l is a
+// sum of three products below 2^30 (|n| |l| <= 1 + 2^-11 in Q2.30); N.L / 2^14 (Q1.16, at most 2^16
+// + 64) times Kd (<= 2^15) is below 2^31 + 2^22. Returns the lights' N.L in ndl (Q2.30; 0 where not
+// positive), for the specular term.
+[[gnu::always_inline]] inline void object_diffuse(const PreparedLighting& pl,
+                                                  const ObjectLights& ol, int32_t nx, int32_t ny,
+                                                  int32_t nz, int32_t k, uint32_t (&prim)[3],
+                                                  int32_t (&ndl)[kMaxLights]) {
+  prim[0] = static_cast<uint32_t>(pl.base[0]);
+  prim[1] = static_cast<uint32_t>(pl.base[1]);
+  prim[2] = static_cast<uint32_t>(pl.base[2]);
+  for (int i = 0; i < ol.count; ++i) {
+    const int32_t* l = ol.l[i];
+    int32_t d = nx * l[0] + ny * l[1] + nz * l[2];  // Q2.30
+    ndl[i] = 0;
+    if (d <= 0) continue;  // no diffuse, and GL gives no specular where N.L <= 0
+    d = mul_hi(d, k) * 4;  // Q2.30 again, below 2^30 + 2^20
+    ndl[i] = d;
+    const auto d16 = static_cast<uint32_t>(d) >> 14;
+    const uint16_t* const kd = pl.lights[static_cast<size_t>(i)].kd;
+    for (int c = 0; c < 3; ++c) prim[c] += (d16 * kd[c] + (1u << 15)) >> 16;
+  }
+}
+
+constexpr uint16_t clamp_one(uint32_t x) {
+  return static_cast<uint16_t>(x > Color15::kOne ? Color15::kOne : x);
+}
+
+// The lit colours of normal n (Normal16, len2 = normal_len2(n) and unit_len2(len2)), negated when
+// back: light_directional_split's model for the model-space directions, n's length corrected by
+// inverse_length() on the dot products rather than on the normal.
+inline LitColor light_object(const PreparedLighting& pl, const ObjectLights& ol, const Normal16& n,
+                             uint32_t len2, bool back) {
+  const int32_t nx = back ? -n.x : n.x, ny = back ? -n.y : n.y, nz = back ? -n.z : n.z;
+  const int32_t k = inverse_length(len2);
+  uint32_t prim[3];
+  int32_t ndl[kMaxLights];
+  object_diffuse(pl, ol, nx, ny, nz, k, prim, ndl);
+  uint32_t spec[3] = {0, 0, 0};
+  if (ol.specular) {
+    for (int i = 0; i < ol.count; ++i) {
+      if (ndl[i] <= 0) continue;
+      // n . h in 64 bits (products below 2^45), Q2.44, then Q2.30.
+      const int32_t* h = ol.h[i];
+      const int64_t ndh44 = mul_wide(nx, h[0]) + mul_wide(ny, h[1]) + mul_wide(nz, h[2]);
+      if (ndh44 <= 0) continue;
+      int32_t ndh = mul_hi(static_cast<int32_t>(ndh44 >> 14), k) * 4;  // below 2^30 + 2^20
+      if (ndh > (1 << 30)) ndh = 1 << 30;
+      const uint32_t sp = DefaultPowTable::pow_q15(static_cast<uint32_t>(ndh), pl.shininess_q8);
+      const PreparedLighting::Light& li = pl.lights[static_cast<size_t>(i)];
+      for (int c = 0; c < 3; ++c) spec[c] += (sp * uint32_t{li.ks[c]} + (1u << 14)) >> 15;
+    }
+  }
+  return {{clamp_one(prim[0]), clamp_one(prim[1]), clamp_one(prim[2])},
+          {clamp_one(spec[0]), clamp_one(spec[1]), clamp_one(spec[2])}};
+}
+
+// The diffuse-only colour (no light with a specular product: !ol.specular) of a unit normal n
+// (unit_len2(len2)), front side: light_object's primary colour (its secondary is 0).
+[[gnu::always_inline]] inline Color15 light_object_diffuse(const PreparedLighting& pl,
+                                                           const ObjectLights& ol,
+                                                           const Normal16& n, uint32_t len2) {
+  uint32_t prim[3];
+  int32_t ndl[kMaxLights];
+  object_diffuse(pl, ol, n.x, n.y, n.z, inverse_length(len2), prim, ndl);
+  return {clamp_one(prim[0]), clamp_one(prim[1]), clamp_one(prim[2])};
+}
+
+}  // namespace lr
