@@ -140,7 +140,8 @@ size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
     }
     return k;
   }
-  if constexpr (kShortPathRun) {
+#if LR_SHORT_PATH_RUN
+  {
     if (count == 0) return 0;
     static_assert(offsetof(Words, w) == 0 && offsetof(Words, x) == 16 && offsetof(Words, y) == 32 &&
                   offsetof(Words, z) == 48 && offsetof(Words, w_lo) == 64 &&
@@ -232,7 +233,9 @@ size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
         : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
     return static_cast<size_t>(p - start);
   }
-  return 0;  // (not reached: the loop above)
+#else
+  return 0;  // (not reached: no short path on this target)
+#endif
 }
 
 // Whether every position within the bound projects inside the guard band: the cube's corners

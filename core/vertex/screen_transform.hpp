@@ -43,10 +43,14 @@ namespace lr {
 inline constexpr int kShortPathFractionBits = 5;
 
 // Whether ScreenTransform::run() is the hand-written loop (else project() in a loop).
+// (A macro as well: the loop's assembly names Arm registers, which other targets' compilers
+// reject even in a discarded branch.)
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__) && defined(__ARM_FEATURE_SAT) && \
     defined(__ARM_FEATURE_IDIV)
+#define LR_SHORT_PATH_RUN 1
 inline constexpr bool kShortPathRun = true;
 #else
+#define LR_SHORT_PATH_RUN 0
 inline constexpr bool kShortPathRun = false;
 #endif
 
@@ -129,9 +133,9 @@ class ScreenTransform {
   // product only; elsewhere split per use (the tests run project_halves on the host).
   struct NoSplit {  // (indexable, so that the code for the split arrays compiles everywhere)
     struct Row {
-      Halves operator[](int) const { return {}; }
+      Halves operator[](int /*unused*/) const { return {}; }
     };
-    Row operator[](int) const { return {}; }
+    Row operator[](int /*unused*/) const { return {}; }
   };
   [[no_unique_address]] std::conditional_t<kSplitWideProducts, Halves[4][3], NoSplit> split_{};
   Halves split(int i, int j) const {

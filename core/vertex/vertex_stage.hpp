@@ -124,7 +124,7 @@ class VertexStage {
   // secondary colour apart when colors.split, else 0. Out of line: one copy for its callers (the
   // front end's lighting on first use, back faces).
   // (colors by value here and in light_face: the caller's copy stays in registers.)
-  [[gnu::noinline]] LitColor light(const Mesh& mesh, const VertexColors colors, size_t i,
+  [[gnu::noinline]] LitColor light(const Mesh& mesh, VertexColors colors, size_t i,
                                    bool back) const;
 
   // The lit colour of a flat-shaded triangle (face normal, centroid) of model-space corners.
