@@ -215,7 +215,8 @@ class AdmitRig final : public RigBase {
   explicit AdmitRig(AdmitFn admit, PhongRecordFn phong = &DrawRecords::phong_record) {
     builder_ = &front_;
     EXPECT_EQ(strip_.configure(storage().strip_loop(), kW), Status::kOk);
-    EXPECT_EQ(front_.configure(storage().front_end(), kW, kH, kK, admit, phong), Status::kOk);
+    EXPECT_EQ(front_.configure(storage().front_end(), kW, kH, kK, {.admit = admit, .phong = phong}),
+              Status::kOk);
   }
 
  private:
