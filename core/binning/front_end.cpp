@@ -54,10 +54,11 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
 }  // namespace
 
 Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int strip_height,
-                           const FrontEndRoutines& routines) {
+                           const FrontEndRoutines* routines) {
   configured_ = false;
   phase_ = Phase::kIdle;
-  if (width < 1 || height < 1 || width > kMaxViewport || height > kMaxViewport)
+  if (routines == nullptr || width < 1 || height < 1 || width > kMaxViewport ||
+      height > kMaxViewport)
     return Status::kInvalidArgument;
   if (strip_height < 1 || strip_height > 32) return Status::kInvalidArgument;
   if (s.draws.size() > 256) return Status::kInvalidArgument;
@@ -398,9 +399,9 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   const bool triangle_colors = !plan.gouraud && !plan.kind.phong;  // flat: colours per triangle
   // (Phong draws light per pixel: their position is the span set's own dimension.)
   if (!admitted(state, plan.kind) ||
-      (triangle_colors && plan.lit && routines_.face_light == nullptr) ||
-      (plan.lit && !plan.kind.phong && plan.kind.position && routines_.point_light == nullptr) ||
-      ((plan.uv || plan.kind.phong) && routines_.attributes == nullptr))
+      (triangle_colors && plan.lit && routines_->face_light == nullptr) ||
+      (plan.lit && !plan.kind.phong && plan.kind.position && routines_->point_light == nullptr) ||
+      ((plan.uv || plan.kind.phong) && routines_->attributes == nullptr))
     return refuse(Status::kNotLinked);
   if ((plan.uv && !store_.has_tex()) || ((plan.textured || plan.kind.phong) && !active_extra_) ||
       (plan.kind.phong &&
@@ -429,7 +430,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
     prepare_lighting(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
-  if (plan.kind.phong && routines_.phong(records_, state, pl, record) != Status::kOk) {
+  if (plan.kind.phong && routines_->phong(records_, state, pl, record) != Status::kOk) {
     records_.drop_last();
     return refuse(Status::kCapacity, tri_count, false);
   }
@@ -470,8 +471,8 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   colors.tangents = phong && state.normal_map != nullptr;
   colors.material = material.diffuse;
   colors.lighting = &pl;
-  colors.point = routines_.point_light;
-  colors.attributes = routines_.attributes;
+  colors.point = routines_->point_light;
+  colors.attributes = routines_->attributes;
   // Lit Gouraud under directional lights and a rigid model: the lights turned into model space.
   if (colors.pending && !colors.need_position && stage.object_lights(pl, object_lights_))
     colors.object = &object_lights_;
@@ -489,7 +490,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   }
 
   MeshDraw d{mesh, state, stage, plan, colors, base, index, cached};
-  d.face_light = routines_.face_light;
+  d.face_light = routines_->face_light;
   d.clipping = cached || clip_outcodes != 0;
   if (colors.object != nullptr && !colors.object->specular && !colors.split)
     d.diffuse_lights = colors.object;
@@ -538,7 +539,7 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   if (records_.full()) return refuse(Status::kCapacity, tri_count, false);
   const uint8_t draw_index = records_.add(state, gouraud, static_cast<uint16_t>(store_.count()));
   records_[draw_index].triangle_colors = !gouraud;
-  run_screen_ = &FrontEnd::run_screen;
+  replay_screen_ = &FrontEnd::replay_screen;
   if (edges_.signing()) records_.sign(draw_index, nullptr);
   DrawCall& call = records_[draw_index].call;
   call.mesh = Mesh{};
@@ -647,7 +648,7 @@ void FrontEnd::replay(uint8_t index) {
   const DrawCall& c = records_[index].call;
   const DrawState state = c.state.get();
   if (c.is_screen) {
-    (this->*run_screen_)(index, c.screen, c.screen_tex, c.mesh.triangles, state);
+    replay_screen_(*this, index, state);
     return;
   }
   const Material material = c.material.get();
@@ -660,6 +661,11 @@ void FrontEnd::replay(uint8_t index) {
   else
     pl = PreparedLighting{};
   run_mesh(index, c.mesh, c.model, material, state, plan, pl);
+}
+
+void FrontEnd::replay_screen(FrontEnd& fe, uint8_t index, const DrawState& state) {
+  const DrawCall& c = fe.records_[index].call;
+  fe.run_screen(index, c.screen, c.screen_tex, c.mesh.triangles, state);
 }
 
 void FrontEnd::save_binning_counts() {

@@ -92,6 +92,7 @@ struct FrontEndRoutines {
   PointLightFn point_light = &light_point_split;
   AttributesFn attributes = &VertexStage::attributes;  // textured and Phong draws' vertices
 };
+inline constexpr FrontEndRoutines kEveryRoutine{};
 
 class FrontEnd {
  public:
@@ -99,9 +100,11 @@ class FrontEnd {
   // draw records (at most 256): kInvalidArgument; then the stores against them: kStoreTooSmall.
   // Must succeed before begin_frame; leaves no frame begun (on failure: not configured).
   // routines: the renderer's test of a draw and the routines of the draws only some renderers
-  // take (the defaults: every draw admitted, every routine linked).
+  // take (kEveryRoutine: every draw admitted, every routine linked). Kept by address (4 bytes of
+  // RAM, not a copy): it must outlive the front end (a constant, as the renderer's); nullptr is
+  // kInvalidArgument.
   Status configure(const FrontEndStorage& storage, int width, int height, int strip_height,
-                   const FrontEndRoutines& routines = {});
+                   const FrontEndRoutines* routines = &kEveryRoutine);
   // Refuses every call until the next successful configure().
   void deconfigure() { configured_ = false; }
   bool configured() const { return configured_; }
@@ -210,13 +213,11 @@ class FrontEnd {
                   std::span<const TexVertex> tex,
                   std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
   [[gnu::noinline]] void replay(uint8_t index);
-  // run_screen for replay(), set by draw_screen(): a renderer whose application never calls
-  // draw_screen() does not link run_screen (only bands replay a draw).
-  using RunScreenFn = void (FrontEnd::*)(uint8_t, std::span<const ScreenVertex>,
-                                         std::span<const TexVertex>,
-                                         std::span<const std::array<uint16_t, 3>>,
-                                         const DrawState&);
-  RunScreenFn run_screen_ = nullptr;
+  // run_screen() for replay(), set by draw_screen(): a renderer whose application never calls
+  // draw_screen() does not link it (only bands replay a draw). A plain function pointer: 4
+  // bytes of RAM.
+  static void replay_screen(FrontEnd& fe, uint8_t index, const DrawState& state);
+  void (*replay_screen_)(FrontEnd& fe, uint8_t index, const DrawState& state) = nullptr;
   [[gnu::noinline]] bool polygon_outside_band(uint16_t first, int m, Cull cull);
   // The table full: the band (the frame's first, until then) ends higher up (EdgeTable::
   // shrink_window), its evicted triangles uncounted. False when it is one strip.
@@ -239,8 +240,8 @@ class FrontEnd {
               Cull cull, const int32_t* rows = nullptr, bool cached = false);
   // Refuses a draw the renderer links no routine for.
   bool admitted(const DrawState& state, const DrawKind& kind) const {
-    return (!kind.phong || routines_.phong != nullptr) &&
-           (routines_.admit == nullptr || routines_.admit(state, kind));
+    return (!kind.phong || routines_->phong != nullptr) &&
+           (routines_->admit == nullptr || routines_->admit(state, kind));
   }
 
   // The stages' own state: the vertex store (vertices, surfaces, texture entries, the vertex
@@ -263,7 +264,7 @@ class FrontEnd {
   Phase phase_ = Phase::kIdle;
   Status refused_ = Status::kOk;
   // The routines of configure() (nullptr until then: zero bytes).
-  FrontEndRoutines routines_{nullptr, nullptr, nullptr, nullptr, nullptr};
+  const FrontEndRoutines* routines_ = nullptr;
   bool active_extra_ = false;  // FrontEndStorage::active_extra
   // Bands: the stores overflowed (the rest of the frame is only recorded), and the refused
   // draws' triangles (counted in every band's statistics).

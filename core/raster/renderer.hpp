@@ -42,7 +42,7 @@ class Renderer {
   // before begin_frame. Success leaves no frame begun; failure leaves the renderer not
   // configured (every call kNotConfigured until a configure succeeds).
   Status configure(const FrameStorage& storage, int width, int height) {
-    Status st = front_.configure(storage.front_end(), width, height, K, kRoutines);
+    Status st = front_.configure(storage.front_end(), width, height, K, &kRoutines);
     if (st == Status::kOk) st = strip_.configure(storage.strip_loop(), width);
     if (st != Status::kOk) front_.deconfigure();
     return st;

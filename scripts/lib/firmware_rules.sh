@@ -111,6 +111,6 @@ lr_fw_stack_rules=(
   --indirect-from 'lr::FrontEnd::(general_triangles|triangle_loop|run_mesh)\(' 'lr::VertexStage::light_face\('
   --indirect-from 'lr::VertexStage::(light|light_face)\(' 'lr::light_point_split\('
   --indirect-from 'lr::VertexStage::transform_range\(' 'lr::VertexStage::attributes\('
-  --indirect-from 'lr::FrontEnd::replay\(' 'lr::FrontEnd::run_screen\('
+  --indirect-from 'lr::FrontEnd::replay\(' 'lr::FrontEnd::(replay_screen|run_screen)\('
   --indirect-from 'lr::(PanelSink|Panel|fw::demo::PanelOutput<.*>)::|lr::(send_commands?|write_window)\(' 'lr::fw::PpmPanelBus<.*>::|lr::PanelBus::'
 )
