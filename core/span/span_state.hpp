@@ -50,8 +50,10 @@ struct SpanState {
   MipMode mip = MipMode::kNone;                  // textured; Phong with a texture
   Filter filter = Filter::kNearest;              // textured; Phong with a texture or normal map
   PixelLighting method = PixelLighting::kExact;  // Phong
-  bool position = false;                         // Phong, exact: world-position planes
-  bool table_bilinear = false;                   // Phong, table: bilinear lookup
+  // Phong, exact: world-position planes. Other families: the draw may be lit by point lights or
+  // the local viewer (the renderer links its per-vertex point lighting; not a routine index).
+  bool position = false;
+  bool table_bilinear = false;                               // Phong, table: bilinear lookup
   bool texture = false, normal_map = false, envmap = false;  // Phong
   friend constexpr bool operator==(const SpanState&, const SpanState&) = default;
 };
