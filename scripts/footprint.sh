@@ -80,6 +80,8 @@ else
   mb_flash=$((256 * 1024)) mb_ram=$((16 * 1024))
 fi
 
+# Symbols (nm -C, from the start of the name) no untextured image may hold (see below).
+lr_fp_untextured_unlinked='^(lr::light_point_split|lr::light_point|lr::VertexStage::light_face|lr::VertexStage::attributes|lr::transform_tangent|lr::DrawRecords::phong_record|lr::FrontEnd::run_screen|lr::detail::kMaterialTable|lr::find_material|lr::to_material|(lr::ColorPlanes )?lr::setup_planes|(void )?lr::legacy_rows)\b'
 declare -A checksum_of  # config -> "core checksum" of the first core that ran it
 write_docs=0
 trees=()
@@ -204,6 +206,16 @@ print(sum(int(f[1], 16) for f in (l.split(None, 3) for l in sys.stdin)
           if len(f) == 4 and f[3].startswith("lr::fw::footprint::k")))')
     renderer=$((flash - empty_flash - assets))
     echo "| $cfg | $(group "$flash") B | $(group "$renderer") B | $(group "$ram") B | $(group "$total") B | $measured | $(group "$main_bound") B |"
+    # What the untextured images must not link: the routines of draws their span set refuses
+    # (renderer.hpp's FrontEndRoutines: flat shading's face lighting, point lighting, textured
+    # and Phong vertex attributes, Phong records; the textured and Phong setup and row loop),
+    # draw_screen's binning (the images never call it) and the material table (they name their
+    # materials at compile time).
+    if [[ $cfg == unlit || $cfg == gouraud ]]; then
+      linked=$("${prefix}nm" -C "$elf" | awk '{ $1 = ""; $2 = ""; print substr($0, 3) }' |
+               grep -E "${lr_fp_untextured_unlinked}" | sed 's/(.*//' | sort -u)
+      [[ -z $linked ]] || fail "$core $cfg links what its span set leaves out:"$'\n'"$(sed 's/^/    /' <<<"$linked")"
+    fi
     if (( flash <= mb_flash && ram + total <= mb_ram )); then
       fits+=("$cfg")
     else

@@ -54,10 +54,11 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
 }  // namespace
 
 Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int strip_height,
-                           AdmitFn admit, PhongRecordFn phong) {
+                           const FrontEndRoutines* routines) {
   configured_ = false;
   phase_ = Phase::kIdle;
-  if (width < 1 || height < 1 || width > kMaxViewport || height > kMaxViewport)
+  if (routines == nullptr || width < 1 || height < 1 || width > kMaxViewport ||
+      height > kMaxViewport)
     return Status::kInvalidArgument;
   if (strip_height < 1 || strip_height > 32) return Status::kInvalidArgument;
   if (s.draws.size() > 256) return Status::kInvalidArgument;
@@ -74,8 +75,7 @@ Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int 
   strip_height_ = strip_height;
   guard_.gx = 8192 / width > 1 ? 8192 / width : 1;
   guard_.gy = 8192 / height > 1 ? 8192 / height : 1;
-  admit_ = admit;
-  phong_ = phong;
+  routines_ = routines;
   configured_ = true;
   return Status::kOk;
 }
@@ -113,9 +113,8 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
   return Status::kOk;
 }
 
-template <bool kCached>
 Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
-                      Cull cull, const int32_t* rows) {
+                      Cull cull, const int32_t* rows, bool cached) {
   const ScreenVertex& v0 = store_.vertex(a);
   const ScreenVertex& v1 = store_.vertex(b);
   const ScreenVertex& v2 = store_.vertex(c);
@@ -166,7 +165,7 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
     edges_.sign(r0, r1, h.value());
   }
   // Through the vertex cache: the triangle's vertices are copied out of it on first use.
-  if constexpr (kCached) {
+  if (cached) {
     if (!store_.persist(a) || !store_.persist(b) || !store_.persist(c)) {
       overflow_ = true;
       return Outcome::kVertexCapacity;
@@ -305,9 +304,7 @@ void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&
   }
   // Corners in the vertex cache (back-face copies are in the store already).
   const Outcome r =
-      cached && !back_copies
-          ? bin<true>(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows)
-          : bin<false>(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows);
+      bin(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows, cached && !back_copies);
   count_outcome(stats_, r == Outcome::kBinned, r);
 }
 
@@ -377,8 +374,8 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
   Outcome last = Outcome::kClippedAway, dropped = Outcome::kBinned;
   for (int k = 1; k + 1 < m; ++k) {
     const Outcome r =
-        bin<false>(first, static_cast<uint16_t>(first + k), static_cast<uint16_t>(first + k + 1),
-                   d.draw, flat, flat_spec, d.state.cull);
+        bin(first, static_cast<uint16_t>(first + k), static_cast<uint16_t>(first + k + 1), d.draw,
+            flat, flat_spec, d.state.cull);
     if (r == Outcome::kBinned)
       binned = true;
     else
@@ -399,8 +396,13 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   // state the renderer links no routine for, a store the draw needs that was not given.
   DrawPlan plan;
   if (plan_draw(mesh, state, lights_, plan) != Status::kOk) return refuse(Status::kInvalidArgument);
-  if (!admitted(state, plan.kind)) return refuse(Status::kNotLinked);
   const bool triangle_colors = !plan.gouraud && !plan.kind.phong;  // flat: colours per triangle
+  // (Phong draws light per pixel: their position is the span set's own dimension.)
+  if (!admitted(state, plan.kind) ||
+      (triangle_colors && plan.lit && routines_->face_light == nullptr) ||
+      (plan.lit && !plan.kind.phong && plan.kind.position && routines_->point_light == nullptr) ||
+      ((plan.uv || plan.kind.phong) && routines_->attributes == nullptr))
+    return refuse(Status::kNotLinked);
   if ((plan.uv && !store_.has_tex()) || ((plan.textured || plan.kind.phong) && !active_extra_) ||
       (plan.kind.phong &&
        (!store_.has_surfaces() || !records_.has_pixel_lights() ||
@@ -428,7 +430,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
     prepare_lighting(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
-  if (plan.kind.phong && phong_(records_, state, pl, record) != Status::kOk) {
+  if (plan.kind.phong && routines_->phong(records_, state, pl, record) != Status::kOk) {
     records_.drop_last();
     return refuse(Status::kCapacity, tri_count, false);
   }
@@ -469,6 +471,8 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   colors.tangents = phong && state.normal_map != nullptr;
   colors.material = material.diffuse;
   colors.lighting = &pl;
+  colors.point = routines_->point_light;
+  colors.attributes = routines_->attributes;
   // Lit Gouraud under directional lights and a rigid model: the lights turned into model space.
   if (colors.pending && !colors.need_position && stage.object_lights(pl, object_lights_))
     colors.object = &object_lights_;
@@ -486,6 +490,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   }
 
   MeshDraw d{mesh, state, stage, plan, colors, base, index, cached};
+  d.face_light = routines_->face_light;
   d.clipping = cached || clip_outcodes != 0;
   if (colors.object != nullptr && !colors.object->specular && !colors.split)
     d.diffuse_lights = colors.object;
@@ -534,6 +539,7 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   if (records_.full()) return refuse(Status::kCapacity, tri_count, false);
   const uint8_t draw_index = records_.add(state, gouraud, static_cast<uint16_t>(store_.count()));
   records_[draw_index].triangle_colors = !gouraud;
+  replay_screen_ = &FrontEnd::replay_screen;
   if (edges_.signing()) records_.sign(draw_index, nullptr);
   DrawCall& call = records_[draw_index].call;
   call.mesh = Mesh{};
@@ -588,7 +594,7 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
     }
     const Rgb8 flat = to_rgb8_sat(store_.vertex(vi[2]).color);
     const Rgb8 flat_spec = uv ? to_rgb8_sat(store_.tex(vi[2]).spec) : Rgb8{};
-    const Outcome r = bin<false>(vi[0], vi[1], vi[2], index, flat, flat_spec, state.cull);
+    const Outcome r = bin(vi[0], vi[1], vi[2], index, flat, flat_spec, state.cull);
     count_outcome(stats_, r == Outcome::kBinned, r);
   }
   if (edges_.banding()) compact_vertices(base, false, uv);
@@ -642,7 +648,7 @@ void FrontEnd::replay(uint8_t index) {
   const DrawCall& c = records_[index].call;
   const DrawState state = c.state.get();
   if (c.is_screen) {
-    run_screen(index, c.screen, c.screen_tex, c.mesh.triangles, state);
+    replay_screen_(*this, index, state);
     return;
   }
   const Material material = c.material.get();
@@ -655,6 +661,11 @@ void FrontEnd::replay(uint8_t index) {
   else
     pl = PreparedLighting{};
   run_mesh(index, c.mesh, c.model, material, state, plan, pl);
+}
+
+void FrontEnd::replay_screen(FrontEnd& fe, uint8_t index, const DrawState& state) {
+  const DrawCall& c = fe.records_[index].call;
+  fe.run_screen(index, c.screen, c.screen_tex, c.mesh.triangles, state);
 }
 
 void FrontEnd::save_binning_counts() {

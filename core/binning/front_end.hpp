@@ -32,6 +32,7 @@
 #include "lineraster/core/vertex/clip.hpp"
 #include "lineraster/core/vertex/screen_vertex.hpp"
 #include "lineraster/core/vertex/surface_vertex.hpp"
+#include "lineraster/core/vertex/vertex_stage.hpp"
 #include "lineraster/core/vertex/vertex_store.hpp"
 
 namespace lr {
@@ -77,15 +78,33 @@ constexpr LightSet zero_lights() {
   return s;
 }
 
+// What the front end calls for draws only some renderers take. Renderer<PF, K, kSpans> passes
+// the routines its span set admits draws for and nullptr for the others, which are then never
+// referenced (never linked: a Gouraud renderer links no flat, point, textured or Phong code of
+// the front end); the front end refuses a draw that would need a missing one (kNotLinked). The
+// defaults admit every draw and link everything (a front end driven alone, in tests).
+struct FrontEndRoutines {
+  AdmitFn admit = nullptr;                            // the set's test (nullptr: every draw)
+  PhongRecordFn phong = &DrawRecords::phong_record;   // Phong draws' records
+  FaceLightFn face_light = &VertexStage::light_face;  // lit flat draws' face colours
+  // Lit Gouraud, flat and textured draws whose lighting reads the position (point lights, the
+  // local viewer): per vertex and per face.
+  PointLightFn point_light = &light_point_split;
+  AttributesFn attributes = &VertexStage::attributes;  // textured and Phong draws' vertices
+};
+inline constexpr FrontEndRoutines kEveryRoutine{};
+
 class FrontEnd {
  public:
   // Checks the viewport (width, height in [1, kMaxViewport]), the strip height (1..32) and the
   // draw records (at most 256): kInvalidArgument; then the stores against them: kStoreTooSmall.
   // Must succeed before begin_frame; leaves no frame begun (on failure: not configured).
-  // admit: the renderer's test of a draw's span state (nullptr: every draw is admitted); phong:
-  // how Phong draws get their records (nullptr: Phong draws are refused).
+  // routines: the renderer's test of a draw and the routines of the draws only some renderers
+  // take (kEveryRoutine: every draw admitted, every routine linked). Kept by address (4 bytes of
+  // RAM, not a copy): it must outlive the front end (a constant, as the renderer's); nullptr is
+  // kInvalidArgument.
   Status configure(const FrontEndStorage& storage, int width, int height, int strip_height,
-                   AdmitFn admit = nullptr, PhongRecordFn phong = &DrawRecords::phong_record);
+                   const FrontEndRoutines* routines = &kEveryRoutine);
   // Refuses every call until the next successful configure().
   void deconfigure() { configured_ = false; }
   bool configured() const { return configured_; }
@@ -194,6 +213,11 @@ class FrontEnd {
                   std::span<const TexVertex> tex,
                   std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
   [[gnu::noinline]] void replay(uint8_t index);
+  // run_screen() for replay(), set by draw_screen(): a renderer whose application never calls
+  // draw_screen() does not link it (only bands replay a draw). A plain function pointer: 4
+  // bytes of RAM.
+  static void replay_screen(FrontEnd& fe, uint8_t index, const DrawState& state);
+  void (*replay_screen_)(FrontEnd& fe, uint8_t index, const DrawState& state) = nullptr;
   [[gnu::noinline]] bool polygon_outside_band(uint16_t first, int m, Cull cull);
   // The table full: the band (the frame's first, until then) ends higher up (EdgeTable::
   // shrink_window), its evicted triangles uncounted. False when it is one strip.
@@ -210,13 +234,14 @@ class FrontEnd {
 
   // rows: the triangle's first and last row when classify() already passed it (its tests are
   // not repeated), else nullptr.
-  // kCached: a, b, c are vertex cache slots, copied into the store when the triangle is binned.
-  template <bool kCached>
+  // cached: a, b, c are vertex cache slots, copied into the store when the triangle is binned.
+  // (A flag, not a template parameter: one copy for the general triangle loop's rare paths.)
   Outcome bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
-              Cull cull, const int32_t* rows = nullptr);
+              Cull cull, const int32_t* rows = nullptr, bool cached = false);
   // Refuses a draw the renderer links no routine for.
   bool admitted(const DrawState& state, const DrawKind& kind) const {
-    return (!kind.phong || phong_ != nullptr) && (admit_ == nullptr || admit_(state, kind));
+    return (!kind.phong || routines_->phong != nullptr) &&
+           (routines_->admit == nullptr || routines_->admit(state, kind));
   }
 
   // The stages' own state: the vertex store (vertices, surfaces, texture entries, the vertex
@@ -238,8 +263,8 @@ class FrontEnd {
   enum class Phase : uint8_t { kIdle, kOpen, kRendered };
   Phase phase_ = Phase::kIdle;
   Status refused_ = Status::kOk;
-  AdmitFn admit_ = nullptr;
-  PhongRecordFn phong_ = nullptr;
+  // The routines of configure() (nullptr until then: zero bytes).
+  const FrontEndRoutines* routines_ = nullptr;
   bool active_extra_ = false;  // FrontEndStorage::active_extra
   // Bands: the stores overflowed (the rest of the frame is only recorded), and the refused
   // draws' triangles (counted in every band's statistics).

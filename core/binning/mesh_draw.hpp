@@ -44,6 +44,8 @@ struct FrontEnd::MeshDraw {
   const uint8_t draw;
   const bool cached;     // the mesh goes through the vertex cache (FrontEnd::cache_corners)
   bool clipping = true;  // a vertex may be outside a plane (else no triangle needs the clipper)
+  // Flat shading's face lighting (FrontEnd::configure): never nullptr for a lit flat draw.
+  FaceLightFn face_light = nullptr;
   // Lit Gouraud under diffuse directional lights in model space, one colour: the lights
   // (light_corners()'s inline case), else nullptr.
   const ObjectLights* diffuse_lights = nullptr;
@@ -58,8 +60,8 @@ struct FrontEnd::MeshDraw {
                                           Rgb8& flat_spec) const {
     if (!plan.gouraud && !plan.kind.phong) {
       if (plan.lit) {
-        const LitColor lc = stage.light_face(colors, mesh.positions[tri[0]], mesh.positions[tri[1]],
-                                             mesh.positions[tri[2]], back);
+        const LitColor lc = (stage.*face_light)(
+            colors, mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]], back);
         flat = to_rgb8_sat(lc.primary);
         if (plan.split) flat_spec = to_rgb8_sat(lc.secondary);
       } else {

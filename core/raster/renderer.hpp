@@ -42,8 +42,7 @@ class Renderer {
   // before begin_frame. Success leaves no frame begun; failure leaves the renderer not
   // configured (every call kNotConfigured until a configure succeeds).
   Status configure(const FrameStorage& storage, int width, int height) {
-    Status st =
-        front_.configure(storage.front_end(), width, height, K, &admits<kSpans>, phong_record());
+    Status st = front_.configure(storage.front_end(), width, height, K, &kRoutines);
     if (st == Status::kOk) st = strip_.configure(storage.strip_loop(), width);
     if (st != Status::kOk) front_.deconfigure();
     return st;
@@ -122,13 +121,23 @@ class Renderer {
   FrontEnd& front_end() { return front_; }
 
  private:
-  // Phong records only in a renderer with Phong spans: the others link no lighting tables.
-  static constexpr PhongRecordFn phong_record() {
-    if constexpr (kSpans.has(SpanFamily::kPhong))
-      return &DrawRecords::phong_record;
-    else
-      return nullptr;
-  }
+  // The front end's routines for the draws this renderer's set admits, nullptr for the others
+  // (never linked; the front end refuses draws that would need them): Phong records (with the
+  // lighting tables) only with Phong spans; flat shading's face lighting only where flat draws
+  // are admitted (untextured without colour planes, or textured: their flat variant); the
+  // lighting that reads the position (point lights, the local viewer) of Gouraud, flat and
+  // textured draws only where the set admits the position (SpanSet::position); the vertex
+  // attributes of textured and Phong draws only with those spans.
+  static constexpr bool kFlat =
+      kSpans.has(SpanFamily::kTextured) ||
+      (kSpans.has(SpanFamily::kUntextured) && detail::has(kSpans.colors, ColorPlanes::kNone));
+  static constexpr bool kAttributes =
+      kSpans.has(SpanFamily::kTextured) || kSpans.has(SpanFamily::kPhong);
+  static constexpr FrontEndRoutines kRoutines{
+      &admits<kSpans>, kSpans.has(SpanFamily::kPhong) ? &DrawRecords::phong_record : nullptr,
+      kFlat ? &VertexStage::light_face : nullptr,
+      detail::has(kSpans.position, true) ? &light_point_split : nullptr,
+      kAttributes ? &VertexStage::attributes : nullptr};
 
   FrontEnd front_;
   StripLoop<PF, K, kSpans> strip_;

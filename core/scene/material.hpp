@@ -1,4 +1,5 @@
-// Materials (OpenGL's fixed-function material) and the classic OpenGL material table.
+// Materials (OpenGL's fixed-function material) and the classic OpenGL material table
+// (material_table.hpp), both usable in constant expressions.
 #pragma once
 
 #include <cstdint>
@@ -7,6 +8,7 @@
 
 #include "lineraster/core/math/fixed.hpp"
 #include "lineraster/core/output/color.hpp"
+#include "lineraster/core/scene/material_table.hpp"
 
 namespace lr {
 
@@ -20,19 +22,26 @@ struct Material {
   friend constexpr bool operator==(const Material&, const Material&) = default;
 };
 
-// An entry of the published table, values exactly as published, in units of 1e-8 (every
-// published value has at most 8 decimals). Shininess is published as a fraction of 128.
-struct NamedMaterial {
-  std::string_view name;
-  uint32_t ambient[3], diffuse[3], specular[3];
-  uint32_t shininess_fraction;  // x 1e-8; GL shininess = fraction * 128
-};
+namespace detail {
+// A table value (1e-8 units) in Q1.15, rounded to nearest.
+constexpr uint16_t material_c15(uint32_t e8) {
+  return static_cast<uint16_t>((uint64_t{e8} * Color15::kOne + 50000000u) / 100000000u);
+}
+}  // namespace detail
 
-// The 24 materials of the classic table (emerald ... yellow_rubber); names use '_' for spaces.
-std::span<const NamedMaterial> material_table();
-// Lookup by name (case-sensitive; '-' and ' ' are accepted for '_'); nullptr when unknown.
-const NamedMaterial* find_material(std::string_view name);
-// The table entry in the core's formats, rounded to nearest.
-Material to_material(const NamedMaterial& m);
+// The table entry in the core's formats, rounded to nearest (material_table.hpp's table).
+constexpr Material to_material(const NamedMaterial& m) {
+  using detail::material_c15;
+  Material r;
+  r.ambient = {material_c15(m.ambient[0]), material_c15(m.ambient[1]), material_c15(m.ambient[2])};
+  r.diffuse = {material_c15(m.diffuse[0]), material_c15(m.diffuse[1]), material_c15(m.diffuse[2])};
+  r.specular = {material_c15(m.specular[0]), material_c15(m.specular[1]),
+                material_c15(m.specular[2])};
+  r.emission = {0, 0, 0};
+  // shininess = fraction * 128, in Q8.8: fraction(1e-8) * 128 * 256 / 1e8.
+  r.shininess_q8 = static_cast<uint16_t>(
+      (uint64_t{m.shininess_fraction} * 128u * 256u + 50000000u) / 100000000u);
+  return r;
+}
 
 }  // namespace lr

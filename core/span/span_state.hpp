@@ -50,8 +50,10 @@ struct SpanState {
   MipMode mip = MipMode::kNone;                  // textured; Phong with a texture
   Filter filter = Filter::kNearest;              // textured; Phong with a texture or normal map
   PixelLighting method = PixelLighting::kExact;  // Phong
-  bool position = false;                         // Phong, exact: world-position planes
-  bool table_bilinear = false;                   // Phong, table: bilinear lookup
+  // Phong, exact: world-position planes. Other families: the draw may be lit by point lights or
+  // the local viewer (the renderer links its per-vertex point lighting; not a routine index).
+  bool position = false;
+  bool table_bilinear = false;                               // Phong, table: bilinear lookup
   bool texture = false, normal_map = false, envmap = false;  // Phong
   friend constexpr bool operator==(const SpanState&, const SpanState&) = default;
 };
@@ -82,6 +84,9 @@ struct SpanSet {
   uint8_t mip = 0b111;     // MipMode
   uint8_t filter = 0b11;   // Filter: textures and normal maps
   uint8_t method = 0b11;   // PixelLighting
+  // Draws whose lighting reads the surface position (point lights, the local viewer): Phong's
+  // exact method with its world-position planes; and, as the renderer's link of its point
+  // lighting, lit Gouraud, flat and textured draws (the front end refuses those without it).
   uint8_t position = 0b11;
   uint8_t table_filter = 0b11;                               // Filter of the lighting table lookup
   uint8_t texture = 0b11, normal_map = 0b11, envmap = 0b11;  // Phong's maps

@@ -51,8 +51,9 @@ TransformSummary VertexStage::transform_range(const Mesh& mesh, const VertexColo
     if (plain) {
       if (mesh_colors != nullptr) out[k].color = from_rgb8(mesh_colors[k]);
     } else {
-      attributes(mesh, colors, first + k, out[k], surfaces != nullptr ? &surfaces[k] : nullptr,
-                 tex != nullptr ? &tex[k] : nullptr);
+      (this->*colors.attributes)(mesh, colors, first + k, out[k],
+                                 surfaces != nullptr ? &surfaces[k] : nullptr,
+                                 tex != nullptr ? &tex[k] : nullptr);
     }
   };
   uint32_t wide = 0, outcodes = 0;
@@ -93,9 +94,10 @@ LitColor VertexStage::light(const Mesh& mesh, const VertexColors colors, size_t 
     if (colors.split) return light_directional_split(*colors.lighting, nw);
     return {light_directional(*colors.lighting, nw), Color15{}};
   }
-  const Vec3 pw = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
-  if (colors.split) return light_point_split(*colors.lighting, nw, pw);
-  return {light_point(*colors.lighting, nw, pw), Color15{}};
+  const Vec3 pw = transform_affine(model_, mesh.positions[i]);
+  const LitColor c = colors.point(*colors.lighting, nw, pw);
+  if (colors.split) return c;
+  return {sum_clamped(c.primary, c.secondary), Color15{}};
 }
 
 LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1,
@@ -112,8 +114,11 @@ LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, cons
         Fixed::from_raw(static_cast<int32_t>((int64_t{w0.y.raw} + w1.y.raw + w2.y.raw) / 3)),
         Fixed::from_raw(static_cast<int32_t>((int64_t{w0.z.raw} + w1.z.raw + w2.z.raw) / 3))};
   }
-  if (colors.split) return light_point_split(*colors.lighting, fw, centroid);
-  return {light_point(*colors.lighting, fw, centroid), Color15{}};
+  // Directional lights and the infinite viewer: the inline path (bit for bit the same).
+  const LitColor c = colors.need_position ? colors.point(*colors.lighting, fw, centroid)
+                                          : light_directional_split(*colors.lighting, fw);
+  if (colors.split) return c;
+  return {sum_clamped(c.primary, c.secondary), Color15{}};
 }
 
 void VertexStage::project_exact(const Vec3& p, ScreenVertex& sv) const {

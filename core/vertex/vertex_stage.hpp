@@ -65,6 +65,19 @@ constexpr Unit30 negate(Unit30 u) {
   return {-u.x, -u.y, -u.z};
 }
 
+// Lighting that reads the surface position (point lights, the local viewer): light_point_split.
+// The front end hands it to the vertex stage through this pointer, which a renderer whose span
+// set admits no such draw leaves nullptr (it then links no point lighting; renderer.hpp).
+using PointLightFn = LitColor (*)(const PreparedLighting& pl, const Unit30& n, Vec3 p);
+
+class VertexStage;
+struct VertexColors;
+// VertexStage::attributes, for the vertices of textured and Phong draws: called through this
+// pointer, which a renderer without textured and Phong spans leaves nullptr (renderer.hpp).
+using AttributesFn = void (VertexStage::*)(const Mesh& mesh, const VertexColors& colors, size_t i,
+                                           ScreenVertex& sv, SurfaceVertex* surface,
+                                           TexVertex* tex) const;
+
 // How a draw's vertices get their colour (the front end decides it from the draw state).
 struct VertexColors {
   bool lit = false;            // lit by the light set (else the mesh's colours or the material's)
@@ -77,7 +90,11 @@ struct VertexColors {
   const PreparedLighting* lighting = nullptr;  // lit draws
   // Lit Gouraud draws of directional lights under a rigid model matrix: the lights in model
   // space (VertexStage::object_lights), else nullptr.
-  const ObjectLights* object = nullptr;
+  const ObjectLights* object = nullptr;  // need_position: the lighting (never nullptr then).
+  PointLightFn point = nullptr;
+  // Textured and Phong draws: their vertices' attributes (VertexStage::attributes; never
+  // nullptr when the transform is given surfaces or texture entries).
+  AttributesFn attributes = nullptr;
 };
 
 // What VertexStage::transform() did: the vertices the exact path projected (the short path's
@@ -90,6 +107,12 @@ struct TransformSummary {
 
 // A model-space tangent (Q1.14) to world space (the model's upper 3x3), unit Q1.14.
 void transform_tangent(const Mat4& model, const Tangent16& t, int16_t out[3]);
+
+// VertexStage::light_face, for flat shading: the front end calls it through this pointer, which
+// a renderer whose span set admits no flat-shaded draw leaves nullptr (it then links no face
+// lighting; core/raster/renderer.hpp).
+using FaceLightFn = LitColor (VertexStage::*)(VertexColors, const Vec3&, const Vec3&, const Vec3&,
+                                              bool) const;
 
 class VertexStage {
  public:
@@ -132,6 +155,11 @@ class VertexStage {
   [[gnu::noinline]] LitColor light_face(VertexColors colors, const Vec3& p0, const Vec3& p1,
                                         const Vec3& p2, bool back) const;
 
+  // The attributes of a vertex of a textured or Phong draw (texture coordinates; world normal,
+  // position, tangent): out of the per-vertex loop, called through VertexColors::attributes.
+  [[gnu::noinline]] void attributes(const Mesh& mesh, const VertexColors& colors, size_t i,
+                                    ScreenVertex& sv, SurfaceVertex* surface, TexVertex* tex) const;
+
   ClipCoord clip(const Vec3& model_position) const { return transform_point(mvp_, model_position); }
   // Projects and snaps a clip-space point inside every plane; false when w <= 0.
   bool project(const ClipCoord& c, ScreenVertex& v) const;
@@ -150,11 +178,9 @@ class VertexStage {
   Mat4 nm_;
   NormalRotation rot_;  // nm_'s rows normalised, when rigid_
   bool rigid_ = false;
-  // The exact path of one vertex (64-bit clip coordinates, outcode, project), and the
-  // attributes of a vertex of a textured or Phong draw: out of the per-vertex loop.
+  // The exact path of one vertex (64-bit clip coordinates, outcode, project): out of the
+  // per-vertex loop.
   [[gnu::noinline]] void project_exact(const Vec3& p, ScreenVertex& sv) const;
-  [[gnu::noinline]] void attributes(const Mesh& mesh, const VertexColors& colors, size_t i,
-                                    ScreenVertex& sv, SurfaceVertex* surface, TexVertex* tex) const;
   GuardBand guard_;
   int32_t width_, height_;
   ScreenTransform screen_;  // the short path (after mvp_: made from it)

@@ -80,7 +80,6 @@ constexpr bool any_part(bool (*pred)(Part)) {
 }
 constexpr bool kTextured = any_part(textured);
 constexpr bool kPhong = any_part([](Part p) { return p == Part::kPhong; });
-constexpr bool kLit = any_part([](Part p) { return p != Part::kUnlit; });
 
 constexpr lr::Filter filter_of(Part p) {
   return p == Part::kTexNearest ? lr::Filter::kNearest : lr::Filter::kBilinear;
@@ -228,8 +227,11 @@ void report(const char* label, uint32_t value, bool hex = false) {
 // depth the footprint measures.
 lr::Camera g_camera;
 lr::LightSet g_lights;
-lr::Material g_gold, g_silver;  // untextured and textured lit draws (unlit: unused)
 lr::Mat4 g_model;
+// Untextured and textured lit draws' materials (unlit: unused), from the classic table at
+// compile time: the image links the two Materials, not the table and its lookup.
+constexpr lr::Material kGold = lr::to_material(*lr::find_material("gold"));
+constexpr lr::Material kSilver = lr::to_material(*lr::find_material("silver"));
 
 // Everything before the draws, out of line: its temporaries (the camera's computation, the
 // materials) are off the stack while the frame is drawn and rendered, as an application would
@@ -257,14 +259,6 @@ lr::Mat4 g_model;
   constexpr uint16_t kAmbient = 6554;  // 0.2 in Q1.15, GL's default global ambient
   lights.global_ambient = {kAmbient, kAmbient, kAmbient};
 
-  if constexpr (kLit) {
-    const lr::NamedMaterial* gold = lr::find_material("gold");
-    const lr::NamedMaterial* silver = lr::find_material("silver");
-    if (gold == nullptr || silver == nullptr) return false;
-    g_gold = lr::to_material(*gold);
-    g_silver = lr::to_material(*silver);
-  }
-
   g_model = lr::rotate_y(Fixed::from_double(20.0));
   return check(g_renderer.begin_frame(camera, lights, lr::Rgb8{16, 24, 48}), "begin_frame");
 }
@@ -273,7 +267,7 @@ lr::Mat4 g_model;
 [[gnu::noinline]] bool draw_frame() {
   for (size_t i = 0; i < kParts.count; ++i) {
     const Part p = kParts.part[i];
-    if (!check(g_renderer.draw(kMeshes[i], g_model, textured(p) ? g_silver : g_gold, make_state(p)),
+    if (!check(g_renderer.draw(kMeshes[i], g_model, textured(p) ? kSilver : kGold, make_state(p)),
                "draw"))
       return false;
   }

@@ -95,9 +95,11 @@ lr_fw_guard() {
 # Calls through pointers in the images, for scripts/stack_usage.py (its --indirect-from rules;
 # shared by scripts/footprint.sh, ci_firmware.sh and small_ram.sh): the renderer calls the
 # sink's virtual methods and each triangle's row loop; the textured and Phong row loop calls
-# the span routines of its families; textured and Phong spans call
-# texel fetchers; the front end calls the renderer's admission test and, with Phong spans, its
-# Phong records; the panel path (the Cortex-M7 demo) calls its bus; Reset_Handler calls the static constructors (none: the images
+# the span routines of its families; textured and Phong spans call texel fetchers; the front
+# end calls the renderer's admission test and the routines of its FrontEndRoutines (Phong
+# records, flat shading's face lighting, point lighting, vertex attributes: those of the
+# renderer's span set), and draw_screen's binning when it replays a band; the panel path (the
+# Cortex-M7 demo) calls its bus; Reset_Handler calls the static constructors (none: the images
 # constant-initialise).
 lr_fw_stack_rules=(
   --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|strips|crowded_strip)\('
@@ -106,5 +108,9 @@ lr_fw_stack_rules=(
   --indirect-from 'lr::(detail::)?fill_(tex_span_body|tex_span|phong_span)<' 'lr::fetch_batch<'
   --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'
   --indirect-from 'lr::FrontEnd::(draw(_screen)?|admitted)\(' 'lr::admits<|lr::DrawRecords::phong_record\('
+  --indirect-from 'lr::FrontEnd::(general_triangles|triangle_loop|run_mesh)\(' 'lr::VertexStage::light_face\('
+  --indirect-from 'lr::VertexStage::(light|light_face)\(' 'lr::light_point_split\('
+  --indirect-from 'lr::VertexStage::transform_range\(' 'lr::VertexStage::attributes\('
+  --indirect-from 'lr::FrontEnd::replay\(' 'lr::FrontEnd::(replay_screen|run_screen)\('
   --indirect-from 'lr::(PanelSink|Panel|fw::demo::PanelOutput<.*>)::|lr::(send_commands?|write_window)\(' 'lr::fw::PpmPanelBus<.*>::|lr::PanelBus::'
 )

@@ -480,6 +480,59 @@ TEST(ApiErrors, DrawOutsideTheSpanSet) {
   expect_refused_then_rendered(rig, Status::kNotLinked);
 }
 
+// A renderer links flat shading's face lighting only when its set admits flat-shaded draws,
+// and the lighting that reads the position (point lights, the local viewer) of Gouraud, flat
+// and textured draws only when the set admits the position (SpanSet::position): the draws that
+// would need a routine it does not link are refused. Linked, the same draw renders as with
+// every routine.
+TEST(ApiErrors, LitDrawWhoseLightingTheSpanSetLeavesOut) {
+  // The footprint's Gouraud renderer: colour planes only (no flat draws), no position.
+  constexpr SpanSet kGouraud =
+      kUntexturedSpans.only(ColorPlanes::kPerspective).only_position(false);
+  DrawState gouraud;  // lit Gouraud
+  gouraud.depth_test = false;
+  DrawState flat_lit = gouraud;
+  flat_lit.shading = Shading::kFlat;
+  const Color15 white{Color15::kOne, Color15::kOne, Color15::kOne};
+  LightSet directional;
+  directional.count = 1;
+  directional.lights[0] = Light::directional({Fixed{}, Fixed{}, Fixed::from_int(1)}, white);
+  LightSet point = directional;
+  point.lights[0] = Light::point({Fixed{}, Fixed{}, Fixed::from_int(2)}, white);
+  LightSet local_viewer = directional;
+  local_viewer.local_viewer = true;
+
+  for (const LightSet* lights : {&directional, &point, &local_viewer}) {
+    const bool position = lights != &directional;
+    SCOPED_TRACE(position ? "lights that read the position" : "directional lights");
+    Rig<kGouraud> rig;
+    ASSERT_EQ(rig.configure(), Status::kOk);
+    ASSERT_EQ(rig.begin(*lights), Status::kOk);
+    ASSERT_EQ(rig.draw_square(square(4, 4, 8, kRed), plain()), Status::kOk);
+    EXPECT_EQ(rig.draw_tri(flat_lit), Status::kNotLinked);
+    if (position) {
+      EXPECT_EQ(rig.draw_tri(gouraud), Status::kNotLinked);
+    }
+    EXPECT_EQ(rig.r->stats().draws_refused_not_linked, position ? 2u : 1u);
+    expect_refused_then_rendered(rig, Status::kNotLinked);
+  }
+
+  // With the position admitted, the point-lit triangle is drawn, as by a renderer with every
+  // routine.
+  Rig<kUntexturedSpans.only(ColorPlanes::kPerspective)> linked;
+  Rig<> every;
+  ASSERT_EQ(linked.configure(), Status::kOk);
+  ASSERT_EQ(every.configure(), Status::kOk);
+  ASSERT_EQ(linked.begin(point), Status::kOk);
+  ASSERT_EQ(every.begin(point), Status::kOk);
+  ASSERT_EQ(linked.draw_tri(gouraud), Status::kOk);
+  ASSERT_EQ(every.draw_tri(gouraud), Status::kOk);
+  ASSERT_EQ(linked.render(), Status::kOk);
+  ASSERT_EQ(every.render(), Status::kOk);
+  EXPECT_NE(linked.pixel(32, 16), kBackground);  // the triangle's centre, lit
+  EXPECT_EQ(linked.sink.frame(), every.sink.frame());
+}
+
 TEST(ApiErrors, DrawWithArgumentsThatDisagree) {
   Rig rig;
   ASSERT_TRUE(rig.ready());

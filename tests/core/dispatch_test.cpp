@@ -212,10 +212,11 @@ class Rig final : public RigBase {
 // admission of a restricted renderer without its tables (no template: compiled once).
 class AdmitRig final : public RigBase {
  public:
-  explicit AdmitRig(AdmitFn admit, PhongRecordFn phong = &DrawRecords::phong_record) {
+  explicit AdmitRig(AdmitFn admit, PhongRecordFn phong = &DrawRecords::phong_record)
+      : routines_{.admit = admit, .phong = phong} {
     builder_ = &front_;
     EXPECT_EQ(strip_.configure(storage().strip_loop(), kW), Status::kOk);
-    EXPECT_EQ(front_.configure(storage().front_end(), kW, kH, kK, admit, phong), Status::kOk);
+    EXPECT_EQ(front_.configure(storage().front_end(), kW, kH, kK, &routines_), Status::kOk);
   }
 
  private:
@@ -226,6 +227,7 @@ class AdmitRig final : public RigBase {
     const Status st = strip_.render(front_.frame(), front_.mutable_stats(), display_, nullptr);
     return st == Status::kOk ? front_.refused() : st;
   }
+  FrontEndRoutines routines_;  // (the front end keeps its address)
   FrontEnd front_;
   StripLoop<PF, kK> strip_;
 };

@@ -1,14 +1,30 @@
 // The classic OpenGL material table (as published with the "teapots" example and reproduced in
 // course notes): ambient, diffuse, specular RGB and shininess as a fraction of 128.
-#include "lineraster/core/scene/material.hpp"
+//
+// constexpr, in a header: an application that names its materials in constant expressions
+// (constexpr Material kGold = to_material(*find_material("gold"));) links neither the table
+// nor the lookup, only the Material it uses; a lookup at run time links the table as before.
+#pragma once
 
 #include <array>
+#include <cstdint>
+#include <span>
+#include <string_view>
 
 namespace lr {
-namespace {
+
+// An entry of the published table, values exactly as published, in units of 1e-8 (every
+// published value has at most 8 decimals). Shininess is published as a fraction of 128.
+struct NamedMaterial {
+  std::string_view name;
+  uint32_t ambient[3], diffuse[3], specular[3];
+  uint32_t shininess_fraction;  // x 1e-8; GL shininess = fraction * 128
+};
+
+namespace detail {
 
 // Values in 1e-8 units: 0.0215 -> 2150000.
-constexpr std::array<NamedMaterial, 24> kTable = {{
+inline constexpr std::array<NamedMaterial, 24> kMaterialTable = {{
     {"emerald",
      {2150000, 17450000, 2150000},
      {7568000, 61424000, 7568000},
@@ -127,40 +143,27 @@ constexpr std::array<NamedMaterial, 24> kTable = {{
      7812500},
 }};
 
-constexpr uint16_t c15(uint32_t e8) {
-  return static_cast<uint16_t>((uint64_t{e8} * Color15::kOne + 50000000u) / 100000000u);
-}
-
-constexpr char fold(char c) {
+constexpr char fold_material_name(char c) {
   return (c == '-' || c == ' ') ? '_' : c;
 }
 
-}  // namespace
+}  // namespace detail
 
-std::span<const NamedMaterial> material_table() {
-  return kTable;
+// The 24 materials of the classic table (emerald ... yellow_rubber); names use '_' for spaces.
+constexpr std::span<const NamedMaterial> material_table() {
+  return detail::kMaterialTable;
 }
 
-const NamedMaterial* find_material(std::string_view name) {
-  for (const NamedMaterial& m : kTable) {
+// Lookup by name (case-sensitive; '-' and ' ' are accepted for '_'); nullptr when unknown.
+constexpr const NamedMaterial* find_material(std::string_view name) {
+  for (const NamedMaterial& m : detail::kMaterialTable) {
     if (m.name.size() != name.size()) continue;
     bool same = true;
-    for (size_t i = 0; i < name.size() && same; ++i) same = fold(name[i]) == m.name[i];
+    for (size_t i = 0; i < name.size() && same; ++i)
+      same = detail::fold_material_name(name[i]) == m.name[i];
     if (same) return &m;
   }
   return nullptr;
-}
-
-Material to_material(const NamedMaterial& m) {
-  Material r;
-  r.ambient = {c15(m.ambient[0]), c15(m.ambient[1]), c15(m.ambient[2])};
-  r.diffuse = {c15(m.diffuse[0]), c15(m.diffuse[1]), c15(m.diffuse[2])};
-  r.specular = {c15(m.specular[0]), c15(m.specular[1]), c15(m.specular[2])};
-  r.emission = {0, 0, 0};
-  // shininess = fraction * 128, in Q8.8: fraction(1e-8) * 128 * 256 / 1e8.
-  r.shininess_q8 = static_cast<uint16_t>(
-      (uint64_t{m.shininess_fraction} * 128u * 256u + 50000000u) / 100000000u);
-  return r;
 }
 
 }  // namespace lr
