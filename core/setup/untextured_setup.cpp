@@ -8,6 +8,7 @@
 #include "lineraster/core/math/wide_mul.hpp"
 #include "lineraster/core/output/color.hpp"
 #include "lineraster/core/setup/row_edge.hpp"
+#include "lineraster/core/setup/small_plane.hpp"
 #include "lineraster/core/setup/triangle_rows.hpp"
 #include "lineraster/core/setup/triangle_setup.hpp"
 
@@ -198,6 +199,80 @@ namespace {
 
 }  // namespace
 
+namespace {
+
+// The planes of a small triangle (setup_untextured_triangle's, edges below 2^kSmallEdgeBits
+// subpixels, |d| < 2^29 twice its signed area, m the bit pattern of its largest edge
+// component) of an affine kind; false when its spread needs setup_untextured.
+[[gnu::noinline]] bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m,
+                                    const UntexturedInput& in, UntexturedKind kind,
+                                    ActiveTriangle& t) {
+  const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
+  const int lz = clz32(magnitude(d));
+  const int bm = 32 - clz32(m);
+  const int spread = 2 * bm - 32 + lz;
+  const int32_t z0 = static_cast<int32_t>(va.z >> 1);
+  const int32_t dz1 = static_cast<int32_t>(vb.z >> 1) - z0;
+  const int32_t dz2 = static_cast<int32_t>(vc.z >> 1) - z0;
+  const int zbits = in.depth ? bit_length(magnitude(dz1) | magnitude(dz2)) : 0;
+  if (spread > kFastMaxSpread || spread + zbits > kFastMaxDepthSpread) return false;
+  SmallBasis b;
+  {
+    const int32_t x0 = va.x, y0 = va.y;
+    const int32_t r = recip62(magnitude(d) << lz);
+    const int32_t rs = d < 0 ? -r : r;
+    const int sh = 31 - bm;
+    b.kx1 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(vc.y - y0) << sh), rs);
+    b.kx2 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(y0 - vb.y) << sh), rs);
+    b.ky1 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(x0 - vc.x) << sh), rs);
+    b.ky2 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(vb.x - x0) << sh), rs);
+    // The reference pixel (c0, r0): the one whose centre is within [-128, 127] subpixels of
+    // vertex 0 on both axes, so that the offset f fits f 2^24.
+    const int32_t c0 = (x0 - 1) >> kSubpixelBits, r0 = (y0 - 1) >> kSubpixelBits;
+    b.fx = (c0 * kSubpixel + kHalfPixel - x0) * (1 << 24);
+    b.fy = (r0 * kSubpixel + kHalfPixel - y0) * (1 << 24);
+    b.c0 = static_cast<uint32_t>(c0);
+    b.r0 = static_cast<uint32_t>(r0);
+  }
+  const int p = bm + lz - 21;  // 11 + bm - L
+  if (in.depth) {
+    const int zu = 30 - zbits;  // >= -1
+    const int32_t n1 = zu >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(dz1) << zu) : dz1 >> 1;
+    const int32_t n2 = zu >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(dz2) << zu) : dz2 >> 1;
+    small_plane(b, n1, n2, static_cast<uint32_t>(z0) + (1u << 14), plane_shift(p - zu), t.z);
+  }
+  if (kind == UntexturedKind::kFlat) {
+    t.c[0].base = in.flat_pixel;
+    return true;
+  }
+  const int32_t cr = va.color.r, cg = va.color.g, cbl = va.color.b;
+  if (kind == UntexturedKind::kLanes) {
+    // Lanes (kSmallEdgeBits <= kLanesMaxEdgeBits): red and blue in lane units from differences
+    // 31 d 2^10 (< 2^30) of 31 c (lanes 31 c / 16: p - 14); green as 63 c 2^11 + 2^25 from
+    // differences 63 d 2^9 of 63 c (2^(p + 2)).
+    const PlaneShift rb = plane_shift(p - 14);
+    Plane pr, pb;
+    small_plane(b, (vb.color.r - cr) * 31 * 1024, (vc.color.r - cr) * 31 * 1024,
+                ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024, rb, pr);
+    small_plane(b, (vb.color.b - cbl) * 31 * 1024, (vc.color.b - cbl) * 31 * 1024,
+                ((31 * static_cast<uint32_t>(cbl)) >> 4) + 1024, rb, pb);
+    t.c[0] = Plane{(pb.base << 16) + pr.base, (pb.gx << 16) + pr.gx, (pb.gy << 16) + pr.gy};
+    small_plane(b, (vb.color.g - cg) * 63 * 512, (vc.color.g - cg) * 63 * 512,
+                63 * 2048 * static_cast<uint32_t>(cg) + (1u << 25), plane_shift(p + 2), t.c[1]);
+    return true;
+  }
+  const PlaneShift c = plane_shift(p);
+  small_plane(b, (vb.color.r - cr) * 32768, (vc.color.r - cr) * 32768,
+              static_cast<uint32_t>(cr) << 15, c, t.c[0]);
+  small_plane(b, (vb.color.g - cg) * 32768, (vc.color.g - cg) * 32768,
+              static_cast<uint32_t>(cg) << 15, c, t.c[1]);
+  small_plane(b, (vb.color.b - cbl) * 32768, (vc.color.b - cbl) * 32768,
+              static_cast<uint32_t>(cbl) << 15, c, t.c[2]);
+  return true;
+}
+
+}  // namespace
+
 UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
                                              const UntexturedInput& in, ActiveTriangle& t) {
   const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
@@ -207,7 +282,7 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
   const int32_t first = std::max(((y0 - kHalfPixel) >> kSubpixelBits) + 1, w.first_min);
   const int32_t last = std::min((vc.y - kHalfPixel) >> kSubpixelBits, w.last_max);
   const uint32_t m = magnitude(e1x) | magnitude(e2x) | static_cast<uint32_t>(e2y);
-  if (m >= (1u << kSmallEdgeBits) || first > last) {
+  if (m >= (1u << kSmallEdgeBits) || first > last) [[unlikely]] {
     if (!setup_rows(v, first, last, w.width, t)) return {false, UntexturedKind::kFlat, false};
     const UntexturedSetup u = setup_untextured(v, in, t);
     return {true, u.kind, u.wide};
@@ -215,45 +290,46 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
   // Within 2^kSmallEdgeBits subpixels: every product below is below 2^30 (docs/numerics.md).
   const int32_t mid = std::clamp((vb.y - kHalfPixel) >> kSubpixelBits, first - 1, last);
   const int32_t d = e1x * e2y - e2x * e1y;  // twice the signed area
-  const int32_t cb = (std::min({x0, vb.x, vc.x}) - kHalfPixel) >> kSubpixelBits;
-  const int32_t t0 = first * kSubpixel + kHalfPixel - y0;
-  const int32_t xa = x0 - kHalfPixel - cb * kSubpixel, xb = xa + e1x;
-  const int32_t bdx = e2x - e1x, bdy = e2y - e1y;
-  const auto q = [](int32_t xr, int32_t dx, int32_t dy, int32_t tr) {
-    return static_cast<uint32_t>((xr * dy + dx * tr + dy * kSubpixel - 1) >> kSubpixelBits);
-  };
   const bool long_left = d > 0;
-  // The long, top and bottom edges' records (the bottom one at row mid + 1), relative to cb, or
-  // to column 0 when the triangle lies inside the columns [0, width] (below 2^26 here).
-  const auto top_dy = static_cast<uint32_t>(e1y > 0 ? e1y : 1);
-  const auto btm_dy = static_cast<uint32_t>(bdy > 0 ? bdy : 1);
-  uint32_t ql = q(xa, e2x, e2y, t0), qt = q(xa, e1x, e1y, t0);
-  uint32_t qb = q(xb, bdx, bdy, t0 - e1y + (mid + 1 - first) * kSubpixel);
-  const int32_t cmax = (std::max({x0, vb.x, vc.x}) - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
-  const bool inside = cb >= 0 && cmax <= w.width;
-  int32_t base = cb;
-  if (inside) {
-    const auto ucb = static_cast<uint32_t>(cb);
-    ql += ucb * static_cast<uint32_t>(e2y);
-    qt += ucb * top_dy;
-    qb += ucb * btm_dy;
-    base = 0;
-  }
-  // The record, left edge first.
-  t.edge_q[0] = long_left ? ql : qt;
-  t.edge_q[1] = long_left ? qt : ql;
-  t.edge_dx[0] = long_left ? e2x : e1x;
-  t.edge_dx[1] = long_left ? e1x : e2x;
-  t.edge_dy[0] = long_left ? static_cast<uint32_t>(e2y) : top_dy;
-  t.edge_dy[1] = long_left ? top_dy : static_cast<uint32_t>(e2y);
-  t.bottom = RowEdge{qb, bdx, btm_dy};
-  t.first_row = static_cast<int16_t>(first);
-  t.mid_row = static_cast<int16_t>(mid);
-  t.last_row = static_cast<int16_t>(last);
-  t.col_base = static_cast<int16_t>(base);
-  t.flags = static_cast<uint8_t>((long_left ? ActiveTriangle::kBottomRight : 0) |
-                                 (inside ? ActiveTriangle::kInside : 0));
   {
+    const int32_t cb = (std::min({x0, vb.x, vc.x}) - kHalfPixel) >> kSubpixelBits;
+    const int32_t cmax = (std::max({x0, vb.x, vc.x}) - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
+    const bool inside = cb >= 0 && cmax <= w.width;
+    // The long, top and bottom edges' records (the bottom one at row mid + 1), relative to cb,
+    // or to column 0 when the triangle lies inside the columns [0, width] (below 2^26 here):
+    // floor(((xa - 128) dy + dx (yc - ya) + 256 dy - 1) / 256) with xa - 128 + 256 relative to
+    // cb in xa.
+    const int32_t t0 = first * kSubpixel + kHalfPixel - y0;
+    const int32_t xa = x0 + kHalfPixel - cb * kSubpixel;
+    const auto top_dy = static_cast<uint32_t>(e1y > 0 ? e1y : 1);
+    const int32_t bdx = e2x - e1x, bdy = e2y - e1y;
+    const auto btm_dy = static_cast<uint32_t>(bdy > 0 ? bdy : 1);
+    const auto ucb = static_cast<uint32_t>(inside ? cb : 0);
+    const uint32_t ql =
+        static_cast<uint32_t>((xa * e2y + e2x * t0 - 1) >> kSubpixelBits) + ucb * uint32_t(e2y);
+    const uint32_t qt =
+        static_cast<uint32_t>((xa * e1y + e1x * t0 - 1) >> kSubpixelBits) + ucb * top_dy;
+    const uint32_t qb =
+        static_cast<uint32_t>(
+            ((xa + e1x) * bdy + bdx * (t0 - e1y + (mid + 1 - first) * kSubpixel) - 1) >>
+            kSubpixelBits) +
+        ucb * btm_dy;
+    const int32_t base = inside ? 0 : cb;
+    // The record, left edge first.
+    const int ll = long_left ? 0 : 1;
+    t.edge_q[ll] = ql;
+    t.edge_q[1 - ll] = qt;
+    t.edge_dx[ll] = e2x;
+    t.edge_dx[1 - ll] = e1x;
+    t.edge_dy[ll] = static_cast<uint32_t>(e2y);
+    t.edge_dy[1 - ll] = top_dy;
+    t.bottom = RowEdge{qb, bdx, btm_dy};
+    t.first_row = static_cast<int16_t>(first);
+    t.mid_row = static_cast<int16_t>(mid);
+    t.last_row = static_cast<int16_t>(last);
+    t.col_base = static_cast<int16_t>(base);
+    t.flags = static_cast<uint8_t>((long_left ? ActiveTriangle::kBottomRight : 0) |
+                                   (inside ? ActiveTriangle::kInside : 0));
     // A row with a pixel centre in the viewport's columns: the middle vertex's row (the top
     // edge's last), where the triangle is widest, or another.
     const int32_t rm = mid >= first ? mid : first;
@@ -265,7 +341,7 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
                                                  : qb / btm_dy);
     const int32_t left = long_left ? cl : cs, right = long_left ? cs : cl;
     if (!(left < w.width && right > 0 && left < right) &&
-        !later_rows_have_pixels(t, first, w.width))
+        !later_rows_have_pixels(t, first, w.width)) [[unlikely]]
       return {false, UntexturedKind::kFlat, false};
   }
 
@@ -273,7 +349,6 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
     t.c[0].base = in.flat_pixel;
     return {true, UntexturedKind::kFlat, false};
   }
-  // Planes: the short path's basis in 32 bits (as fast_basis, with |D| < 2^29).
   UntexturedKind kind = in.colors == ColorPlanes::kNone     ? UntexturedKind::kFlat
                         : in.colors == ColorPlanes::kAffine ? UntexturedKind::kAffine
                                                             : UntexturedKind::kPerspective;
@@ -282,87 +357,11 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
     if (wmax - wmin <= wmin >> in.affine.quick_shift || colors_within(v, wmin, wmax, in.affine))
       kind = UntexturedKind::kAffine;
   }
-  const uint32_t ad = magnitude(d);
-  const int lz = clz32(ad);
-  const int bm = 32 - clz32(m);
-  const int spread = 2 * bm - 32 + lz;
-  const int32_t z0 = static_cast<int32_t>(va.z >> 1);
-  const int32_t dz1 = static_cast<int32_t>(vb.z >> 1) - z0;
-  const int32_t dz2 = static_cast<int32_t>(vc.z >> 1) - z0;
-  const int zbits = in.depth ? bit_length(magnitude(dz1) | magnitude(dz2)) : 0;
-  if (kind == UntexturedKind::kPerspective || spread > kFastMaxSpread ||
-      spread + zbits > kFastMaxDepthSpread) {
+  if (kind == UntexturedKind::kAffine && in.lanes) kind = UntexturedKind::kLanes;
+  if (kind == UntexturedKind::kPerspective || !small_planes(v, d, m, in, kind, t)) [[unlikely]] {
     const UntexturedSetup u = setup_untextured(v, in, t);
     return {true, u.kind, u.wide};
   }
-  const int32_t r = recip62(ad << lz);
-  const int32_t rs = d < 0 ? -r : r;
-  const int sh = 31 - bm;
-  const int32_t kx1 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(e2y) << sh), rs);
-  const int32_t kx2 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(-e1y) << sh), rs);
-  const int32_t ky1 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(-e2x) << sh), rs);
-  const int32_t ky2 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(e1x) << sh), rs);
-  const int p = bm + lz - 21;  // 11 + bm - L
-  // The reference pixel (c0, r0): the one whose centre is within [-128, 127] subpixels of
-  // vertex 0 on both axes, so that the offset f fits f 2^24.
-  const int32_t c0 = (x0 - 1) >> kSubpixelBits, r0 = (y0 - 1) >> kSubpixelBits;
-  const int32_t fx = (c0 * kSubpixel + kHalfPixel - x0) * (1 << 24);
-  const int32_t fy = (r0 * kSubpixel + kHalfPixel - y0) * (1 << 24);
-  // The plane of normalised differences n1, n2 whose gradient is 2^s times the products'
-  // (rounded), a0 its value at vertex 0.
-  const auto plane = [&](int32_t n1, int32_t n2, uint32_t a0, int left, int right, Plane& pl) {
-    const int32_t gx = mla_hi(n1, kx1, mul_hi(n2, kx2));
-    const int32_t gy = mla_hi(n1, ky1, mul_hi(n2, ky2));
-    const int32_t off = mla_hi(gx, fx, mul_hi(gy, fy));  // (gx fx + gy fy) / 256
-    // Half of 2^right, 0 for no shift; in unsigned arithmetic, since right reaches 31 (the
-    // depth plane of a small triangle with (nearly) one depth): as int32, 2^31 >> 1 is -2^30,
-    // which made every scaled value -1 (gradients of -1 per pixel: depth 65535 drawn as 65534).
-    const auto half = static_cast<int32_t>((1u << right) >> 1);
-    const auto scale = [left, right, half](int32_t x) {
-      return static_cast<uint32_t>(
-          (static_cast<int32_t>(static_cast<uint32_t>(x) << left) + half) >> right);
-    };
-    const uint32_t ugx = scale(gx), ugy = scale(gy);
-    pl.gx = ugx;
-    pl.gy = ugy;
-    pl.base = a0 + scale(off) - ugx * static_cast<uint32_t>(c0) - ugy * static_cast<uint32_t>(r0);
-  };
-  // 2^s as a left and a right shift.
-  const auto left_of = [](int s) { return s > 0 ? s : 0; };
-  const auto right_of = [](int s) { return s >= 0 ? 0 : s < -31 ? 31 : -s; };
-  if (in.depth) {
-    const int zu = 30 - zbits;  // >= -1
-    const int32_t n1 = zu >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(dz1) << zu) : dz1 >> 1;
-    const int32_t n2 = zu >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(dz2) << zu) : dz2 >> 1;
-    plane(n1, n2, static_cast<uint32_t>(z0) + (1u << 14), left_of(p - zu), right_of(p - zu), t.z);
-  }
-  if (kind == UntexturedKind::kFlat) {
-    t.c[0].base = in.flat_pixel;
-    return {true, kind, false};
-  }
-  const int32_t cr = va.color.r, cg = va.color.g, cbl = va.color.b;
-  const int32_t r1 = vb.color.r - cr, r2 = vc.color.r - cr;
-  const int32_t g1 = vb.color.g - cg, g2 = vc.color.g - cg;
-  const int32_t b1 = vb.color.b - cbl, b2 = vc.color.b - cbl;
-  if (in.lanes) {
-    // Lanes (kSmallEdgeBits <= kLanesMaxEdgeBits): red and blue in lane units from differences
-    // 31 d 2^10 (< 2^30) of 31 c (lanes 31 c / 16: p - 14); green as 63 c 2^11 + 2^25 from
-    // differences 63 d 2^9 of 63 c (2^(p + 2)).
-    const int left = left_of(p - 14), right = right_of(p - 14);
-    Plane pr, pb;
-    plane(r1 * 31 * 1024, r2 * 31 * 1024, ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024, left,
-          right, pr);
-    plane(b1 * 31 * 1024, b2 * 31 * 1024, ((31 * static_cast<uint32_t>(cbl)) >> 4) + 1024, left,
-          right, pb);
-    plane(g1 * 63 * 512, g2 * 63 * 512, 63 * 2048 * static_cast<uint32_t>(cg) + (1u << 25),
-          left_of(p + 2), right_of(p + 2), t.c[1]);
-    t.c[0] = Plane{(pb.base << 16) + pr.base, (pb.gx << 16) + pr.gx, (pb.gy << 16) + pr.gy};
-    return {true, UntexturedKind::kLanes, false};
-  }
-  const int left = left_of(p), right = right_of(p);
-  plane(r1 * 32768, r2 * 32768, static_cast<uint32_t>(cr) << 15, left, right, t.c[0]);
-  plane(g1 * 32768, g2 * 32768, static_cast<uint32_t>(cg) << 15, left, right, t.c[1]);
-  plane(b1 * 32768, b2 * 32768, static_cast<uint32_t>(cbl) << 15, left, right, t.c[2]);
   return {true, kind, false};
 }
 
