@@ -3,8 +3,9 @@
 // differences: two high-word products per gradient, two for the offset of vertex 0 from its
 // reference pixel's centre, a per-triangle power of two, and the value at pixel (0, 0).
 //
-// (An Armv7E-M asm form of the plane step, 29 instructions, made the whole setup longer under
-// GCC 12: the basis and the shifts had to be in memory or registers at each block.)
+// The C form of every core; on Armv7E-M the lanes planes with depth are made by hand instead
+// (small_lanes_planes_by_hand, untextured_setup.cpp: the same integers; an asm block per plane
+// step alone made the setup longer, GCC 12 then kept the basis and the shifts in memory).
 #pragma once
 
 #include <cstdint>
@@ -39,8 +40,8 @@ constexpr PlaneShift plane_shift(int s) {
 // The plane whose normalised vertex differences are n1, n2 (vertex 1 and 2 minus vertex 0,
 // |n| <= 2^30) and whose value at vertex 0 is a0: gradients 2^s times the products' (rounded),
 // the base at pixel (0, 0) modulo 2^32.
-[[gnu::always_inline]] inline void small_plane(const SmallBasis& b, int32_t n1, int32_t n2, uint32_t a0,
-                                 const PlaneShift& sh, Plane& pl) {
+[[gnu::always_inline]] inline void small_plane(const SmallBasis& b, int32_t n1, int32_t n2,
+                                               uint32_t a0, const PlaneShift& sh, Plane& pl) {
   const int32_t gx = mla_hi(n1, b.kx1, mul_hi(n2, b.kx2));
   const int32_t gy = mla_hi(n1, b.ky1, mul_hi(n2, b.ky2));
   const int32_t off = mla_hi(gx, b.fx, mul_hi(gy, b.fy));  // (gx fx + gy fy) / 256

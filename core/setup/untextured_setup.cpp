@@ -1,6 +1,7 @@
 #include "lineraster/core/setup/untextured_setup.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <optional>
 
 #include "lineraster/core/math/fixed.hpp"
@@ -199,11 +200,6 @@ namespace {
 
 }  // namespace
 
-namespace {
-
-// The planes of a small triangle (setup_untextured_triangle's, edges below 2^kSmallEdgeBits
-// subpixels, |d| < 2^29 twice its signed area, m the bit pattern of its largest edge
-// component) of an affine kind; false when its spread needs setup_untextured.
 [[gnu::noinline]] bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m,
                                     const UntexturedInput& in, UntexturedKind kind,
                                     ActiveTriangle& t) {
@@ -271,7 +267,248 @@ namespace {
   return true;
 }
 
-}  // namespace
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP)
+// small_planes of a lanes triangle with depth by hand (Armv7E-M): GCC 12 kept the basis in
+// registers across the four planes and spilled around them. The one operand (in r7, left to the
+// compiler) points to a frame of 28 words: in it the vertices (0, 4, 8), d (12), m (16), the
+// triangle (20), and the result (24, 1 when the planes were made); then the basis at 28 (kx1,
+// kx2, ky1, ky2, fx, fy, c0, r0), p at 60 and the planes' inputs from 64 (n1, n2, a0 of each).
+// LR_SP_SHIFT: 2^s from s in SREG as left r3, right r4, half r5 (plane_shift).
+#define LR_SP_SHIFT(SREG) \
+  "usat   r3, #5, " SREG  \
+  "\n\t"                  \
+  "rsb    r4, " SREG      \
+  ", #0\n\t"              \
+  "usat   r4, #5, r4\n\t" \
+  "movs   r5, #1\n\t"     \
+  "lsl    r5, r5, r4\n\t" \
+  "lsr    r5, r5, #1\n\t"
+// LR_SP_PLANE: small_plane of n1 r0, n2 r1, a0 r2 with the shift in r3-r5: base r2, gx r8,
+// gy r9 (r0, r10, r11 scratch; r1, r3-r6, r12, lr kept).
+#define LR_SP_PLANE                  \
+  "ldrd   r10, r11, [%[f], #28]\n\t" \
+  "smmul  r8, r1, r11\n\t"           \
+  "smmla  r8, r0, r10, r8\n\t"       \
+  "ldrd   r10, r11, [%[f], #36]\n\t" \
+  "smmul  r9, r1, r11\n\t"           \
+  "smmla  r9, r0, r10, r9\n\t"       \
+  "ldrd   r10, r11, [%[f], #44]\n\t" \
+  "smmul  r0, r9, r11\n\t"           \
+  "smmla  r0, r8, r10, r0\n\t"       \
+  "lsl    r8, r8, r3\n\t"            \
+  "lsl    r9, r9, r3\n\t"            \
+  "lsl    r0, r0, r3\n\t"            \
+  "add    r8, r8, r5\n\t"            \
+  "add    r9, r9, r5\n\t"            \
+  "add    r0, r0, r5\n\t"            \
+  "asr    r8, r8, r4\n\t"            \
+  "asr    r9, r9, r4\n\t"            \
+  "asr    r0, r0, r4\n\t"            \
+  "add    r2, r2, r0\n\t"            \
+  "ldrd   r10, r11, [%[f], #52]\n\t" \
+  "mls    r2, r8, r10, r2\n\t"       \
+  "mls    r2, r9, r11, r2\n\t"
+bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
+                                ActiveTriangle& t) {
+  static_assert(offsetof(ScreenVertex, z) == 8 && offsetof(ScreenVertex, color) == 16 &&
+                offsetof(Color15, g) == 2 && offsetof(Color15, b) == 4);
+  static_assert(offsetof(ActiveTriangle, z) == 52 && offsetof(ActiveTriangle, c) == 64 &&
+                sizeof(Plane) == 12);
+  static_assert(kFastMaxSpread == 10 && kFastMaxDepthSpread == 35);
+  uint32_t frame[28];
+  frame[0] = reinterpret_cast<uintptr_t>(v[0]);
+  frame[1] = reinterpret_cast<uintptr_t>(v[1]);
+  frame[2] = reinterpret_cast<uintptr_t>(v[2]);
+  frame[3] = static_cast<uint32_t>(d);
+  frame[4] = m;
+  frame[5] = reinterpret_cast<uintptr_t>(&t);
+  uint32_t* const f = frame;
+  asm volatile(
+      // zbits, lz, bm, the spread tests
+      "ldm    %[f], {r0, r1, r2}\n\t"
+      "ldr    r3, [r0, #8]\n\t"
+      "ldr    r4, [r1, #8]\n\t"
+      "ldr    r5, [r2, #8]\n\t"
+      "lsr    r3, r3, #1\n\t"
+      "rsb    r4, r3, r4, lsr #1\n\t"
+      "rsb    r5, r3, r5, lsr #1\n\t"
+      "eor    r6, r4, r4, asr #31\n\t"
+      "sub    r6, r6, r4, asr #31\n\t"
+      "eor    r8, r5, r5, asr #31\n\t"
+      "sub    r8, r8, r5, asr #31\n\t"
+      "orr    r6, r6, r8\n\t"
+      "clz    r6, r6\n\t"
+      "rsb    r6, r6, #32\n\t"
+      "ldrd   r8, r9, [%[f], #12]\n\t"
+      "eor    r10, r8, r8, asr #31\n\t"
+      "sub    r10, r10, r8, asr #31\n\t"
+      "clz    r11, r10\n\t"
+      "clz    r12, r9\n\t"
+      "rsb    r12, r12, #32\n\t"
+      "add    lr, r11, r12, lsl #1\n\t"
+      "sub    lr, lr, #32\n\t"
+      "cmp    lr, #10\n\t"
+      "bgt    8f\n\t"
+      "add    lr, lr, r6\n\t"
+      "cmp    lr, #35\n\t"
+      "bgt    8f\n\t"
+      // p, and the depth plane's inputs (zu = 30 - zbits >= -1)
+      "add    r9, r11, r12\n\t"
+      "sub    r9, r9, #21\n\t"
+      "str    r9, [%[f], #60]\n\t"
+      "rsbs   r6, r6, #30\n\t"
+      "bmi    1f\n\t"
+      "lsl    r4, r4, r6\n\t"
+      "lsl    r5, r5, r6\n\t"
+      "b      2f\n\t"
+      "1:\n\t"
+      "asr    r4, r4, #1\n\t"
+      "asr    r5, r5, #1\n\t"
+      "2:\n\t"
+      "add    r3, r3, #16384\n\t"
+      "sub    r6, r9, r6\n\t"
+      "strd   r4, r5, [%[f], #64]\n\t"
+      "strd   r3, r6, [%[f], #72]\n\t"
+      // recip62(|d| << lz), signed like d
+      "lsl    r10, r10, r11\n\t"
+      "lsr    r3, r10, #16\n\t"
+      "mov    r4, #-1\n\t"
+      "udiv   r3, r4, r3\n\t"
+      "lsl    r3, r3, #14\n\t"
+      "umull  r4, r5, r10, r3\n\t"
+      "rsb    r5, r5, #0x40000000\n\t"
+      "lsl    r5, r5, #2\n\t"
+      "smmul  r5, r3, r5\n\t"
+      "adds   r3, r3, r5\n\t"
+      "it     vs\n\t"
+      "mvnvs  r3, #0x80000000\n\t"
+      "cmp    r8, #0\n\t"
+      "it     lt\n\t"
+      "neglt  r3, r3\n\t"
+      // the basis
+      "rsb    r12, r12, #31\n\t"
+      "ldrd   r4, r5, [r0]\n\t"
+      "ldrd   r6, r8, [r1]\n\t"
+      "ldrd   r9, r10, [r2]\n\t"
+      "sub    r11, r10, r5\n\t"
+      "lsl    r11, r11, r12\n\t"
+      "smmul  r11, r11, r3\n\t"
+      "sub    lr, r5, r8\n\t"
+      "lsl    lr, lr, r12\n\t"
+      "smmul  lr, lr, r3\n\t"
+      "strd   r11, lr, [%[f], #28]\n\t"
+      "sub    r11, r4, r9\n\t"
+      "lsl    r11, r11, r12\n\t"
+      "smmul  r11, r11, r3\n\t"
+      "sub    lr, r6, r4\n\t"
+      "lsl    lr, lr, r12\n\t"
+      "smmul  lr, lr, r3\n\t"
+      "strd   r11, lr, [%[f], #36]\n\t"
+      "sub    r6, r4, #1\n\t"
+      "asr    r6, r6, #8\n\t"
+      "lsl    r8, r6, #8\n\t"
+      "add    r8, r8, #128\n\t"
+      "sub    r8, r8, r4\n\t"
+      "lsl    r8, r8, #24\n\t"
+      "sub    r9, r5, #1\n\t"
+      "asr    r9, r9, #8\n\t"
+      "lsl    r10, r9, #8\n\t"
+      "add    r10, r10, #128\n\t"
+      "sub    r10, r10, r5\n\t"
+      "lsl    r10, r10, #24\n\t"
+      "strd   r8, r10, [%[f], #44]\n\t"
+      "strd   r6, r9, [%[f], #52]\n\t"
+      // the colour planes' inputs: red and blue 31 d 2^10 and (31 c >> 4) + 2^10, green
+      // 63 d 2^9 and 63 c 2^11 + 2^25
+      "movw   r6, #31744\n\t"
+      "ldrh   r3, [r0, #16]\n\t"
+      "ldrh   r4, [r1, #16]\n\t"
+      "ldrh   r5, [r2, #16]\n\t"
+      "sub    r4, r4, r3\n\t"
+      "sub    r5, r5, r3\n\t"
+      "mul    r4, r4, r6\n\t"
+      "mul    r5, r5, r6\n\t"
+      "rsb    r3, r3, r3, lsl #5\n\t"
+      "lsr    r3, r3, #4\n\t"
+      "add    r3, r3, #1024\n\t"
+      "strd   r4, r5, [%[f], #80]\n\t"
+      "str    r3, [%[f], #88]\n\t"
+      "ldrh   r3, [r0, #20]\n\t"
+      "ldrh   r4, [r1, #20]\n\t"
+      "ldrh   r5, [r2, #20]\n\t"
+      "sub    r4, r4, r3\n\t"
+      "sub    r5, r5, r3\n\t"
+      "mul    r4, r4, r6\n\t"
+      "mul    r5, r5, r6\n\t"
+      "rsb    r3, r3, r3, lsl #5\n\t"
+      "lsr    r3, r3, #4\n\t"
+      "add    r3, r3, #1024\n\t"
+      "strd   r4, r5, [%[f], #92]\n\t"
+      "str    r3, [%[f], #100]\n\t"
+      "movw   r6, #32256\n\t"
+      "ldrh   r3, [r0, #18]\n\t"
+      "ldrh   r4, [r1, #18]\n\t"
+      "ldrh   r5, [r2, #18]\n\t"
+      "sub    r4, r4, r3\n\t"
+      "sub    r5, r5, r3\n\t"
+      "mul    r4, r4, r6\n\t"
+      "mul    r5, r5, r6\n\t"
+      "mov    r6, #129024\n\t"
+      "mul    r3, r3, r6\n\t"
+      "add    r3, r3, #0x2000000\n\t"
+      "strd   r4, r5, [%[f], #104]\n\t"
+      // the depth plane
+      "mov    r12, r3\n\t"
+      "ldr    r6, [%[f], #76]\n\t" LR_SP_SHIFT("r6")
+      "ldrd   r0, r1, [%[f], #64]\n\t"
+      "ldr    r2, [%[f], #72]\n\t" LR_SP_PLANE
+      "ldr    r6, [%[f], #20]\n\t"
+      "add    r6, r6, #52\n\t"
+      "stm    r6, {r2, r8, r9}\n\t"
+      // green (its a0 in r12)
+      "ldr    r6, [%[f], #60]\n\t"
+      "add    r6, r6, #2\n\t" LR_SP_SHIFT("r6")
+      "ldrd   r0, r1, [%[f], #104]\n\t"
+      "mov    r2, r12\n\t" LR_SP_PLANE
+      "ldr    r6, [%[f], #20]\n\t"
+      "add    r6, r6, #76\n\t"
+      "stm    r6, {r2, r8, r9}\n\t"
+      // red, then blue, packed: blue in the high lanes
+      "ldr    r6, [%[f], #60]\n\t"
+      "sub    r6, r6, #14\n\t" LR_SP_SHIFT("r6")
+      "ldrd   r0, r1, [%[f], #80]\n\t"
+      "ldr    r2, [%[f], #88]\n\t" LR_SP_PLANE
+      "mov    r12, r2\n\t"
+      "mov    lr, r8\n\t"
+      "mov    r6, r9\n\t"
+      "ldrd   r0, r1, [%[f], #92]\n\t"
+      "ldr    r2, [%[f], #100]\n\t" LR_SP_PLANE
+      "add    r2, r12, r2, lsl #16\n\t"
+      "add    r8, lr, r8, lsl #16\n\t"
+      "add    r9, r6, r9, lsl #16\n\t"
+      "ldr    r6, [%[f], #20]\n\t"
+      "add    r6, r6, #64\n\t"
+      "stm    r6, {r2, r8, r9}\n\t"
+      "movs   r0, #1\n\t"
+      "b      9f\n\t"
+      "8:\n\t"
+      "movs   r0, #0\n\t"
+      "9:\n\t"
+      "str    r0, [%[f], #24]\n\t"
+      :
+      : [f] "r"(f)
+      : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc",
+        "memory");
+  return frame[6] != 0;
+}
+#undef LR_SP_PLANE
+#undef LR_SP_SHIFT
+#else
+bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*/, uint32_t /*m*/,
+                                ActiveTriangle& /*t*/) {
+  return false;
+}
+#endif
 
 UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
                                              const UntexturedInput& in, ActiveTriangle& t) {
@@ -358,7 +595,11 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
       kind = UntexturedKind::kAffine;
   }
   if (kind == UntexturedKind::kAffine && in.lanes) kind = UntexturedKind::kLanes;
-  if (kind == UntexturedKind::kPerspective || !small_planes(v, d, m, in, kind, t)) [[unlikely]] {
+  const bool made =
+      kind == UntexturedKind::kLanes && in.depth && kSmallPlanesByHand
+          ? small_lanes_planes_by_hand(v, d, m, t)
+          : kind != UntexturedKind::kPerspective && small_planes(v, d, m, in, kind, t);
+  if (!made) [[unlikely]] {
     const UntexturedSetup u = setup_untextured(v, in, t);
     return {true, u.kind, u.wide};
   }
