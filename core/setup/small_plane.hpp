@@ -40,8 +40,8 @@ constexpr PlaneShift plane_shift(int s) {
 // The plane whose normalised vertex differences are n1, n2 (vertex 1 and 2 minus vertex 0,
 // |n| <= 2^30) and whose value at vertex 0 is a0: gradients 2^s times the products' (rounded),
 // the base at pixel (0, 0) modulo 2^32.
-[[gnu::always_inline]] inline void small_plane(const SmallBasis& b, int32_t n1, int32_t n2,
-                                               uint32_t a0, const PlaneShift& sh, Plane& pl) {
+inline void small_plane(const SmallBasis& b, int32_t n1, int32_t n2, uint32_t a0,
+                        const PlaneShift& sh, Plane& pl) {
   const int32_t gx = mla_hi(n1, b.kx1, mul_hi(n2, b.kx2));
   const int32_t gy = mla_hi(n1, b.ky1, mul_hi(n2, b.ky2));
   const int32_t off = mla_hi(gx, b.fx, mul_hi(gy, b.fy));  // (gx fx + gy fy) / 256

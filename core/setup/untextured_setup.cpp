@@ -267,7 +267,7 @@ namespace {
   return true;
 }
 
-#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP)
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
 // small_planes of a lanes triangle with depth by hand (Armv7E-M): GCC 12 kept the basis in
 // registers across the four planes and spilled around them. The one operand (in r7, left to the
 // compiler) points to a frame of 28 words: in it the vertices (0, 4, 8), d (12), m (16), the

@@ -122,8 +122,8 @@ Plane fast_plane(const FastBasis& b, const int32_t a[3], int u);
 bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const UntexturedInput& in,
                   UntexturedKind kind, ActiveTriangle& t);
 // small_planes' integers for kLanes with depth, by hand where the core has SMMUL/SMMLA
-// (kSmallPlanesByHand; Armv7E-M); elsewhere it makes nothing and returns false.
-#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP)
+// (kSmallPlanesByHand: Armv7E-M, not at -Os); elsewhere it makes nothing and returns false.
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
 inline constexpr bool kSmallPlanesByHand = true;
 #else
 inline constexpr bool kSmallPlanesByHand = false;
