@@ -510,77 +510,334 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*
 }
 #endif
 
-UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
-                                             const UntexturedInput& in, ActiveTriangle& t) {
+namespace {
+// small_rows: inlined into setup_untextured_triangle at -Os (one copy in the image), a call
+// elsewhere (GCC 12 spilled more on Armv6-M with it inlined).
+#if defined(__OPTIMIZE_SIZE__)
+#define LR_SMALL_ROWS_INLINE [[gnu::always_inline]] inline
+#else
+#define LR_SMALL_ROWS_INLINE [[gnu::noinline]]
+#endif
+LR_SMALL_ROWS_INLINE SmallRows small_rows_c(const ScreenVertex* const v[3], const RowWindow& w,
+                                            ActiveTriangle& t) {
   const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
   const int32_t x0 = va.x, y0 = va.y;
   const int32_t e1x = vb.x - x0, e1y = vb.y - y0, e2x = vc.x - x0, e2y = vc.y - y0;
   // Rows (|y| < 2^22: the arithmetic shift is the floor).
   const int32_t first = std::max(((y0 - kHalfPixel) >> kSubpixelBits) + 1, w.first_min);
   const int32_t last = std::min((vc.y - kHalfPixel) >> kSubpixelBits, w.last_max);
-  const uint32_t m = magnitude(e1x) | magnitude(e2x) | static_cast<uint32_t>(e2y);
-  if (m >= (1u << kSmallEdgeBits) || first > last) [[unlikely]] {
+  SmallRows out{};
+  out.m = magnitude(e1x) | magnitude(e2x) | static_cast<uint32_t>(e2y);
+  if (out.m >= (1u << kSmallEdgeBits) || first > last) return out;
+  // Within 2^kSmallEdgeBits subpixels: every product below is below 2^30 (docs/numerics.md).
+  const int32_t mid = std::clamp((vb.y - kHalfPixel) >> kSubpixelBits, first - 1, last);
+  const int32_t d = e1x * e2y - e2x * e1y;  // twice the signed area
+  out.d = d;
+  const bool long_left = d > 0;
+  const int32_t cb = (x0 + std::min({int32_t{0}, e1x, e2x}) - kHalfPixel) >> kSubpixelBits;
+  const int32_t cmax =
+      (x0 + std::max({int32_t{0}, e1x, e2x}) - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
+  const bool inside = cb >= 0 && cmax <= w.width;
+  // The long, top and bottom edges' records (the bottom one at row mid + 1), relative to cb, or
+  // to column 0 when the triangle lies inside the columns [0, width] (below 2^26 here):
+  // floor(((xa - 128) dy + dx (yc - ya) + 256 dy - 1) / 256) with xa - 128 + 256 relative to cb
+  // in xa.
+  const int32_t t0 = first * kSubpixel + kHalfPixel - y0;
+  const int32_t xa = x0 + kHalfPixel - cb * kSubpixel;
+  const auto top_dy = static_cast<uint32_t>(e1y > 0 ? e1y : 1);
+  const int32_t bdx = e2x - e1x, bdy = e2y - e1y;
+  const auto btm_dy = static_cast<uint32_t>(bdy > 0 ? bdy : 1);
+  const auto ucb = static_cast<uint32_t>(inside ? cb : 0);
+  const uint32_t ql =
+      static_cast<uint32_t>((xa * e2y + e2x * t0 - 1) >> kSubpixelBits) + ucb * uint32_t(e2y);
+  const uint32_t qt =
+      static_cast<uint32_t>((xa * e1y + e1x * t0 - 1) >> kSubpixelBits) + ucb * top_dy;
+  const uint32_t qb =
+      static_cast<uint32_t>(
+          ((xa + e1x) * bdy + bdx * (t0 - e1y + (mid + 1 - first) * kSubpixel) - 1) >>
+          kSubpixelBits) +
+      ucb * btm_dy;
+  const int32_t base = inside ? 0 : cb;
+  // The record, left edge first.
+  const int ll = long_left ? 0 : 1;
+  t.edge_q[ll] = ql;
+  t.edge_q[1 - ll] = qt;
+  t.edge_dx[ll] = e2x;
+  t.edge_dx[1 - ll] = e1x;
+  t.edge_dy[ll] = static_cast<uint32_t>(e2y);
+  t.edge_dy[1 - ll] = top_dy;
+  t.bottom = RowEdge{qb, bdx, btm_dy};
+  t.first_row = static_cast<int16_t>(first);
+  t.mid_row = static_cast<int16_t>(mid);
+  t.last_row = static_cast<int16_t>(last);
+  t.col_base = static_cast<int16_t>(base);
+  t.flags = static_cast<uint8_t>((long_left ? ActiveTriangle::kBottomRight : 0) |
+                                 (inside ? ActiveTriangle::kInside : 0));
+  // A row with a pixel centre in the viewport's columns: the middle vertex's row (the top
+  // edge's last), where the triangle is widest, or another.
+  const int32_t rm = mid >= first ? mid : first;
+  const auto k = static_cast<uint32_t>(rm - first);
+  const int32_t cl = base + static_cast<int32_t>((ql + static_cast<uint32_t>(e2x) * k) /
+                                                 static_cast<uint32_t>(e2y));
+  const int32_t cs =
+      base + static_cast<int32_t>(mid >= first ? (qt + static_cast<uint32_t>(e1x) * k) / top_dy
+                                               : qb / btm_dy);
+  const int32_t left = long_left ? cl : cs, right = long_left ? cs : cl;
+  out.result =
+      left < w.width && right > 0 && left < right ? SmallRows::kPixels : SmallRows::kLaterRows;
+  return out;
+}
+}  // namespace
+
+#undef LR_SMALL_ROWS_INLINE
+
+SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveTriangle& t) {
+  return small_rows_c(v, w, t);
+}
+
+#if defined(__thumb2__) && defined(__ARM_FEATURE_IDIV) && !defined(__OPTIMIZE_SIZE__)
+// small_rows by hand (Armv7-M with a divider): GCC 12 spilled a quarter of it. The one operand
+// (r7) points to a frame of 10 words: the vertices (0, 4, 8), the window (12), the triangle
+// (16), then d (20), m (24), the result (28), the column base (32) and the width (36).
+SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
+                             ActiveTriangle& t) {
+  static_assert(offsetof(RowWindow, first_min) == 0 && offsetof(RowWindow, last_max) == 4 &&
+                offsetof(RowWindow, width) == 8);
+  static_assert(offsetof(ActiveTriangle, edge_q) == 0 && offsetof(ActiveTriangle, edge_dx) == 8 &&
+                offsetof(ActiveTriangle, edge_dy) == 16 && offsetof(ActiveTriangle, bottom) == 24 &&
+                offsetof(ActiveTriangle, first_row) == 36 &&
+                offsetof(ActiveTriangle, mid_row) == 38 &&
+                offsetof(ActiveTriangle, last_row) == 40 &&
+                offsetof(ActiveTriangle, col_base) == 42 && offsetof(ActiveTriangle, flags) == 47);
+  static_assert(ActiveTriangle::kBottomRight == 1 && ActiveTriangle::kInside == 4 &&
+                kSmallEdgeBits == 14 && kSubpixelBits == 8);
+  static_assert(SmallRows::kSlow == 0 && SmallRows::kPixels == 1 && SmallRows::kLaterRows == 2);
+  uint32_t frame[10];
+  frame[0] = reinterpret_cast<uintptr_t>(v[0]);
+  frame[1] = reinterpret_cast<uintptr_t>(v[1]);
+  frame[2] = reinterpret_cast<uintptr_t>(v[2]);
+  frame[3] = reinterpret_cast<uintptr_t>(&w);
+  frame[4] = reinterpret_cast<uintptr_t>(&t);
+  uint32_t* const f = frame;
+  asm volatile(
+      "ldm    %[f], {r0, r1, r2}\n\t"
+      "ldrd   r3, r4, [r0]\n\t"
+      "ldrd   r5, r6, [r1]\n\t"
+      "ldrd   r8, r9, [r2]\n\t"
+      "ldr    lr, [%[f], #12]\n\t"
+      // first r10, last r11
+      "sub    r10, r4, #128\n\t"
+      "asr    r10, r10, #8\n\t"
+      "add    r10, r10, #1\n\t"
+      "ldr    r12, [lr]\n\t"
+      "cmp    r10, r12\n\t"
+      "it     lt\n\t"
+      "movlt  r10, r12\n\t"
+      "sub    r11, r9, #128\n\t"
+      "asr    r11, r11, #8\n\t"
+      "ldr    r12, [lr, #4]\n\t"
+      "cmp    r11, r12\n\t"
+      "it     gt\n\t"
+      "movgt  r11, r12\n\t"
+      // e1x r5, e1y r6, e2x r8, e2y r9; m
+      "sub    r5, r5, r3\n\t"
+      "sub    r6, r6, r4\n\t"
+      "sub    r8, r8, r3\n\t"
+      "sub    r9, r9, r4\n\t"
+      "eor    r12, r5, r5, asr #31\n\t"
+      "sub    r12, r12, r5, asr #31\n\t"
+      "eor    r0, r8, r8, asr #31\n\t"
+      "sub    r0, r0, r8, asr #31\n\t"
+      "orr    r12, r12, r0\n\t"
+      "orr    r12, r12, r9\n\t"
+      "str    r12, [%[f], #24]\n\t"
+      "cmp    r12, #16384\n\t"
+      "bhs    8f\n\t"
+      "cmp    r10, r11\n\t"
+      "bgt    8f\n\t"
+      // mid r0 = clamp((yb - 128) >> 8, first - 1, last); the rows
+      "add    r0, r4, r6\n\t"
+      "sub    r0, r0, #128\n\t"
+      "asr    r0, r0, #8\n\t"
+      "sub    r1, r10, #1\n\t"
+      "cmp    r0, r1\n\t"
+      "it     lt\n\t"
+      "movlt  r0, r1\n\t"
+      "cmp    r0, r11\n\t"
+      "it     gt\n\t"
+      "movgt  r0, r11\n\t"
+      "ldr    r1, [%[f], #16]\n\t"
+      "strh   r10, [r1, #36]\n\t"
+      "strh   r0, [r1, #38]\n\t"
+      "strh   r11, [r1, #40]\n\t"
+      // cb r11, cmax r12, xa r3 = x0 + 128 - 256 cb, the width in lr
+      "movs   r11, #0\n\t"
+      "cmp    r5, r11\n\t"
+      "it     lt\n\t"
+      "movlt  r11, r5\n\t"
+      "cmp    r8, r11\n\t"
+      "it     lt\n\t"
+      "movlt  r11, r8\n\t"
+      "movs   r12, #0\n\t"
+      "cmp    r5, r12\n\t"
+      "it     gt\n\t"
+      "movgt  r12, r5\n\t"
+      "cmp    r8, r12\n\t"
+      "it     gt\n\t"
+      "movgt  r12, r8\n\t"
+      "add    r11, r11, r3\n\t"
+      "sub    r11, r11, #128\n\t"
+      "asr    r11, r11, #8\n\t"
+      "add    r12, r12, r3\n\t"
+      "add    r12, r12, #127\n\t"
+      "asr    r12, r12, #8\n\t"
+      "add    r3, r3, #128\n\t"
+      "sub    r3, r3, r11, lsl #8\n\t"
+      "ldr    lr, [lr, #8]\n\t"
+      "str    lr, [%[f], #36]\n\t"
+      // inside: ucb r12 = cb, base 0, flags 4; else ucb 0, base cb, flags 0 (in r2)
+      "cmp    r11, #0\n\t"
+      "blt    1f\n\t"
+      "cmp    r12, lr\n\t"
+      "bgt    1f\n\t"
+      "mov    r12, r11\n\t"
+      "movs   r11, #0\n\t"
+      "movs   r2, #4\n\t"
+      "b      2f\n\t"
+      "1:\n\t"
+      "movs   r12, #0\n\t"
+      "movs   r2, #0\n\t"
+      "2:\n\t"
+      "strh   r11, [r1, #42]\n\t"
+      "str    r11, [%[f], #32]\n\t"
+      // d, the flags (kBottomRight when d > 0)
+      "mul    r11, r5, r9\n\t"
+      "mls    r11, r8, r6, r11\n\t"
+      "str    r11, [%[f], #20]\n\t"
+      "cmp    r11, #0\n\t"
+      "it     gt\n\t"
+      "orrgt  r2, r2, #1\n\t"
+      "strb   r2, [r1, #47]\n\t"
+      // t0 r4 = 256 first + 128 - y0; the bottom edge at row mid + 1
+      "lsl    r11, r10, #8\n\t"
+      "add    r11, r11, #128\n\t"
+      "sub    r4, r11, r4\n\t"
+      "sub    r11, r0, r10\n\t"
+      "add    r11, r11, #1\n\t"
+      "lsl    r11, r11, #8\n\t"
+      "add    r11, r11, r4\n\t"
+      "sub    r11, r11, r6\n\t"
+      "sub    lr, r8, r5\n\t"
+      "mul    r11, lr, r11\n\t"
+      "str    lr, [r1, #28]\n\t"
+      "sub    lr, r9, r6\n\t"
+      "add    r0, r3, r5\n\t"
+      "mla    r11, r0, lr, r11\n\t"
+      "sub    r11, r11, #1\n\t"
+      "asr    r11, r11, #8\n\t"
+      "cmp    lr, #1\n\t"
+      "it     lt\n\t"
+      "movlt  lr, #1\n\t"
+      "mla    r11, r12, lr, r11\n\t"
+      "str    r11, [r1, #24]\n\t"
+      "str    lr, [r1, #32]\n\t"
+      // the long edge ql r11, the top edge qt lr (top_dy in r6)
+      "mul    r11, r3, r9\n\t"
+      "mla    r11, r8, r4, r11\n\t"
+      "sub    r11, r11, #1\n\t"
+      "asr    r11, r11, #8\n\t"
+      "mla    r11, r12, r9, r11\n\t"
+      "mul    lr, r3, r6\n\t"
+      "mla    lr, r5, r4, lr\n\t"
+      "sub    lr, lr, #1\n\t"
+      "asr    lr, lr, #8\n\t"
+      "cmp    r6, #1\n\t"
+      "it     lt\n\t"
+      "movlt  r6, #1\n\t"
+      "mla    lr, r12, r6, lr\n\t"
+      // the record, left edge first
+      "tst    r2, #1\n\t"
+      "beq    3f\n\t"
+      "strd   r11, lr, [r1]\n\t"
+      "strd   r8, r5, [r1, #8]\n\t"
+      "strd   r9, r6, [r1, #16]\n\t"
+      "b      4f\n\t"
+      "3:\n\t"
+      "strd   lr, r11, [r1]\n\t"
+      "strd   r5, r8, [r1, #8]\n\t"
+      "strd   r6, r9, [r1, #16]\n\t"
+      "4:\n\t"
+      // the columns at the row max(mid, first): long cl r11, short cs lr
+      "ldrsh  r0, [r1, #38]\n\t"
+      "subs   r3, r0, r10\n\t"
+      "bge    5f\n\t"
+      "udiv   r11, r11, r9\n\t"
+      "ldr    r4, [r1, #24]\n\t"
+      "ldr    r12, [r1, #32]\n\t"
+      "udiv   lr, r4, r12\n\t"
+      "b      6f\n\t"
+      "5:\n\t"
+      "mla    r11, r8, r3, r11\n\t"
+      "udiv   r11, r11, r9\n\t"
+      "mla    lr, r5, r3, lr\n\t"
+      "udiv   lr, lr, r6\n\t"
+      "6:\n\t"
+      "ldrd   r0, r12, [%[f], #32]\n\t"
+      "add    r11, r11, r0\n\t"
+      "add    lr, lr, r0\n\t"
+      "tst    r2, #1\n\t"
+      "ite    ne\n\t"
+      "movne  r3, r11\n\t"
+      "moveq  r3, lr\n\t"
+      "ite    ne\n\t"
+      "movne  r4, lr\n\t"
+      "moveq  r4, r11\n\t"
+      "movs   r0, #2\n\t"
+      "cmp    r3, r12\n\t"
+      "bge    9f\n\t"
+      "cmp    r4, #0\n\t"
+      "ble    9f\n\t"
+      "cmp    r3, r4\n\t"
+      "bge    9f\n\t"
+      "movs   r0, #1\n\t"
+      "b      9f\n\t"
+      "8:\n\t"
+      "movs   r0, #0\n\t"
+      "9:\n\t"
+      "str    r0, [%[f], #28]\n\t"
+      :
+      : [f] "r"(f)
+      : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc",
+        "memory");
+  SmallRows out;
+  out.d = static_cast<int32_t>(frame[5]);
+  out.m = frame[6];
+  out.result = static_cast<uint8_t>(frame[7]);
+  return out;
+}
+#else
+SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
+                             ActiveTriangle& t) {
+  return small_rows_c(v, w, t);
+}
+#endif
+
+UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
+                                             const UntexturedInput& in, ActiveTriangle& t) {
+  const SmallRows rows = kSmallRowsByHand ? small_rows_by_hand(v, w, t) : small_rows_c(v, w, t);
+  if (rows.result == SmallRows::kSlow) [[unlikely]] {
+    const int32_t first = std::max(first_row_below(v[0]->y), w.first_min);
+    const int32_t last = std::min(last_row_at_or_above(v[2]->y), w.last_max);
     if (!setup_rows(v, first, last, w.width, t)) return {false, UntexturedKind::kFlat, false};
     const UntexturedSetup u = setup_untextured(v, in, t);
     return {true, u.kind, u.wide};
   }
-  // Within 2^kSmallEdgeBits subpixels: every product below is below 2^30 (docs/numerics.md).
-  const int32_t mid = std::clamp((vb.y - kHalfPixel) >> kSubpixelBits, first - 1, last);
-  const int32_t d = e1x * e2y - e2x * e1y;  // twice the signed area
-  const bool long_left = d > 0;
-  {
-    const int32_t cb = (std::min({x0, vb.x, vc.x}) - kHalfPixel) >> kSubpixelBits;
-    const int32_t cmax = (std::max({x0, vb.x, vc.x}) - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
-    const bool inside = cb >= 0 && cmax <= w.width;
-    // The long, top and bottom edges' records (the bottom one at row mid + 1), relative to cb,
-    // or to column 0 when the triangle lies inside the columns [0, width] (below 2^26 here):
-    // floor(((xa - 128) dy + dx (yc - ya) + 256 dy - 1) / 256) with xa - 128 + 256 relative to
-    // cb in xa.
-    const int32_t t0 = first * kSubpixel + kHalfPixel - y0;
-    const int32_t xa = x0 + kHalfPixel - cb * kSubpixel;
-    const auto top_dy = static_cast<uint32_t>(e1y > 0 ? e1y : 1);
-    const int32_t bdx = e2x - e1x, bdy = e2y - e1y;
-    const auto btm_dy = static_cast<uint32_t>(bdy > 0 ? bdy : 1);
-    const auto ucb = static_cast<uint32_t>(inside ? cb : 0);
-    const uint32_t ql =
-        static_cast<uint32_t>((xa * e2y + e2x * t0 - 1) >> kSubpixelBits) + ucb * uint32_t(e2y);
-    const uint32_t qt =
-        static_cast<uint32_t>((xa * e1y + e1x * t0 - 1) >> kSubpixelBits) + ucb * top_dy;
-    const uint32_t qb =
-        static_cast<uint32_t>(
-            ((xa + e1x) * bdy + bdx * (t0 - e1y + (mid + 1 - first) * kSubpixel) - 1) >>
-            kSubpixelBits) +
-        ucb * btm_dy;
-    const int32_t base = inside ? 0 : cb;
-    // The record, left edge first.
-    const int ll = long_left ? 0 : 1;
-    t.edge_q[ll] = ql;
-    t.edge_q[1 - ll] = qt;
-    t.edge_dx[ll] = e2x;
-    t.edge_dx[1 - ll] = e1x;
-    t.edge_dy[ll] = static_cast<uint32_t>(e2y);
-    t.edge_dy[1 - ll] = top_dy;
-    t.bottom = RowEdge{qb, bdx, btm_dy};
-    t.first_row = static_cast<int16_t>(first);
-    t.mid_row = static_cast<int16_t>(mid);
-    t.last_row = static_cast<int16_t>(last);
-    t.col_base = static_cast<int16_t>(base);
-    t.flags = static_cast<uint8_t>((long_left ? ActiveTriangle::kBottomRight : 0) |
-                                   (inside ? ActiveTriangle::kInside : 0));
-    // A row with a pixel centre in the viewport's columns: the middle vertex's row (the top
-    // edge's last), where the triangle is widest, or another.
-    const int32_t rm = mid >= first ? mid : first;
-    const auto k = static_cast<uint32_t>(rm - first);
-    const int32_t cl = base + static_cast<int32_t>((ql + static_cast<uint32_t>(e2x) * k) /
-                                                   static_cast<uint32_t>(e2y));
-    const int32_t cs =
-        base + static_cast<int32_t>(mid >= first ? (qt + static_cast<uint32_t>(e1x) * k) / top_dy
-                                                 : qb / btm_dy);
-    const int32_t left = long_left ? cl : cs, right = long_left ? cs : cl;
-    if (!(left < w.width && right > 0 && left < right) &&
-        !later_rows_have_pixels(t, first, w.width)) [[unlikely]]
-      return {false, UntexturedKind::kFlat, false};
-  }
+  if (rows.result == SmallRows::kLaterRows && !later_rows_have_pixels(t, t.first_row, w.width))
+      [[unlikely]]
+    return {false, UntexturedKind::kFlat, false};
+  const int32_t d = rows.d;
+  const uint32_t m = rows.m;
+  const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
 
   if (in.colors == ColorPlanes::kNone && !in.depth) {  // no plane at all
     t.c[0].base = in.flat_pixel;

@@ -246,4 +246,50 @@ inline Tally run_small_planes(uint32_t cases, uint32_t seed = 777u) {
   return tally;
 }
 
+// Runs `cases` random triangles of random_triangle's kinds (small ones take the 32-bit path,
+// the others are refused as kSlow) in random windows through small_rows and small_rows_by_hand:
+// the same answer, d and m, and the same rows, edges and flags. visits counts the refused ones.
+inline Tally run_small_rows(uint32_t cases, uint32_t seed = 4242u) {
+  Random rng;
+  rng.s = seed;
+  Tally tally;
+  for (uint32_t c = 0; c < cases; ++c) {
+    ScreenVertex v[3];
+    random_triangle(rng, v);
+    // A third on the half-pixel lattice plus one subpixel or none: centres on edges, columns
+    // and rows on their bounds.
+    if (rng.in(0, 2) == 0) {
+      const int32_t nudge = rng.in(-1, 1);
+      for (ScreenVertex& x : v) {
+        x.x = (x.x & ~(kHalfPixel - 1)) + nudge;
+        x.y = (x.y & ~(kHalfPixel - 1)) + nudge;
+      }
+    }
+    if (signed_area2(v[0], v[1], v[2]) == 0) continue;
+    const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
+    sort_by_y(s);
+    const int32_t first_min = rng.in(-4, kHeight);
+    const RowWindow window{first_min, kHeight - 1, kWidth};
+    ActiveTriangle a, b;
+    const SmallRows ra = small_rows(s, window, a);
+    const SmallRows rb = small_rows_by_hand(s, window, b);
+    bool same = ra.result == rb.result && ra.m == rb.m;
+    if (same && ra.result != SmallRows::kSlow) {
+      same = ra.d == rb.d && a.first_row == b.first_row && a.mid_row == b.mid_row &&
+             a.last_row == b.last_row && a.col_base == b.col_base && a.flags == b.flags &&
+             a.bottom.q == b.bottom.q && a.bottom.dx == b.bottom.dx && a.bottom.dy == b.bottom.dy;
+      for (int i = 0; i < 2; ++i)
+        same = same && a.edge_q[i] == b.edge_q[i] && a.edge_dx[i] == b.edge_dx[i] &&
+               a.edge_dy[i] == b.edge_dy[i];
+    }
+    if (!same) ++tally.differing;
+    if (ra.result == SmallRows::kSlow)
+      ++tally.visits;
+    else
+      ++tally.triangles;
+    if (ra.result == SmallRows::kLaterRows) ++tally.pixels;  // the sliver test's second step
+  }
+  return tally;
+}
+
 }  // namespace lr::fw::lanes
