@@ -200,9 +200,17 @@ namespace {
 
 }  // namespace
 
-[[gnu::noinline]] bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m,
-                                    const UntexturedInput& in, UntexturedKind kind,
-                                    ActiveTriangle& t) {
+namespace {
+// small_planes: a call where the lanes planes are made by hand (the other kinds are rare
+// there), inlined into setup_untextured_triangle elsewhere (fewer spills on Armv6-M).
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
+#define LR_SMALL_PLANES_INLINE [[gnu::noinline]]
+#else
+#define LR_SMALL_PLANES_INLINE [[gnu::always_inline]] inline
+#endif
+LR_SMALL_PLANES_INLINE bool small_planes_c(const ScreenVertex* const v[3], int32_t d, uint32_t m,
+                                           const UntexturedInput& in, UntexturedKind kind,
+                                           ActiveTriangle& t) {
   const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
   const int lz = clz32(magnitude(d));
   const int bm = 32 - clz32(m);
@@ -265,6 +273,13 @@ namespace {
   small_plane(b, (vb.color.b - cbl) * 32768, (vc.color.b - cbl) * 32768,
               static_cast<uint32_t>(cbl) << 15, c, t.c[2]);
   return true;
+}
+#undef LR_SMALL_PLANES_INLINE
+}  // namespace
+
+bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const UntexturedInput& in,
+                  UntexturedKind kind, ActiveTriangle& t) {
+  return small_planes_c(v, d, m, in, kind, t);
 }
 
 #if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
@@ -511,15 +526,10 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*
 #endif
 
 namespace {
-// small_rows: inlined into setup_untextured_triangle at -Os (one copy in the image), a call
-// elsewhere (GCC 12 spilled more on Armv6-M with it inlined).
-#if defined(__OPTIMIZE_SIZE__)
-#define LR_SMALL_ROWS_INLINE [[gnu::always_inline]] inline
-#else
-#define LR_SMALL_ROWS_INLINE [[gnu::noinline]]
-#endif
-LR_SMALL_ROWS_INLINE SmallRows small_rows_c(const ScreenVertex* const v[3], const RowWindow& w,
-                                            ActiveTriangle& t) {
+// small_rows, inlined into setup_untextured_triangle (one copy in an image without
+// small_rows_by_hand).
+[[gnu::always_inline]] inline SmallRows small_rows_c(const ScreenVertex* const v[3],
+                                                     const RowWindow& w, ActiveTriangle& t) {
   const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
   const int32_t x0 = va.x, y0 = va.y;
   const int32_t e1x = vb.x - x0, e1y = vb.y - y0, e2x = vc.x - x0, e2y = vc.y - y0;
@@ -588,8 +598,6 @@ LR_SMALL_ROWS_INLINE SmallRows small_rows_c(const ScreenVertex* const v[3], cons
   return out;
 }
 }  // namespace
-
-#undef LR_SMALL_ROWS_INLINE
 
 SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveTriangle& t) {
   return small_rows_c(v, w, t);
@@ -855,7 +863,7 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
   const bool made =
       kind == UntexturedKind::kLanes && in.depth && kSmallPlanesByHand
           ? small_lanes_planes_by_hand(v, d, m, t)
-          : kind != UntexturedKind::kPerspective && small_planes(v, d, m, in, kind, t);
+          : kind != UntexturedKind::kPerspective && small_planes_c(v, d, m, in, kind, t);
   if (!made) [[unlikely]] {
     const UntexturedSetup u = setup_untextured(v, in, t);
     return {true, u.kind, u.wide};
