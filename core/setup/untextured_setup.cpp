@@ -1,6 +1,7 @@
 #include "lineraster/core/setup/untextured_setup.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <optional>
 
 #include "lineraster/core/math/fixed.hpp"
@@ -8,6 +9,7 @@
 #include "lineraster/core/math/wide_mul.hpp"
 #include "lineraster/core/output/color.hpp"
 #include "lineraster/core/setup/row_edge.hpp"
+#include "lineraster/core/setup/small_plane.hpp"
 #include "lineraster/core/setup/triangle_rows.hpp"
 #include "lineraster/core/setup/triangle_setup.hpp"
 
@@ -198,54 +200,382 @@ namespace {
 
 }  // namespace
 
-UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
-                                             const UntexturedInput& in, ActiveTriangle& t) {
+namespace {
+// small_planes: a call where the lanes planes are made by hand (the other kinds are rare
+// there), inlined into setup_untextured_triangle elsewhere (fewer spills on Armv6-M).
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
+#define LR_SMALL_PLANES_INLINE [[gnu::noinline]]
+#else
+#define LR_SMALL_PLANES_INLINE [[gnu::always_inline]] inline
+#endif
+LR_SMALL_PLANES_INLINE bool small_planes_c(const ScreenVertex* const v[3], int32_t d, uint32_t m,
+                                           const UntexturedInput& in, UntexturedKind kind,
+                                           ActiveTriangle& t) {
+  const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
+  const int lz = clz32(magnitude(d));
+  const int bm = 32 - clz32(m);
+  const int spread = 2 * bm - 32 + lz;
+  const int32_t z0 = static_cast<int32_t>(va.z >> 1);
+  const int32_t dz1 = static_cast<int32_t>(vb.z >> 1) - z0;
+  const int32_t dz2 = static_cast<int32_t>(vc.z >> 1) - z0;
+  const int zbits = in.depth ? bit_length(magnitude(dz1) | magnitude(dz2)) : 0;
+  if (spread > kFastMaxSpread || spread + zbits > kFastMaxDepthSpread) return false;
+  SmallBasis b;
+  {
+    const int32_t x0 = va.x, y0 = va.y;
+    const int32_t r = recip62(magnitude(d) << lz);
+    const int32_t rs = d < 0 ? -r : r;
+    const int sh = 31 - bm;
+    b.kx1 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(vc.y - y0) << sh), rs);
+    b.kx2 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(y0 - vb.y) << sh), rs);
+    b.ky1 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(x0 - vc.x) << sh), rs);
+    b.ky2 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(vb.x - x0) << sh), rs);
+    // The reference pixel (c0, r0): the one whose centre is within [-128, 127] subpixels of
+    // vertex 0 on both axes, so that the offset f fits f 2^24.
+    const int32_t c0 = (x0 - 1) >> kSubpixelBits, r0 = (y0 - 1) >> kSubpixelBits;
+    b.fx = (c0 * kSubpixel + kHalfPixel - x0) * (1 << 24);
+    b.fy = (r0 * kSubpixel + kHalfPixel - y0) * (1 << 24);
+    b.c0 = static_cast<uint32_t>(c0);
+    b.r0 = static_cast<uint32_t>(r0);
+  }
+  const int p = bm + lz - 21;  // 11 + bm - L
+  if (in.depth) {
+    const int zu = 30 - zbits;  // >= -1
+    const int32_t n1 = zu >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(dz1) << zu) : dz1 >> 1;
+    const int32_t n2 = zu >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(dz2) << zu) : dz2 >> 1;
+    small_plane(b, n1, n2, static_cast<uint32_t>(z0) + (1u << 14), plane_shift(p - zu), t.z);
+  }
+  if (kind == UntexturedKind::kFlat) {
+    t.c[0].base = in.flat_pixel;
+    return true;
+  }
+  const int32_t cr = va.color.r, cg = va.color.g, cbl = va.color.b;
+  if (kind == UntexturedKind::kLanes) {
+    // Lanes (kSmallEdgeBits <= kLanesMaxEdgeBits): red and blue in lane units from differences
+    // 31 d 2^10 (< 2^30) of 31 c (lanes 31 c / 16: p - 14); green as 63 c 2^11 + 2^25 from
+    // differences 63 d 2^9 of 63 c (2^(p + 2)).
+    const PlaneShift rb = plane_shift(p - 14);
+    Plane pr, pb;
+    small_plane(b, (vb.color.r - cr) * 31 * 1024, (vc.color.r - cr) * 31 * 1024,
+                ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024, rb, pr);
+    small_plane(b, (vb.color.b - cbl) * 31 * 1024, (vc.color.b - cbl) * 31 * 1024,
+                ((31 * static_cast<uint32_t>(cbl)) >> 4) + 1024, rb, pb);
+    t.c[0] = Plane{(pb.base << 16) + pr.base, (pb.gx << 16) + pr.gx, (pb.gy << 16) + pr.gy};
+    small_plane(b, (vb.color.g - cg) * 63 * 512, (vc.color.g - cg) * 63 * 512,
+                63 * 2048 * static_cast<uint32_t>(cg) + (1u << 25), plane_shift(p + 2), t.c[1]);
+    return true;
+  }
+  const PlaneShift c = plane_shift(p);
+  small_plane(b, (vb.color.r - cr) * 32768, (vc.color.r - cr) * 32768,
+              static_cast<uint32_t>(cr) << 15, c, t.c[0]);
+  small_plane(b, (vb.color.g - cg) * 32768, (vc.color.g - cg) * 32768,
+              static_cast<uint32_t>(cg) << 15, c, t.c[1]);
+  small_plane(b, (vb.color.b - cbl) * 32768, (vc.color.b - cbl) * 32768,
+              static_cast<uint32_t>(cbl) << 15, c, t.c[2]);
+  return true;
+}
+#undef LR_SMALL_PLANES_INLINE
+}  // namespace
+
+bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const UntexturedInput& in,
+                  UntexturedKind kind, ActiveTriangle& t) {
+  return small_planes_c(v, d, m, in, kind, t);
+}
+
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
+// small_planes of a lanes triangle with depth by hand (Armv7E-M): GCC 12 kept the basis in
+// registers across the four planes and spilled around them. The one operand (in r7, left to the
+// compiler) points to a frame of 28 words: in it the vertices (0, 4, 8), d (12), m (16), the
+// triangle (20), and the result (24, 1 when the planes were made); then the basis at 28 (kx1,
+// kx2, ky1, ky2, fx, fy, c0, r0), p at 60 and the planes' inputs from 64 (n1, n2, a0 of each).
+// LR_SP_SHIFT: 2^s from s in SREG as left r3, right r4, half r5 (plane_shift).
+#define LR_SP_SHIFT(SREG) \
+  "usat   r3, #5, " SREG  \
+  "\n\t"                  \
+  "rsb    r4, " SREG      \
+  ", #0\n\t"              \
+  "usat   r4, #5, r4\n\t" \
+  "movs   r5, #1\n\t"     \
+  "lsl    r5, r5, r4\n\t" \
+  "lsr    r5, r5, #1\n\t"
+// LR_SP_PLANE: small_plane of n1 r0, n2 r1, a0 r2 with the shift in r3-r5: base r2, gx r8,
+// gy r9 (r0, r10, r11 scratch; r1, r3-r6, r12, lr kept).
+#define LR_SP_PLANE                  \
+  "ldrd   r10, r11, [%[f], #28]\n\t" \
+  "smmul  r8, r1, r11\n\t"           \
+  "smmla  r8, r0, r10, r8\n\t"       \
+  "ldrd   r10, r11, [%[f], #36]\n\t" \
+  "smmul  r9, r1, r11\n\t"           \
+  "smmla  r9, r0, r10, r9\n\t"       \
+  "ldrd   r10, r11, [%[f], #44]\n\t" \
+  "smmul  r0, r9, r11\n\t"           \
+  "smmla  r0, r8, r10, r0\n\t"       \
+  "lsl    r8, r8, r3\n\t"            \
+  "lsl    r9, r9, r3\n\t"            \
+  "lsl    r0, r0, r3\n\t"            \
+  "add    r8, r8, r5\n\t"            \
+  "add    r9, r9, r5\n\t"            \
+  "add    r0, r0, r5\n\t"            \
+  "asr    r8, r8, r4\n\t"            \
+  "asr    r9, r9, r4\n\t"            \
+  "asr    r0, r0, r4\n\t"            \
+  "add    r2, r2, r0\n\t"            \
+  "ldrd   r10, r11, [%[f], #52]\n\t" \
+  "mls    r2, r8, r10, r2\n\t"       \
+  "mls    r2, r9, r11, r2\n\t"
+bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
+                                ActiveTriangle& t) {
+  static_assert(offsetof(ScreenVertex, z) == 8 && offsetof(ScreenVertex, color) == 16 &&
+                offsetof(Color15, g) == 2 && offsetof(Color15, b) == 4);
+  static_assert(offsetof(ActiveTriangle, z) == 52 && offsetof(ActiveTriangle, c) == 64 &&
+                sizeof(Plane) == 12);
+  static_assert(kFastMaxSpread == 10 && kFastMaxDepthSpread == 35);
+  uint32_t frame[28];
+  frame[0] = reinterpret_cast<uintptr_t>(v[0]);
+  frame[1] = reinterpret_cast<uintptr_t>(v[1]);
+  frame[2] = reinterpret_cast<uintptr_t>(v[2]);
+  frame[3] = static_cast<uint32_t>(d);
+  frame[4] = m;
+  frame[5] = reinterpret_cast<uintptr_t>(&t);
+  uint32_t* const f = frame;
+  asm volatile(
+      // zbits, lz, bm, the spread tests
+      "ldm    %[f], {r0, r1, r2}\n\t"
+      "ldr    r3, [r0, #8]\n\t"
+      "ldr    r4, [r1, #8]\n\t"
+      "ldr    r5, [r2, #8]\n\t"
+      "lsr    r3, r3, #1\n\t"
+      "rsb    r4, r3, r4, lsr #1\n\t"
+      "rsb    r5, r3, r5, lsr #1\n\t"
+      "eor    r6, r4, r4, asr #31\n\t"
+      "sub    r6, r6, r4, asr #31\n\t"
+      "eor    r8, r5, r5, asr #31\n\t"
+      "sub    r8, r8, r5, asr #31\n\t"
+      "orr    r6, r6, r8\n\t"
+      "clz    r6, r6\n\t"
+      "rsb    r6, r6, #32\n\t"
+      "ldrd   r8, r9, [%[f], #12]\n\t"
+      "eor    r10, r8, r8, asr #31\n\t"
+      "sub    r10, r10, r8, asr #31\n\t"
+      "clz    r11, r10\n\t"
+      "clz    r12, r9\n\t"
+      "rsb    r12, r12, #32\n\t"
+      "add    lr, r11, r12, lsl #1\n\t"
+      "sub    lr, lr, #32\n\t"
+      "cmp    lr, #10\n\t"
+      "bgt    8f\n\t"
+      "add    lr, lr, r6\n\t"
+      "cmp    lr, #35\n\t"
+      "bgt    8f\n\t"
+      // p, and the depth plane's inputs (zu = 30 - zbits >= -1)
+      "add    r9, r11, r12\n\t"
+      "sub    r9, r9, #21\n\t"
+      "str    r9, [%[f], #60]\n\t"
+      "rsbs   r6, r6, #30\n\t"
+      "bmi    1f\n\t"
+      "lsl    r4, r4, r6\n\t"
+      "lsl    r5, r5, r6\n\t"
+      "b      2f\n\t"
+      "1:\n\t"
+      "asr    r4, r4, #1\n\t"
+      "asr    r5, r5, #1\n\t"
+      "2:\n\t"
+      "add    r3, r3, #16384\n\t"
+      "sub    r6, r9, r6\n\t"
+      "strd   r4, r5, [%[f], #64]\n\t"
+      "strd   r3, r6, [%[f], #72]\n\t"
+      // recip62(|d| << lz), signed like d
+      "lsl    r10, r10, r11\n\t"
+      "lsr    r3, r10, #16\n\t"
+      "mov    r4, #-1\n\t"
+      "udiv   r3, r4, r3\n\t"
+      "lsl    r3, r3, #14\n\t"
+      "umull  r4, r5, r10, r3\n\t"
+      "rsb    r5, r5, #0x40000000\n\t"
+      "lsl    r5, r5, #2\n\t"
+      "smmul  r5, r3, r5\n\t"
+      "adds   r3, r3, r5\n\t"
+      "it     vs\n\t"
+      "mvnvs  r3, #0x80000000\n\t"
+      "cmp    r8, #0\n\t"
+      "it     lt\n\t"
+      "neglt  r3, r3\n\t"
+      // the basis
+      "rsb    r12, r12, #31\n\t"
+      "ldrd   r4, r5, [r0]\n\t"
+      "ldrd   r6, r8, [r1]\n\t"
+      "ldrd   r9, r10, [r2]\n\t"
+      "sub    r11, r10, r5\n\t"
+      "lsl    r11, r11, r12\n\t"
+      "smmul  r11, r11, r3\n\t"
+      "sub    lr, r5, r8\n\t"
+      "lsl    lr, lr, r12\n\t"
+      "smmul  lr, lr, r3\n\t"
+      "strd   r11, lr, [%[f], #28]\n\t"
+      "sub    r11, r4, r9\n\t"
+      "lsl    r11, r11, r12\n\t"
+      "smmul  r11, r11, r3\n\t"
+      "sub    lr, r6, r4\n\t"
+      "lsl    lr, lr, r12\n\t"
+      "smmul  lr, lr, r3\n\t"
+      "strd   r11, lr, [%[f], #36]\n\t"
+      "sub    r6, r4, #1\n\t"
+      "asr    r6, r6, #8\n\t"
+      "lsl    r8, r6, #8\n\t"
+      "add    r8, r8, #128\n\t"
+      "sub    r8, r8, r4\n\t"
+      "lsl    r8, r8, #24\n\t"
+      "sub    r9, r5, #1\n\t"
+      "asr    r9, r9, #8\n\t"
+      "lsl    r10, r9, #8\n\t"
+      "add    r10, r10, #128\n\t"
+      "sub    r10, r10, r5\n\t"
+      "lsl    r10, r10, #24\n\t"
+      "strd   r8, r10, [%[f], #44]\n\t"
+      "strd   r6, r9, [%[f], #52]\n\t"
+      // the colour planes' inputs: red and blue 31 d 2^10 and (31 c >> 4) + 2^10, green
+      // 63 d 2^9 and 63 c 2^11 + 2^25
+      "movw   r6, #31744\n\t"
+      "ldrh   r3, [r0, #16]\n\t"
+      "ldrh   r4, [r1, #16]\n\t"
+      "ldrh   r5, [r2, #16]\n\t"
+      "sub    r4, r4, r3\n\t"
+      "sub    r5, r5, r3\n\t"
+      "mul    r4, r4, r6\n\t"
+      "mul    r5, r5, r6\n\t"
+      "rsb    r3, r3, r3, lsl #5\n\t"
+      "lsr    r3, r3, #4\n\t"
+      "add    r3, r3, #1024\n\t"
+      "strd   r4, r5, [%[f], #80]\n\t"
+      "str    r3, [%[f], #88]\n\t"
+      "ldrh   r3, [r0, #20]\n\t"
+      "ldrh   r4, [r1, #20]\n\t"
+      "ldrh   r5, [r2, #20]\n\t"
+      "sub    r4, r4, r3\n\t"
+      "sub    r5, r5, r3\n\t"
+      "mul    r4, r4, r6\n\t"
+      "mul    r5, r5, r6\n\t"
+      "rsb    r3, r3, r3, lsl #5\n\t"
+      "lsr    r3, r3, #4\n\t"
+      "add    r3, r3, #1024\n\t"
+      "strd   r4, r5, [%[f], #92]\n\t"
+      "str    r3, [%[f], #100]\n\t"
+      "movw   r6, #32256\n\t"
+      "ldrh   r3, [r0, #18]\n\t"
+      "ldrh   r4, [r1, #18]\n\t"
+      "ldrh   r5, [r2, #18]\n\t"
+      "sub    r4, r4, r3\n\t"
+      "sub    r5, r5, r3\n\t"
+      "mul    r4, r4, r6\n\t"
+      "mul    r5, r5, r6\n\t"
+      "mov    r6, #129024\n\t"
+      "mul    r3, r3, r6\n\t"
+      "add    r3, r3, #0x2000000\n\t"
+      "strd   r4, r5, [%[f], #104]\n\t"
+      // the depth plane
+      "mov    r12, r3\n\t"
+      "ldr    r6, [%[f], #76]\n\t" LR_SP_SHIFT("r6")
+      "ldrd   r0, r1, [%[f], #64]\n\t"
+      "ldr    r2, [%[f], #72]\n\t" LR_SP_PLANE
+      "ldr    r6, [%[f], #20]\n\t"
+      "add    r6, r6, #52\n\t"
+      "stm    r6, {r2, r8, r9}\n\t"
+      // green (its a0 in r12)
+      "ldr    r6, [%[f], #60]\n\t"
+      "add    r6, r6, #2\n\t" LR_SP_SHIFT("r6")
+      "ldrd   r0, r1, [%[f], #104]\n\t"
+      "mov    r2, r12\n\t" LR_SP_PLANE
+      "ldr    r6, [%[f], #20]\n\t"
+      "add    r6, r6, #76\n\t"
+      "stm    r6, {r2, r8, r9}\n\t"
+      // red, then blue, packed: blue in the high lanes
+      "ldr    r6, [%[f], #60]\n\t"
+      "sub    r6, r6, #14\n\t" LR_SP_SHIFT("r6")
+      "ldrd   r0, r1, [%[f], #80]\n\t"
+      "ldr    r2, [%[f], #88]\n\t" LR_SP_PLANE
+      "mov    r12, r2\n\t"
+      "mov    lr, r8\n\t"
+      "mov    r6, r9\n\t"
+      "ldrd   r0, r1, [%[f], #92]\n\t"
+      "ldr    r2, [%[f], #100]\n\t" LR_SP_PLANE
+      "add    r2, r12, r2, lsl #16\n\t"
+      "add    r8, lr, r8, lsl #16\n\t"
+      "add    r9, r6, r9, lsl #16\n\t"
+      "ldr    r6, [%[f], #20]\n\t"
+      "add    r6, r6, #64\n\t"
+      "stm    r6, {r2, r8, r9}\n\t"
+      "movs   r0, #1\n\t"
+      "b      9f\n\t"
+      "8:\n\t"
+      "movs   r0, #0\n\t"
+      "9:\n\t"
+      "str    r0, [%[f], #24]\n\t"
+      :
+      : [f] "r"(f)
+      : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc",
+        "memory");
+  return frame[6] != 0;
+}
+#undef LR_SP_PLANE
+#undef LR_SP_SHIFT
+#else
+bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*/, uint32_t /*m*/,
+                                ActiveTriangle& /*t*/) {
+  return false;
+}
+#endif
+
+namespace {
+// small_rows, inlined into setup_untextured_triangle (one copy in an image without
+// small_rows_by_hand).
+[[gnu::always_inline]] inline SmallRows small_rows_c(const ScreenVertex* const v[3],
+                                                     const RowWindow& w, ActiveTriangle& t) {
   const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
   const int32_t x0 = va.x, y0 = va.y;
   const int32_t e1x = vb.x - x0, e1y = vb.y - y0, e2x = vc.x - x0, e2y = vc.y - y0;
   // Rows (|y| < 2^22: the arithmetic shift is the floor).
   const int32_t first = std::max(((y0 - kHalfPixel) >> kSubpixelBits) + 1, w.first_min);
   const int32_t last = std::min((vc.y - kHalfPixel) >> kSubpixelBits, w.last_max);
-  const uint32_t m = magnitude(e1x) | magnitude(e2x) | static_cast<uint32_t>(e2y);
-  if (m >= (1u << kSmallEdgeBits) || first > last) {
-    if (!setup_rows(v, first, last, w.width, t)) return {false, UntexturedKind::kFlat, false};
-    const UntexturedSetup u = setup_untextured(v, in, t);
-    return {true, u.kind, u.wide};
-  }
+  SmallRows out{};
+  out.m = magnitude(e1x) | magnitude(e2x) | static_cast<uint32_t>(e2y);
+  if (out.m >= (1u << kSmallEdgeBits) || first > last) return out;
   // Within 2^kSmallEdgeBits subpixels: every product below is below 2^30 (docs/numerics.md).
   const int32_t mid = std::clamp((vb.y - kHalfPixel) >> kSubpixelBits, first - 1, last);
   const int32_t d = e1x * e2y - e2x * e1y;  // twice the signed area
-  const int32_t cb = (std::min({x0, vb.x, vc.x}) - kHalfPixel) >> kSubpixelBits;
-  const int32_t t0 = first * kSubpixel + kHalfPixel - y0;
-  const int32_t xa = x0 - kHalfPixel - cb * kSubpixel, xb = xa + e1x;
-  const int32_t bdx = e2x - e1x, bdy = e2y - e1y;
-  const auto q = [](int32_t xr, int32_t dx, int32_t dy, int32_t tr) {
-    return static_cast<uint32_t>((xr * dy + dx * tr + dy * kSubpixel - 1) >> kSubpixelBits);
-  };
+  out.d = d;
   const bool long_left = d > 0;
-  // The long, top and bottom edges' records (the bottom one at row mid + 1), relative to cb, or
-  // to column 0 when the triangle lies inside the columns [0, width] (below 2^26 here).
-  const auto top_dy = static_cast<uint32_t>(e1y > 0 ? e1y : 1);
-  const auto btm_dy = static_cast<uint32_t>(bdy > 0 ? bdy : 1);
-  uint32_t ql = q(xa, e2x, e2y, t0), qt = q(xa, e1x, e1y, t0);
-  uint32_t qb = q(xb, bdx, bdy, t0 - e1y + (mid + 1 - first) * kSubpixel);
-  const int32_t cmax = (std::max({x0, vb.x, vc.x}) - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
+  const int32_t cb = (x0 + std::min({int32_t{0}, e1x, e2x}) - kHalfPixel) >> kSubpixelBits;
+  const int32_t cmax =
+      (x0 + std::max({int32_t{0}, e1x, e2x}) - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
   const bool inside = cb >= 0 && cmax <= w.width;
-  int32_t base = cb;
-  if (inside) {
-    const auto ucb = static_cast<uint32_t>(cb);
-    ql += ucb * static_cast<uint32_t>(e2y);
-    qt += ucb * top_dy;
-    qb += ucb * btm_dy;
-    base = 0;
-  }
+  // The long, top and bottom edges' records (the bottom one at row mid + 1), relative to cb, or
+  // to column 0 when the triangle lies inside the columns [0, width] (below 2^26 here):
+  // floor(((xa - 128) dy + dx (yc - ya) + 256 dy - 1) / 256) with xa - 128 + 256 relative to cb
+  // in xa.
+  const int32_t t0 = first * kSubpixel + kHalfPixel - y0;
+  const int32_t xa = x0 + kHalfPixel - cb * kSubpixel;
+  const auto top_dy = static_cast<uint32_t>(e1y > 0 ? e1y : 1);
+  const int32_t bdx = e2x - e1x, bdy = e2y - e1y;
+  const auto btm_dy = static_cast<uint32_t>(bdy > 0 ? bdy : 1);
+  const auto ucb = static_cast<uint32_t>(inside ? cb : 0);
+  const uint32_t ql =
+      static_cast<uint32_t>((xa * e2y + e2x * t0 - 1) >> kSubpixelBits) + ucb * uint32_t(e2y);
+  const uint32_t qt =
+      static_cast<uint32_t>((xa * e1y + e1x * t0 - 1) >> kSubpixelBits) + ucb * top_dy;
+  const uint32_t qb =
+      static_cast<uint32_t>(
+          ((xa + e1x) * bdy + bdx * (t0 - e1y + (mid + 1 - first) * kSubpixel) - 1) >>
+          kSubpixelBits) +
+      ucb * btm_dy;
+  const int32_t base = inside ? 0 : cb;
   // The record, left edge first.
-  t.edge_q[0] = long_left ? ql : qt;
-  t.edge_q[1] = long_left ? qt : ql;
-  t.edge_dx[0] = long_left ? e2x : e1x;
-  t.edge_dx[1] = long_left ? e1x : e2x;
-  t.edge_dy[0] = long_left ? static_cast<uint32_t>(e2y) : top_dy;
-  t.edge_dy[1] = long_left ? top_dy : static_cast<uint32_t>(e2y);
+  const int ll = long_left ? 0 : 1;
+  t.edge_q[ll] = ql;
+  t.edge_q[1 - ll] = qt;
+  t.edge_dx[ll] = e2x;
+  t.edge_dx[1 - ll] = e1x;
+  t.edge_dy[ll] = static_cast<uint32_t>(e2y);
+  t.edge_dy[1 - ll] = top_dy;
   t.bottom = RowEdge{qb, bdx, btm_dy};
   t.first_row = static_cast<int16_t>(first);
   t.mid_row = static_cast<int16_t>(mid);
@@ -253,27 +583,274 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
   t.col_base = static_cast<int16_t>(base);
   t.flags = static_cast<uint8_t>((long_left ? ActiveTriangle::kBottomRight : 0) |
                                  (inside ? ActiveTriangle::kInside : 0));
-  {
-    // A row with a pixel centre in the viewport's columns: the middle vertex's row (the top
-    // edge's last), where the triangle is widest, or another.
-    const int32_t rm = mid >= first ? mid : first;
-    const auto k = static_cast<uint32_t>(rm - first);
-    const int32_t cl = base + static_cast<int32_t>((ql + static_cast<uint32_t>(e2x) * k) /
-                                                   static_cast<uint32_t>(e2y));
-    const int32_t cs =
-        base + static_cast<int32_t>(mid >= first ? (qt + static_cast<uint32_t>(e1x) * k) / top_dy
-                                                 : qb / btm_dy);
-    const int32_t left = long_left ? cl : cs, right = long_left ? cs : cl;
-    if (!(left < w.width && right > 0 && left < right) &&
-        !later_rows_have_pixels(t, first, w.width))
-      return {false, UntexturedKind::kFlat, false};
+  // A row with a pixel centre in the viewport's columns: the middle vertex's row (the top
+  // edge's last), where the triangle is widest, or another.
+  const int32_t rm = mid >= first ? mid : first;
+  const auto k = static_cast<uint32_t>(rm - first);
+  const int32_t cl = base + static_cast<int32_t>((ql + static_cast<uint32_t>(e2x) * k) /
+                                                 static_cast<uint32_t>(e2y));
+  const int32_t cs =
+      base + static_cast<int32_t>(mid >= first ? (qt + static_cast<uint32_t>(e1x) * k) / top_dy
+                                               : qb / btm_dy);
+  const int32_t left = long_left ? cl : cs, right = long_left ? cs : cl;
+  out.result =
+      left < w.width && right > 0 && left < right ? SmallRows::kPixels : SmallRows::kLaterRows;
+  return out;
+}
+}  // namespace
+
+SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveTriangle& t) {
+  return small_rows_c(v, w, t);
+}
+
+#if defined(__thumb2__) && defined(__ARM_FEATURE_IDIV) && !defined(__OPTIMIZE_SIZE__)
+// small_rows by hand (Armv7-M with a divider): GCC 12 spilled a quarter of it. The one operand
+// (r7) points to a frame of 10 words: the vertices (0, 4, 8), the window (12), the triangle
+// (16), then d (20), m (24), the result (28), the column base (32) and the width (36).
+SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
+                             ActiveTriangle& t) {
+  static_assert(offsetof(RowWindow, first_min) == 0 && offsetof(RowWindow, last_max) == 4 &&
+                offsetof(RowWindow, width) == 8);
+  static_assert(offsetof(ActiveTriangle, edge_q) == 0 && offsetof(ActiveTriangle, edge_dx) == 8 &&
+                offsetof(ActiveTriangle, edge_dy) == 16 && offsetof(ActiveTriangle, bottom) == 24 &&
+                offsetof(ActiveTriangle, first_row) == 36 &&
+                offsetof(ActiveTriangle, mid_row) == 38 &&
+                offsetof(ActiveTriangle, last_row) == 40 &&
+                offsetof(ActiveTriangle, col_base) == 42 && offsetof(ActiveTriangle, flags) == 47);
+  static_assert(ActiveTriangle::kBottomRight == 1 && ActiveTriangle::kInside == 4 &&
+                kSmallEdgeBits == 14 && kSubpixelBits == 8);
+  static_assert(SmallRows::kSlow == 0 && SmallRows::kPixels == 1 && SmallRows::kLaterRows == 2);
+  uint32_t frame[10];
+  frame[0] = reinterpret_cast<uintptr_t>(v[0]);
+  frame[1] = reinterpret_cast<uintptr_t>(v[1]);
+  frame[2] = reinterpret_cast<uintptr_t>(v[2]);
+  frame[3] = reinterpret_cast<uintptr_t>(&w);
+  frame[4] = reinterpret_cast<uintptr_t>(&t);
+  uint32_t* const f = frame;
+  asm volatile(
+      "ldm    %[f], {r0, r1, r2}\n\t"
+      "ldrd   r3, r4, [r0]\n\t"
+      "ldrd   r5, r6, [r1]\n\t"
+      "ldrd   r8, r9, [r2]\n\t"
+      "ldr    lr, [%[f], #12]\n\t"
+      // first r10, last r11
+      "sub    r10, r4, #128\n\t"
+      "asr    r10, r10, #8\n\t"
+      "add    r10, r10, #1\n\t"
+      "ldr    r12, [lr]\n\t"
+      "cmp    r10, r12\n\t"
+      "it     lt\n\t"
+      "movlt  r10, r12\n\t"
+      "sub    r11, r9, #128\n\t"
+      "asr    r11, r11, #8\n\t"
+      "ldr    r12, [lr, #4]\n\t"
+      "cmp    r11, r12\n\t"
+      "it     gt\n\t"
+      "movgt  r11, r12\n\t"
+      // e1x r5, e1y r6, e2x r8, e2y r9; m
+      "sub    r5, r5, r3\n\t"
+      "sub    r6, r6, r4\n\t"
+      "sub    r8, r8, r3\n\t"
+      "sub    r9, r9, r4\n\t"
+      "eor    r12, r5, r5, asr #31\n\t"
+      "sub    r12, r12, r5, asr #31\n\t"
+      "eor    r0, r8, r8, asr #31\n\t"
+      "sub    r0, r0, r8, asr #31\n\t"
+      "orr    r12, r12, r0\n\t"
+      "orr    r12, r12, r9\n\t"
+      "str    r12, [%[f], #24]\n\t"
+      "cmp    r12, #16384\n\t"
+      "bhs    8f\n\t"
+      "cmp    r10, r11\n\t"
+      "bgt    8f\n\t"
+      // mid r0 = clamp((yb - 128) >> 8, first - 1, last); the rows
+      "add    r0, r4, r6\n\t"
+      "sub    r0, r0, #128\n\t"
+      "asr    r0, r0, #8\n\t"
+      "sub    r1, r10, #1\n\t"
+      "cmp    r0, r1\n\t"
+      "it     lt\n\t"
+      "movlt  r0, r1\n\t"
+      "cmp    r0, r11\n\t"
+      "it     gt\n\t"
+      "movgt  r0, r11\n\t"
+      "ldr    r1, [%[f], #16]\n\t"
+      "strh   r10, [r1, #36]\n\t"
+      "strh   r0, [r1, #38]\n\t"
+      "strh   r11, [r1, #40]\n\t"
+      // cb r11, cmax r12, xa r3 = x0 + 128 - 256 cb, the width in lr
+      "movs   r11, #0\n\t"
+      "cmp    r5, r11\n\t"
+      "it     lt\n\t"
+      "movlt  r11, r5\n\t"
+      "cmp    r8, r11\n\t"
+      "it     lt\n\t"
+      "movlt  r11, r8\n\t"
+      "movs   r12, #0\n\t"
+      "cmp    r5, r12\n\t"
+      "it     gt\n\t"
+      "movgt  r12, r5\n\t"
+      "cmp    r8, r12\n\t"
+      "it     gt\n\t"
+      "movgt  r12, r8\n\t"
+      "add    r11, r11, r3\n\t"
+      "sub    r11, r11, #128\n\t"
+      "asr    r11, r11, #8\n\t"
+      "add    r12, r12, r3\n\t"
+      "add    r12, r12, #127\n\t"
+      "asr    r12, r12, #8\n\t"
+      "add    r3, r3, #128\n\t"
+      "sub    r3, r3, r11, lsl #8\n\t"
+      "ldr    lr, [lr, #8]\n\t"
+      "str    lr, [%[f], #36]\n\t"
+      // inside: ucb r12 = cb, base 0, flags 4; else ucb 0, base cb, flags 0 (in r2)
+      "cmp    r11, #0\n\t"
+      "blt    1f\n\t"
+      "cmp    r12, lr\n\t"
+      "bgt    1f\n\t"
+      "mov    r12, r11\n\t"
+      "movs   r11, #0\n\t"
+      "movs   r2, #4\n\t"
+      "b      2f\n\t"
+      "1:\n\t"
+      "movs   r12, #0\n\t"
+      "movs   r2, #0\n\t"
+      "2:\n\t"
+      "strh   r11, [r1, #42]\n\t"
+      "str    r11, [%[f], #32]\n\t"
+      // d, the flags (kBottomRight when d > 0)
+      "mul    r11, r5, r9\n\t"
+      "mls    r11, r8, r6, r11\n\t"
+      "str    r11, [%[f], #20]\n\t"
+      "cmp    r11, #0\n\t"
+      "it     gt\n\t"
+      "orrgt  r2, r2, #1\n\t"
+      "strb   r2, [r1, #47]\n\t"
+      // t0 r4 = 256 first + 128 - y0; the bottom edge at row mid + 1
+      "lsl    r11, r10, #8\n\t"
+      "add    r11, r11, #128\n\t"
+      "sub    r4, r11, r4\n\t"
+      "sub    r11, r0, r10\n\t"
+      "add    r11, r11, #1\n\t"
+      "lsl    r11, r11, #8\n\t"
+      "add    r11, r11, r4\n\t"
+      "sub    r11, r11, r6\n\t"
+      "sub    lr, r8, r5\n\t"
+      "mul    r11, lr, r11\n\t"
+      "str    lr, [r1, #28]\n\t"
+      "sub    lr, r9, r6\n\t"
+      "add    r0, r3, r5\n\t"
+      "mla    r11, r0, lr, r11\n\t"
+      "sub    r11, r11, #1\n\t"
+      "asr    r11, r11, #8\n\t"
+      "cmp    lr, #1\n\t"
+      "it     lt\n\t"
+      "movlt  lr, #1\n\t"
+      "mla    r11, r12, lr, r11\n\t"
+      "str    r11, [r1, #24]\n\t"
+      "str    lr, [r1, #32]\n\t"
+      // the long edge ql r11, the top edge qt lr (top_dy in r6)
+      "mul    r11, r3, r9\n\t"
+      "mla    r11, r8, r4, r11\n\t"
+      "sub    r11, r11, #1\n\t"
+      "asr    r11, r11, #8\n\t"
+      "mla    r11, r12, r9, r11\n\t"
+      "mul    lr, r3, r6\n\t"
+      "mla    lr, r5, r4, lr\n\t"
+      "sub    lr, lr, #1\n\t"
+      "asr    lr, lr, #8\n\t"
+      "cmp    r6, #1\n\t"
+      "it     lt\n\t"
+      "movlt  r6, #1\n\t"
+      "mla    lr, r12, r6, lr\n\t"
+      // the record, left edge first
+      "tst    r2, #1\n\t"
+      "beq    3f\n\t"
+      "strd   r11, lr, [r1]\n\t"
+      "strd   r8, r5, [r1, #8]\n\t"
+      "strd   r9, r6, [r1, #16]\n\t"
+      "b      4f\n\t"
+      "3:\n\t"
+      "strd   lr, r11, [r1]\n\t"
+      "strd   r5, r8, [r1, #8]\n\t"
+      "strd   r6, r9, [r1, #16]\n\t"
+      "4:\n\t"
+      // the columns at the row max(mid, first): long cl r11, short cs lr
+      "ldrsh  r0, [r1, #38]\n\t"
+      "subs   r3, r0, r10\n\t"
+      "bge    5f\n\t"
+      "udiv   r11, r11, r9\n\t"
+      "ldr    r4, [r1, #24]\n\t"
+      "ldr    r12, [r1, #32]\n\t"
+      "udiv   lr, r4, r12\n\t"
+      "b      6f\n\t"
+      "5:\n\t"
+      "mla    r11, r8, r3, r11\n\t"
+      "udiv   r11, r11, r9\n\t"
+      "mla    lr, r5, r3, lr\n\t"
+      "udiv   lr, lr, r6\n\t"
+      "6:\n\t"
+      "ldrd   r0, r12, [%[f], #32]\n\t"
+      "add    r11, r11, r0\n\t"
+      "add    lr, lr, r0\n\t"
+      "tst    r2, #1\n\t"
+      "ite    ne\n\t"
+      "movne  r3, r11\n\t"
+      "moveq  r3, lr\n\t"
+      "ite    ne\n\t"
+      "movne  r4, lr\n\t"
+      "moveq  r4, r11\n\t"
+      "movs   r0, #2\n\t"
+      "cmp    r3, r12\n\t"
+      "bge    9f\n\t"
+      "cmp    r4, #0\n\t"
+      "ble    9f\n\t"
+      "cmp    r3, r4\n\t"
+      "bge    9f\n\t"
+      "movs   r0, #1\n\t"
+      "b      9f\n\t"
+      "8:\n\t"
+      "movs   r0, #0\n\t"
+      "9:\n\t"
+      "str    r0, [%[f], #28]\n\t"
+      :
+      : [f] "r"(f)
+      : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc",
+        "memory");
+  SmallRows out;
+  out.d = static_cast<int32_t>(frame[5]);
+  out.m = frame[6];
+  out.result = static_cast<uint8_t>(frame[7]);
+  return out;
+}
+#else
+SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
+                             ActiveTriangle& t) {
+  return small_rows_c(v, w, t);
+}
+#endif
+
+UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
+                                             const UntexturedInput& in, ActiveTriangle& t) {
+  const SmallRows rows = kSmallRowsByHand ? small_rows_by_hand(v, w, t) : small_rows_c(v, w, t);
+  if (rows.result == SmallRows::kSlow) [[unlikely]] {
+    const int32_t first = std::max(first_row_below(v[0]->y), w.first_min);
+    const int32_t last = std::min(last_row_at_or_above(v[2]->y), w.last_max);
+    if (!setup_rows(v, first, last, w.width, t)) return {false, UntexturedKind::kFlat, false};
+    const UntexturedSetup u = setup_untextured(v, in, t);
+    return {true, u.kind, u.wide};
   }
+  if (rows.result == SmallRows::kLaterRows && !later_rows_have_pixels(t, t.first_row, w.width))
+      [[unlikely]]
+    return {false, UntexturedKind::kFlat, false};
+  const int32_t d = rows.d;
+  const uint32_t m = rows.m;
+  const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
 
   if (in.colors == ColorPlanes::kNone && !in.depth) {  // no plane at all
     t.c[0].base = in.flat_pixel;
     return {true, UntexturedKind::kFlat, false};
   }
-  // Planes: the short path's basis in 32 bits (as fast_basis, with |D| < 2^29).
   UntexturedKind kind = in.colors == ColorPlanes::kNone     ? UntexturedKind::kFlat
                         : in.colors == ColorPlanes::kAffine ? UntexturedKind::kAffine
                                                             : UntexturedKind::kPerspective;
@@ -282,87 +859,15 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
     if (wmax - wmin <= wmin >> in.affine.quick_shift || colors_within(v, wmin, wmax, in.affine))
       kind = UntexturedKind::kAffine;
   }
-  const uint32_t ad = magnitude(d);
-  const int lz = clz32(ad);
-  const int bm = 32 - clz32(m);
-  const int spread = 2 * bm - 32 + lz;
-  const int32_t z0 = static_cast<int32_t>(va.z >> 1);
-  const int32_t dz1 = static_cast<int32_t>(vb.z >> 1) - z0;
-  const int32_t dz2 = static_cast<int32_t>(vc.z >> 1) - z0;
-  const int zbits = in.depth ? bit_length(magnitude(dz1) | magnitude(dz2)) : 0;
-  if (kind == UntexturedKind::kPerspective || spread > kFastMaxSpread ||
-      spread + zbits > kFastMaxDepthSpread) {
+  if (kind == UntexturedKind::kAffine && in.lanes) kind = UntexturedKind::kLanes;
+  const bool made =
+      kind == UntexturedKind::kLanes && in.depth && kSmallPlanesByHand
+          ? small_lanes_planes_by_hand(v, d, m, t)
+          : kind != UntexturedKind::kPerspective && small_planes_c(v, d, m, in, kind, t);
+  if (!made) [[unlikely]] {
     const UntexturedSetup u = setup_untextured(v, in, t);
     return {true, u.kind, u.wide};
   }
-  const int32_t r = recip62(ad << lz);
-  const int32_t rs = d < 0 ? -r : r;
-  const int sh = 31 - bm;
-  const int32_t kx1 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(e2y) << sh), rs);
-  const int32_t kx2 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(-e1y) << sh), rs);
-  const int32_t ky1 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(-e2x) << sh), rs);
-  const int32_t ky2 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(e1x) << sh), rs);
-  const int p = bm + lz - 21;  // 11 + bm - L
-  // The reference pixel (c0, r0): the one whose centre is within [-128, 127] subpixels of
-  // vertex 0 on both axes, so that the offset f fits f 2^24.
-  const int32_t c0 = (x0 - 1) >> kSubpixelBits, r0 = (y0 - 1) >> kSubpixelBits;
-  const int32_t fx = (c0 * kSubpixel + kHalfPixel - x0) * (1 << 24);
-  const int32_t fy = (r0 * kSubpixel + kHalfPixel - y0) * (1 << 24);
-  // The plane of normalised differences n1, n2 whose gradient is 2^s times the products'
-  // (rounded), a0 its value at vertex 0.
-  const auto plane = [&](int32_t n1, int32_t n2, uint32_t a0, int left, int right, Plane& pl) {
-    const int32_t gx = mla_hi(n1, kx1, mul_hi(n2, kx2));
-    const int32_t gy = mla_hi(n1, ky1, mul_hi(n2, ky2));
-    const int32_t off = mla_hi(gx, fx, mul_hi(gy, fy));  // (gx fx + gy fy) / 256
-    // Half of 2^right, 0 for no shift; in unsigned arithmetic, since right reaches 31 (the
-    // depth plane of a small triangle with (nearly) one depth): as int32, 2^31 >> 1 is -2^30,
-    // which made every scaled value -1 (gradients of -1 per pixel: depth 65535 drawn as 65534).
-    const auto half = static_cast<int32_t>((1u << right) >> 1);
-    const auto scale = [left, right, half](int32_t x) {
-      return static_cast<uint32_t>(
-          (static_cast<int32_t>(static_cast<uint32_t>(x) << left) + half) >> right);
-    };
-    const uint32_t ugx = scale(gx), ugy = scale(gy);
-    pl.gx = ugx;
-    pl.gy = ugy;
-    pl.base = a0 + scale(off) - ugx * static_cast<uint32_t>(c0) - ugy * static_cast<uint32_t>(r0);
-  };
-  // 2^s as a left and a right shift.
-  const auto left_of = [](int s) { return s > 0 ? s : 0; };
-  const auto right_of = [](int s) { return s >= 0 ? 0 : s < -31 ? 31 : -s; };
-  if (in.depth) {
-    const int zu = 30 - zbits;  // >= -1
-    const int32_t n1 = zu >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(dz1) << zu) : dz1 >> 1;
-    const int32_t n2 = zu >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(dz2) << zu) : dz2 >> 1;
-    plane(n1, n2, static_cast<uint32_t>(z0) + (1u << 14), left_of(p - zu), right_of(p - zu), t.z);
-  }
-  if (kind == UntexturedKind::kFlat) {
-    t.c[0].base = in.flat_pixel;
-    return {true, kind, false};
-  }
-  const int32_t cr = va.color.r, cg = va.color.g, cbl = va.color.b;
-  const int32_t r1 = vb.color.r - cr, r2 = vc.color.r - cr;
-  const int32_t g1 = vb.color.g - cg, g2 = vc.color.g - cg;
-  const int32_t b1 = vb.color.b - cbl, b2 = vc.color.b - cbl;
-  if (in.lanes) {
-    // Lanes (kSmallEdgeBits <= kLanesMaxEdgeBits): red and blue in lane units from differences
-    // 31 d 2^10 (< 2^30) of 31 c (lanes 31 c / 16: p - 14); green as 63 c 2^11 + 2^25 from
-    // differences 63 d 2^9 of 63 c (2^(p + 2)).
-    const int left = left_of(p - 14), right = right_of(p - 14);
-    Plane pr, pb;
-    plane(r1 * 31 * 1024, r2 * 31 * 1024, ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024, left,
-          right, pr);
-    plane(b1 * 31 * 1024, b2 * 31 * 1024, ((31 * static_cast<uint32_t>(cbl)) >> 4) + 1024, left,
-          right, pb);
-    plane(g1 * 63 * 512, g2 * 63 * 512, 63 * 2048 * static_cast<uint32_t>(cg) + (1u << 25),
-          left_of(p + 2), right_of(p + 2), t.c[1]);
-    t.c[0] = Plane{(pb.base << 16) + pr.base, (pb.gx << 16) + pr.gx, (pb.gy << 16) + pr.gy};
-    return {true, UntexturedKind::kLanes, false};
-  }
-  const int left = left_of(p), right = right_of(p);
-  plane(r1 * 32768, r2 * 32768, static_cast<uint32_t>(cr) << 15, left, right, t.c[0]);
-  plane(g1 * 32768, g2 * 32768, static_cast<uint32_t>(cg) << 15, left, right, t.c[1]);
-  plane(b1 * 32768, b2 * 32768, static_cast<uint32_t>(cbl) << 15, left, right, t.c[2]);
   return {true, kind, false};
 }
 

@@ -115,6 +115,44 @@ bool fast_basis(const ScreenVertex* const v[3], int max_spread, FastBasis& b);
 // (u >= -1, |a_i - a_0| 2^u < 2^30 + 1).
 Plane fast_plane(const FastBasis& b, const int32_t a[3], int u);
 
+// The rows, edges and flags of a triangle (setup_untextured_triangle's first step, v sorted by
+// y): kSlow when it is not small (an edge component of 2^kSmallEdgeBits subpixels or more) or
+// has no row in the window, nothing made; else t's rows and edges as setup_rows makes them, d
+// twice its signed area and m the OR of its edge components' magnitudes, and kPixels when the
+// middle vertex's row (or the first) has a pixel centre in [0, width), kLaterRows when only a
+// later row may. Exposed for tests.
+struct SmallRows {
+  static constexpr uint8_t kSlow = 0, kPixels = 1, kLaterRows = 2;
+  int32_t d = 0;
+  uint32_t m = 0;
+  uint8_t result = kSlow;
+};
+SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveTriangle& t);
+// The same by hand where the core divides in one instruction (kSmallRowsByHand: Armv7-M, not at
+// -Os); elsewhere small_rows itself.
+#if defined(__thumb2__) && defined(__ARM_FEATURE_IDIV) && !defined(__OPTIMIZE_SIZE__)
+inline constexpr bool kSmallRowsByHand = true;
+#else
+inline constexpr bool kSmallRowsByHand = false;
+#endif
+SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w, ActiveTriangle& t);
+
+// The planes of a small triangle (setup_untextured_triangle's: edges below 2^kSmallEdgeBits
+// subpixels, d twice its signed area, m the OR of its edge components' magnitudes) of the kind
+// given (not kPerspective), with v sorted by y and its rows already set up; false (t's planes
+// unspecified) when its spread needs setup_untextured. Exposed for tests.
+bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const UntexturedInput& in,
+                  UntexturedKind kind, ActiveTriangle& t);
+// small_planes' integers for kLanes with depth, by hand where the core has SMMUL/SMMLA
+// (kSmallPlanesByHand: Armv7E-M, not at -Os); elsewhere it makes nothing and returns false.
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
+inline constexpr bool kSmallPlanesByHand = true;
+#else
+inline constexpr bool kSmallPlanesByHand = false;
+#endif
+bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
+                                ActiveTriangle& t);
+
 // The short path's limits (docs/numerics.md#untextured-planes): the largest edge component, the
 // spread of affine and flat triangles and of perspective ones, and the depth plane's spread plus
 // the bit length of its largest vertex difference.

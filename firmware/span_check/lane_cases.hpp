@@ -189,4 +189,107 @@ Tally run_spans(uint32_t cases, Strip& a, Strip& b, SpanA&& span_a, SpanB&& span
   return tally;
 }
 
+// Runs `cases` random small triangles (every edge component below 2^kSmallEdgeBits subpixels,
+// from a quarter pixel to 62 pixels; depths spread, close or equal; random colours) through
+// small_planes' C form and through small_lanes_planes_by_hand (kLanes with depth): the same
+// answer and, when planes were made, the same depth and colour planes. visits counts the
+// triangles both refused (their spread needs the general setup).
+inline Tally run_small_planes(uint32_t cases, uint32_t seed = 777u) {
+  Random rng;
+  rng.s = seed;
+  Tally tally;
+  UntexturedInput in;
+  in.colors = ColorPlanes::kAffine;
+  in.depth = true;
+  in.lanes = true;
+  constexpr int32_t kSizes[4] = {kSubpixel / 4, 2 * kSubpixel, 12 * kSubpixel, 31 * kSubpixel};
+  for (uint32_t c = 0; c < cases; ++c) {
+    ScreenVertex v[3];
+    const int32_t size = kSizes[rng.in(0, 3)];
+    const int32_t cx = rng.in(-40 * kSubpixel, 400 * kSubpixel);
+    const int32_t cy = rng.in(-40 * kSubpixel, 300 * kSubpixel);
+    const int zmode = rng.in(0, 2);
+    const uint32_t z0 = rng.next() % (kDepthMax + 1u);
+    for (int i = 0; i < 3; ++i) {
+      v[i].x = cx + rng.in(-size, size);
+      v[i].y = cy + rng.in(-size, size);
+      v[i].z = zmode == 0   ? rng.next() % (kDepthMax + 1u)
+               : zmode == 1 ? std::min<uint32_t>(z0 + rng.next() % 4096u, kDepthMax)
+                            : z0;
+      v[i].w = 1u << 16;
+      v[i].color = Color15{static_cast<uint16_t>(rng.in(0, Color15::kOne)),
+                           static_cast<uint16_t>(rng.in(0, Color15::kOne)),
+                           static_cast<uint16_t>(rng.in(0, Color15::kOne))};
+    }
+    const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
+    sort_by_y(s);
+    const int32_t e1x = s[1]->x - s[0]->x, e1y = s[1]->y - s[0]->y;
+    const int32_t e2x = s[2]->x - s[0]->x, e2y = s[2]->y - s[0]->y;
+    const int32_t d = e1x * e2y - e2x * e1y;
+    if (d == 0) continue;
+    const auto mag = [](int32_t x) { return x < 0 ? 0u - uint32_t(x) : uint32_t(x); };
+    const uint32_t m = mag(e1x) | mag(e2x) | uint32_t(e2y);
+    ActiveTriangle a, b;
+    const bool made_a = small_planes(s, d, m, in, UntexturedKind::kLanes, a);
+    const bool made_b = small_lanes_planes_by_hand(s, d, m, b);
+    const auto same = [](const Plane& p, const Plane& q) {
+      return p.base == q.base && p.gx == q.gx && p.gy == q.gy;
+    };
+    if (made_a != made_b ||
+        (made_a && !(same(a.z, b.z) && same(a.c[0], b.c[0]) && same(a.c[1], b.c[1]))))
+      ++tally.differing;
+    if (made_a)
+      ++tally.triangles;
+    else
+      ++tally.visits;
+  }
+  return tally;
+}
+
+// Runs `cases` random triangles of random_triangle's kinds (small ones take the 32-bit path,
+// the others are refused as kSlow) in random windows through small_rows and small_rows_by_hand:
+// the same answer, d and m, and the same rows, edges and flags. visits counts the refused ones.
+inline Tally run_small_rows(uint32_t cases, uint32_t seed = 4242u) {
+  Random rng;
+  rng.s = seed;
+  Tally tally;
+  for (uint32_t c = 0; c < cases; ++c) {
+    ScreenVertex v[3];
+    random_triangle(rng, v);
+    // A third on the half-pixel lattice plus one subpixel or none: centres on edges, columns
+    // and rows on their bounds.
+    if (rng.in(0, 2) == 0) {
+      const int32_t nudge = rng.in(-1, 1);
+      for (ScreenVertex& x : v) {
+        x.x = (x.x & ~(kHalfPixel - 1)) + nudge;
+        x.y = (x.y & ~(kHalfPixel - 1)) + nudge;
+      }
+    }
+    if (signed_area2(v[0], v[1], v[2]) == 0) continue;
+    const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
+    sort_by_y(s);
+    const int32_t first_min = rng.in(-4, kHeight);
+    const RowWindow window{first_min, kHeight - 1, kWidth};
+    ActiveTriangle a, b;
+    const SmallRows ra = small_rows(s, window, a);
+    const SmallRows rb = small_rows_by_hand(s, window, b);
+    bool same = ra.result == rb.result && ra.m == rb.m;
+    if (same && ra.result != SmallRows::kSlow) {
+      same = ra.d == rb.d && a.first_row == b.first_row && a.mid_row == b.mid_row &&
+             a.last_row == b.last_row && a.col_base == b.col_base && a.flags == b.flags &&
+             a.bottom.q == b.bottom.q && a.bottom.dx == b.bottom.dx && a.bottom.dy == b.bottom.dy;
+      for (int i = 0; i < 2; ++i)
+        same = same && a.edge_q[i] == b.edge_q[i] && a.edge_dx[i] == b.edge_dx[i] &&
+               a.edge_dy[i] == b.edge_dy[i];
+    }
+    if (!same) ++tally.differing;
+    if (ra.result == SmallRows::kSlow)
+      ++tally.visits;
+    else
+      ++tally.triangles;
+    if (ra.result == SmallRows::kLaterRows) ++tally.pixels;  // the sliver test's second step
+  }
+  return tally;
+}
+
 }  // namespace lr::fw::lanes

@@ -82,6 +82,32 @@ int main() {
                       lanes::run_spans(20000, g_a, g_b, span, span_portable)) &&
          ok;
   }
+  // The small triangles' planes by hand (untextured_setup.cpp) against their C form.
+  if constexpr (lr::kSmallPlanesByHand) {
+    const lanes::Tally t = lanes::run_small_planes(20000);
+    sh::write("lr_span_check: small planes by hand == C: ");
+    sh::write_dec(t.triangles);
+    sh::write(" triangles with planes, ");
+    sh::write_dec(t.visits);
+    sh::write(" refused, ");
+    sh::write_dec(t.differing);
+    sh::write(" differ\n");
+    ok = t.differing == 0 && t.triangles > 10000 && t.visits > 100 && ok;
+  }
+  // The small triangles' rows and edges by hand (untextured_setup.cpp) against their C form.
+  if constexpr (lr::kSmallRowsByHand) {
+    const lanes::Tally t = lanes::run_small_rows(40000);
+    sh::write("lr_span_check: small rows by hand == C: ");
+    sh::write_dec(t.triangles);
+    sh::write(" small triangles (");
+    sh::write_dec(t.pixels);
+    sh::write(" without a pixel centre on their widest row), ");
+    sh::write_dec(t.visits);
+    sh::write(" refused, ");
+    sh::write_dec(t.differing);
+    sh::write(" differ\n");
+    ok = t.differing == 0 && t.triangles > 10000 && t.pixels > 100 && t.visits > 1000 && ok;
+  }
   const auto generic = [](const ActiveTriangle& t, StripRows& s) {
     lr::untextured_rows_per_span<PF, true, lr::UntexturedKind::kLanes>(t, s);
   };
