@@ -29,7 +29,7 @@ struct alignas(8) BinLane {
   BinnedTriangle* triangles;  // 16
   uint32_t first2;            // 20: the draw's first store index in both halves (x 0x10001)
   ScreenVertex* vertices;     // 24: the draw's first vertex
-  uint32_t n;                 // 28: its vertex count
+  uint32_t n;                 // 28: its vertex count (first_out_of_range())
   const std::array<uint16_t, 3>* end;  // 32: the end of its triangles
   int32_t height, width;               // 36, 40: the viewport
   ScreenVertex** list;                 // 44: the next free entry of the list of vertices to light
@@ -40,20 +40,20 @@ struct alignas(8) BinLane {
 };
 static_assert(sizeof(void*) != 4 || sizeof(BinLane) == 64);
 
-// Why the lane stopped: at the end; at a triangle it leaves to the general path (an index out
-// of range, or the table full: its pending vertices are on the list already, flags cleared);
-// at a triangle whose pending vertices do not fit on the list (nothing of it done).
+// Why the lane stopped: at the end; at a triangle it leaves to the general path (the table full:
+// its pending vertices are on the list already, flags cleared); at a triangle whose pending
+// vertices do not fit on the list (nothing of it done).
 enum BinLaneStop : uint32_t { kBinLaneEnd, kBinLaneSlow, kBinLaneFlush };
 
-// From *tp on: back faces skipped; faces without area and faces whose bounds (clamped to the
-// viewport) hold no pixel centre counted; every other face's vertices whose colour waits for
-// their first use (color_pending) put on the list, their flags cleared; the face appended to
-// the bucket of its first row's strip as EdgeTable::add() appends it. Exact: twice the signed
-// area in 64 bits (the deltas are below 2^23 inside the guard band, each product below 2^46).
+// From *tp on (every index of [*tp, end) below n: first_out_of_range()): back faces skipped; faces
+// without area and faces whose bounds (clamped to the viewport) hold no pixel centre counted; every
+// other face's vertices whose colour waits for their first use (color_pending) put on the list,
+// their flags cleared; the face appended to the bucket of its first row's strip as EdgeTable::add()
+// appends it. Exact: twice the signed area in 64 bits (the deltas are below 2^23 inside the guard
+// band, each product below 2^46).
 inline BinLaneStop bin_lane_portable(const std::array<uint16_t, 3>*& tp, BinLane& k) {
   for (; tp != k.end; ++tp) {
     const uint32_t i0 = (*tp)[0], i1 = (*tp)[1], i2 = (*tp)[2];
-    if (i0 >= k.n || i1 >= k.n || i2 >= k.n) return kBinLaneSlow;
     ScreenVertex& v0 = k.vertices[i0];
     ScreenVertex& v1 = k.vertices[i1];
     ScreenVertex& v2 = k.vertices[i2];
@@ -102,26 +102,73 @@ inline BinLaneStop bin_lane_portable(const std::array<uint16_t, 3>*& tp, BinLane
   return kBinLaneEnd;
 }
 
-// bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): about 31 instructions a
-// back face and 95 a binned front face. Rows as (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for
+// The first triangle of [tp, end) with an index of n or more, or end: the lane's triangles
+// before it need no index test of their own. On Armv7E-M 16 indices at a time (LDM and UQSUB16:
+// about 3.6 instructions a triangle), else one at a time.
+inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16_t, 3>* tp,
+                                                         const std::array<uint16_t, 3>* end,
+                                                         uint32_t n) {
+  const uint16_t* p = tp->data();
+  const uint16_t* const e = p + 3 * (end - tp);
+  if (n == 0) return tp;
+#if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
+  if ((reinterpret_cast<uintptr_t>(p) & 2) != 0 && p != e) {
+    if (*p >= n) return tp;
+    ++p;
+  }
+  const uint32_t blocks = static_cast<uint32_t>(e - p) / 16;
+  if (blocks != 0) {
+    const uint16_t* const block_end = p + 16 * blocks;
+    const uint32_t limit = (n - 1) * 0x10001u;  // n <= 0xFFFF: both halves n - 1
+    asm volatile(
+        "1:\n\t"
+        "ldm     %[p]!, {r4, r5, r6, r8, r9, r10, r11, r12}\n\t"
+        "uqsub16 r4, r4, %[l]\n\t"  // non-zero where an index is above n - 1
+        "uqsub16 r5, r5, %[l]\n\t"
+        "uqsub16 r6, r6, %[l]\n\t"
+        "uqsub16 r8, r8, %[l]\n\t"
+        "uqsub16 r9, r9, %[l]\n\t"
+        "uqsub16 r10, r10, %[l]\n\t"
+        "uqsub16 r11, r11, %[l]\n\t"
+        "uqsub16 r12, r12, %[l]\n\t"
+        "orr     r4, r4, r5\n\t"
+        "orr     r6, r6, r8\n\t"
+        "orr     r9, r9, r10\n\t"
+        "orr     r11, r11, r12\n\t"
+        "orr     r4, r4, r6\n\t"
+        "orr     r9, r9, r11\n\t"
+        "orrs    r4, r4, r9\n\t"
+        "bne     2f\n\t"
+        "cmp     %[p], %[e]\n\t"
+        "bne     1b\n\t"
+        "b       3f\n"
+        "2:\n\t"
+        "sub     %[p], %[p], #32\n"  // the block with the index: found one at a time below
+        "3:\n"
+        : [p] "+r"(p)
+        : [l] "r"(limit), [e] "r"(block_end)
+        : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "cc", "memory");
+  }
+#endif
+  while (p != e && *p < n) ++p;
+  return tp + (p - tp->data()) / 3;
+}
+
+// bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): about 26 instructions a
+// back face and 90 a binned front face. Rows as (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for
 // the clamp at 0; the constants of a binned face read with one LDM; the record's halves built
 // from the indices with one ORR and PKHBT.
 inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) {
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
-  uint32_t a, b;
+  // Low registers: CBZ and CBNZ test them.
+  register uint32_t a asm("r0");
+  register uint32_t b asm("r1");
   asm volatile(
       "1:\n\t"
+      "ldr     %[a], [%[k], #24]\n\t"  // the vertices (24 bytes each)
       "ldrh    r4, [%[tp]]\n\t"
       "ldrh    r5, [%[tp], #2]\n\t"
       "ldrh    r6, [%[tp], #4]\n\t"
-      "ldr     %[a], [%[k], #28]\n\t"  // n
-      "cmp     r4, %[a]\n\t"
-      "bhs     81f\n\t"
-      "cmp     r5, %[a]\n\t"
-      "bhs     81f\n\t"
-      "cmp     r6, %[a]\n\t"
-      "bhs     81f\n\t"
-      "ldr     %[a], [%[k], #24]\n\t"  // the vertices (24 bytes each)
       "add     r4, r4, r4, lsl #1\n\t"
       "add     r4, %[a], r4, lsl #3\n\t"
       "add     r5, r5, r5, lsl #1\n\t"
@@ -148,8 +195,12 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "mov     %[a], #0\n\t"  // kBinLaneEnd
       "b       9f\n"
       "4:\n\t"
-      "cmp     %[b], #0\n\t"
-      "bge     82f\n\t"  // no area (the high word is 0 only when the area is)
+      "cbnz    %[b], 41f\n\t"  // the high word is 0 only when the area is
+      "ldr     r8, [%[k], #52]\n\t"
+      "add     r8, r8, #1\n\t"
+      "str     r8, [%[k], #52]\n\t"
+      "b       3b\n"
+      "41:\n\t"
       // Rows: a = max(0, (y0 + 128 + min(0, dy1, dy2)) >> 8), b = (y0 + 128 + max(..)) >> 8.
       "cmp     r11, lr\n\t"
       "itete   lt\n\t"
@@ -162,32 +213,31 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "add     r9, r9, #128\n\t"
       "add     %[a], %[a], r9\n\t"
       "add     %[b], %[b], r9\n\t"
+      "ldrd    r9, r11, [%[k], #36]\n\t"  // height, width
       "usat    %[a], #16, %[a], asr #8\n\t"
       "asr     %[b], %[b], #8\n\t"
       "cmp     %[a], %[b]\n\t"
       "bge     83f\n\t"
-      "ldr     r9, [%[k], #36]\n\t"  // height
       "cmp     %[a], r9\n\t"
       "bge     83f\n\t"
       // Columns: c0 = max(0, (x0 + 127 + min(0, dx1, dx2)) >> 8), c1 likewise with the max.
       "rsb     r12, r12, #0\n\t"  // dx2
       "cmp     r10, r12\n\t"
       "itete   lt\n\t"
-      "movlt   r11, r10\n\t"
-      "movge   r11, r12\n\t"
+      "movlt   r9, r10\n\t"
+      "movge   r9, r12\n\t"
       "movlt   lr, r12\n\t"
       "movge   lr, r10\n\t"
-      "and     r11, r11, r11, asr #31\n\t"
+      "and     r9, r9, r9, asr #31\n\t"
       "bic     lr, lr, lr, asr #31\n\t"
       "add     r8, r8, #127\n\t"
-      "add     r11, r11, r8\n\t"
+      "add     r9, r9, r8\n\t"
       "add     lr, lr, r8\n\t"
-      "usat    r11, #16, r11, asr #8\n\t"
+      "usat    r9, #16, r9, asr #8\n\t"
       "asr     lr, lr, #8\n\t"
-      "cmp     r11, lr\n\t"
+      "cmp     r9, lr\n\t"
       "bge     83f\n\t"
-      "ldr     r8, [%[k], #40]\n\t"  // width
-      "cmp     r11, r8\n\t"
+      "cmp     r9, r11\n\t"
       "bge     83f\n\t"
       "ldrb    r8, [r4, #23]\n\t"  // a vertex waiting for its colour
       "ldrb    r9, [r5, #23]\n\t"
@@ -214,34 +264,34 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "add     r6, r6, lr\n\t"
       "pkhbt   r6, r6, r10, lsl #16\n\t"  // v2 next
       "strd    r4, r6, [r12]\n\t"
-      "b       3b\n"
+      "add     %[tp], %[tp], #6\n\t"  // the next (3b's, without a branch there)
+      "ldr     r8, [%[k], #32]\n\t"
+      "cmp     %[tp], r8\n\t"
+      "bne     1b\n\t"
+      "mov     %[a], #0\n\t"  // kBinLaneEnd
+      "b       9f\n"
       "5:\n\t"  // pending vertices onto the list, their flags cleared
       "ldrd    r8, r9, [%[k], #44]\n\t"
       "cmp     r8, r9\n\t"
       "bhi     84f\n\t"
       "mov     r10, #0\n\t"
-      "ldrb    r11, [r4, #23]\n\t"
-      "cmp     r11, #0\n\t"
-      "itt     ne\n\t"
-      "strbne  r10, [r4, #23]\n\t"
-      "strne   r4, [r8], #4\n\t"
-      "ldrb    r11, [r5, #23]\n\t"
-      "cmp     r11, #0\n\t"
-      "itt     ne\n\t"
-      "strbne  r10, [r5, #23]\n\t"
-      "strne   r5, [r8], #4\n\t"
-      "ldrb    r11, [r6, #23]\n\t"
-      "cmp     r11, #0\n\t"
-      "itt     ne\n\t"
-      "strbne  r10, [r6, #23]\n\t"
-      "strne   r6, [r8], #4\n\t"
+      "ldrb    %[b], [r4, #23]\n\t"
+      "cbz     %[b], 51f\n\t"
+      "strb    r10, [r4, #23]\n\t"
+      "str     r4, [r8], #4\n"
+      "51:\n\t"
+      "ldrb    %[b], [r5, #23]\n\t"
+      "cbz     %[b], 52f\n\t"
+      "strb    r10, [r5, #23]\n\t"
+      "str     r5, [r8], #4\n"
+      "52:\n\t"
+      "ldrb    %[b], [r6, #23]\n\t"
+      "cbz     %[b], 53f\n\t"
+      "strb    r10, [r6, #23]\n\t"
+      "str     r6, [r8], #4\n"
+      "53:\n\t"
       "str     r8, [%[k], #44]\n\t"
       "b       6b\n"
-      "82:\n\t"
-      "ldr     r8, [%[k], #52]\n\t"
-      "add     r8, r8, #1\n\t"
-      "str     r8, [%[k], #52]\n\t"
-      "b       3b\n"
       "83:\n\t"
       "ldr     r8, [%[k], #56]\n\t"
       "add     r8, r8, #1\n\t"
@@ -256,7 +306,6 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       : [tp] "+r"(tp), [a] "=&r"(a), [b] "=&r"(b)
       : [k] "r"(&k)
       : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
-  (void)b;
   return static_cast<BinLaneStop>(a);
 #else
   return bin_lane_portable(tp, k);

@@ -108,7 +108,9 @@ uint32_t FrontEnd::lane_run_triangles(MeshDraw& d, uint32_t t) {
             0,
             0};
   const uint32_t count_before = table.count;
-  for (;;) {
+  // Up to the first triangle with an index out of range (draw_triangle() rejects it).
+  k.end = first_out_of_range(tp, end, k.n);
+  while (tp != k.end) {
     const BinLaneStop why = bin_lane_asm(tp, k);
     light_list(d, std::span<ScreenVertex* const>(list, static_cast<size_t>(k.list - list)));
     k.list = list;

@@ -1,11 +1,12 @@
 // Random meshes for the front end's bin lane (core/binning/bin_lane.hpp): screen vertices
 // on and off the viewport, at the guard band's reach, degenerate (repeated and collinear
 // corners), some waiting for their colour; triangles of both facings, some with an index out of
-// range. run_cases() runs two lanes on equal copies of each mesh (with a small table and list, so
-// that they stop, flush and resume) and counts the meshes on which anything differs: the stop
-// reasons, the triangle each stopped at, the records (order, vertices, next), the buckets, the
-// counts, the list of vertices to light and the vertices' flags. Shared by lr_bin_check (the
-// hand-allocated lane against the C one on the target) and the host test.
+// range (first_out_of_range() ends the lane's run there). run_cases() runs two lanes on equal
+// copies of each mesh (with a small table and list, so that they stop, flush and resume) and counts
+// the meshes on which anything differs: the stop reasons, the triangle each stopped at, the records
+// (order, vertices, next), the buckets, the counts, the list of vertices to light and the vertices'
+// flags. Shared by lr_bin_check (the hand-allocated lane against the C one on the target) and the
+// host test.
 #pragma once
 
 #include <array>
@@ -40,6 +41,7 @@ struct Run {
 struct Tally {
   uint32_t meshes = 0, binned = 0, back = 0, zero = 0, offscreen = 0, lit = 0, stops = 0;
   uint32_t differing = 0;
+  uint32_t scans = 0, scans_differing = 0;  // first_out_of_range() against one index at a time
 };
 
 struct Rng {
@@ -82,7 +84,7 @@ inline void make_mesh(Rng& r, Mesh& m) {
     uint16_t b = static_cast<uint16_t>(r.next() % kVertices);
     uint16_t c = static_cast<uint16_t>(r.next() % kVertices);
     const uint32_t shape = r.next() % 32;
-    if (shape == 0) b = a;                                        // repeated corner
+    if (shape == 0) b = a;                                         // repeated corner
     if (shape == 1) c = static_cast<uint16_t>(kVertices + shape);  // out of range (slow path)
     m.t[t] = {a, b, c};
   }
@@ -113,14 +115,22 @@ void run_lane(const Mesh& m, Run& out, Lane&& lane, uint32_t strip_reciprocal, u
             0,
             0};
   const std::array<uint16_t, 3>* tp = m.t;
-  while (tp != k.end) {
+  const std::array<uint16_t, 3>* const end = m.t + kTriangles;
+  while (tp != end) {
+    // Up to the next index out of range, as FrontEnd::lane_run_triangles() runs the lane.
+    k.end = first_out_of_range(tp, end, kVertices);
+    if (tp == k.end) {
+      out.stops[out.stop_count++] = 3u << 16 | static_cast<uint32_t>(tp - m.t);
+      ++tp;
+      continue;
+    }
     const BinLaneStop why = lane(tp, k);
     for (ScreenVertex** e = out.list; e != k.list; ++e)
       out.lit[out.lit_count++] = static_cast<uint16_t>(*e - out.v);
     k.list = out.list;
-    out.stops[out.stop_count++] = static_cast<uint32_t>(why) << 16 |
-                                  static_cast<uint32_t>(tp - m.t);
-    if (why == kBinLaneEnd) break;
+    out.stops[out.stop_count++] =
+        static_cast<uint32_t>(why) << 16 | static_cast<uint32_t>(tp - m.t);
+    if (why == kBinLaneEnd) continue;
     if (why == kBinLaneSlow) {
       if (k.count >= k.capacity) break;
       ++tp;
@@ -169,6 +179,14 @@ Tally run_cases(uint32_t meshes, Mesh& m, Run& a, Run& b, P&& p, Q&& q, uint32_t
     t.lit += a.lit_count;
     t.stops += a.stop_count;
     if (!same(a, b)) ++t.differing;
+    // The scan that ends the lane's runs, from every start, for a random n.
+    const uint32_t n = 1 + r.next() % (kVertices + 8);
+    for (uint32_t s = 0; s <= kTriangles; ++s) {
+      const std::array<uint16_t, 3>* want = m.t + s;
+      while (want != m.t + kTriangles && (*want)[0] < n && (*want)[1] < n && (*want)[2] < n) ++want;
+      ++t.scans;
+      if (first_out_of_range(m.t + s, m.t + kTriangles, n) != want) ++t.scans_differing;
+    }
   }
   return t;
 }

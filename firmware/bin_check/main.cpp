@@ -1,7 +1,8 @@
 // lr_bin_check: the front end's bin lane by hand (core/binning/bin_lane.hpp, the Armv7E-M asm)
 // against its C twin on random meshes (firmware/bin_check/bin_cases.hpp): the same records,
-// buckets, counts, stops and vertices to light. On cores without the hand-allocated lane it
-// runs the C lane against itself (a check of the harness). Reports on the console
+// buckets, counts, stops and vertices to light; and the scan
+// for the first index out of range against one index at a time. On cores without the hand-allocated
+// lane it runs the C lane against itself (a check of the harness). Reports on the console
 // (semihosting); exit status 0 when nothing differs.
 #include <cstdint>
 
@@ -41,10 +42,14 @@ int main() {
   sh::write_dec(t.stops);
   sh::write(" stops, ");
   sh::write_dec(t.differing);
-  sh::write(" meshes differ\n");
+  sh::write(" meshes differ; ");
+  sh::write_dec(t.scans);
+  sh::write(" index scans, ");
+  sh::write_dec(t.scans_differing);
+  sh::write(" differ\n");
   // A run that compared (almost) nothing proves nothing.
-  const bool ok = t.differing == 0 && t.binned > 20000 && t.zero > 1000 && t.offscreen > 1000 &&
-                  t.lit > 20000;
+  const bool ok = t.differing == 0 && t.scans_differing == 0 && t.scans > 100000 &&
+                  t.binned > 20000 && t.zero > 1000 && t.offscreen > 1000 && t.lit > 20000;
   sh::write(ok ? "lr_bin_check: PASS\n" : "lr_bin_check: FAIL\n");
   sh::exit(ok);
 }
