@@ -40,12 +40,12 @@ struct alignas(8) BinLane {
 };
 static_assert(sizeof(void*) != 4 || sizeof(BinLane) == 64);
 
-// Why the lane stopped: at the end; at a triangle it leaves to the general path (the table full:
-// its pending vertices are on the list already, flags cleared); at a triangle whose pending
-// vertices do not fit on the list (nothing of it done).
-enum BinLaneStop : uint32_t { kBinLaneEnd, kBinLaneSlow, kBinLaneFlush };
+// Why the lane stopped: at the end; at a triangle whose pending vertices do not fit on the list
+// (nothing of it done).
+enum BinLaneStop : uint32_t { kBinLaneEnd, kBinLaneFlush };
 
-// From *tp on (every index of [*tp, end) below n: first_out_of_range()): back faces skipped; faces
+// From *tp to end (every index below n: first_out_of_range(); room in the table for every
+// triangle up to end: the caller ends a run there): back faces skipped; faces
 // without area and faces whose bounds (clamped to the viewport) hold no pixel centre counted; every
 // other face's vertices whose colour waits for their first use (color_pending) put on the list,
 // their flags cleared; the face appended to the bucket of its first row's strip as EdgeTable::add()
@@ -88,7 +88,6 @@ inline BinLaneStop bin_lane_portable(const std::array<uint16_t, 3>*& tp, BinLane
         *k.list++ = v;
       }
     }
-    if (k.count >= k.capacity) return kBinLaneSlow;
     const uint32_t index = k.count++;
     uint16_t& head = k.buckets[(static_cast<uint32_t>(a) * k.strip_reciprocal) >> 17];
     BinnedTriangle& t = k.triangles[index];
@@ -155,7 +154,7 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 }
 
 // bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): about 26 instructions a
-// back face and 90 a binned front face. Rows as (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for
+// back face and 88 a binned front face. Rows as (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for
 // the clamp at 0; the constants of a binned face read with one LDM; the record's halves built
 // from the indices with one ORR and PKHBT.
 inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) {
@@ -247,8 +246,6 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "bne     5f\n\t"
       "6:\n\t"
       "ldm     %[k], {r8, r9, r10, r11, r12, lr}\n\t"  // count capacity m buckets triangles first2
-      "cmp     r8, r9\n\t"
-      "bhs     81f\n\t"
       "mul     r9, %[a], r10\n\t"
       "lsr     r9, r9, #17\n\t"             // the strip
       "ldrh    r10, [r11, r9, lsl #1]\n\t"  // its head: the record's next
@@ -297,11 +294,8 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "add     r8, r8, #1\n\t"
       "str     r8, [%[k], #56]\n\t"
       "b       3b\n"
-      "81:\n\t"
-      "mov     %[a], #1\n\t"  // kBinLaneSlow
-      "b       9f\n"
       "84:\n\t"
-      "mov     %[a], #2\n"  // kBinLaneFlush
+      "mov     %[a], #1\n"  // kBinLaneFlush
       "9:\n"
       : [tp] "+r"(tp), [a] "=&r"(a), [b] "=&r"(b)
       : [k] "r"(&k)

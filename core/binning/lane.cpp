@@ -82,7 +82,7 @@ uint32_t FrontEnd::lane_triangles(MeshDraw& d, uint32_t t) {
 }
 
 // lane_triangles() through bin_lane_asm(): its list of vertices to light lit each time it
-// stops, the triangles it leaves to draw_triangle() (an index out of range, a full table)
+// stops; the triangle it leaves to draw_triangle() (an index out of range, a full table)
 // returned to the caller.
 uint32_t FrontEnd::lane_run_triangles(MeshDraw& d, uint32_t t) {
   const std::array<uint16_t, 3>* const tris = d.mesh.triangles.data();
@@ -108,13 +108,15 @@ uint32_t FrontEnd::lane_run_triangles(MeshDraw& d, uint32_t t) {
             0,
             0};
   const uint32_t count_before = table.count;
-  // Up to the first triangle with an index out of range (draw_triangle() rejects it).
-  k.end = first_out_of_range(tp, end, k.n);
-  while (tp != k.end) {
-    const BinLaneStop why = bin_lane_asm(tp, k);
+  // Up to the first triangle with an index out of range (draw_triangle() rejects it), in runs
+  // that cannot fill the table (a full one: draw_triangle() bins in bands).
+  const std::array<uint16_t, 3>* const stop = first_out_of_range(tp, end, k.n);
+  while (tp != stop && k.count < k.capacity) {
+    const auto room = static_cast<size_t>(k.capacity - k.count);
+    k.end = static_cast<size_t>(stop - tp) > room ? tp + room : stop;
+    bin_lane_asm(tp, k);  // (at k.end, or with the list full)
     light_list(d, std::span<ScreenVertex* const>(list, static_cast<size_t>(k.list - list)));
     k.list = list;
-    if (why != kBinLaneFlush) break;
   }
   edges_.set_size(k.count);
   const auto done = static_cast<uint32_t>(tp - tris);

@@ -93,13 +93,14 @@ inline void make_mesh(Rng& r, Mesh& m) {
 // The lane `lane` on mesh m from the start to the end, as FrontEnd::lane_run_triangles() drives
 // it: the list emptied at every stop, a slow triangle skipped.
 template <class Lane>
-void run_lane(const Mesh& m, Run& out, Lane&& lane, uint32_t strip_reciprocal, uint32_t first) {
+void run_lane(const Mesh& m, Run& out, Lane&& lane, uint32_t strip_reciprocal, uint32_t first,
+              uint32_t capacity) {
   for (uint32_t i = 0; i < kVertices; ++i) out.v[i] = m.v[i];
   for (BinnedTriangle& t : out.tris) t = BinnedTriangle{{0, 0, 0}, 0};
   for (uint16_t& b : out.buckets) b = kNoTriangle;
   out.lit_count = out.stop_count = 0;
   BinLane k{0,
-            kCapacity,
+            capacity,
             strip_reciprocal,
             out.buckets,
             out.tris,
@@ -116,25 +117,23 @@ void run_lane(const Mesh& m, Run& out, Lane&& lane, uint32_t strip_reciprocal, u
             0};
   const std::array<uint16_t, 3>* tp = m.t;
   const std::array<uint16_t, 3>* const end = m.t + kTriangles;
-  while (tp != end) {
-    // Up to the next index out of range, as FrontEnd::lane_run_triangles() runs the lane.
-    k.end = first_out_of_range(tp, end, kVertices);
-    if (tp == k.end) {
+  // As FrontEnd::lane_run_triangles() runs the lane: up to the next index out of range (that
+  // triangle skipped here), in runs that cannot fill the table, until it is full.
+  while (tp != end && k.count < k.capacity) {
+    const std::array<uint16_t, 3>* const stop = first_out_of_range(tp, end, kVertices);
+    if (tp == stop) {
       out.stops[out.stop_count++] = 3u << 16 | static_cast<uint32_t>(tp - m.t);
       ++tp;
       continue;
     }
+    const auto room = static_cast<uint32_t>(k.capacity - k.count);
+    k.end = static_cast<uint32_t>(stop - tp) > room ? tp + room : stop;
     const BinLaneStop why = lane(tp, k);
     for (ScreenVertex** e = out.list; e != k.list; ++e)
       out.lit[out.lit_count++] = static_cast<uint16_t>(*e - out.v);
     k.list = out.list;
     out.stops[out.stop_count++] =
         static_cast<uint32_t>(why) << 16 | static_cast<uint32_t>(tp - m.t);
-    if (why == kBinLaneEnd) continue;
-    if (why == kBinLaneSlow) {
-      if (k.count >= k.capacity) break;
-      ++tp;
-    }
   }
   out.count = k.count;
   out.zero = k.zero;
@@ -160,7 +159,7 @@ inline bool same(const Run& a, const Run& b) {
 }
 
 // `meshes` random meshes through lanes p and q: strips of 8 rows (the viewport's 60 rows in 8
-// strips), the draw's first store index varying.
+// strips), the draw's first store index and the table's room varying.
 template <class P, class Q>
 Tally run_cases(uint32_t meshes, Mesh& m, Run& a, Run& b, P&& p, Q&& q, uint32_t seed = 2024u) {
   Rng r{seed};
@@ -170,8 +169,9 @@ Tally run_cases(uint32_t meshes, Mesh& m, Run& a, Run& b, P&& p, Q&& q, uint32_t
   for (uint32_t i = 0; i < meshes; ++i) {
     make_mesh(r, m);
     const uint32_t first = r.next() % 1000;
-    run_lane(m, a, p, kReciprocal, first);
-    run_lane(m, b, q, kReciprocal, first);
+    const uint32_t capacity = 10 + r.next() % (kCapacity - 9);  // [10, kCapacity]
+    run_lane(m, a, p, kReciprocal, first, capacity);
+    run_lane(m, b, q, kReciprocal, first, capacity);
     ++t.meshes;
     t.binned += a.count;
     t.zero += a.zero;
