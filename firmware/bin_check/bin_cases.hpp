@@ -1,12 +1,12 @@
 // Random meshes for the front end's bin lane (core/binning/bin_lane.hpp): screen vertices
-// on and off the viewport, at the guard band's reach, degenerate (repeated and collinear
-// corners), some waiting for their colour; triangles of both facings, some with an index out of
-// range (first_out_of_range() ends the lane's run there). run_cases() runs two lanes on equal
-// copies of each mesh (with a small table and list, so that they stop, flush and resume) and counts
-// the meshes on which anything differs: the stop reasons, the triangle each stopped at, the records
-// (order, vertices, next), the buckets, the counts, the list of vertices to light and the vertices'
-// flags. Shared by lr_bin_check (the hand-allocated lane against the C one on the target) and the
-// host test.
+// on and off the viewport, at the guard band's reach, on and next to pixel centres, degenerate
+// (repeated and collinear corners), some waiting for their colour; triangles of both facings, some
+// with an index out of range (first_out_of_range() ends the lane's run there). run_cases() runs two
+// lanes on equal copies of each mesh (with a small table and list, so that they stop, flush and
+// resume) and counts the meshes on which anything differs: the stop reasons, the triangle each
+// stopped at, the records (order, vertices, next), the buckets, the counts, the list of vertices to
+// light and the vertices' flags. Shared by lr_bin_check (the hand-allocated lane against the C one
+// on the target) and the host test.
 #pragma once
 
 #include <array>
@@ -75,6 +75,10 @@ inline void make_mesh(Rng& r, Mesh& m) {
     } else {  // small triangles on the viewport
       v.x = r.range(-300, kWidth * 256 + 300);
       v.y = r.range(-300, kHeight * 256 + 300);
+    }
+    if (kind == 2 && r.next() % 2 == 0) {  // on a pixel centre's row or column, or next to it
+      v.x = (v.x & ~255) + 128 + r.range(-1, 1);
+      v.y = (v.y & ~255) + 128 + r.range(-1, 1);
     }
     v.color = {static_cast<uint16_t>(i), 0, 0};
     v.color_pending = (kind == 3 || r.next() % 3 == 0) ? 1 : 0;
