@@ -118,7 +118,8 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   const uint32_t blocks = static_cast<uint32_t>(e - p) / 16;
   if (blocks != 0) {
     const uint16_t* const block_end = p + 16 * blocks;
-    const uint32_t limit = (n - 1) * 0x10001u;  // n <= 0xFFFF: both halves n - 1
+    // n - 1 in both halves (every index is below n > 0xFFFF)
+    const uint32_t limit = (n > 0x10000 ? 0xFFFFu : n - 1) * 0x10001u;
     asm volatile(
         "1:\n\t"
         "ldm     %[p]!, {r4, r5, r6, r8, r9, r10, r11, r12}\n\t"
