@@ -107,9 +107,9 @@ inline BinLaneStop bin_lane_portable(const std::array<uint16_t, 3>*& tp, BinLane
 inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16_t, 3>* tp,
                                                          const std::array<uint16_t, 3>* end,
                                                          uint32_t n) {
+  if (tp == end || n == 0) return tp;
   const uint16_t* p = tp->data();
   const uint16_t* const e = p + 3 * (end - tp);
-  if (n == 0) return tp;
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
   if ((reinterpret_cast<uintptr_t>(p) & 2) != 0 && p != e) {
     if (*p >= n) return tp;
