@@ -136,16 +136,22 @@ void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
   const ObjectLights* const ol = d.diffuse_lights;
   ScreenVertex* const base = store_.vertices_at(d.base);
   const Normal16* const normals = d.mesh.normals.data();
+  // A vertex's normal from its byte offset in the store, without the division by 24 that its
+  // index takes: 24 bytes a vertex, 6 a normal.
+  static_assert(sizeof(ScreenVertex) == 4 * sizeof(Normal16));
   for (ScreenVertex* const v : list) {
-    const auto i = static_cast<uint32_t>(v - base);
     if (ol != nullptr) {
-      const Normal16& n = normals[i];
+      const auto offset = static_cast<size_t>(reinterpret_cast<const char*>(v) -
+                                              reinterpret_cast<const char*>(base));
+      const Normal16& n =
+          *reinterpret_cast<const Normal16*>(reinterpret_cast<const char*>(normals) + offset / 4);
       const uint32_t len2 = normal_len2(n);
       if (unit_len2(len2)) [[likely]] {
         v->color = light_object_diffuse(*d.colors.lighting, *ol, n, len2);
         continue;
       }
     }
+    const auto i = static_cast<uint32_t>(v - base);
     const LitColor lc = d.stage.light(d.mesh, d.colors, i, false);
     v->color = lc.primary;
     if (d.colors.split) store_.tex(d.base + i).spec = lc.secondary;
