@@ -155,7 +155,7 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 }
 
 // bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): about 26 instructions a
-// back face and 88 a binned front face. Rows as (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for
+// back face and 86 a binned front face. Rows as (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for
 // the clamp at 0; the constants of a binned face read with one LDM; the record's halves built
 // from the indices with one ORR and PKHBT.
 inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) {
