@@ -129,9 +129,10 @@ uint32_t FrontEnd::lane_run_triangles(MeshDraw& d, uint32_t t) {
   return done;
 }
 
-// The vertices the lanes found waiting for their colour (their flags cleared), lit: the common
-// case here (diffuse directional lights in model space, a unit normal, one colour), the others
-// through VertexStage::light (out of line).
+// The vertices bin_lane_asm() found waiting for their colour (their flags cleared), lit as
+// light_corners() lights them (a copy of its code: through one function the C lane, which
+// Armv6-M runs, took 2 % longer on S1 and S1x): the common case here (diffuse directional lights in
+// model space, a unit normal, one colour), the others through VertexStage::light (out of line).
 void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
   const ObjectLights* const ol = d.diffuse_lights;
   ScreenVertex* const base = store_.vertices_at(d.base);
@@ -158,19 +159,30 @@ void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
   }
 }
 
-// A drawn triangle's vertices whose colour waits for their first use (lit Gouraud), lit by
-// light_list() (one copy of the lighting code for both lanes).
+// A drawn triangle's vertices whose colour waits for their first use, lit (lit Gouraud). The
+// common case here: diffuse directional lights in model space, a unit normal, one colour; the
+// others through VertexStage::light (out of line).
 void FrontEnd::light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
+  const ObjectLights* const ol = d.diffuse_lights;
   ScreenVertex* const base = store_.vertices_at(d.base);
-  ScreenVertex* list[3];
-  size_t m = 0;
-  for (const uint16_t i : tri) {
+  const Normal16* const normals = d.mesh.normals.data();
+  for (size_t k = 0; k < 3; ++k) {
+    const uint32_t i = tri[k];
     ScreenVertex& v = base[i];
     if (v.color_pending == 0) continue;
     v.color_pending = 0;
-    list[m++] = &v;
+    if (ol != nullptr) {
+      const Normal16& n = normals[i];
+      const uint32_t len2 = normal_len2(n);
+      if (unit_len2(len2)) [[likely]] {
+        v.color = light_object_diffuse(*d.colors.lighting, *ol, n, len2);
+        continue;
+      }
+    }
+    const LitColor lc = d.stage.light(d.mesh, d.colors, i, false);
+    v.color = lc.primary;
+    if (d.colors.split) store_.tex(d.base + i).spec = lc.secondary;
   }
-  light_list(d, std::span<ScreenVertex* const>(list, m));
 }
 
 }  // namespace lr
