@@ -10,7 +10,8 @@
 #       firmware/boards.cmake): must pass, and its frame checksum must equal the host build's
 #       when LR_HOST_SMOKE is given;
 #       lr_span_check on its board (firmware/span_check: the lanes row loop by hand against its
-#       C twin, and the C twin against the generic row loop): must pass. The Cortex-M0+ image also runs on mps2-an385 (the M3 that
+#       C twin, and the C twin against the generic row loop) and lr_bin_check (firmware/bin_check:
+#       the front end's bin lane by hand against its C twin): must pass. The Cortex-M0+ image also runs on mps2-an385 (the M3 that
 #       runs the M0+ images needing more than the micro:bit's 16 KB; same ELF, same frame);
 #       the fault checks (firmware/fault_check, listed in its fault_checks.txt): each must end
 #       QEMU with a failure status and report "HardFault: pc=" the address of lr_fault_trigger.
@@ -118,22 +119,23 @@ smoke() {
   smoke_note="lr_smoke ${sum##* }${host_sum:+ == host}, stack ${stack:-?} B"
 }
 
-# span_check PRESET BUILD_DIR: runs lr_span_check on its board (images.txt); sets span_note.
+# span_check PRESET BUILD_DIR [IMAGE]: runs IMAGE (default lr_span_check; lr_bin_check) on its
+# board (images.txt); adds to span_note.
 span_check() {
-  local preset="$1" build_dir="$2" name board machine elf
-  read -r name board machine elf < <(grep '^lr_span_check ' "$build_dir/firmware/images.txt" || true)
+  local preset="$1" build_dir="$2" image="${3:-lr_span_check}" name board machine elf
+  read -r name board machine elf < <(grep "^$image " "$build_dir/firmware/images.txt" || true)
   if [[ -z "${elf:-}" || ! -f "$elf" ]]; then
-    problem "[$preset] lr_span_check not built"
+    problem "[$preset] $image not built"
     return 1
   fi
-  echo "ci_cross: [$preset] lr_span_check on $machine"
+  echo "ci_cross: [$preset] $image on $machine"
   qemu "$machine" "$elf"
   indent <<<"$qemu_out"
-  if [[ $qemu_status != 0 ]] || ! grep -q '^lr_span_check: PASS' <<<"$qemu_out"; then
-    problem "[$preset] lr_span_check failed on $machine (QEMU status $qemu_status)"
+  if [[ $qemu_status != 0 ]] || ! grep -q "^$image: PASS" <<<"$qemu_out"; then
+    problem "[$preset] $image failed on $machine (QEMU status $qemu_status)"
     return 1
   fi
-  span_note="lr_span_check on $machine"
+  span_note="${span_note:+$span_note, }$image on $machine"
 }
 
 # faults PRESET MACHINE LIST: runs the fault checks of LIST for MACHINE; sets fault_note.
@@ -228,6 +230,7 @@ for preset in "${presets[@]}"; do
     span_note=""
     if [[ "$machine" == "$board" ]]; then
       span_check "$preset" "$build_dir" || ok=0
+      span_check "$preset" "$build_dir" lr_bin_check || ok=0
     fi
     if [[ -f "$fault_list" ]]; then
       faults "$preset" "$machine" "$fault_list" || ok=0

@@ -195,6 +195,9 @@ class FrontEnd {
   [[gnu::noinline]] uint32_t lane_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] uint32_t lane_run_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] void light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri);
+  // The lane's vertices to light (lane.cpp), at most kLightList at a time.
+  static constexpr size_t kLightList = 48;
+  [[gnu::noinline]] void light_list(MeshDraw& d, std::span<ScreenVertex* const> list);
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
                                                 ScreenVertex* const (&sv)[3], bool back_copies,

@@ -1,190 +1,11 @@
 // The front end's lane: the common triangle of a draw (one-sided, Gouraud or one colour, inside
 // every plane, the edge table neither full nor banded nor signed) culled, lit and binned in a
 // small loop of its own; and the lighting of a drawn triangle's vertices on first use.
+#include "lineraster/core/binning/bin_lane.hpp"
 #include "lineraster/core/binning/front_end.hpp"
 #include "lineraster/core/binning/mesh_draw.hpp"
 
 namespace lr {
-
-namespace {
-
-#if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
-inline constexpr bool kLaneRun = true;
-#else
-inline constexpr bool kLaneRun = false;
-#endif
-
-// What lane_run() reads (and the count it updates), in its order: word offsets in its code.
-struct alignas(8) LaneWords {
-  const ScreenVertex* vertices;        // 0: the draw's first vertex
-  uint32_t n;                          // 4: its vertex count
-  const std::array<uint16_t, 3>* end;  // 8: the end of its triangles
-  int32_t last_row;                    // 12: height - 1
-  int32_t width;                       // 16
-  uint32_t strip_reciprocal;           // 20: EdgeTable::strip_of_row's
-  uint16_t* buckets;                   // 24
-  BinnedTriangle* triangles;           // 28
-  uint32_t count, capacity;            // 32, 36: the edge table's
-  uint32_t first;                      // 40: the draw's first vertex store index
-  uint32_t pad;
-};
-
-// Why lane_run() stopped.
-enum LaneStop : uint32_t { kLaneEnd, kLaneSlow, kLaneZero, kLaneOffscreen, kLanePending };
-
-// The lane for back-face culling in draws with no vertex outside a plane, hand-allocated (about
-// 34 instructions a back face, 110 a binned front face, where GCC 12's code for the loop of
-// lane_triangles() takes about 47 and 125): from *tp on, back faces skipped, front faces binned
-// as lane_triangles() bins them, until the end or a triangle that needs more (an index out of
-// range or a full table: draw_triangle(); no area; no pixel centre; a pending vertex, with its
-// first row in row). The same tests and the same records as the C loop, which the other cores
-// run.
-[[gnu::always_inline]] inline LaneStop lane_run(const std::array<uint16_t, 3>*& tp, LaneWords& k,
-                                                uint32_t& row) {
-#if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
-  uint32_t a, b;
-  asm volatile(
-      "1:\n\t"
-      "ldrh    r4, [%[tp]]\n\t"
-      "ldrh    r5, [%[tp], #2]\n\t"
-      "ldrh    r6, [%[tp], #4]\n\t"
-      "ldr     r8, [%[k], #4]\n\t"  // n
-      "cmp     r4, r8\n\t"
-      "bhs     81f\n\t"
-      "cmp     r5, r8\n\t"
-      "bhs     81f\n\t"
-      "cmp     r6, r8\n\t"
-      "bhs     81f\n\t"
-      "ldr     r8, [%[k]]\n\t"  // the vertices (24 bytes each)
-      "add     r4, r4, r4, lsl #1\n\t"
-      "add     r4, r8, r4, lsl #3\n\t"
-      "add     r5, r5, r5, lsl #1\n\t"
-      "add     r5, r8, r5, lsl #3\n\t"
-      "add     r6, r6, r6, lsl #1\n\t"
-      "add     r6, r8, r6, lsl #3\n\t"
-      "ldrd    r8, r9, [r4]\n\t"  // x0 y0
-      "ldrd    r10, r11, [r5]\n\t"
-      "ldrd    r12, lr, [r6]\n\t"
-      "sub     r10, r10, r8\n\t"  // dx1
-      "sub     r11, r11, r9\n\t"  // dy1
-      "sub     r12, r8, r12\n\t"  // -dx2
-      "sub     lr, lr, r9\n\t"    // dy2
-      "smull   %[a], %[b], r10, lr\n\t"
-      "smlal   %[a], %[b], r12, r11\n\t"  // twice the signed area, exact (facing())
-      "cmp     %[b], #0\n\t"
-      "blt     4f\n\t"  // front-facing
-      "bne     3f\n\t"
-      "cmp     %[a], #0\n\t"
-      "beq     82f\n\t"  // no area
-      "3:\n\t"           // culled (back face) or binned: the next
-      "add     %[tp], %[tp], #6\n\t"
-      "ldr     %[a], [%[k], #8]\n\t"
-      "cmp     %[tp], %[a]\n\t"
-      "bne     1b\n\t"
-      "mov     %[a], #0\n\t"  // kLaneEnd
-      "b       9f\n"
-      "4:\n\t"  // rows: y0 + min(0, dy1, dy2), y0 + max(...)
-      "cmp     r11, lr\n\t"
-      "itete   lt\n\t"
-      "movlt   %[a], r11\n\t"
-      "movge   %[a], lr\n\t"
-      "movlt   %[b], lr\n\t"
-      "movge   %[b], r11\n\t"
-      "and     %[a], %[a], %[a], asr #31\n\t"
-      "bic     %[b], %[b], %[b], asr #31\n\t"
-      "add     %[a], %[a], r9\n\t"
-      "add     %[b], %[b], r9\n\t"
-      "sub     %[a], %[a], #128\n\t"
-      "asr     %[a], %[a], #8\n\t"
-      "add     %[a], %[a], #1\n\t"
-      "bic     %[a], %[a], %[a], asr #31\n\t"  // r0 = max(first_row_below(ymin), 0)
-      "sub     %[b], %[b], #128\n\t"
-      "asr     %[b], %[b], #8\n\t"  // last_row_at_or_above(ymax)
-      "ldr     r9, [%[k], #12]\n\t"
-      "cmp     %[b], r9\n\t"
-      "it      gt\n\t"
-      "movgt   %[b], r9\n\t"
-      "cmp     %[a], %[b]\n\t"
-      "bgt     83f\n\t"           // no row centre
-      "rsb     r12, r12, #0\n\t"  // columns: x0 + min(0, dx1, dx2), ...
-      "cmp     r10, r12\n\t"
-      "itete   lt\n\t"
-      "movlt   r9, r10\n\t"
-      "movge   r9, r12\n\t"
-      "movlt   r11, r12\n\t"
-      "movge   r11, r10\n\t"
-      "and     r9, r9, r9, asr #31\n\t"
-      "bic     r11, r11, r11, asr #31\n\t"
-      "add     r9, r9, r8\n\t"
-      "add     r11, r11, r8\n\t"
-      "add     r9, r9, #127\n\t"
-      "asr     r9, r9, #8\n\t"
-      "bic     r9, r9, r9, asr #31\n\t"  // c0
-      "add     r11, r11, #127\n\t"
-      "asr     r11, r11, #8\n\t"
-      "ldr     r10, [%[k], #16]\n\t"
-      "cmp     r11, r10\n\t"
-      "it      gt\n\t"
-      "movgt   r11, r10\n\t"  // c1
-      "cmp     r9, r11\n\t"
-      "bge     83f\n\t"            // no column centre
-      "ldrb    r9, [r4, #23]\n\t"  // a vertex waiting for its colour
-      "ldrb    r10, [r5, #23]\n\t"
-      "ldrb    r11, [r6, #23]\n\t"
-      "orr     r9, r9, r10\n\t"
-      "orrs    r9, r9, r11\n\t"
-      "bne     84f\n\t"
-      "ldrd    r9, r10, [%[k], #32]\n\t"  // count, capacity
-      "cmp     r9, r10\n\t"
-      "bhs     81f\n\t"
-      "ldr     r10, [%[k], #20]\n\t"  // the strip of r0
-      "mul     r10, %[a], r10\n\t"
-      "lsr     r10, r10, #17\n\t"
-      "ldr     r11, [%[k], #24]\n\t"
-      "ldrh    r12, [r11, r10, lsl #1]\n\t"  // its head: the record's next
-      "strh    r9, [r11, r10, lsl #1]\n\t"
-      "ldr     r11, [%[k], #28]\n\t"
-      "add     r11, r11, r9, lsl #3\n\t"
-      "add     r9, r9, #1\n\t"
-      "str     r9, [%[k], #32]\n\t"
-      "ldrh    r4, [%[tp]]\n\t"
-      "ldrh    r5, [%[tp], #2]\n\t"
-      "ldrh    r6, [%[tp], #4]\n\t"
-      "ldr     r10, [%[k], #40]\n\t"  // the draw's first store index
-      "add     r4, r4, r10\n\t"
-      "add     r5, r5, r10\n\t"
-      "add     r6, r6, r10\n\t"
-      "orr     r4, r4, r5, lsl #16\n\t"
-      "orr     r6, r6, r12, lsl #16\n\t"
-      "strd    r4, r6, [r11]\n\t"  // v0 v1, v2 next
-      "b       3b\n"
-      "81:\n\t"
-      "mov     %[a], #1\n\t"
-      "b       9f\n"
-      "82:\n\t"
-      "mov     %[a], #2\n\t"
-      "b       9f\n"
-      "83:\n\t"
-      "mov     %[a], #3\n\t"
-      "b       9f\n"
-      "84:\n\t"
-      "mov     %[b], %[a]\n\t"
-      "mov     %[a], #4\n"
-      "9:\n"
-      : [tp] "+r"(tp), [a] "=&r"(a), [b] "=&r"(b)
-      : [k] "r"(&k)
-      : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
-  row = b;
-  return static_cast<LaneStop>(a);
-#else
-  (void)tp;
-  (void)k;
-  (void)row;
-  return kLaneSlow;
-#endif
-}
-
-}  // namespace
 
 // The lane, from triangle t on: one-sided, Gouraud or one colour (no per-triangle colours),
 // inside every plane (a draw with no vertex outside one skips the outcode tests), the edge table
@@ -194,7 +15,7 @@ enum LaneStop : uint32_t { kLaneEnd, kLaneSlow, kLaneZero, kLaneOffscreen, kLane
 // locals.
 uint32_t FrontEnd::lane_triangles(MeshDraw& d, uint32_t t) {
   if (edges_.banding()) return t;  // (set only by draw_triangle())
-  if constexpr (kLaneRun) {
+  if constexpr (kBinLaneAsm) {
     if (d.state.cull == Cull::kBack && !d.clipping) return lane_run_triangles(d, t);
   }
   const std::array<uint16_t, 3>* const tris = d.mesh.triangles.data();
@@ -260,57 +81,82 @@ uint32_t FrontEnd::lane_triangles(MeshDraw& d, uint32_t t) {
   return done;
 }
 
-// lane_triangles() through lane_run(): the C side takes the triangles it stops at (pending
-// vertices lit, then binned; no area, no pixel centre counted), the rest goes to draw_triangle().
+// lane_triangles() through bin_lane_asm(): its list of vertices to light lit each time it
+// stops; the triangle it leaves to draw_triangle() (an index out of range, a full table)
+// returned to the caller.
 uint32_t FrontEnd::lane_run_triangles(MeshDraw& d, uint32_t t) {
   const std::array<uint16_t, 3>* const tris = d.mesh.triangles.data();
   const std::array<uint16_t, 3>* tp = tris + t;
   const std::array<uint16_t, 3>* const end = tris + d.mesh.triangles.size();
   if (tp == end) return t;
   const EdgeTable::Raw table = edges_.raw();
-  LaneWords k{store_.vertices_at(d.base),
-              static_cast<uint32_t>(d.mesh.positions.size()),
-              end,
-              height_ - 1,
-              width_,
-              table.strip_reciprocal,
-              table.buckets,
-              table.triangles,
-              table.count,
-              table.capacity,
-              static_cast<uint32_t>(d.base),
-              0};
+  ScreenVertex* list[kLightList];
+  BinLane k{table.count,
+            table.capacity,
+            table.strip_reciprocal,
+            table.buckets,
+            table.triangles,
+            static_cast<uint32_t>(d.base) * 0x10001u,
+            store_.vertices_at(d.base),
+            static_cast<uint32_t>(d.mesh.positions.size()),
+            end,
+            height_,
+            width_,
+            list,
+            list + kLightList - 3,
+            0,
+            0,
+            0};
   const uint32_t count_before = table.count;
-  uint32_t zero = 0, off = 0;
-  for (;;) {
-    uint32_t row = 0;
-    const LaneStop why = lane_run(tp, k, row);
-    if (why == kLaneEnd || why == kLaneSlow) break;
-    if (why == kLaneZero) {
-      ++zero;
-    } else if (why == kLaneOffscreen) {
-      ++off;
-    } else {  // pending vertices: lit, then the triangle binned as lane_run() bins it
-      if (k.count >= k.capacity) break;
-      light_corners(d, *tp);
-      const uint32_t index = k.count++;
-      BinnedTriangle& bt = k.triangles[index];
-      uint16_t& head = k.buckets[(row * k.strip_reciprocal) >> 17];
-      bt.next = head;
-      head = static_cast<uint16_t>(index);
-      for (size_t c = 0; c < 3; ++c) bt.v[c] = static_cast<uint16_t>(k.first + (*tp)[c]);
-    }
-    if (++tp == end) break;
+  // Up to the first triangle with an index out of range (draw_triangle() rejects it), in runs
+  // that cannot fill the table (a full one: draw_triangle() bins in bands).
+  const std::array<uint16_t, 3>* const stop = first_out_of_range(tp, end, k.n);
+  while (tp != stop && k.count < k.capacity) {
+    const auto room = static_cast<size_t>(k.capacity - k.count);
+    k.end = static_cast<size_t>(stop - tp) > room ? tp + room : stop;
+    bin_lane_asm(tp, k);  // (at k.end, or with the list full)
+    light_list(d, std::span<ScreenVertex* const>(list, static_cast<size_t>(k.list - list)));
+    k.list = list;
   }
   edges_.set_size(k.count);
   const auto done = static_cast<uint32_t>(tp - tris);
   const uint32_t binned = k.count - count_before;
   stats_.triangles_binned += binned;
   stats_.binned_inputs += binned;
-  stats_.culled_zero_area += zero;
-  stats_.culled_offscreen += off;
-  stats_.culled_backface += done - t - binned - zero - off;
+  stats_.culled_zero_area += k.zero;
+  stats_.culled_offscreen += k.offscreen;
+  stats_.culled_backface += done - t - binned - k.zero - k.offscreen;
   return done;
+}
+
+// The vertices bin_lane_asm() found waiting for their colour (their flags cleared), lit as
+// light_corners() lights them (a copy of its code: through one function the C lane, which
+// Armv6-M runs, took 2 % longer on S1 and S1x): the common case here (diffuse directional lights in
+// model space, a unit normal, one colour), the others through VertexStage::light (out of line).
+void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
+  const ObjectLights* const ol = d.diffuse_lights;
+  ScreenVertex* const base = store_.vertices_at(d.base);
+  const Normal16* const normals = d.mesh.normals.data();
+  // A vertex's normal from its byte offset in the store, without the division by 24 that its
+  // index takes: 24 bytes a vertex, 6 a normal.
+  static_assert(sizeof(ScreenVertex) == 4 * sizeof(Normal16));
+  for (ScreenVertex* const v : list) {
+    if (ol != nullptr) {
+      const auto offset = static_cast<size_t>(reinterpret_cast<const char*>(v) -
+                                              reinterpret_cast<const char*>(base));
+      const Normal16& n =
+          *reinterpret_cast<const Normal16*>(reinterpret_cast<const char*>(normals) + offset / 4);
+      const uint32_t len2 = normal_len2(n);
+      if (unit_len2(len2)) [[likely]] {
+        v->color = light_object_diffuse(*d.colors.lighting, *ol, n, len2);
+        continue;
+      }
+    }
+    const auto i = static_cast<uint32_t>(v - base);
+    const LitColor lc = d.stage.light(d.mesh, d.colors, i, false);
+    v->color = lc.primary;
+    if (d.colors.split) store_.tex(d.base + i).spec = lc.secondary;
+  }
 }
 
 // A drawn triangle's vertices whose colour waits for their first use, lit (lit Gouraud). The

@@ -1,0 +1,310 @@
+// The front end's bin lane: the common triangles of a draw (back faces culled, no vertex outside
+// a plane, the edge table neither banded nor signed) culled and appended to their buckets in one
+// small loop: bin_lane_portable() in C, bin_lane_asm() hand-allocated for Armv7E-M (the same
+// tests, the same records, the same counts and the same list of vertices to light; the firmware
+// check lr_bin_check compares them on random meshes). Internal to core/binning (lane.cpp).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "lineraster/core/binning/binned_triangle.hpp"
+#include "lineraster/core/vertex/screen_vertex.hpp"
+
+namespace lr {
+
+#if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
+inline constexpr bool kBinLaneAsm = true;
+#else
+inline constexpr bool kBinLaneAsm = false;
+#endif
+
+// What the lane reads and updates, in the order bin_lane_asm() addresses it (byte offsets in
+// its code: do not reorder).
+struct alignas(8) BinLane {
+  uint32_t count;             // 0: the edge table's triangles
+  uint32_t capacity;          // 4: its room
+  uint32_t strip_reciprocal;  // 8: EdgeTable::strip_of_row's: strip = (row m) >> 17
+  uint16_t* buckets;          // 12
+  BinnedTriangle* triangles;  // 16
+  uint32_t first2;            // 20: the draw's first store index in both halves (x 0x10001)
+  ScreenVertex* vertices;     // 24: the draw's first vertex
+  uint32_t n;                 // 28: its vertex count (first_out_of_range())
+  const std::array<uint16_t, 3>* end;  // 32: the end of its triangles
+  int32_t height, width;               // 36, 40: the viewport
+  ScreenVertex** list;                 // 44: the next free entry of the list of vertices to light
+  ScreenVertex** list_limit;           // 48: the last entry at which three more still fit
+  uint32_t zero;                       // 52: triangles without area, counted
+  uint32_t offscreen;                  // 56: triangles whose bounds hold no pixel centre, counted
+  uint32_t pad;
+};
+static_assert(sizeof(void*) != 4 || sizeof(BinLane) == 64);
+
+// Why the lane stopped: at the end; at a triangle whose pending vertices do not fit on the list
+// (nothing of it done).
+enum BinLaneStop : uint32_t { kBinLaneEnd, kBinLaneFlush };
+
+// From *tp to end (every index below n: first_out_of_range(); room in the table for every
+// triangle up to end: the caller ends a run there): back faces skipped; faces
+// without area and faces whose bounds (clamped to the viewport) hold no pixel centre counted; every
+// other face's vertices whose colour waits for their first use (color_pending) put on the list,
+// their flags cleared; the face appended to the bucket of its first row's strip as EdgeTable::add()
+// appends it. Exact: twice the signed area in 64 bits (the deltas are below 2^23 inside the guard
+// band, each product below 2^46).
+inline BinLaneStop bin_lane_portable(const std::array<uint16_t, 3>*& tp, BinLane& k) {
+  for (; tp != k.end; ++tp) {
+    const uint32_t i0 = (*tp)[0], i1 = (*tp)[1], i2 = (*tp)[2];
+    ScreenVertex& v0 = k.vertices[i0];
+    ScreenVertex& v1 = k.vertices[i1];
+    ScreenVertex& v2 = k.vertices[i2];
+    const int32_t dx1 = v1.x - v0.x, dy1 = v1.y - v0.y, dx2 = v2.x - v0.x, dy2 = v2.y - v0.y;
+    const int64_t area = int64_t{dx1} * dy2 - int64_t{dx2} * dy1;
+    if (back_facing(area)) continue;
+    if (area == 0) {
+      ++k.zero;
+      continue;
+    }
+    // Rows [a, b) and columns [c0, c1) whose centres the bounds can hold, clamped to the
+    // viewport: a = first_row_below(ymin), b = last_row_at_or_above(ymax) + 1.
+    const int32_t ymin = dy1 < dy2 ? dy1 : dy2, ymax = dy1 < dy2 ? dy2 : dy1;
+    const int32_t xmin = dx1 < dx2 ? dx1 : dx2, xmax = dx1 < dx2 ? dx2 : dx1;
+    const int32_t y = v0.y + kHalfPixel, x = v0.x + kHalfPixel - 1;
+    int32_t a = (y + (ymin < 0 ? ymin : 0)) >> kSubpixelBits;
+    const int32_t b = (y + (ymax > 0 ? ymax : 0)) >> kSubpixelBits;
+    int32_t c0 = (x + (xmin < 0 ? xmin : 0)) >> kSubpixelBits;
+    const int32_t c1 = (x + (xmax > 0 ? xmax : 0)) >> kSubpixelBits;
+    // (USAT's clamps: [0, 65535])
+    a = a < 0 ? 0 : a > 0xFFFF ? 0xFFFF : a;
+    c0 = c0 < 0 ? 0 : c0 > 0xFFFF ? 0xFFFF : c0;
+    if (a >= b || a >= k.height || c0 >= c1 || c0 >= k.width) {
+      ++k.offscreen;
+      continue;
+    }
+    if ((v0.color_pending | v1.color_pending | v2.color_pending) != 0) {
+      if (k.list > k.list_limit) return kBinLaneFlush;
+      for (ScreenVertex* v : {&v0, &v1, &v2}) {
+        if (v->color_pending == 0) continue;
+        v->color_pending = 0;
+        *k.list++ = v;
+      }
+    }
+    const uint32_t index = k.count++;
+    uint16_t& head = k.buckets[(static_cast<uint32_t>(a) * k.strip_reciprocal) >> 17];
+    BinnedTriangle& t = k.triangles[index];
+    const auto first = static_cast<uint16_t>(k.first2);
+    t.v[0] = static_cast<uint16_t>(first + i0);
+    t.v[1] = static_cast<uint16_t>(first + i1);
+    t.v[2] = static_cast<uint16_t>(first + i2);
+    t.next = head;
+    head = static_cast<uint16_t>(index);
+  }
+  return kBinLaneEnd;
+}
+
+// The first triangle of [tp, end) with an index of n or more, or end: the lane's triangles
+// before it need no index test of their own. On Armv7E-M 16 indices at a time (LDM and UQSUB16:
+// about 3.6 instructions a triangle), else one at a time.
+inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16_t, 3>* tp,
+                                                         const std::array<uint16_t, 3>* end,
+                                                         uint32_t n) {
+  if (tp == end || n == 0) return tp;
+  const uint16_t* p = tp->data();
+  const uint16_t* const e = p + 3 * (end - tp);
+#if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
+  if ((reinterpret_cast<uintptr_t>(p) & 2) != 0 && p != e) {
+    if (*p >= n) return tp;
+    ++p;
+  }
+  const uint32_t blocks = static_cast<uint32_t>(e - p) / 16;
+  if (blocks != 0) {
+    const uint16_t* const block_end = p + 16 * blocks;
+    // n - 1 in both halves (every index is below n > 0xFFFF)
+    const uint32_t limit = (n > 0x10000 ? 0xFFFFu : n - 1) * 0x10001u;
+    asm volatile(
+        "1:\n\t"
+        "ldm     %[p]!, {r4, r5, r6, r8, r9, r10, r11, r12}\n\t"
+        "uqsub16 r4, r4, %[l]\n\t"  // non-zero where an index is above n - 1
+        "uqsub16 r5, r5, %[l]\n\t"
+        "uqsub16 r6, r6, %[l]\n\t"
+        "uqsub16 r8, r8, %[l]\n\t"
+        "uqsub16 r9, r9, %[l]\n\t"
+        "uqsub16 r10, r10, %[l]\n\t"
+        "uqsub16 r11, r11, %[l]\n\t"
+        "uqsub16 r12, r12, %[l]\n\t"
+        "orr     r4, r4, r5\n\t"
+        "orr     r6, r6, r8\n\t"
+        "orr     r9, r9, r10\n\t"
+        "orr     r11, r11, r12\n\t"
+        "orr     r4, r4, r6\n\t"
+        "orr     r9, r9, r11\n\t"
+        "orrs    r4, r4, r9\n\t"
+        "bne     2f\n\t"
+        "cmp     %[p], %[e]\n\t"
+        "bne     1b\n\t"
+        "b       3f\n"
+        "2:\n\t"
+        "sub     %[p], %[p], #32\n"  // the block with the index: found one at a time below
+        "3:\n"
+        : [p] "+r"(p)
+        : [l] "r"(limit), [e] "r"(block_end)
+        : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "cc", "memory");
+  }
+#endif
+  while (p != e && *p < n) ++p;
+  return tp + (p - tp->data()) / 3;
+}
+
+// bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): about 26 instructions a
+// back face and 86 a binned front face. Rows as (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for
+// the clamp at 0; the constants of a binned face read with one LDM; the record's halves built
+// from the indices with one ORR and PKHBT.
+inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) {
+#if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
+  // Low registers: CBZ and CBNZ test them.
+  register uint32_t a asm("r0");
+  register uint32_t b asm("r1");
+  asm volatile(
+      "1:\n\t"
+      "ldr     %[a], [%[k], #24]\n\t"  // the vertices (24 bytes each)
+      "ldrh    r4, [%[tp]]\n\t"
+      "ldrh    r5, [%[tp], #2]\n\t"
+      "ldrh    r6, [%[tp], #4]\n\t"
+      "add     r4, r4, r4, lsl #1\n\t"
+      "add     r4, %[a], r4, lsl #3\n\t"
+      "add     r5, r5, r5, lsl #1\n\t"
+      "add     r5, %[a], r5, lsl #3\n\t"
+      "add     r6, r6, r6, lsl #1\n\t"
+      "add     r6, %[a], r6, lsl #3\n\t"
+      "ldrd    r8, r9, [r4]\n\t"  // x0 y0
+      "ldrd    r10, r11, [r5]\n\t"
+      "ldrd    r12, lr, [r6]\n\t"
+      "sub     r10, r10, r8\n\t"  // dx1
+      "sub     r11, r11, r9\n\t"  // dy1
+      "sub     r12, r8, r12\n\t"  // -dx2
+      "sub     lr, lr, r9\n\t"    // dy2
+      "smull   %[a], %[b], r10, lr\n\t"
+      "smlal   %[a], %[b], r12, r11\n\t"  // twice the signed area, exact
+      "cmp     %[a], #1\n\t"
+      "sbcs    %[a], %[b], #0\n\t"
+      "blt     4f\n\t"  // no back face: area <= 0
+      "3:\n\t"          // the next
+      "add     %[tp], %[tp], #6\n\t"
+      "ldr     %[a], [%[k], #32]\n\t"
+      "cmp     %[tp], %[a]\n\t"
+      "bne     1b\n\t"
+      "mov     %[a], #0\n\t"  // kBinLaneEnd
+      "b       9f\n"
+      "4:\n\t"
+      "cbnz    %[b], 41f\n\t"  // the high word is 0 only when the area is
+      "ldr     r8, [%[k], #52]\n\t"
+      "add     r8, r8, #1\n\t"
+      "str     r8, [%[k], #52]\n\t"
+      "b       3b\n"
+      "41:\n\t"
+      // Rows: a = max(0, (y0 + 128 + min(0, dy1, dy2)) >> 8), b = (y0 + 128 + max(..)) >> 8.
+      "cmp     r11, lr\n\t"
+      "itete   lt\n\t"
+      "movlt   %[a], r11\n\t"
+      "movge   %[a], lr\n\t"
+      "movlt   %[b], lr\n\t"
+      "movge   %[b], r11\n\t"
+      "and     %[a], %[a], %[a], asr #31\n\t"
+      "bic     %[b], %[b], %[b], asr #31\n\t"
+      "add     r9, r9, #128\n\t"
+      "add     %[a], %[a], r9\n\t"
+      "add     %[b], %[b], r9\n\t"
+      "ldrd    r9, r11, [%[k], #36]\n\t"  // height, width
+      "usat    %[a], #16, %[a], asr #8\n\t"
+      "asr     %[b], %[b], #8\n\t"
+      "cmp     %[a], %[b]\n\t"
+      "bge     83f\n\t"
+      "cmp     %[a], r9\n\t"
+      "bge     83f\n\t"
+      // Columns: c0 = max(0, (x0 + 127 + min(0, dx1, dx2)) >> 8), c1 likewise with the max.
+      "rsb     r12, r12, #0\n\t"  // dx2
+      "cmp     r10, r12\n\t"
+      "itete   lt\n\t"
+      "movlt   r9, r10\n\t"
+      "movge   r9, r12\n\t"
+      "movlt   lr, r12\n\t"
+      "movge   lr, r10\n\t"
+      "and     r9, r9, r9, asr #31\n\t"
+      "bic     lr, lr, lr, asr #31\n\t"
+      "add     r8, r8, #127\n\t"
+      "add     r9, r9, r8\n\t"
+      "add     lr, lr, r8\n\t"
+      "usat    r9, #16, r9, asr #8\n\t"
+      "asr     lr, lr, #8\n\t"
+      "cmp     r9, lr\n\t"
+      "bge     83f\n\t"
+      "cmp     r9, r11\n\t"
+      "bge     83f\n\t"
+      "ldrb    r8, [r4, #23]\n\t"  // a vertex waiting for its colour
+      "ldrb    r9, [r5, #23]\n\t"
+      "ldrb    r10, [r6, #23]\n\t"
+      "orr     r8, r8, r9\n\t"
+      "orrs    r8, r8, r10\n\t"
+      "bne     5f\n\t"
+      "6:\n\t"
+      "ldm     %[k], {r8, r9, r10, r11, r12, lr}\n\t"  // count capacity m buckets triangles first2
+      "mul     r9, %[a], r10\n\t"
+      "lsr     r9, r9, #17\n\t"             // the strip
+      "ldrh    r10, [r11, r9, lsl #1]\n\t"  // its head: the record's next
+      "strh    r8, [r11, r9, lsl #1]\n\t"
+      "add     r12, r12, r8, lsl #3\n\t"
+      "add     r8, r8, #1\n\t"
+      "str     r8, [%[k]]\n\t"
+      "ldrh    r4, [%[tp]]\n\t"
+      "ldrh    r5, [%[tp], #2]\n\t"
+      "ldrh    r6, [%[tp], #4]\n\t"
+      "orr     r4, r4, r5, lsl #16\n\t"
+      "add     r4, r4, lr\n\t"  // v0 v1
+      "add     r6, r6, lr\n\t"
+      "pkhbt   r6, r6, r10, lsl #16\n\t"  // v2 next
+      "strd    r4, r6, [r12]\n\t"
+      "add     %[tp], %[tp], #6\n\t"  // the next (3b's, without a branch there)
+      "ldr     r8, [%[k], #32]\n\t"
+      "cmp     %[tp], r8\n\t"
+      "bne     1b\n\t"
+      "mov     %[a], #0\n\t"  // kBinLaneEnd
+      "b       9f\n"
+      "5:\n\t"  // pending vertices onto the list, their flags cleared
+      "ldrd    r8, r9, [%[k], #44]\n\t"
+      "cmp     r8, r9\n\t"
+      "bhi     84f\n\t"
+      "mov     r10, #0\n\t"
+      "ldrb    %[b], [r4, #23]\n\t"
+      "cbz     %[b], 51f\n\t"
+      "strb    r10, [r4, #23]\n\t"
+      "str     r4, [r8], #4\n"
+      "51:\n\t"
+      "ldrb    %[b], [r5, #23]\n\t"
+      "cbz     %[b], 52f\n\t"
+      "strb    r10, [r5, #23]\n\t"
+      "str     r5, [r8], #4\n"
+      "52:\n\t"
+      "ldrb    %[b], [r6, #23]\n\t"
+      "cbz     %[b], 53f\n\t"
+      "strb    r10, [r6, #23]\n\t"
+      "str     r6, [r8], #4\n"
+      "53:\n\t"
+      "str     r8, [%[k], #44]\n\t"
+      "b       6b\n"
+      "83:\n\t"
+      "ldr     r8, [%[k], #56]\n\t"
+      "add     r8, r8, #1\n\t"
+      "str     r8, [%[k], #56]\n\t"
+      "b       3b\n"
+      "84:\n\t"
+      "mov     %[a], #1\n"  // kBinLaneFlush
+      "9:\n"
+      : [tp] "+r"(tp), [a] "=&r"(a), [b] "=&r"(b)
+      : [k] "r"(&k)
+      : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
+  return static_cast<BinLaneStop>(a);
+#else
+  return bin_lane_portable(tp, k);
+#endif
+}
+
+}  // namespace lr
