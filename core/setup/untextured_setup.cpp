@@ -203,7 +203,8 @@ namespace {
 namespace {
 // small_planes: a call where the lanes planes are made by hand (the other kinds are rare
 // there), inlined into setup_untextured_triangle elsewhere (fewer spills on Armv6-M).
-#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && defined(__ARM_FEATURE_IDIV) && \
+    !defined(__OPTIMIZE_SIZE__)
 #define LR_SMALL_PLANES_INLINE [[gnu::noinline]]
 #else
 #define LR_SMALL_PLANES_INLINE [[gnu::always_inline]] inline
@@ -282,7 +283,8 @@ bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const U
   return small_planes_c(v, d, m, in, kind, t);
 }
 
-#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && defined(__ARM_FEATURE_IDIV) && \
+    !defined(__OPTIMIZE_SIZE__)
 // small_planes of a lanes triangle with depth by hand (Armv7E-M): GCC 12 kept the basis in
 // registers across the four planes and spilled around them. The one operand (in r7, left to the
 // compiler) points to a frame of 28 words: in it the vertices (0, 4, 8), d (12), m (16), the

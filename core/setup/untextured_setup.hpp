@@ -144,8 +144,10 @@ SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
 bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const UntexturedInput& in,
                   UntexturedKind kind, ActiveTriangle& t);
 // small_planes' integers for kLanes with depth, by hand where the core has SMMUL/SMMLA
-// (kSmallPlanesByHand: Armv7E-M, not at -Os); elsewhere it makes nothing and returns false.
-#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
+// (kSmallPlanesByHand: Armv7E-M with a divide instruction, not at -Os); elsewhere it makes nothing
+// and returns false.
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && defined(__ARM_FEATURE_IDIV) && \
+    !defined(__OPTIMIZE_SIZE__)
 inline constexpr bool kSmallPlanesByHand = true;
 #else
 inline constexpr bool kSmallPlanesByHand = false;
