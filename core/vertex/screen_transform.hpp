@@ -186,11 +186,11 @@ inline bool ScreenTransform::project(const Vec3& p, ScreenVertex& v) const {
     // it (a wrong Mesh::bound) inside the coordinate budget.
     xs = saturate_signed<23>(xs);
     ys = saturate_signed<23>(ys);
-  } else if (static_cast<uint32_t>(xs - k.x_lo) > k.x_span ||
-             static_cast<uint32_t>(ys - k.y_lo) > k.y_span) [[unlikely]] {
+  } else if ((static_cast<uint32_t>(xs) - static_cast<uint32_t>(k.x_lo)) > k.x_span ||
+             (static_cast<uint32_t>(ys) - static_cast<uint32_t>(k.y_lo)) > k.y_span) [[unlikely]] {
     return false;
   }
-  if (static_cast<uint32_t>(m - k.m_lo) > k.m_span) [[unlikely]]
+  if ((static_cast<uint32_t>(m) - static_cast<uint32_t>(k.m_lo)) > k.m_span) [[unlikely]]
     return false;
   v.x = xs;
   v.y = ys;
@@ -228,11 +228,11 @@ inline bool ScreenTransform::project_halves(const Vec3& p, ScreenVertex& v) cons
   if (guard_free_) {
     xs = saturate_signed<23>(xs);
     ys = saturate_signed<23>(ys);
-  } else if (static_cast<uint32_t>(xs - k.x_lo) > k.x_span ||
-             static_cast<uint32_t>(ys - k.y_lo) > k.y_span) [[unlikely]] {
+  } else if ((static_cast<uint32_t>(xs) - static_cast<uint32_t>(k.x_lo)) > k.x_span ||
+             (static_cast<uint32_t>(ys) - static_cast<uint32_t>(k.y_lo)) > k.y_span) [[unlikely]] {
     return false;
   }
-  if (static_cast<uint32_t>(m - k.m_lo) > k.m_span) [[unlikely]]
+  if ((static_cast<uint32_t>(m) - static_cast<uint32_t>(k.m_lo)) > k.m_span) [[unlikely]]
     return false;
   v.x = xs;
   v.y = ys;
