@@ -117,8 +117,12 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
   // Inside the depth range: 0 <= D + m 2^kz <= 2 D, m in [-floor(D / 2^kz), floor(D / 2^kz)].
   w.m_lo = -static_cast<int32_t>(kHalfDepth >> w.kz);
   w.m_span = 2 * (kHalfDepth >> w.kz);
-  // The w range: the precision's lower end 2^(31 - n_max), kMaxW above.
-  w.w_lo = int32_t{1} << (31 - n_max);
+  // The w range: the precision's lower end 2^(31 - n_max), kMaxW above; and at least
+  // 2^w_shift, so that w's Q16.16 is never 0 (a tiny w, 1 / w beyond every plane's range, takes
+  // the exact path, which clamps it to one unit).
+  const int lo_bits = 31 - n_max > w.w_shift ? 31 - n_max : w.w_shift;
+  if (lo_bits > 29) return;
+  w.w_lo = int32_t{1} << lo_bits;
   w.w_span = static_cast<uint32_t>(kMaxW - w.w_lo);
   w.acc_x = (sx << w.f) + (1 << (w.f - 1));
   w.acc_y = (sy << w.f) + (1 << (w.f - 1));

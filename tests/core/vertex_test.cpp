@@ -210,6 +210,7 @@ TEST(ShortPath, AgreesWithTheQuotientsOfItsClipCoordinates) {
       }
       ++short_path;
       ASSERT_GT(w, 0.0);
+      ASSERT_GE(v.w, 1u);  // (setup divides by it)
       ASSERT_EQ(v.outcode, 0);
       const double tx = 0.5 + 1.0 / 32 + std::abs(qx) / 524288,
                    ty = 0.5 + 1.0 / 32 + std::abs(qy) / 524288;
@@ -278,6 +279,26 @@ TEST(ShortPath, DrawsNearTheExactPathsRangeAreLeftToIt) {
   EXPECT_TRUE(ScreenTransform(mvp, bound, 320, 240, GuardBand{25, 34}).enabled());
   mvp.m[3][2] = Fixed::from_int(256);  // w up to 1024000 > 2^19
   EXPECT_FALSE(ScreenTransform(mvp, bound, 320, 240, GuardBand{25, 34}).enabled());
+}
+
+// A draw whose w row is tiny (w = z 2^-16: W's scale 2^44, w in Q16.16 is W >> 28): a vertex
+// whose Q16.16 w would be 0 is left to the exact path (which clamps it to 1: setup divides by
+// it); one unit and above take the short path. (Found by the pipeline fuzzer.)
+TEST(ShortPath, NeverGivesAZeroW) {
+  Mat4 mvp = Mat4::identity();
+  mvp.m[0][0] = Fixed::from_raw(1);
+  mvp.m[1][1] = Fixed::from_raw(1);
+  mvp.m[2][2] = Fixed{};
+  mvp.m[3][3] = Fixed{};
+  mvp.m[3][2] = Fixed::from_raw(1);
+  const ScreenTransform st(mvp, 1u << 16, 320, 240, GuardBand{25, 34});
+  ASSERT_TRUE(st.enabled());
+  ScreenVertex v;
+  EXPECT_FALSE(st.project({Fixed::ratio(1, 10), Fixed::ratio(1, 10), Fixed::ratio(1, 2)}, v));
+  EXPECT_FALSE(st.project_halves({Fixed::ratio(1, 10), Fixed::ratio(1, 10), Fixed::ratio(1, 2)}, v));
+  ASSERT_TRUE(st.project({Fixed::ratio(1, 10), Fixed::ratio(1, 10), Fixed::from_int(1)}, v));
+  EXPECT_EQ(v.w, 1u);
+  EXPECT_EQ(v.x, 320 * 128 + 4096);  // x / w = 0.1: a tenth of the half width right of centre
 }
 
 // Lights in model space: a rigid model's lit colours against GL's model evaluated in double
