@@ -531,17 +531,21 @@ void StripLoop<PF, K, kSpans>::add_counts(const StripRows& s) {
 
 template <class PF, int K, SpanSet kSpans>
 void StripLoop<PF, K, kSpans>::retire(int next_row) {
-  uint16_t* order = storage_.active_index.data();
-  uint16_t* free_slots = order + storage_.active.size();
-  size_t kept = 0;
-  for (size_t i = 0; i < active_count_; ++i) {
-    uint16_t slot = order[i];
-    if (storage_.active[slot].last_row < next_row)
-      free_slots[free_count_++] = slot;
+  uint16_t* const order = storage_.active_index.data();
+  uint16_t* const free_slots = order + storage_.active.size();
+  const ActiveTriangle* const active = storage_.active.data();
+  // The counts in locals: the stores through uint16_t pointers would reload the members.
+  const size_t count = active_count_;
+  size_t kept = 0, free = free_count_;
+  for (size_t i = 0; i < count; ++i) {
+    const uint16_t slot = order[i];
+    if (active[slot].last_row < next_row)
+      free_slots[free++] = slot;
     else
       order[kept++] = slot;
   }
   active_count_ = kept;
+  free_count_ = free;
 }
 
 }  // namespace lr
