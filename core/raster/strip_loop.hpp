@@ -93,6 +93,10 @@ class StripLoop {
     RowWindow window;
     int draw = -1;
     UntexturedInput in;
+    // The vertices of the draw found last: [vertex_lo, vertex_lo + vertex_count), draw_of's
+    // answer for every triangle whose first vertex lies there (none at first).
+    uint32_t vertex_lo = 0, vertex_count = 0;
+    uint8_t found = 0;
   };
   SetupContext setup_context(int strip) const {
     SetupContext c;
@@ -110,6 +114,7 @@ class StripLoop {
   StripRows strip_rows(Pixel* pixels, int y0, int rows) const;
   void add_counts(const StripRows& s);
   void retire(int next_row);
+  void visit(StripRows& sr);
 
   // Whether the set links the affine colour routine, without and with depth: only then may a
   // perspective-colour triangle be given affine planes (setup_untextured_triangle).
@@ -196,14 +201,9 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
       if (depth_sink) fill_pixels(depth.data(), count, uint16_t{0xFFFF});
     } else {
       fill_pixels(depth.data(), count, uint16_t{0xFFFF});
-      const uint16_t* order = storage_.active_index.data();
       StripRows sr = strip_rows(px.data(), y0, rows);
-      for (size_t i = 0; i < active_count_; ++i) {
-        const ActiveTriangle& t = storage_.active[order[i]];
-        t.rows(t, sr);
-      }
+      visit(sr);
       add_counts(sr);
-      retire(y0 + rows);
     }
     if (depth_sink) depth_sink->on_depth(rect, depth);
     ++stats.strips;
@@ -303,9 +303,10 @@ void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, i
     while (node != kNoTriangle && free_count_ > 0) {
       const uint16_t n = tris[node].next;
       const uint16_t slot = free_slots[--free_count_];
-      if (set_up(node, context, slot))
+      if (set_up(node, context, slot)) {
         order[batch++] = slot;
-      else
+        ++stats_->triangles_set_up;
+      } else
         free_slots[free_count_++] = slot;
       node = n;
     }
@@ -383,13 +384,15 @@ bool StripLoop<PF, K, kSpans>::activate(int strip) {
   for (ptrdiff_t k = i + 1; gap > 0 && k <= static_cast<ptrdiff_t>(active_count_ + added) - 1; ++k)
     order[k] = order[k + gap];
   active_count_ += added;
+  stats_->triangles_set_up += static_cast<uint32_t>(added);
   if (active_count_ > stats_->max_active) stats_->max_active = static_cast<uint32_t>(active_count_);
   return true;
 }
 
 // Sets binned triangle `node` up in active slot `slot`, from the later of its first row and the
 // strip's (triangles carried over a skipped or crowded strip, or binned into a band that starts
-// below their top). False for a sliver between pixel centres: no planes, the slot unused.
+// below their top). False for a sliver between pixel centres: no planes, the slot unused. The
+// caller counts the triangles set up (FrameStats::triangles_set_up).
 template <class PF, int K, SpanSet kSpans>
 [[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node, SetupContext& c,
                                                                     uint16_t slot) {
@@ -398,7 +401,16 @@ template <class PF, int K, SpanSet kSpans>
   for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
   sort_by_y(v);
   ActiveTriangle& t = storage_.active[slot];
-  const uint8_t draw = draw_of(bt);
+  // Consecutive triangles mostly share their draw: its vertex range before the search.
+  uint8_t draw = c.found;
+  if (uint32_t{bt.v[0]} - c.vertex_lo >= c.vertex_count) [[unlikely]] {
+    draw = draw_of(bt);
+    c.found = draw;
+    c.vertex_lo = frame_.draws[draw].first_vertex;
+    c.vertex_count = (draw + 1u < frame_.draws.size() ? frame_.draws[draw + 1u].first_vertex
+                                                      : uint32_t{0x10000}) -
+                     c.vertex_lo;
+  }
   const DrawRecord& dr = frame_.draws[draw];
   // Textured and Phong triangles get their slot's extra planes (the front end refuses such
   // draws when there are none). A renderer without those spans sets up no such planes.
@@ -435,10 +447,10 @@ template <class PF, int K, SpanSet kSpans>
       ++stats_->triangles_without_pixels;
       return false;
     }
-    stats_->triangles_wide += u.wide ? 1 : 0;
+    if (u.wide) [[unlikely]]
+      ++stats_->triangles_wide;
     t.rows = kUntexturedRowTable<PF, kSpans>[untextured_row_index(dr.depth, u.kind)];
   }
-  ++stats_->triangles_set_up;
   t.index = node;
   t.draw = draw;
   return true;
@@ -527,6 +539,29 @@ void StripLoop<PF, K, kSpans>::add_counts(const StripRows& s) {
   stats.pixels_tested += s.tested;
   stats.pixels_written += s.written;
   stats.rows_walked += s.rows;
+}
+
+// Draws every active triangle's rows of the strip sr, in submission order, and retires those
+// that end in it (retire's work in the same pass: one loop per strip visit).
+template <class PF, int K, SpanSet kSpans>
+void StripLoop<PF, K, kSpans>::visit(StripRows& sr) {
+  uint16_t* const order = storage_.active_index.data();
+  uint16_t* const free_slots = order + storage_.active.size();
+  const ActiveTriangle* const active = storage_.active.data();
+  const size_t count = active_count_;
+  const int32_t last = sr.y_last;
+  size_t kept = 0, free = free_count_;
+  for (size_t i = 0; i < count; ++i) {
+    const uint16_t slot = order[i];
+    const ActiveTriangle& t = active[slot];
+    t.rows(t, sr);
+    if (t.last_row <= last)
+      free_slots[free++] = slot;
+    else
+      order[kept++] = slot;
+  }
+  active_count_ = kept;
+  free_count_ = free;
 }
 
 template <class PF, int K, SpanSet kSpans>
