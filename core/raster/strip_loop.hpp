@@ -87,16 +87,18 @@ class StripLoop {
   void invalidate_strips() { inputs_known_ = false; }
 
  private:
-  // What set_up shares between the triangles of one strip: the rows they may take, and the
-  // untextured setup's input of the last draw seen (consecutive triangles share their draw).
+  // What set_up shares between the triangles of one strip: the rows they may take, and what it
+  // needs of the last draw found (consecutive triangles mostly share their draw).
   struct SetupContext {
     RowWindow window;
-    int draw = -1;
-    UntexturedInput in;
     // The vertices of the draw found last: [vertex_lo, vertex_lo + vertex_count), draw_of's
     // answer for every triangle whose first vertex lies there (none at first).
     uint32_t vertex_lo = 0, vertex_count = 0;
-    uint8_t found = 0;
+    uint8_t draw = 0;
+    bool legacy = false;          // textured or Phong: setup_rows and setup_planes
+    bool triangle_pixel = false;  // flat with a colour per triangle
+    const RowFn* rows = nullptr;  // the untextured row loops of the draw's depth test, by kind
+    UntexturedInput in;           // the untextured setup's input for the draw
   };
   SetupContext setup_context(int strip) const {
     SetupContext c;
@@ -401,23 +403,37 @@ template <class PF, int K, SpanSet kSpans>
   for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
   sort_by_y(v);
   ActiveTriangle& t = storage_.active[slot];
-  // Consecutive triangles mostly share their draw: its vertex range before the search.
-  uint8_t draw = c.found;
-  if (uint32_t{bt.v[0]} - c.vertex_lo >= c.vertex_count) [[unlikely]] {
-    draw = draw_of(bt);
-    c.found = draw;
-    c.vertex_lo = frame_.draws[draw].first_vertex;
-    c.vertex_count = (draw + 1u < frame_.draws.size() ? frame_.draws[draw + 1u].first_vertex
-                                                      : uint32_t{0x10000}) -
-                     c.vertex_lo;
-  }
-  const DrawRecord& dr = frame_.draws[draw];
-  // Textured and Phong triangles get their slot's extra planes (the front end refuses such
-  // draws when there are none). A renderer without those spans sets up no such planes.
   constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
+  // Consecutive triangles mostly share their draw: its vertex range before the search, and what
+  // setup needs of the draw only when it changes.
+  if (uint32_t{bt.v[0]} - c.vertex_lo >= c.vertex_count) [[unlikely]] {
+    const uint8_t d = draw_of(bt);
+    const DrawRecord& dr = frame_.draws[d];
+    c.draw = d;
+    c.vertex_lo = dr.first_vertex;
+    c.vertex_count =
+        (d + 1u < frame_.draws.size() ? frame_.draws[d + 1u].first_vertex : uint32_t{0x10000}) -
+        c.vertex_lo;
+    // Textured and Phong triangles get their slot's extra planes (the front end refuses such
+    // draws when there are none). A renderer without those spans sets up no such planes.
+    c.legacy = kTexture && (dr.texture != nullptr || dr.phong);
+    c.triangle_pixel = dr.colors == ColorPlanes::kNone && dr.triangle_colors;
+    c.rows =
+        &kUntexturedRowTable<PF, kSpans>[untextured_row_index(dr.depth, UntexturedKind::kFlat)];
+    UntexturedInput& in = c.in;
+    in.colors = dr.colors;
+    in.depth = dr.depth;
+    in.lanes = kRgb565Lanes<PF>;
+    in.affine_ok = kAffineColors[dr.depth ? 1 : 0];
+    in.affine = kRgb565Lanes<PF> ? kAffineBound565 : kAffineBound8;
+    if (dr.colors == ColorPlanes::kNone && !dr.triangle_colors)
+      in.flat_pixel = pixel_bits<PF>(PF::encode(dr.color));
+  }
+  const uint8_t draw = c.draw;
   const RowWindow& window = c.window;
-  if (kTexture && (dr.texture != nullptr || dr.phong)) {
+  if (kTexture && c.legacy) {
+    const DrawRecord& dr = frame_.draws[draw];
     const int32_t first = std::max<int32_t>(first_row_below(v[0]->y), window.first_min);
     const int32_t last = std::min<int32_t>(last_row_at_or_above(v[2]->y), window.last_max);
     if (!setup_rows(v, first, last, window.width, t)) {
@@ -430,17 +446,7 @@ template <class PF, int K, SpanSet kSpans>
   } else {
     t.ext = nullptr;
     UntexturedInput& in = c.in;
-    if (c.draw != draw) {
-      c.draw = draw;
-      in.colors = dr.colors;
-      in.depth = dr.depth;
-      in.lanes = kRgb565Lanes<PF>;
-      in.affine_ok = kAffineColors[dr.depth ? 1 : 0];
-      in.affine = kRgb565Lanes<PF> ? kAffineBound565 : kAffineBound8;
-      if (dr.colors == ColorPlanes::kNone && !dr.triangle_colors)
-        in.flat_pixel = pixel_bits<PF>(PF::encode(dr.color));
-    }
-    if (dr.colors == ColorPlanes::kNone && dr.triangle_colors)
+    if (c.triangle_pixel)
       in.flat_pixel = pixel_bits<PF>(PF::encode(frame_.triangle_colors[node].primary));
     const UntexturedTriangle u = setup_untextured_triangle(v, window, in, t);
     if (!u.pixels) {
@@ -449,7 +455,11 @@ template <class PF, int K, SpanSet kSpans>
     }
     if (u.wide) [[unlikely]]
       ++stats_->triangles_wide;
-    t.rows = kUntexturedRowTable<PF, kSpans>[untextured_row_index(dr.depth, u.kind)];
+    // The kinds' entries are untextured_row_index(depth, kind) = the first kind's + 2 kind.
+    static_assert(untextured_row_index(true, UntexturedKind::kLanes) ==
+                  untextured_row_index(true, UntexturedKind::kFlat) +
+                      2 * static_cast<size_t>(UntexturedKind::kLanes));
+    t.rows = c.rows[2 * static_cast<size_t>(u.kind)];
   }
   t.index = node;
   t.draw = draw;
