@@ -370,17 +370,19 @@ bool StripLoop<PF, K, kSpans>::activate(int strip) {
   ptrdiff_t i = static_cast<ptrdiff_t>(active_count_) - 1;
   ptrdiff_t out = static_cast<ptrdiff_t>(active_count_ + m) - 1;
   size_t added = 0;
+  // The free count in a local (set_up's calls would make the member a load and a store per
+  // triangle); a sliver leaves its slot on top of the free list for the next triangle.
+  size_t free = free_count_;
   SetupContext context = setup_context(strip);
   for (; node != kNoTriangle; node = tris[node].next) {
     while (i >= 0 && storage_.active[order[i]].index > node) order[out--] = order[i--];
-    const uint16_t slot = free_slots[--free_count_];
-    if (!set_up(node, context, slot)) {
-      free_slots[free_count_++] = slot;
-      continue;
-    }
+    const uint16_t slot = free_slots[free - 1];
+    if (!set_up(node, context, slot)) continue;
+    --free;
     order[out--] = slot;
     ++added;
   }
+  free_count_ = free;
   // Without slivers the new and the old entries meet; else close the gap between them.
   const ptrdiff_t gap = out - i;
   for (ptrdiff_t k = i + 1; gap > 0 && k <= static_cast<ptrdiff_t>(active_count_ + added) - 1; ++k)
