@@ -87,12 +87,18 @@ class StripLoop {
   void invalidate_strips() { inputs_known_ = false; }
 
  private:
-  // What set_up shares between the triangles of one strip: the rows they may take, and the
-  // untextured setup's input of the last draw seen (consecutive triangles share their draw).
+  // What set_up shares between the triangles of one strip: the rows they may take, and what it
+  // needs of the last draw found (consecutive triangles mostly share their draw).
   struct SetupContext {
     RowWindow window;
-    int draw = -1;
-    UntexturedInput in;
+    // The vertices of the draw found last: [vertex_lo, vertex_lo + vertex_count), draw_of's
+    // answer for every triangle whose first vertex lies there (none at first).
+    uint32_t vertex_lo = 0, vertex_count = 0;
+    uint8_t draw = 0;
+    bool legacy = false;          // textured or Phong: setup_rows and setup_planes
+    bool triangle_pixel = false;  // flat with a colour per triangle
+    const RowFn* rows = nullptr;  // the untextured row loops of the draw's depth test, by kind
+    UntexturedInput in;           // the untextured setup's input for the draw
   };
   SetupContext setup_context(int strip) const {
     SetupContext c;
@@ -110,6 +116,7 @@ class StripLoop {
   StripRows strip_rows(Pixel* pixels, int y0, int rows) const;
   void add_counts(const StripRows& s);
   void retire(int next_row);
+  void visit(StripRows& sr);
 
   // Whether the set links the affine colour routine, without and with depth: only then may a
   // perspective-colour triangle be given affine planes (setup_untextured_triangle).
@@ -196,14 +203,9 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
       if (depth_sink) fill_pixels(depth.data(), count, uint16_t{0xFFFF});
     } else {
       fill_pixels(depth.data(), count, uint16_t{0xFFFF});
-      const uint16_t* order = storage_.active_index.data();
       StripRows sr = strip_rows(px.data(), y0, rows);
-      for (size_t i = 0; i < active_count_; ++i) {
-        const ActiveTriangle& t = storage_.active[order[i]];
-        t.rows(t, sr);
-      }
+      visit(sr);
       add_counts(sr);
-      retire(y0 + rows);
     }
     if (depth_sink) depth_sink->on_depth(rect, depth);
     ++stats.strips;
@@ -303,9 +305,10 @@ void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, i
     while (node != kNoTriangle && free_count_ > 0) {
       const uint16_t n = tris[node].next;
       const uint16_t slot = free_slots[--free_count_];
-      if (set_up(node, context, slot))
+      if (set_up(node, context, slot)) {
         order[batch++] = slot;
-      else
+        ++stats_->triangles_set_up;
+      } else
         free_slots[free_count_++] = slot;
       node = n;
     }
@@ -367,29 +370,33 @@ bool StripLoop<PF, K, kSpans>::activate(int strip) {
   ptrdiff_t i = static_cast<ptrdiff_t>(active_count_) - 1;
   ptrdiff_t out = static_cast<ptrdiff_t>(active_count_ + m) - 1;
   size_t added = 0;
+  // The free count in a local (set_up's calls would make the member a load and a store per
+  // triangle); a sliver leaves its slot on top of the free list for the next triangle.
+  size_t free = free_count_;
   SetupContext context = setup_context(strip);
   for (; node != kNoTriangle; node = tris[node].next) {
     while (i >= 0 && storage_.active[order[i]].index > node) order[out--] = order[i--];
-    const uint16_t slot = free_slots[--free_count_];
-    if (!set_up(node, context, slot)) {
-      free_slots[free_count_++] = slot;
-      continue;
-    }
+    const uint16_t slot = free_slots[free - 1];
+    if (!set_up(node, context, slot)) continue;
+    --free;
     order[out--] = slot;
     ++added;
   }
+  free_count_ = free;
   // Without slivers the new and the old entries meet; else close the gap between them.
   const ptrdiff_t gap = out - i;
   for (ptrdiff_t k = i + 1; gap > 0 && k <= static_cast<ptrdiff_t>(active_count_ + added) - 1; ++k)
     order[k] = order[k + gap];
   active_count_ += added;
+  stats_->triangles_set_up += static_cast<uint32_t>(added);
   if (active_count_ > stats_->max_active) stats_->max_active = static_cast<uint32_t>(active_count_);
   return true;
 }
 
 // Sets binned triangle `node` up in active slot `slot`, from the later of its first row and the
 // strip's (triangles carried over a skipped or crowded strip, or binned into a band that starts
-// below their top). False for a sliver between pixel centres: no planes, the slot unused.
+// below their top). False for a sliver between pixel centres: no planes, the slot unused. The
+// caller counts the triangles set up (FrameStats::triangles_set_up).
 template <class PF, int K, SpanSet kSpans>
 [[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node, SetupContext& c,
                                                                     uint16_t slot) {
@@ -398,14 +405,37 @@ template <class PF, int K, SpanSet kSpans>
   for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
   sort_by_y(v);
   ActiveTriangle& t = storage_.active[slot];
-  const uint8_t draw = draw_of(bt);
-  const DrawRecord& dr = frame_.draws[draw];
-  // Textured and Phong triangles get their slot's extra planes (the front end refuses such
-  // draws when there are none). A renderer without those spans sets up no such planes.
   constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
+  // Consecutive triangles mostly share their draw: its vertex range before the search, and what
+  // setup needs of the draw only when it changes.
+  if (uint32_t{bt.v[0]} - c.vertex_lo >= c.vertex_count) [[unlikely]] {
+    const uint8_t d = draw_of(bt);
+    const DrawRecord& dr = frame_.draws[d];
+    c.draw = d;
+    c.vertex_lo = dr.first_vertex;
+    c.vertex_count =
+        (d + 1u < frame_.draws.size() ? frame_.draws[d + 1u].first_vertex : uint32_t{0x10000}) -
+        c.vertex_lo;
+    // Textured and Phong triangles get their slot's extra planes (the front end refuses such
+    // draws when there are none). A renderer without those spans sets up no such planes.
+    c.legacy = kTexture && (dr.texture != nullptr || dr.phong);
+    c.triangle_pixel = dr.colors == ColorPlanes::kNone && dr.triangle_colors;
+    c.rows =
+        &kUntexturedRowTable<PF, kSpans>[untextured_row_index(dr.depth, UntexturedKind::kFlat)];
+    UntexturedInput& in = c.in;
+    in.colors = dr.colors;
+    in.depth = dr.depth;
+    in.lanes = kRgb565Lanes<PF>;
+    in.affine_ok = kAffineColors[dr.depth ? 1 : 0];
+    in.affine = kRgb565Lanes<PF> ? kAffineBound565 : kAffineBound8;
+    if (dr.colors == ColorPlanes::kNone && !dr.triangle_colors)
+      in.flat_pixel = pixel_bits<PF>(PF::encode(dr.color));
+  }
+  const uint8_t draw = c.draw;
   const RowWindow& window = c.window;
-  if (kTexture && (dr.texture != nullptr || dr.phong)) {
+  if (kTexture && c.legacy) {
+    const DrawRecord& dr = frame_.draws[draw];
     const int32_t first = std::max<int32_t>(first_row_below(v[0]->y), window.first_min);
     const int32_t last = std::min<int32_t>(last_row_at_or_above(v[2]->y), window.last_max);
     if (!setup_rows(v, first, last, window.width, t)) {
@@ -418,27 +448,21 @@ template <class PF, int K, SpanSet kSpans>
   } else {
     t.ext = nullptr;
     UntexturedInput& in = c.in;
-    if (c.draw != draw) {
-      c.draw = draw;
-      in.colors = dr.colors;
-      in.depth = dr.depth;
-      in.lanes = kRgb565Lanes<PF>;
-      in.affine_ok = kAffineColors[dr.depth ? 1 : 0];
-      in.affine = kRgb565Lanes<PF> ? kAffineBound565 : kAffineBound8;
-      if (dr.colors == ColorPlanes::kNone && !dr.triangle_colors)
-        in.flat_pixel = pixel_bits<PF>(PF::encode(dr.color));
-    }
-    if (dr.colors == ColorPlanes::kNone && dr.triangle_colors)
+    if (c.triangle_pixel)
       in.flat_pixel = pixel_bits<PF>(PF::encode(frame_.triangle_colors[node].primary));
     const UntexturedTriangle u = setup_untextured_triangle(v, window, in, t);
     if (!u.pixels) {
       ++stats_->triangles_without_pixels;
       return false;
     }
-    stats_->triangles_wide += u.wide ? 1 : 0;
-    t.rows = kUntexturedRowTable<PF, kSpans>[untextured_row_index(dr.depth, u.kind)];
+    if (u.wide) [[unlikely]]
+      ++stats_->triangles_wide;
+    // The kinds' entries are untextured_row_index(depth, kind) = the first kind's + 2 kind.
+    static_assert(untextured_row_index(true, UntexturedKind::kLanes) ==
+                  untextured_row_index(true, UntexturedKind::kFlat) +
+                      2 * static_cast<size_t>(UntexturedKind::kLanes));
+    t.rows = c.rows[2 * static_cast<size_t>(u.kind)];
   }
-  ++stats_->triangles_set_up;
   t.index = node;
   t.draw = draw;
   return true;
@@ -529,19 +553,46 @@ void StripLoop<PF, K, kSpans>::add_counts(const StripRows& s) {
   stats.rows_walked += s.rows;
 }
 
+// Draws every active triangle's rows of the strip sr, in submission order, and retires those
+// that end in it (retire's work in the same pass: one loop per strip visit).
 template <class PF, int K, SpanSet kSpans>
-void StripLoop<PF, K, kSpans>::retire(int next_row) {
-  uint16_t* order = storage_.active_index.data();
-  uint16_t* free_slots = order + storage_.active.size();
-  size_t kept = 0;
-  for (size_t i = 0; i < active_count_; ++i) {
-    uint16_t slot = order[i];
-    if (storage_.active[slot].last_row < next_row)
-      free_slots[free_count_++] = slot;
+void StripLoop<PF, K, kSpans>::visit(StripRows& sr) {
+  uint16_t* const order = storage_.active_index.data();
+  uint16_t* const free_slots = order + storage_.active.size();
+  const ActiveTriangle* const active = storage_.active.data();
+  const size_t count = active_count_;
+  const int32_t last = sr.y_last;
+  size_t kept = 0, free = free_count_;
+  for (size_t i = 0; i < count; ++i) {
+    const uint16_t slot = order[i];
+    const ActiveTriangle& t = active[slot];
+    t.rows(t, sr);
+    if (t.last_row <= last)
+      free_slots[free++] = slot;
     else
       order[kept++] = slot;
   }
   active_count_ = kept;
+  free_count_ = free;
+}
+
+template <class PF, int K, SpanSet kSpans>
+void StripLoop<PF, K, kSpans>::retire(int next_row) {
+  uint16_t* const order = storage_.active_index.data();
+  uint16_t* const free_slots = order + storage_.active.size();
+  const ActiveTriangle* const active = storage_.active.data();
+  // The counts in locals: the stores through uint16_t pointers would reload the members.
+  const size_t count = active_count_;
+  size_t kept = 0, free = free_count_;
+  for (size_t i = 0; i < count; ++i) {
+    const uint16_t slot = order[i];
+    if (active[slot].last_row < next_row)
+      free_slots[free++] = slot;
+    else
+      order[kept++] = slot;
+  }
+  active_count_ = kept;
+  free_count_ = free;
 }
 
 }  // namespace lr

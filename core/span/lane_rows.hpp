@@ -86,17 +86,21 @@ namespace detail {
 // visit's state:
 //   0 q[0]  4 q[1]  8 px (the row's pixel in column 0)  12 row  16 dx[0]  20 dx[1]
 //   24 stride (bytes per row)  28 dy[0]  32 dy[1]  36 col_base  40 width  44 stop  48 last
-//   52 depth offset (bytes from a pixel to its depth)  56 rejected pixels  60 the short side (0, 4)
-// and r12 counts the pixels in spans (bits 0..19), the spans (20..25) and the rows (26..31). Per
-// row: the first eleven words in r0-r6, r8-r11; left r0 and right r1 (clamped unless kInside); the
-// index r6 from left - right up to 0; the planes at (left, row): z r4 (step r5), br r9 (r10), g r3
-// (r8); the pixels' end r1, the depths' end r2; per pixel the depth and the pixel in r0, green in
-// r11. Instructions: per written pixel 16, per rejected one 8 (plus the counter); per row with a
-// span 35 (kInside 29), without one 20 (14); per visit about 50 (pick-up, frame, counts). The row
-// loop, its labels numbered from N, with CLAMP between the columns and the span.
-#define LR_LANE_ROWS(N1, N2, N3, N4, N7, CLAMP, SWAP)                            \
+//   52 depth offset (bytes from a pixel to its depth)
+// and r12 counts the pixels in spans (bits 0..19), the spans (20..25) and the rows (26..31: minus
+// the first row, plus the row after the last at the end). Per row: the first eleven words in
+// r0-r6, r8-r11; left r0 and right r1 (clamped unless kInside); the index r6 from left - right up
+// to 0; the planes at (left, row): z r4 (step r5), br r9 (r10), g r3 (r8); the pixels' end r1, the
+// depths' end r2; per pixel the depth and the pixel in r0, green in r11. A rejected pixel is
+// taken off the strip's written count at once (the visit adds every pixel in its spans at the
+// end). Instructions: per written pixel 16, per rejected one 8 (plus the count); per row with a
+// span 35 (kInside 29), without one 20 (14); per visit about 45 (pick-up into the row loop's
+// registers, which enters past its LDM, and the counts). The row loop, its labels numbered from
+// N, with CLAMP between the columns and the span.
+#define LR_LANE_ROWS(N1, N8, N2, N3, N4, N7, CLAMP, SWAP)                        \
   N1 ":\n\t"                                                                     \
-     "ldm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"           \
+     "ldm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t" N8        \
+     ":\n\t"                                                                     \
      "add    r4, r0, r4\n\t"                                                     \
      "add    r5, r1, r5\n\t"                                                     \
      "udiv   r0, r0, r8\n\t"                                                     \
@@ -148,8 +152,9 @@ namespace detail {
      "ldr    r1, [%[a], #48]\n\t"                                                \
      "cmp    r0, r1\n\t"                                                         \
      "bgt    9f\n\t"                                                             \
-     "ldr    r2, [%[a], #60]\n\t"                                                \
-     "add    r2, %[a]\n\t"                                                       \
+     "ldrb   r2, [lr, #47]\n\t"                                                  \
+     "and    r2, r2, #1\n\t"                                                     \
+     "add    r2, %[a], r2, lsl #2\n\t"                                           \
      "add    r3, lr, #24\n\t"                                                    \
      "ldm    r3, {r3, r4, r5}\n\t"                                               \
      "str    r3, [r2]\n\t"                                                       \
@@ -158,9 +163,10 @@ namespace detail {
      "str    r1, [%[a], #44]\n\t"                                                \
      "b      " N1 "b\n\t" N3                                                     \
      ":\n\t"                                                                     \
-     "ldr    r0, [%[a], #56]\n\t"                                                \
-     "adds   r0, #1\n\t"                                                         \
-     "str    r0, [%[a], #56]\n\t"                                                \
+     "ldr    r0, [%[a], #68]\n\t"                                                \
+     "ldr    r11, [r0, #40]\n\t"                                                 \
+     "subs   r11, #1\n\t"                                                        \
+     "str    r11, [r0, #40]\n\t"                                                 \
      "b      " N4 "b\n\t"
 // The columns relative to col_base, clamped to [0, width).
 #define LR_LANE_CLAMP              \
@@ -170,76 +176,75 @@ namespace detail {
   "cmp    r1, r11\n\t"             \
   "it     gt\n\t"                  \
   "movgt  r1, r11\n\t"
-// The pick-up (the frame), the two loops (kInside without the clamp), the counts.
+// The pick-up: the strip's words (pixels, depth, y0, y_last, width) in one LDM, the rows, then
+// the edges straight into the row loop's registers (q, dx, dy: the record's first six words),
+// stored as the frame. Below the middle vertex from the start, the short side's edge is the
+// bottom one. Then the two loops (kInside without the clamp) and the counts.
 #define LR_LANE_VISIT(SWAP) \
   asm volatile(                                                            \
-      "ldrd   lr, r12, [%[a], #64]\n\t"                                         \
-      "ldrsh  r5, [lr, #36]\n\t"                                           \
-      "ldrd   r3, r4, [r12, #8]\n\t"                                       \
+      "ldrd   lr, r12, [%[a], #64]\n\t"                                    \
+      "ldm    r12, {r0, r1, r2, r3, r11}\n\t"                              \
+      "subs   r1, r1, r0\n\t"                                              \
+      "str    r1, [%[a], #52]\n\t"                                         \
+      "ldrsh  r4, [lr, #36]\n\t"                                           \
+      "ldrsh  r5, [lr, #40]\n\t"                                           \
+      "ldrsh  r8, [lr, #38]\n\t"                                           \
+      "ldrsh  r10, [lr, #42]\n\t"                                          \
       "cmp    r5, r3\n\t"                                                  \
+      "it     gt\n\t"                                                      \
+      "movgt  r5, r3\n\t"                                                  \
+      "cmp    r4, r2\n\t"                                                  \
       "ite    ge\n\t"                                                      \
-      "movge  r0, r5\n\t"                                                  \
-      "movlt  r0, r3\n\t"                                                  \
-      "ldrsh  r2, [lr, #40]\n\t"                                           \
-      "cmp    r2, r4\n\t"                                                  \
-      "it     gt\n\t"                                                      \
-      "movgt  r2, r4\n\t"                                                  \
-      "ldrsh  r1, [lr, #38]\n\t"                                           \
-      "subs   r5, r0, r5\n\t"                                              \
-      "ldm    lr, {r4, r6, r8, r9, r10, r11}\n\t"                          \
-      "mla    r4, r8, r5, r4\n\t"                                          \
-      "mla    r6, r9, r5, r6\n\t"                                          \
-      "strd   r4, r6, [%[a]]\n\t"                                            \
-      "strd   r8, r9, [%[a], #16]\n\t"                                       \
-      "strd   r10, r11, [%[a], #28]\n\t"                                     \
-      "ldrd   r4, r5, [r12]\n\t"                                           \
-      "subs   r5, r5, r4\n\t"                                              \
-      "str    r5, [%[a], #52]\n\t"                                           \
-      "ldr    r6, [r12, #16]\n\t"                                          \
-      "subs   r3, r0, r3\n\t"                                              \
-      "mul    r3, r3, r6\n\t"                                              \
-      "add    r4, r4, r3, lsl #1\n\t"                                      \
-      "strd   r4, r0, [%[a], #8]\n\t"                                        \
-      "lsls   r4, r6, #1\n\t"                                              \
-      "str    r4, [%[a], #24]\n\t"                                           \
-      "ldrsh  r4, [lr, #42]\n\t"                                           \
-      "strd   r4, r6, [%[a], #36]\n\t"                                       \
-      "movs   r12, #0\n\t"                                                 \
-      "str    r12, [%[a], #56]\n\t"                                          \
-      "subs   r12, r2, r0\n\t"                                             \
-      "add    r12, r12, #1\n\t"                                            \
-      "lsls   r12, r12, #26\n\t"                                           \
-      "ldrb   r4, [lr, #47]\n\t"                                           \
-      "and    r5, r4, #1\n\t"                                              \
-      "lsls   r5, r5, #2\n\t"                                              \
-      "str    r5, [%[a], #60]\n\t"                                           \
-      "cmp    r0, r1\n\t"                                                  \
+      "movge  r3, r4\n\t"                                                  \
+      "movlt  r3, r2\n\t"                                                  \
+      "subs   r2, r3, r2\n\t"                                              \
+      "lsls   r6, r11, #1\n\t"                                             \
+      "mla    r2, r2, r6, r0\n\t"                                          \
+      "subs   r12, r3, r4\n\t"                                             \
+      "cmp    r3, r8\n\t"                                                  \
       "bgt    5f\n\t"                                                      \
-      "cmp    r1, r2\n\t"                                                  \
+      "cmp    r8, r5\n\t"                                                  \
       "it     gt\n\t"                                                      \
-      "movgt  r1, r2\n\t"                                                  \
-      "strd   r1, r2, [%[a], #44]\n\t"                                       \
-      "b      6f\n\t"                                                      \
+      "movgt  r8, r5\n\t"                                                  \
+      "strd   r8, r5, [%[a], #44]\n\t"                                     \
+      "ldm    lr, {r0, r1, r4, r5, r8, r9}\n\t"                            \
+      "mla    r0, r4, r12, r0\n\t"                                         \
+      "mla    r1, r5, r12, r1\n\t"                                         \
+      "stm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"    \
+      "ldrb   r12, [lr, #47]\n\t"                                          \
+      "tst    r12, #4\n\t"                                                 \
+      "rsb    r12, r3, #0\n\t"                                             \
+      "lsl    r12, r12, #26\n\t"                                           \
+      "bne    18f\n\t"                                                     \
+      "b      8f\n\t"                                                      \
       "5:\n\t"                                                             \
-      "subs   r0, r0, r1\n\t"                                              \
+      "str    r5, [%[a], #44]\n\t"                                         \
+      "str    r5, [%[a], #48]\n\t"                                         \
+      "ldm    lr, {r0, r1, r4, r5, r8, r9}\n\t"                            \
+      "mla    r0, r4, r12, r0\n\t"                                         \
+      "mla    r1, r5, r12, r1\n\t"                                         \
+      "stm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"    \
+      "ldrsh  r12, [lr, #38]\n\t"                                          \
+      "subs   r0, r3, r12\n\t"                                             \
       "subs   r0, #1\n\t"                                                  \
-      "add    r3, lr, #24\n\t"                                             \
-      "ldm    r3, {r3, r6, r8}\n\t"                                        \
-      "mla    r3, r6, r0, r3\n\t"                                          \
-      "add    r5, %[a]\n\t"                                                  \
-      "str    r3, [r5]\n\t"                                                \
-      "str    r6, [r5, #16]\n\t"                                           \
-      "str    r8, [r5, #28]\n\t"                                           \
-      "str    r2, [%[a], #44]\n\t"                                           \
-      "str    r2, [%[a], #48]\n\t"                                           \
-      "6:\n\t"                                                             \
-      "tst    r4, #4\n\t"                                                  \
+      "add    r1, lr, #24\n\t"                                             \
+      "ldm    r1, {r1, r4, r5}\n\t"                                        \
+      "mla    r1, r4, r0, r1\n\t"                                          \
+      "ldrb   r12, [lr, #47]\n\t"                                          \
+      "and    r0, r12, #1\n\t"                                             \
+      "add    r0, %[a], r0, lsl #2\n\t"                                    \
+      "str    r1, [r0]\n\t"                                                \
+      "str    r4, [r0, #16]\n\t"                                           \
+      "str    r5, [r0, #28]\n\t"                                           \
+      "tst    r12, #4\n\t"                                                 \
+      "rsb    r12, r3, #0\n\t"                                             \
+      "lsl    r12, r12, #26\n\t"                                           \
       "bne    11f\n\t"                                                     \
-      LR_LANE_ROWS("1", "2", "3", "4", "7", LR_LANE_CLAMP, SWAP)           \
-      LR_LANE_ROWS("11", "12", "13", "14", "17", "", SWAP)                 \
+      LR_LANE_ROWS("1", "8", "2", "3", "4", "7", LR_LANE_CLAMP, SWAP)      \
+      LR_LANE_ROWS("11", "18", "12", "13", "14", "17", "", SWAP)           \
       "9:\n\t"                                                             \
-      "ldr    r0, [%[a], #56]\n\t"                                           \
-      "ldr    r5, [%[a], #68]\n\t"                                          \
+      "add    r12, r12, r0, lsl #26\n\t"                                   \
+      "ldr    r5, [%[a], #68]\n\t"                                         \
       "add    r5, #32\n\t"                                                 \
       "ldm    r5, {r1, r2, r3, r6}\n\t"                                    \
       "ubfx   r4, r12, #20, #6\n\t"                                        \
@@ -247,7 +252,6 @@ namespace detail {
       "ubfx   r4, r12, #0, #20\n\t"                                        \
       "add    r2, r4\n\t"                                                  \
       "add    r3, r4\n\t"                                                  \
-      "subs   r3, r0\n\t"                                                  \
       "add    r6, r6, r12, lsr #26\n\t"                                    \
       "stm    r5, {r1, r2, r3, r6}\n\t"                                    \
       :                                                                    \
