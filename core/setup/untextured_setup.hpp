@@ -145,11 +145,7 @@ bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const U
                   UntexturedKind kind, ActiveTriangle& t);
 // small_planes' integers for kLanes with depth, by hand where the core has SMMUL/SMMLA
 // (kSmallPlanesByHand: Armv7E-M, not at -Os); elsewhere it makes nothing and returns false.
-#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
-inline constexpr bool kSmallPlanesByHand = true;
-#else
 inline constexpr bool kSmallPlanesByHand = false;
-#endif
 bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
                                 ActiveTriangle& t);
 
@@ -160,6 +156,9 @@ inline constexpr int kFastMaxEdgeBits = 20;
 inline constexpr int kFastMaxSpread = 10;
 inline constexpr int kFastMaxSpreadPerspective = 6;
 inline constexpr int kFastMaxDepthSpread = 35;
+// The small path's depth plane: vertex differences of at most this many bits (2^26 half units,
+// 1/32 of the depth range), of which it keeps the top 16 (docs/numerics.md#untextured-planes).
+inline constexpr int kSmallMaxDepthBits = 26;
 // Lanes: edge components below 2^15 subpixels (128 pixels), so that the lanes' rounding stays
 // below 2^7 lane units everywhere in the triangle (an eighth of a 6-bit level).
 inline constexpr int kLanesMaxEdgeBits = 15;
