@@ -283,10 +283,232 @@ bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const U
   return small_planes_c(v, d, m, in, kind, t);
 }
 
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
+// small_planes of a lanes triangle with depth by hand (Armv7E-M): GCC 12 spilled the edges and
+// the plane kind's factor around every plane. The one operand (left to the compiler) points to a
+// frame of 22 words: the vertices (0, 4, 8), d (12), m (16), the triangle (20), the result (24,
+// 1 when the planes were made), then fx, fy (32), c0, r0 (40), rs, tg (48), the depth
+// differences (56), its a0 and scale exponent (64), a plane's a0 (72) and blue's differences (76).
+// While the planes are made: E1x r3, E1y r4, E2x r5, E2y r6, the factor r12, left lr.
+// LR_SP_SCALE: plane_scale of rs in r8 and s in r9: r12 = rs >> min(-s, 31) (or rs), lr = s or 0.
+#define LR_SP_SCALE       \
+  "usat   lr, #5, r9\n\t" \
+  "rsb    r9, r9, #0\n\t" \
+  "usat   r9, #5, r9\n\t" \
+  "asr    r12, r8, r9\n\t"
+// LR_SP_PLANE: d1 r0, d2 r1 -> off - px c0 - py r0 in r2, px r8, py r9 (r0, r1, r10, r11 scratch).
+#define LR_SP_PLANE                  \
+  "mul    r8, r0, r6\n\t"            \
+  "mls    r8, r1, r4, r8\n\t"        \
+  "mul    r9, r1, r3\n\t"            \
+  "mls    r9, r0, r5, r9\n\t"        \
+  "smmul  r8, r8, r12\n\t"           \
+  "smmul  r9, r9, r12\n\t"           \
+  "ldrd   r10, r11, [%[f], #32]\n\t" \
+  "smmul  r2, r9, r11\n\t"           \
+  "smmla  r2, r8, r10, r2\n\t"       \
+  "ldrd   r10, r11, [%[f], #40]\n\t" \
+  "mls    r2, r8, r10, r2\n\t"       \
+  "mls    r2, r9, r11, r2\n\t"
+// LR_SP_FINISH: the base (a0 from the frame's word 72, or OFF) and the gradients times 2^left.
+#define LR_SP_FINISH(OFF)    \
+  "lsl    r2, r2, lr\n\t"    \
+  "lsl    r8, r8, lr\n\t"    \
+  "lsl    r9, r9, lr\n\t"    \
+  "ldr    r10, [%[f], #" OFF \
+  "]\n\t"                    \
+  "add    r2, r2, r10\n\t"   \
+  "ldr    r10, [%[f], #20]\n\t"
+bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
+                                ActiveTriangle& t) {
+  static_assert(offsetof(ScreenVertex, z) == 8 && offsetof(ScreenVertex, color) == 16 &&
+                offsetof(Color15, g) == 2 && offsetof(Color15, b) == 4);
+  static_assert(offsetof(ActiveTriangle, z) == 52 && offsetof(ActiveTriangle, c) == 64 &&
+                sizeof(Plane) == 12 && offsetof(Plane, base) == 0 && offsetof(Plane, gx) == 4);
+  static_assert(kFastMaxSpread == 10 && kFastMaxDepthSpread == 35 && kSmallMaxDepthBits == 26 &&
+                kSmallEdgeBits == 14);
+  uint32_t frame[22];
+  frame[0] = reinterpret_cast<uintptr_t>(v[0]);
+  frame[1] = reinterpret_cast<uintptr_t>(v[1]);
+  frame[2] = reinterpret_cast<uintptr_t>(v[2]);
+  frame[3] = static_cast<uint32_t>(d);
+  frame[4] = m;
+  frame[5] = reinterpret_cast<uintptr_t>(&t);
+  uint32_t* const f = frame;
+  asm volatile(
+      // zbits r6, lz r11, bm r12, the limits
+      "ldm    %[f], {r0, r1, r2}\n\t"
+      "ldr    r3, [r0, #8]\n\t"
+      "ldr    r4, [r1, #8]\n\t"
+      "ldr    r5, [r2, #8]\n\t"
+      "lsr    r3, r3, #1\n\t"
+      "rsb    r4, r3, r4, lsr #1\n\t"
+      "rsb    r5, r3, r5, lsr #1\n\t"
+      "eor    r6, r4, r4, asr #31\n\t"
+      "sub    r6, r6, r4, asr #31\n\t"
+      "eor    r8, r5, r5, asr #31\n\t"
+      "sub    r8, r8, r5, asr #31\n\t"
+      "orr    r6, r6, r8\n\t"
+      "clz    r6, r6\n\t"
+      "rsb    r6, r6, #32\n\t"
+      "ldrd   r8, r9, [%[f], #12]\n\t"
+      "eor    r10, r8, r8, asr #31\n\t"
+      "sub    r10, r10, r8, asr #31\n\t"
+      "clz    r11, r10\n\t"
+      "clz    r12, r9\n\t"
+      "rsb    r12, r12, #32\n\t"
+      "add    lr, r11, r12, lsl #1\n\t"
+      "sub    lr, lr, #32\n\t"
+      "cmp    lr, #10\n\t"
+      "bgt    8f\n\t"
+      "cmp    r6, #26\n\t"
+      "bgt    8f\n\t"
+      "add    lr, lr, r6\n\t"
+      "cmp    lr, #35\n\t"
+      "bgt    8f\n\t"
+      // tg r9 = 36 - lz - bm; the depth differences below 2^16 (zsh = zbits - 16 or 0)
+      "rsb    r9, r11, #36\n\t"
+      "sub    r9, r9, r12\n\t"
+      "subs   r6, r6, #16\n\t"
+      "it     lt\n\t"
+      "movlt  r6, #0\n\t"
+      "asr    r4, r4, r6\n\t"
+      "asr    r5, r5, r6\n\t"
+      "add    r3, r3, #16384\n\t"
+      "sub    r6, r6, r9\n\t"
+      "strd   r4, r5, [%[f], #56]\n\t"
+      "strd   r3, r6, [%[f], #64]\n\t"
+      // rs = recip62(|d| << lz), signed like d
+      "lsl    r10, r10, r11\n\t"
+      "lsr    r3, r10, #16\n\t"
+      "mov    r4, #-1\n\t"
+      "udiv   r3, r4, r3\n\t"
+      "lsl    r3, r3, #14\n\t"
+      "umull  r4, r5, r10, r3\n\t"
+      "rsb    r5, r5, #0x40000000\n\t"
+      "lsl    r5, r5, #2\n\t"
+      "smmul  r5, r3, r5\n\t"
+      "adds   r3, r3, r5\n\t"
+      "it     vs\n\t"
+      "mvnvs  r3, #0x80000000\n\t"
+      "cmp    r8, #0\n\t"
+      "it     lt\n\t"
+      "neglt  r3, r3\n\t"
+      "strd   r3, r9, [%[f], #48]\n\t"
+      // the reference pixel and the edges times 2^(14 - bm)
+      "rsb    r12, r12, #14\n\t"
+      "ldrd   r4, r5, [r0]\n\t"
+      "ldrd   r8, r9, [r1]\n\t"
+      "ldrd   r10, r11, [r2]\n\t"
+      "sub    r8, r8, r4\n\t"
+      "sub    r9, r9, r5\n\t"
+      "sub    r10, r10, r4\n\t"
+      "sub    r11, r11, r5\n\t"
+      "sub    r6, r4, #1\n\t"
+      "asr    r6, r6, #8\n\t"
+      "lsl    lr, r6, #8\n\t"
+      "add    lr, lr, #128\n\t"
+      "sub    lr, lr, r4\n\t"
+      "lsl    lr, lr, #24\n\t"
+      "sub    r4, r5, #1\n\t"
+      "asr    r4, r4, #8\n\t"
+      "lsl    r3, r4, #8\n\t"
+      "add    r3, r3, #128\n\t"
+      "sub    r3, r3, r5\n\t"
+      "lsl    r3, r3, #24\n\t"
+      "strd   lr, r3, [%[f], #32]\n\t"
+      "strd   r6, r4, [%[f], #40]\n\t"
+      "lsl    r3, r8, r12\n\t"
+      "lsl    r4, r9, r12\n\t"
+      "lsl    r5, r10, r12\n\t"
+      "lsl    r6, r11, r12\n\t"
+      // depth: rs, 2^(zsh - tg)
+      "ldr    r8, [%[f], #48]\n\t"
+      "ldr    r9, [%[f], #68]\n\t" LR_SP_SCALE
+      "ldrd   r0, r1, [%[f], #56]\n\t" LR_SP_PLANE LR_SP_FINISH("64")
+      "str    r2, [r10, #52]\n\t"
+      "strd   r8, r9, [r10, #56]\n\t"
+      // green: rs 63 / 64, 2^(17 - tg), a0 63 c 2^11 + 2^25
+      "ldrd   r8, r9, [%[f], #48]\n\t"
+      "sub    r8, r8, r8, asr #6\n\t"
+      "rsb    r9, r9, #17\n\t" LR_SP_SCALE
+      "ldm    %[f], {r0, r1, r2}\n\t"
+      "ldrh   r10, [r0, #18]\n\t"
+      "ldrh   r0, [r1, #18]\n\t"
+      "ldrh   r1, [r2, #18]\n\t"
+      "sub    r0, r0, r10\n\t"
+      "sub    r1, r1, r10\n\t"
+      "mov    r11, #129024\n\t"
+      "mul    r10, r10, r11\n\t"
+      "add    r10, r10, #0x2000000\n\t"
+      "str    r10, [%[f], #72]\n\t" LR_SP_PLANE LR_SP_FINISH("72")
+      "str    r2, [r10, #76]\n\t"
+      "strd   r8, r9, [r10, #80]\n\t"
+      // red and blue: rs 31 / 32, 2^(1 - tg), a0 (31 c >> 4) + 2^10 in each lane
+      "ldrd   r8, r9, [%[f], #48]\n\t"
+      "sub    r8, r8, r8, asr #5\n\t"
+      "rsb    r9, r9, #1\n\t" LR_SP_SCALE
+      "ldm    %[f], {r0, r1, r2}\n\t"
+      "ldrh   r10, [r0, #16]\n\t"
+      "ldrh   r11, [r0, #20]\n\t"
+      "rsb    r8, r10, r10, lsl #5\n\t"
+      "lsr    r8, r8, #4\n\t"
+      "rsb    r9, r11, r11, lsl #5\n\t"
+      "lsr    r9, r9, #4\n\t"
+      "add    r8, r8, r9, lsl #16\n\t"
+      "add    r8, r8, #1024\n\t"
+      "add    r8, r8, #0x4000000\n\t"
+      "str    r8, [%[f], #72]\n\t"
+      "ldrh   r8, [r1, #20]\n\t"
+      "ldrh   r9, [r2, #20]\n\t"
+      "sub    r8, r8, r11\n\t"
+      "sub    r9, r9, r11\n\t"
+      "strd   r8, r9, [%[f], #76]\n\t"
+      "ldrh   r0, [r1, #16]\n\t"
+      "ldrh   r1, [r2, #16]\n\t"
+      "sub    r0, r0, r10\n\t"
+      "sub    r1, r1, r10\n\t" LR_SP_PLANE
+      // blue into r11 (off - px c0 - py r0), r0 (px), r10 (py)
+      "ldrd   r0, r1, [%[f], #76]\n\t"
+      "mul    r10, r1, r3\n\t"
+      "mls    r10, r0, r5, r10\n\t"
+      "mul    r0, r0, r6\n\t"
+      "mls    r0, r1, r4, r0\n\t"
+      "smmul  r0, r0, r12\n\t"
+      "smmul  r10, r10, r12\n\t"
+      "ldrd   r1, r11, [%[f], #32]\n\t"
+      "smmul  r11, r10, r11\n\t"
+      "smmla  r11, r0, r1, r11\n\t"
+      "ldr    r1, [%[f], #40]\n\t"
+      "mls    r11, r0, r1, r11\n\t"
+      "ldr    r1, [%[f], #44]\n\t"
+      "mls    r11, r10, r1, r11\n\t"
+      "add    r2, r2, r11, lsl #16\n\t"
+      "add    r8, r8, r0, lsl #16\n\t"
+      "add    r9, r9, r10, lsl #16\n\t" LR_SP_FINISH("72")
+      "str    r2, [r10, #64]\n\t"
+      "strd   r8, r9, [r10, #68]\n\t"
+      "movs   r0, #1\n\t"
+      "b      9f\n\t"
+      "8:\n\t"
+      "movs   r0, #0\n\t"
+      "9:\n\t"
+      "str    r0, [%[f], #24]\n\t"
+      :
+      : [f] "r"(f)
+      : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc",
+        "memory");
+  return frame[6] != 0;
+}
+#undef LR_SP_FINISH
+#undef LR_SP_PLANE
+#undef LR_SP_SCALE
+#else
 bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*/, uint32_t /*m*/,
                                 ActiveTriangle& /*t*/) {
   return false;
 }
+#endif
 
 namespace {
 // small_rows, inlined into setup_untextured_triangle (one copy in an image without

@@ -145,7 +145,11 @@ bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const U
                   UntexturedKind kind, ActiveTriangle& t);
 // small_planes' integers for kLanes with depth, by hand where the core has SMMUL/SMMLA
 // (kSmallPlanesByHand: Armv7E-M, not at -Os); elsewhere it makes nothing and returns false.
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
+inline constexpr bool kSmallPlanesByHand = true;
+#else
 inline constexpr bool kSmallPlanesByHand = false;
+#endif
 bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
                                 ActiveTriangle& t);
 
