@@ -140,7 +140,8 @@ SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
 // The planes of a small triangle (setup_untextured_triangle's: edges below 2^kSmallEdgeBits
 // subpixels, d twice its signed area, m the OR of its edge components' magnitudes) of the kind
 // given (not kPerspective), with v sorted by y and its rows already set up; false (t's planes
-// unspecified) when its spread needs setup_untextured. Exposed for tests.
+// unspecified) when its spread or its depth differences (above kSmallMaxDepthBits) need
+// setup_untextured. Exposed for tests.
 bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const UntexturedInput& in,
                   UntexturedKind kind, ActiveTriangle& t);
 // small_planes' integers for kLanes with depth, by hand where the core has SMMUL/SMMLA
