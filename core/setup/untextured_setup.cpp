@@ -217,20 +217,19 @@ LR_SMALL_PLANES_INLINE bool small_planes_c(const ScreenVertex* const v[3], int32
   const int bm = 32 - clz32(m);
   const int spread = 2 * bm - 32 + lz;
   const int32_t z0 = static_cast<int32_t>(va.z >> 1);
-  const int32_t dz1 = static_cast<int32_t>(vb.z >> 1) - z0;
-  const int32_t dz2 = static_cast<int32_t>(vc.z >> 1) - z0;
+  int32_t dz1 = static_cast<int32_t>(vb.z >> 1) - z0;
+  int32_t dz2 = static_cast<int32_t>(vc.z >> 1) - z0;
   const int zbits = in.depth ? bit_length(magnitude(dz1) | magnitude(dz2)) : 0;
-  if (spread > kFastMaxSpread || spread + zbits > kFastMaxDepthSpread) return false;
+  if (spread > kFastMaxSpread || zbits > kSmallMaxDepthBits || spread + zbits > kFastMaxDepthSpread)
+    return false;
   SmallBasis b;
+  const int k = kSmallEdgeBits - bm;  // the edges normalised to 14 bits
   {
     const int32_t x0 = va.x, y0 = va.y;
-    const int32_t r = recip62(magnitude(d) << lz);
-    const int32_t rs = d < 0 ? -r : r;
-    const int sh = 31 - bm;
-    b.kx1 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(vc.y - y0) << sh), rs);
-    b.kx2 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(y0 - vb.y) << sh), rs);
-    b.ky1 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(x0 - vc.x) << sh), rs);
-    b.ky2 = mul_hi(static_cast<int32_t>(static_cast<uint32_t>(vb.x - x0) << sh), rs);
+    b.e1x = (vb.x - x0) * (1 << k);
+    b.e1y = (vb.y - y0) * (1 << k);
+    b.e2x = (vc.x - x0) * (1 << k);
+    b.e2y = (vc.y - y0) * (1 << k);
     // The reference pixel (c0, r0): the one whose centre is within [-128, 127] subpixels of
     // vertex 0 on both axes, so that the offset f fits f 2^24.
     const int32_t c0 = (x0 - 1) >> kSubpixelBits, r0 = (y0 - 1) >> kSubpixelBits;
@@ -239,12 +238,17 @@ LR_SMALL_PLANES_INLINE bool small_planes_c(const ScreenVertex* const v[3], int32
     b.c0 = static_cast<uint32_t>(c0);
     b.r0 = static_cast<uint32_t>(r0);
   }
-  const int p = bm + lz - 21;  // 11 + bm - L
+  // rs ~ 2^(30 + L) / d: mul_hi(n, rs) is the gradient of n's attribute times 2^tg.
+  const int32_t r = recip62(magnitude(d) << lz);
+  const int32_t rs = d < 0 ? -r : r;
+  const int tg = 36 - lz - bm;  // L - bm + 4
   if (in.depth) {
-    const int zu = 30 - zbits;  // >= -1
-    const int32_t n1 = zu >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(dz1) << zu) : dz1 >> 1;
-    const int32_t n2 = zu >= 0 ? static_cast<int32_t>(static_cast<uint32_t>(dz2) << zu) : dz2 >> 1;
-    small_plane(b, n1, n2, static_cast<uint32_t>(z0) + (1u << 14), plane_shift(p - zu), t.z);
+    // Differences below 2^16: the low bits of larger ones dropped (below 2^10 half units).
+    const int zsh = zbits > 16 ? zbits - 16 : 0;
+    dz1 >>= zsh;
+    dz2 >>= zsh;
+    small_plane(b, dz1, dz2, static_cast<uint32_t>(z0) + (1u << 14), plane_scale(rs, zsh - tg),
+                t.z);
   }
   if (kind == UntexturedKind::kFlat) {
     t.c[0].base = in.flat_pixel;
@@ -252,27 +256,24 @@ LR_SMALL_PLANES_INLINE bool small_planes_c(const ScreenVertex* const v[3], int32
   }
   const int32_t cr = va.color.r, cg = va.color.g, cbl = va.color.b;
   if (kind == UntexturedKind::kLanes) {
-    // Lanes (kSmallEdgeBits <= kLanesMaxEdgeBits): red and blue in lane units from differences
-    // 31 d 2^10 (< 2^30) of 31 c (lanes 31 c / 16: p - 14); green as 63 c 2^11 + 2^25 from
-    // differences 63 d 2^9 of 63 c (2^(p + 2)).
-    const PlaneShift rb = plane_shift(p - 14);
+    // Red and blue in lane units (31 c / 16: rs 31 / 32, 2^(1 - tg)), green in 63 c 2^11
+    // (rs 63 / 64, 2^(17 - tg)), from the Q1.15 differences.
+    const PlaneScale rb = plane_scale(rs - (rs >> 5), 1 - tg);
     Plane pr, pb;
-    small_plane(b, (vb.color.r - cr) * 31 * 1024, (vc.color.r - cr) * 31 * 1024,
-                ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024, rb, pr);
-    small_plane(b, (vb.color.b - cbl) * 31 * 1024, (vc.color.b - cbl) * 31 * 1024,
+    small_plane(b, vb.color.r - cr, vc.color.r - cr, ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024,
+                rb, pr);
+    small_plane(b, vb.color.b - cbl, vc.color.b - cbl,
                 ((31 * static_cast<uint32_t>(cbl)) >> 4) + 1024, rb, pb);
     t.c[0] = Plane{(pb.base << 16) + pr.base, (pb.gx << 16) + pr.gx, (pb.gy << 16) + pr.gy};
-    small_plane(b, (vb.color.g - cg) * 63 * 512, (vc.color.g - cg) * 63 * 512,
-                63 * 2048 * static_cast<uint32_t>(cg) + (1u << 25), plane_shift(p + 2), t.c[1]);
+    small_plane(b, vb.color.g - cg, vc.color.g - cg,
+                63 * 2048 * static_cast<uint32_t>(cg) + (1u << 25),
+                plane_scale(rs - (rs >> 6), 17 - tg), t.c[1]);
     return true;
   }
-  const PlaneShift c = plane_shift(p);
-  small_plane(b, (vb.color.r - cr) * 32768, (vc.color.r - cr) * 32768,
-              static_cast<uint32_t>(cr) << 15, c, t.c[0]);
-  small_plane(b, (vb.color.g - cg) * 32768, (vc.color.g - cg) * 32768,
-              static_cast<uint32_t>(cg) << 15, c, t.c[1]);
-  small_plane(b, (vb.color.b - cbl) * 32768, (vc.color.b - cbl) * 32768,
-              static_cast<uint32_t>(cbl) << 15, c, t.c[2]);
+  const PlaneScale c = plane_scale(rs, 15 - tg);
+  small_plane(b, vb.color.r - cr, vc.color.r - cr, static_cast<uint32_t>(cr) << 15, c, t.c[0]);
+  small_plane(b, vb.color.g - cg, vc.color.g - cg, static_cast<uint32_t>(cg) << 15, c, t.c[1]);
+  small_plane(b, vb.color.b - cbl, vc.color.b - cbl, static_cast<uint32_t>(cbl) << 15, c, t.c[2]);
   return true;
 }
 #undef LR_SMALL_PLANES_INLINE
@@ -285,54 +286,50 @@ bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const U
 
 #if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && defined(__ARM_FEATURE_IDIV) && \
     !defined(__OPTIMIZE_SIZE__)
-// small_planes of a lanes triangle with depth by hand (Armv7E-M): GCC 12 kept the basis in
-// registers across the four planes and spilled around them. The one operand (in r7, left to the
-// compiler) points to a frame of 28 words: in it the vertices (0, 4, 8), d (12), m (16), the
-// triangle (20), and the result (24, 1 when the planes were made); then the basis at 28 (kx1,
-// kx2, ky1, ky2, fx, fy, c0, r0), p at 60 and the planes' inputs from 64 (n1, n2, a0 of each).
-// LR_SP_SHIFT: 2^s from s in SREG as left r3, right r4, half r5 (plane_shift).
-#define LR_SP_SHIFT(SREG) \
-  "usat   r3, #5, " SREG  \
-  "\n\t"                  \
-  "rsb    r4, " SREG      \
-  ", #0\n\t"              \
-  "usat   r4, #5, r4\n\t" \
-  "movs   r5, #1\n\t"     \
-  "lsl    r5, r5, r4\n\t" \
-  "lsr    r5, r5, #1\n\t"
-// LR_SP_PLANE: small_plane of n1 r0, n2 r1, a0 r2 with the shift in r3-r5: base r2, gx r8,
-// gy r9 (r0, r10, r11 scratch; r1, r3-r6, r12, lr kept).
+// small_planes of a lanes triangle with depth by hand (Armv7E-M): GCC 12 spilled the edges and
+// the plane kind's factor around every plane. The one operand (left to the compiler) points to a
+// frame of 22 words: the vertices (0, 4, 8), d (12), m (16), the triangle (20), the result (24,
+// 1 when the planes were made), then fx, fy (32), c0, r0 (40), rs, tg (48), the depth
+// differences (56), its a0 and scale exponent (64), a plane's a0 (72) and blue's differences (76).
+// While the planes are made: E1x r3, E1y r4, E2x r5, E2y r6, the factor r12, left lr.
+// LR_SP_SCALE: plane_scale of rs in r8 and s in r9: r12 = rs >> min(-s, 31) (or rs), lr = s or 0.
+#define LR_SP_SCALE       \
+  "usat   lr, #5, r9\n\t" \
+  "rsb    r9, r9, #0\n\t" \
+  "usat   r9, #5, r9\n\t" \
+  "asr    r12, r8, r9\n\t"
+// LR_SP_PLANE: d1 r0, d2 r1 -> off - px c0 - py r0 in r2, px r8, py r9 (r0, r1, r10, r11 scratch).
 #define LR_SP_PLANE                  \
-  "ldrd   r10, r11, [%[f], #28]\n\t" \
-  "smmul  r8, r1, r11\n\t"           \
-  "smmla  r8, r0, r10, r8\n\t"       \
-  "ldrd   r10, r11, [%[f], #36]\n\t" \
-  "smmul  r9, r1, r11\n\t"           \
-  "smmla  r9, r0, r10, r9\n\t"       \
-  "ldrd   r10, r11, [%[f], #44]\n\t" \
-  "smmul  r0, r9, r11\n\t"           \
-  "smmla  r0, r8, r10, r0\n\t"       \
-  "lsl    r8, r8, r3\n\t"            \
-  "lsl    r9, r9, r3\n\t"            \
-  "lsl    r0, r0, r3\n\t"            \
-  "add    r8, r8, r5\n\t"            \
-  "add    r9, r9, r5\n\t"            \
-  "add    r0, r0, r5\n\t"            \
-  "asr    r8, r8, r4\n\t"            \
-  "asr    r9, r9, r4\n\t"            \
-  "asr    r0, r0, r4\n\t"            \
-  "add    r2, r2, r0\n\t"            \
-  "ldrd   r10, r11, [%[f], #52]\n\t" \
+  "mul    r8, r0, r6\n\t"            \
+  "mls    r8, r1, r4, r8\n\t"        \
+  "mul    r9, r1, r3\n\t"            \
+  "mls    r9, r0, r5, r9\n\t"        \
+  "smmul  r8, r8, r12\n\t"           \
+  "smmul  r9, r9, r12\n\t"           \
+  "ldrd   r10, r11, [%[f], #32]\n\t" \
+  "smmul  r2, r9, r11\n\t"           \
+  "smmla  r2, r8, r10, r2\n\t"       \
+  "ldrd   r10, r11, [%[f], #40]\n\t" \
   "mls    r2, r8, r10, r2\n\t"       \
   "mls    r2, r9, r11, r2\n\t"
+// LR_SP_FINISH: the base (a0 from the frame's word 72, or OFF) and the gradients times 2^left.
+#define LR_SP_FINISH(OFF)    \
+  "lsl    r2, r2, lr\n\t"    \
+  "lsl    r8, r8, lr\n\t"    \
+  "lsl    r9, r9, lr\n\t"    \
+  "ldr    r10, [%[f], #" OFF \
+  "]\n\t"                    \
+  "add    r2, r2, r10\n\t"   \
+  "ldr    r10, [%[f], #20]\n\t"
 bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
                                 ActiveTriangle& t) {
   static_assert(offsetof(ScreenVertex, z) == 8 && offsetof(ScreenVertex, color) == 16 &&
                 offsetof(Color15, g) == 2 && offsetof(Color15, b) == 4);
   static_assert(offsetof(ActiveTriangle, z) == 52 && offsetof(ActiveTriangle, c) == 64 &&
-                sizeof(Plane) == 12);
-  static_assert(kFastMaxSpread == 10 && kFastMaxDepthSpread == 35);
-  uint32_t frame[28];
+                sizeof(Plane) == 12 && offsetof(Plane, base) == 0 && offsetof(Plane, gx) == 4);
+  static_assert(kFastMaxSpread == 10 && kFastMaxDepthSpread == 35 && kSmallMaxDepthBits == 26 &&
+                kSmallEdgeBits == 14);
+  uint32_t frame[22];
   frame[0] = reinterpret_cast<uintptr_t>(v[0]);
   frame[1] = reinterpret_cast<uintptr_t>(v[1]);
   frame[2] = reinterpret_cast<uintptr_t>(v[2]);
@@ -341,7 +338,7 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint3
   frame[5] = reinterpret_cast<uintptr_t>(&t);
   uint32_t* const f = frame;
   asm volatile(
-      // zbits, lz, bm, the spread tests
+      // zbits r6, lz r11, bm r12, the limits
       "ldm    %[f], {r0, r1, r2}\n\t"
       "ldr    r3, [r0, #8]\n\t"
       "ldr    r4, [r1, #8]\n\t"
@@ -366,27 +363,24 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint3
       "sub    lr, lr, #32\n\t"
       "cmp    lr, #10\n\t"
       "bgt    8f\n\t"
+      "cmp    r6, #26\n\t"
+      "bgt    8f\n\t"
       "add    lr, lr, r6\n\t"
       "cmp    lr, #35\n\t"
       "bgt    8f\n\t"
-      // p, and the depth plane's inputs (zu = 30 - zbits >= -1)
-      "add    r9, r11, r12\n\t"
-      "sub    r9, r9, #21\n\t"
-      "str    r9, [%[f], #60]\n\t"
-      "rsbs   r6, r6, #30\n\t"
-      "bmi    1f\n\t"
-      "lsl    r4, r4, r6\n\t"
-      "lsl    r5, r5, r6\n\t"
-      "b      2f\n\t"
-      "1:\n\t"
-      "asr    r4, r4, #1\n\t"
-      "asr    r5, r5, #1\n\t"
-      "2:\n\t"
+      // tg r9 = 36 - lz - bm; the depth differences below 2^16 (zsh = zbits - 16 or 0)
+      "rsb    r9, r11, #36\n\t"
+      "sub    r9, r9, r12\n\t"
+      "subs   r6, r6, #16\n\t"
+      "it     lt\n\t"
+      "movlt  r6, #0\n\t"
+      "asr    r4, r4, r6\n\t"
+      "asr    r5, r5, r6\n\t"
       "add    r3, r3, #16384\n\t"
-      "sub    r6, r9, r6\n\t"
-      "strd   r4, r5, [%[f], #64]\n\t"
-      "strd   r3, r6, [%[f], #72]\n\t"
-      // recip62(|d| << lz), signed like d
+      "sub    r6, r6, r9\n\t"
+      "strd   r4, r5, [%[f], #56]\n\t"
+      "strd   r3, r6, [%[f], #64]\n\t"
+      // rs = recip62(|d| << lz), signed like d
       "lsl    r10, r10, r11\n\t"
       "lsr    r3, r10, #16\n\t"
       "mov    r4, #-1\n\t"
@@ -402,110 +396,100 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint3
       "cmp    r8, #0\n\t"
       "it     lt\n\t"
       "neglt  r3, r3\n\t"
-      // the basis
-      "rsb    r12, r12, #31\n\t"
+      "strd   r3, r9, [%[f], #48]\n\t"
+      // the reference pixel and the edges times 2^(14 - bm)
+      "rsb    r12, r12, #14\n\t"
       "ldrd   r4, r5, [r0]\n\t"
-      "ldrd   r6, r8, [r1]\n\t"
-      "ldrd   r9, r10, [r2]\n\t"
-      "sub    r11, r10, r5\n\t"
-      "lsl    r11, r11, r12\n\t"
-      "smmul  r11, r11, r3\n\t"
-      "sub    lr, r5, r8\n\t"
-      "lsl    lr, lr, r12\n\t"
-      "smmul  lr, lr, r3\n\t"
-      "strd   r11, lr, [%[f], #28]\n\t"
-      "sub    r11, r4, r9\n\t"
-      "lsl    r11, r11, r12\n\t"
-      "smmul  r11, r11, r3\n\t"
-      "sub    lr, r6, r4\n\t"
-      "lsl    lr, lr, r12\n\t"
-      "smmul  lr, lr, r3\n\t"
-      "strd   r11, lr, [%[f], #36]\n\t"
+      "ldrd   r8, r9, [r1]\n\t"
+      "ldrd   r10, r11, [r2]\n\t"
+      "sub    r8, r8, r4\n\t"
+      "sub    r9, r9, r5\n\t"
+      "sub    r10, r10, r4\n\t"
+      "sub    r11, r11, r5\n\t"
       "sub    r6, r4, #1\n\t"
       "asr    r6, r6, #8\n\t"
-      "lsl    r8, r6, #8\n\t"
-      "add    r8, r8, #128\n\t"
-      "sub    r8, r8, r4\n\t"
-      "lsl    r8, r8, #24\n\t"
-      "sub    r9, r5, #1\n\t"
-      "asr    r9, r9, #8\n\t"
-      "lsl    r10, r9, #8\n\t"
-      "add    r10, r10, #128\n\t"
-      "sub    r10, r10, r5\n\t"
-      "lsl    r10, r10, #24\n\t"
-      "strd   r8, r10, [%[f], #44]\n\t"
-      "strd   r6, r9, [%[f], #52]\n\t"
-      // the colour planes' inputs: red and blue 31 d 2^10 and (31 c >> 4) + 2^10, green
-      // 63 d 2^9 and 63 c 2^11 + 2^25
-      "movw   r6, #31744\n\t"
-      "ldrh   r3, [r0, #16]\n\t"
-      "ldrh   r4, [r1, #16]\n\t"
-      "ldrh   r5, [r2, #16]\n\t"
-      "sub    r4, r4, r3\n\t"
-      "sub    r5, r5, r3\n\t"
-      "mul    r4, r4, r6\n\t"
-      "mul    r5, r5, r6\n\t"
-      "rsb    r3, r3, r3, lsl #5\n\t"
-      "lsr    r3, r3, #4\n\t"
-      "add    r3, r3, #1024\n\t"
-      "strd   r4, r5, [%[f], #80]\n\t"
-      "str    r3, [%[f], #88]\n\t"
-      "ldrh   r3, [r0, #20]\n\t"
-      "ldrh   r4, [r1, #20]\n\t"
-      "ldrh   r5, [r2, #20]\n\t"
-      "sub    r4, r4, r3\n\t"
-      "sub    r5, r5, r3\n\t"
-      "mul    r4, r4, r6\n\t"
-      "mul    r5, r5, r6\n\t"
-      "rsb    r3, r3, r3, lsl #5\n\t"
-      "lsr    r3, r3, #4\n\t"
-      "add    r3, r3, #1024\n\t"
-      "strd   r4, r5, [%[f], #92]\n\t"
-      "str    r3, [%[f], #100]\n\t"
-      "movw   r6, #32256\n\t"
-      "ldrh   r3, [r0, #18]\n\t"
-      "ldrh   r4, [r1, #18]\n\t"
-      "ldrh   r5, [r2, #18]\n\t"
-      "sub    r4, r4, r3\n\t"
-      "sub    r5, r5, r3\n\t"
-      "mul    r4, r4, r6\n\t"
-      "mul    r5, r5, r6\n\t"
-      "mov    r6, #129024\n\t"
-      "mul    r3, r3, r6\n\t"
-      "add    r3, r3, #0x2000000\n\t"
-      "strd   r4, r5, [%[f], #104]\n\t"
-      // the depth plane
-      "mov    r12, r3\n\t"
-      "ldr    r6, [%[f], #76]\n\t" LR_SP_SHIFT("r6")
-      "ldrd   r0, r1, [%[f], #64]\n\t"
-      "ldr    r2, [%[f], #72]\n\t" LR_SP_PLANE
-      "ldr    r6, [%[f], #20]\n\t"
-      "add    r6, r6, #52\n\t"
-      "stm    r6, {r2, r8, r9}\n\t"
-      // green (its a0 in r12)
-      "ldr    r6, [%[f], #60]\n\t"
-      "add    r6, r6, #2\n\t" LR_SP_SHIFT("r6")
-      "ldrd   r0, r1, [%[f], #104]\n\t"
-      "mov    r2, r12\n\t" LR_SP_PLANE
-      "ldr    r6, [%[f], #20]\n\t"
-      "add    r6, r6, #76\n\t"
-      "stm    r6, {r2, r8, r9}\n\t"
-      // red, then blue, packed: blue in the high lanes
-      "ldr    r6, [%[f], #60]\n\t"
-      "sub    r6, r6, #14\n\t" LR_SP_SHIFT("r6")
-      "ldrd   r0, r1, [%[f], #80]\n\t"
-      "ldr    r2, [%[f], #88]\n\t" LR_SP_PLANE
-      "mov    r12, r2\n\t"
-      "mov    lr, r8\n\t"
-      "mov    r6, r9\n\t"
-      "ldrd   r0, r1, [%[f], #92]\n\t"
-      "ldr    r2, [%[f], #100]\n\t" LR_SP_PLANE
-      "add    r2, r12, r2, lsl #16\n\t"
-      "add    r8, lr, r8, lsl #16\n\t"
-      "add    r9, r6, r9, lsl #16\n\t"
-      "ldr    r6, [%[f], #20]\n\t"
-      "add    r6, r6, #64\n\t"
-      "stm    r6, {r2, r8, r9}\n\t"
+      "lsl    lr, r6, #8\n\t"
+      "add    lr, lr, #128\n\t"
+      "sub    lr, lr, r4\n\t"
+      "lsl    lr, lr, #24\n\t"
+      "sub    r4, r5, #1\n\t"
+      "asr    r4, r4, #8\n\t"
+      "lsl    r3, r4, #8\n\t"
+      "add    r3, r3, #128\n\t"
+      "sub    r3, r3, r5\n\t"
+      "lsl    r3, r3, #24\n\t"
+      "strd   lr, r3, [%[f], #32]\n\t"
+      "strd   r6, r4, [%[f], #40]\n\t"
+      "lsl    r3, r8, r12\n\t"
+      "lsl    r4, r9, r12\n\t"
+      "lsl    r5, r10, r12\n\t"
+      "lsl    r6, r11, r12\n\t"
+      // depth: rs, 2^(zsh - tg)
+      "ldr    r8, [%[f], #48]\n\t"
+      "ldr    r9, [%[f], #68]\n\t" LR_SP_SCALE
+      "ldrd   r0, r1, [%[f], #56]\n\t" LR_SP_PLANE LR_SP_FINISH("64")
+      "str    r2, [r10, #52]\n\t"
+      "strd   r8, r9, [r10, #56]\n\t"
+      // green: rs 63 / 64, 2^(17 - tg), a0 63 c 2^11 + 2^25
+      "ldrd   r8, r9, [%[f], #48]\n\t"
+      "sub    r8, r8, r8, asr #6\n\t"
+      "rsb    r9, r9, #17\n\t" LR_SP_SCALE
+      "ldm    %[f], {r0, r1, r2}\n\t"
+      "ldrh   r10, [r0, #18]\n\t"
+      "ldrh   r0, [r1, #18]\n\t"
+      "ldrh   r1, [r2, #18]\n\t"
+      "sub    r0, r0, r10\n\t"
+      "sub    r1, r1, r10\n\t"
+      "mov    r11, #129024\n\t"
+      "mul    r10, r10, r11\n\t"
+      "add    r10, r10, #0x2000000\n\t"
+      "str    r10, [%[f], #72]\n\t" LR_SP_PLANE LR_SP_FINISH("72")
+      "str    r2, [r10, #76]\n\t"
+      "strd   r8, r9, [r10, #80]\n\t"
+      // red and blue: rs 31 / 32, 2^(1 - tg), a0 (31 c >> 4) + 2^10 in each lane
+      "ldrd   r8, r9, [%[f], #48]\n\t"
+      "sub    r8, r8, r8, asr #5\n\t"
+      "rsb    r9, r9, #1\n\t" LR_SP_SCALE
+      "ldm    %[f], {r0, r1, r2}\n\t"
+      "ldrh   r10, [r0, #16]\n\t"
+      "ldrh   r11, [r0, #20]\n\t"
+      "rsb    r8, r10, r10, lsl #5\n\t"
+      "lsr    r8, r8, #4\n\t"
+      "rsb    r9, r11, r11, lsl #5\n\t"
+      "lsr    r9, r9, #4\n\t"
+      "add    r8, r8, r9, lsl #16\n\t"
+      "add    r8, r8, #1024\n\t"
+      "add    r8, r8, #0x4000000\n\t"
+      "str    r8, [%[f], #72]\n\t"
+      "ldrh   r8, [r1, #20]\n\t"
+      "ldrh   r9, [r2, #20]\n\t"
+      "sub    r8, r8, r11\n\t"
+      "sub    r9, r9, r11\n\t"
+      "strd   r8, r9, [%[f], #76]\n\t"
+      "ldrh   r0, [r1, #16]\n\t"
+      "ldrh   r1, [r2, #16]\n\t"
+      "sub    r0, r0, r10\n\t"
+      "sub    r1, r1, r10\n\t" LR_SP_PLANE
+      // blue into r11 (off - px c0 - py r0), r0 (px), r10 (py)
+      "ldrd   r0, r1, [%[f], #76]\n\t"
+      "mul    r10, r1, r3\n\t"
+      "mls    r10, r0, r5, r10\n\t"
+      "mul    r0, r0, r6\n\t"
+      "mls    r0, r1, r4, r0\n\t"
+      "smmul  r0, r0, r12\n\t"
+      "smmul  r10, r10, r12\n\t"
+      "ldrd   r1, r11, [%[f], #32]\n\t"
+      "smmul  r11, r10, r11\n\t"
+      "smmla  r11, r0, r1, r11\n\t"
+      "ldr    r1, [%[f], #40]\n\t"
+      "mls    r11, r0, r1, r11\n\t"
+      "ldr    r1, [%[f], #44]\n\t"
+      "mls    r11, r10, r1, r11\n\t"
+      "add    r2, r2, r11, lsl #16\n\t"
+      "add    r8, r8, r0, lsl #16\n\t"
+      "add    r9, r9, r10, lsl #16\n\t" LR_SP_FINISH("72")
+      "str    r2, [r10, #64]\n\t"
+      "strd   r8, r9, [r10, #68]\n\t"
       "movs   r0, #1\n\t"
       "b      9f\n\t"
       "8:\n\t"
@@ -518,8 +502,9 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint3
         "memory");
   return frame[6] != 0;
 }
+#undef LR_SP_FINISH
 #undef LR_SP_PLANE
-#undef LR_SP_SHIFT
+#undef LR_SP_SCALE
 #else
 bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*/, uint32_t /*m*/,
                                 ActiveTriangle& /*t*/) {

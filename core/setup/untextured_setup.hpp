@@ -140,7 +140,8 @@ SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
 // The planes of a small triangle (setup_untextured_triangle's: edges below 2^kSmallEdgeBits
 // subpixels, d twice its signed area, m the OR of its edge components' magnitudes) of the kind
 // given (not kPerspective), with v sorted by y and its rows already set up; false (t's planes
-// unspecified) when its spread needs setup_untextured. Exposed for tests.
+// unspecified) when its spread or its depth differences (above kSmallMaxDepthBits) need
+// setup_untextured. Exposed for tests.
 bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const UntexturedInput& in,
                   UntexturedKind kind, ActiveTriangle& t);
 // small_planes' integers for kLanes with depth, by hand where the core has SMMUL/SMMLA
@@ -162,6 +163,9 @@ inline constexpr int kFastMaxEdgeBits = 20;
 inline constexpr int kFastMaxSpread = 10;
 inline constexpr int kFastMaxSpreadPerspective = 6;
 inline constexpr int kFastMaxDepthSpread = 35;
+// The small path's depth plane: vertex differences of at most this many bits (2^26 half units,
+// 1/32 of the depth range), of which it keeps the top 16 (docs/numerics.md#untextured-planes).
+inline constexpr int kSmallMaxDepthBits = 26;
 // Lanes: edge components below 2^15 subpixels (128 pixels), so that the lanes' rounding stays
 // below 2^7 lane units everywhere in the triangle (an eighth of a 6-bit level).
 inline constexpr int kLanesMaxEdgeBits = 15;

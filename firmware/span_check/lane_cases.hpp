@@ -190,7 +190,8 @@ Tally run_spans(uint32_t cases, Strip& a, Strip& b, SpanA&& span_a, SpanB&& span
 }
 
 // Runs `cases` random small triangles (every edge component below 2^kSmallEdgeBits subpixels,
-// from a quarter pixel to 62 pixels; depths spread, close or equal; random colours) through
+// from a quarter pixel to 62 pixels; depths spread, close (differences of 12 bits, or of up to
+// 26 of which the small path keeps 16) or equal; random colours) through
 // small_planes' C form and through small_lanes_planes_by_hand (kLanes with depth): the same
 // answer and, when planes were made, the same depth and colour planes. visits counts the
 // triangles both refused (their spread needs the general setup).
@@ -208,13 +209,14 @@ inline Tally run_small_planes(uint32_t cases, uint32_t seed = 777u) {
     const int32_t size = kSizes[rng.in(0, 3)];
     const int32_t cx = rng.in(-40 * kSubpixel, 400 * kSubpixel);
     const int32_t cy = rng.in(-40 * kSubpixel, 300 * kSubpixel);
-    const int zmode = rng.in(0, 2);
+    const int zmode = rng.in(0, 3);
     const uint32_t z0 = rng.next() % (kDepthMax + 1u);
     for (int i = 0; i < 3; ++i) {
       v[i].x = cx + rng.in(-size, size);
       v[i].y = cy + rng.in(-size, size);
       v[i].z = zmode == 0   ? rng.next() % (kDepthMax + 1u)
                : zmode == 1 ? std::min<uint32_t>(z0 + rng.next() % 4096u, kDepthMax)
+               : zmode == 2 ? std::min<uint32_t>(z0 + rng.next() % (1u << 26), kDepthMax)
                             : z0;
       v[i].w = 1u << 16;
       v[i].color = Color15{static_cast<uint16_t>(rng.in(0, Color15::kOne)),

@@ -172,31 +172,76 @@ TEST(UntexturedPlanes, ShortPathWithinTheDocumentedBound) {
   EXPECT_GT(e.max_ratio, 0.05);  // not loose by orders of magnitude
 }
 
-// Small triangles (edge components below 2^14 subpixels) are set up in int32 throughout; their
-// depth and colour planes are within the same bound.
+// The small path's bound (docs/numerics.md#untextured-planes): the reciprocal's relative error
+// (2^-27 plus that of its shift right by rshift) times the exact plane's change from vertex 0,
+// the floored gradients' 2^left per pixel from the reference pixel, the offset's two floors, the
+// dropped low bits of the depth differences (2^zsh times the barycentric weights) and a unit.
+void check_small(const ScreenVertex* const v[3], const uint32_t a[3], const Plane& p, int left,
+                 int rshift, int zsh, std::mt19937_64& rng, Errors& e) {
+  const int32_t xl = std::min({v[0]->x, v[1]->x, v[2]->x}),
+                xh = std::max({v[0]->x, v[1]->x, v[2]->x});
+  const int32_t yl = std::min({v[0]->y, v[1]->y, v[2]->y}),
+                yh = std::max({v[0]->y, v[1]->y, v[2]->y});
+  const int32_t c0 = first_row_below(xl - 1), c1 = last_row_at_or_above(xh);
+  const int32_t r0 = first_row_below(yl - 1), r1 = last_row_at_or_above(yh);
+  if (c0 > c1 || r0 > r1) return;
+  const double x0 = v[0]->x, y0 = v[0]->y;
+  const double ex1 = v[1]->x - x0, ey1 = v[1]->y - y0, ex2 = v[2]->x - x0, ey2 = v[2]->y - y0;
+  const double d = ex1 * ey2 - ex2 * ey1;
+  const double rel = std::ldexp(1.0, -27) + std::ldexp(1.0, rshift - 30);
+  const double da1 = static_cast<double>(a[1]) - a[0], da2 = static_cast<double>(a[2]) - a[0];
+  auto sample = [&](int32_t c, int32_t r) {
+    const double err = std::fabs(plane_error(v, a, p, c, r));
+    const double px = c * 256.0 + 128 - x0, py = r * 256.0 + 128 - y0;
+    const double l1 = (px * ey2 - py * ex2) / d, l2 = (py * ex1 - px * ey1) / d;
+    const double change = std::fabs(l1 * da1 + l2 * da2);
+    const double unit = std::ldexp(1.0, left);
+    const double bound = rel * change + unit * (std::fabs(px) / 256 + std::fabs(py) / 256 + 4) +
+                         std::ldexp(1.0, zsh) * (std::fabs(l1) + std::fabs(l2)) + 1;
+    ++e.samples;
+    e.max_ratio = std::max(e.max_ratio, err / bound);
+    if (l1 >= 0 && l2 >= 0 && l1 + l2 <= 1) e.max_abs = std::max(e.max_abs, err);  // inside
+    if (err > bound && e.over++ < 5)
+      ADD_FAILURE() << "error " << err << " > bound " << bound << " at (" << c << "," << r
+                    << "), left " << left << " rshift " << rshift << " zsh " << zsh;
+  };
+  sample(c0, r0);
+  sample(c1, r0);
+  sample(c0, r1);
+  sample(c1, r1);
+  for (int k = 0; k < 4; ++k)
+    sample(c0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(c1 - c0 + 1)),
+           r0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(r1 - r0 + 1)));
+}
+
+// Small triangles (edge components below 2^14 subpixels) are set up in int32 throughout, from
+// exact numerators and one reciprocal; their depth and colour planes are within its bound.
 TEST(UntexturedPlanes, SmallTrianglesInInt32WithinTheBound) {
   std::mt19937_64 rng(37);
   UntexturedInput in;
   in.colors = ColorPlanes::kAffine;
   in.depth = true;
-  Errors ez, ec;
-  int small = 0, flat = 0;
+  Errors ez, ec, eo;
+  int small = 0, flat = 0, deep = 0;
   for (int i = 0; i < 100000; ++i) {
     ScreenVertex sv[3];
     const int32_t ox = static_cast<int32_t>(rng() % (300 * 256)),
                   oy = static_cast<int32_t>(rng() % (200 * 256));
     const int32_t reach = 1 + static_cast<int32_t>(rng() % (i % 2 ? 16383 : 2048));
-    // One triangle in four at (nearly) one depth, at the range's ends among others: its depth
-    // plane's gradient scale 2^s is at its smallest (s down to -31).
+    // One triangle in four at (nearly) one depth, at the range's ends among others; one in four
+    // with depth differences below 2^26 half units (the small path's), the rest anywhere.
     const bool flat_depth = i % 4 == 3;
+    const bool near_depth = i % 4 == 1;
     const uint32_t zbase = i % 8 == 3   ? kDepthMax - 3
                            : i % 8 == 7 ? static_cast<uint32_t>(rng() % 4)
-                                        : static_cast<uint32_t>(rng() % (kDepthMax - 3));
+                                        : static_cast<uint32_t>(rng() % (kDepthMax - (1u << 28)));
+    const uint32_t zreach = near_depth ? static_cast<uint32_t>(1u << (rng() % 28)) : 0;
     for (auto& x : sv) {
       x.x = ox + static_cast<int32_t>(rng() % static_cast<uint64_t>(reach));
       x.y = oy + static_cast<int32_t>(rng() % static_cast<uint64_t>(reach));
-      x.z = flat_depth ? zbase + static_cast<uint32_t>(rng() % (i % 16 == 3 ? 1 : 4))
-                       : static_cast<uint32_t>(rng() % (uint64_t{kDepthMax} + 1));
+      x.z = flat_depth   ? zbase + static_cast<uint32_t>(rng() % (i % 16 == 3 ? 1 : 4))
+            : near_depth ? zbase + static_cast<uint32_t>(rng() % zreach)
+                         : static_cast<uint32_t>(rng() % (uint64_t{kDepthMax} + 1));
       x.w = 1u << 16;
       x.color = Color15{static_cast<uint16_t>(rng() % 32769), static_cast<uint16_t>(rng() % 32769),
                         static_cast<uint16_t>(rng() % 32769)};
@@ -210,32 +255,55 @@ TEST(UntexturedPlanes, SmallTrianglesInInt32WithinTheBound) {
     uint32_t z[3];
     for (int k = 0; k < 3; ++k) z[k] = (v[k]->z >> 1) + (1u << 14);
     const uint32_t zd = std::max(mag(int64_t{z[1]} - z[0]), mag(int64_t{z[2]} - z[0]));
-    if (2 * bm - l + bit_length(zd) > kFastMaxDepthSpread) continue;
+    const int zbits = bit_length(zd);
+    if (2 * bm - l + zbits > kFastMaxDepthSpread) continue;
     ActiveTriangle t;
     const UntexturedTriangle got = setup_untextured_triangle(v, RowWindow{0, 240, 320}, in, t);
     if (!got.pixels) continue;
     ASSERT_FALSE(got.wide);
     ASSERT_EQ(got.kind, UntexturedKind::kAffine);
-    const int p = 11 + bm - l;
+    if (zbits > kSmallMaxDepthBits) {
+      // setup_untextured's short path (fast_plane): its own bound.
+      const int p = 11 + bm - l;
+      ++deep;
+      check(v, z, t.z, p - (30 - zbits), rng, eo);
+      for (int ch = 0; ch < 3; ++ch) {
+        uint32_t c[3];
+        for (int k = 0; k < 3; ++k) c[k] = uint32_t{channel(v[k]->color, ch)} << 15;
+        check(v, c, t.c[ch], p, rng, eo);
+      }
+      continue;
+    }
     ++small;
     flat += flat_depth ? 1 : 0;
-    // Depth: differences scaled by 2^(30 - bits); colours (Q2.30) by 2^0.
-    check(v, z, t.z, p - (30 - bit_length(zd)), rng, ez);
+    const int tg = l - bm + 4;  // the products' exponent
+    auto split = [](int s, int& left, int& rshift) {
+      left = s > 0 ? s : 0;
+      rshift = s < 0 ? std::min(-s, 31) : 0;
+    };
+    int left = 0, rshift = 0;
+    const int zsh = zbits > 16 ? zbits - 16 : 0;
+    split(zsh - tg, left, rshift);
+    check_small(v, z, t.z, left, rshift, zsh, rng, ez);
+    split(15 - tg, left, rshift);
     for (int ch = 0; ch < 3; ++ch) {
       uint32_t c[3];
       for (int k = 0; k < 3; ++k) c[k] = uint32_t{channel(v[k]->color, ch)} << 15;
-      check(v, c, t.c[ch], p, rng, ec);
+      check_small(v, c, t.c[ch], left, rshift, 0, rng, ec);
     }
   }
   std::printf(
-      "[ planes ] small path: %d triangles (%d at nearly one depth), depth %.3f, colours %.3f of "
-      "the bound\n",
-      small, flat, ez.max_ratio, ec.max_ratio);
+      "[ planes ] small path: %d triangles (%d at nearly one depth, %d deeper on the short "
+      "path), depth %.3f, colours %.3f of the bound, depth %.0f half units at most\n",
+      small, flat, deep, ez.max_ratio, ec.max_ratio, ez.max_abs);
   EXPECT_EQ(ez.over, 0);
   EXPECT_EQ(ec.over, 0);
-  EXPECT_GT(small, 50000);
+  EXPECT_EQ(eo.over, 0);
+  EXPECT_GT(small, 40000);
   EXPECT_GT(flat, 10000);
-  // Depth within 0.08 of a 16-bit step (2^15 units of half depth) on these triangles.
+  EXPECT_GT(deep, 1000);
+  EXPECT_GT(ec.max_ratio, 0.05);  // not loose by orders of magnitude
+  // Depth within 0.08 of a 16-bit step (2^15 units of half depth) inside these triangles.
   EXPECT_LT(ez.max_abs, 2560.0);
 }
 
