@@ -8,11 +8,10 @@
 #
 # Only the core's test executables are built (tests/core/CMakeLists.txt; they pull in lr_core,
 # lr_hal, lr_host and lr_reference): the whole suite takes several times longer to compile on
-# two cores, and the 32-bit run (scripts/ci_armhf.sh) already runs it on ARM. About 3-4 minutes
+# two cores, and the 32-bit run (scripts/ci_armhf.sh) runs the hal and host tests on ARM too. About 3-4 minutes
 # from an empty build tree on 2 cores, nearly all of it compiling; the tests take seconds.
-# The executables run directly under the emulator (not through CTest, whose list holds every
-# test of the project, built or not), $(nproc) at a time, each with its whole GoogleTest output
-# in build/aarch64/test-logs.
+# The executables run directly under the emulator (scripts/lib/cross_tests.sh), $(nproc) at a
+# time, each with its whole GoogleTest output in build/aarch64/test-logs.
 #
 # Usage: scripts/ci_aarch64.sh            (from any directory; scripts/setup.sh test installs
 #                                          g++-aarch64-linux-gnu and qemu-user)
@@ -56,7 +55,8 @@ bash scripts/armhf_sysroot.sh --arch arm64 \
 elapsed "sysroot" "$t"
 
 t=$SECONDS
-cmake --preset "$preset" -DLR_DISPLAY_BACKENDS=OFF -DLR_BENCH=OFF >/dev/null \
+cmake --preset "$preset" -DCMAKE_GTEST_DISCOVER_TESTS_DISCOVERY_MODE=PRE_TEST -DLR_DISPLAY_BACKENDS=OFF \
+  -DLR_BENCH=OFF >/dev/null \
   || fail "configure of preset $preset failed"
 cmake --build --preset "$preset" -j"$jobs" --target "${tests[@]}" \
   || fail "aarch64 build failed (see the compiler output above)"
@@ -68,33 +68,11 @@ source scripts/lib/x86_frame_hashes.sh
 export LR_FRAME_HASHES="$build/frame_hashes_x86_64.txt"
 lr_x86_frame_hashes "$LR_FRAME_HASHES" || fail "no x86-64 frame hashes to compare with"
 
-# One executable under the emulator; one line saying how it went (its output in the log).
-run_one() {  # target
-  local exe log t0 summary
-  exe=$(find "$build/tests" -name "$1" -type f -perm -u+x | head -n 1)
-  log="$build/test-logs/$1.log"
-  if [ -z "$exe" ]; then
-    echo "ci_aarch64: FAIL $1: no executable under $build/tests"
-    return 1
-  fi
-  t0=$SECONDS
-  if qemu-aarch64 -L /usr/aarch64-linux-gnu "$exe" --gtest_brief=1 >"$log" 2>&1; then
-    summary=$(grep -E '^\[  PASSED  \]' "$log" | tail -n 1 | sed 's/^\[  PASSED  \] //; s/\.$//')
-    echo "ci_aarch64: PASS $1 (${summary:-?} in $((SECONDS - t0)) s)"
-  else
-    echo "ci_aarch64: FAIL $1 (exit $?; $log):"
-    grep -E '^\[  FAILED  \]|Failure|error' "$log" | head -n 20 | sed 's/^/    /'
-    return 1
-  fi
-}
-export -f run_one
-export build
-
 t=$SECONDS
-rm -rf "$build/test-logs"
-mkdir -p "$build/test-logs"
+# shellcheck source=scripts/lib/cross_tests.sh
+source scripts/lib/cross_tests.sh
 failed=0
-printf '%s\n' "${tests[@]}" | xargs -P "$jobs" -I{} bash -c 'run_one "$1"' _ {} || failed=1
+lr_cross_tests_run ci_aarch64 "$build" qemu-aarch64 /usr/aarch64-linux-gnu "${tests[@]}" || failed=1
 elapsed "tests under qemu-aarch64" "$t"
 [ "$failed" = 0 ] || fail "tests failed under qemu-aarch64 (see the FAIL lines above)"
 if [ -f "$build/test-logs/core_frame_hash_test.log" ]; then

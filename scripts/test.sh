@@ -5,9 +5,9 @@
 # under QEMU (smoke, fault, demo frames against lineraster-sim, the bunny in the micro:bit's
 # 16 KB, instruction-count check, footprint with its link and stack guards), the consumer
 # projects (examples/ built by add_subdirectory, FetchContent, find_package and cross-built from
-# an installed package), the 32-bit ARM Linux build run under qemu-arm, the ARM Linux guest, the
-# 64-bit ARM Linux core tests, the fuzzers' fixed runs, a Release build of every target, and the
-# benchmarks' figures (printed, never asserted). Each step prints its duration.
+# an installed package), the 32-bit ARM Linux core, hal and host tests under qemu-arm, the ARM
+# Linux guest, the 64-bit ARM Linux core tests, the fuzzers' fixed runs, a Release build of every
+# target, and the benchmarks' figures (printed, never asserted). Each step prints its duration.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh test
@@ -75,7 +75,7 @@ bash scripts/footprint.sh build/cortex-m0plus build/cortex-m4f build/cortex-m4f-
 step "consumers: add_subdirectory, FetchContent; find_package of lr::core, lr::hal, lr::host and a header from the installed lineraster-asset (host tools on); a Cortex-M4F package under QEMU; each checked"
 bash scripts/consumers.sh build/consumers
 
-step "32-bit ARM Linux build + tests under qemu-arm, frames hashed against x86-64's"
+step "32-bit ARM Linux: core, hal and host tests under qemu-arm, frames hashed against x86-64's"
 bash scripts/ci_armhf.sh
 
 step "32-bit ARM Linux guest: display backends and lr_panel_app against a real kernel"

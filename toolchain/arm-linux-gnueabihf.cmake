@@ -2,7 +2,7 @@
 # running the host tests on a 32-bit ARM target under qemu-arm: the same test binaries as on
 # x86-64 must pass there, and the frame-hash test proves the frames bit-identical.
 #
-#   bash scripts/ci_armhf.sh       (sysroot + configure + build + ctest: what CI runs)
+#   bash scripts/ci_armhf.sh       (sysroot + configure + the core, hal and host tests: what CI runs)
 #   or: bash scripts/armhf_sysroot.sh && cmake --preset armhf && cmake --build --preset armhf \
 #       && ctest --preset armhf
 #

@@ -92,6 +92,9 @@ class ScreenTransform {
   size_t run(const Vec3* p, size_t count, ScreenVertex* out, const uint32_t (&tail)[2]) const;
 
  private:
+  // project()'s tail: screen x, y (subpixels), the depth numerator m and W to the vertex.
+  [[gnu::always_inline]] bool store(int32_t xs, int32_t ys, int32_t m, int32_t w,
+                                    ScreenVertex& v) const;
   static constexpr int32_t kMaxW = (int32_t{1} << 30) - 1;  // row sums are below 2^29 + 5
   static constexpr uint32_t kHalfDepth = kDepthMax / 2;     // 65535 * 2^15
 
@@ -180,24 +183,7 @@ inline bool ScreenTransform::project(const Vec3& p, ScreenVertex& v) const {
   const auto r = static_cast<int32_t>(recip_q61(static_cast<uint32_t>(w) << n) >> (k.n_max - n));
   int32_t xs = mla_hi(x, r, k.acc_x) >> k.f;
   int32_t ys = mla_hi(y, r, k.acc_y) >> k.f;
-  const int32_t m = mul_hi(z, r);
-  if (guard_free_) {
-    // Inside the band for every position within the bound; the clamp keeps a position beyond
-    // it (a wrong Mesh::bound) inside the coordinate budget.
-    xs = saturate_signed<23>(xs);
-    ys = saturate_signed<23>(ys);
-  } else if ((static_cast<uint32_t>(xs) - static_cast<uint32_t>(k.x_lo)) > k.x_span ||
-             (static_cast<uint32_t>(ys) - static_cast<uint32_t>(k.y_lo)) > k.y_span) [[unlikely]] {
-    return false;
-  }
-  if ((static_cast<uint32_t>(m) - static_cast<uint32_t>(k.m_lo)) > k.m_span) [[unlikely]]
-    return false;
-  v.x = xs;
-  v.y = ys;
-  v.z = k.c0 + (static_cast<uint32_t>(m) << k.kz);
-  v.w = static_cast<uint32_t>(w) >> k.w_shift;
-  v.outcode = 0;
-  return true;
+  return store(xs, ys, mul_hi(z, r), w, v);
 }
 
 // project() with split products (cores without a 64-bit product): each matrix entry split once
@@ -224,8 +210,16 @@ inline bool ScreenTransform::project_halves(const Vec3& p, ScreenVertex& v) cons
   int32_t ys = static_cast<int32_t>(static_cast<uint32_t>(k.acc_y) +
                                     static_cast<uint32_t>(mul_hi_halves(halves(y), r))) >>
                k.f;
-  const int32_t m = mul_hi_halves(halves(row(2)), r);
+  return store(xs, ys, mul_hi_halves(halves(row(2)), r), w, v);
+}
+
+// The tail both forms share: the guard band and depth range tests, then the vertex.
+inline bool ScreenTransform::store(int32_t xs, int32_t ys, int32_t m, int32_t w,
+                                   ScreenVertex& v) const {
+  const Words& k = k_;
   if (guard_free_) {
+    // Inside the band for every position within the bound; the clamp keeps a position beyond
+    // it (a wrong Mesh::bound) inside the coordinate budget.
     xs = saturate_signed<23>(xs);
     ys = saturate_signed<23>(ys);
   } else if ((static_cast<uint32_t>(xs) - static_cast<uint32_t>(k.x_lo)) > k.x_span ||

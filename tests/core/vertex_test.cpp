@@ -295,7 +295,8 @@ TEST(ShortPath, NeverGivesAZeroW) {
   ASSERT_TRUE(st.enabled());
   ScreenVertex v;
   EXPECT_FALSE(st.project({Fixed::ratio(1, 10), Fixed::ratio(1, 10), Fixed::ratio(1, 2)}, v));
-  EXPECT_FALSE(st.project_halves({Fixed::ratio(1, 10), Fixed::ratio(1, 10), Fixed::ratio(1, 2)}, v));
+  EXPECT_FALSE(
+      st.project_halves({Fixed::ratio(1, 10), Fixed::ratio(1, 10), Fixed::ratio(1, 2)}, v));
   ASSERT_TRUE(st.project({Fixed::ratio(1, 10), Fixed::ratio(1, 10), Fixed::from_int(1)}, v));
   EXPECT_EQ(v.w, 1u);
   EXPECT_EQ(v.x, 320 * 128 + 4096);  // x / w = 0.1: a tenth of the half width right of centre
