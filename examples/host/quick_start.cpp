@@ -1,39 +1,30 @@
 // Quick start: a lit cube in a material of its own, back faces culled, turned about y by an angle
 // given at run time, written to a PPM file.   Usage: quick_start [OUT.ppm] [DEGREES -360..360]
-#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <lineraster/lineraster.hpp>  // the core: renderer, storage, camera, meshes, sinks
 
 using lr::Fixed;  // Q16.16; from_int(n) and ratio(n, d) at run time, from_double at compile time
-constexpr int kW = 160, kH = 120, kStrip = 8;
+constexpr int kW = 160, kH = 120;
 constexpr Fixed P = Fixed::from_int(1), N = -P;
-// A cube from -1 to 1: corner i has x = P if bit 0 of i is set (else N), y bit 1, z bit 2.
-constexpr std::array<lr::Vec3, 8> kCorners{
-    {{N, N, N}, {P, N, N}, {N, P, N}, {P, P, N}, {N, N, P}, {P, N, P}, {N, P, P}, {P, P, P}}};
-// Two triangles per face (+x, -x, +y, -y, +z, -z), counter-clockwise seen from outside: GL's
-// front faces, the ones back-face culling keeps.
-using Tri = std::array<uint16_t, 3>;  // indices into kCorners
-constexpr std::array<Tri, 12> kTriangles{Tri{1, 3, 7}, Tri{1, 7, 5}, Tri{2, 0, 4}, Tri{2, 4, 6},
-                                         Tri{2, 6, 7}, Tri{2, 7, 3}, Tri{4, 0, 1}, Tri{4, 1, 5},
-                                         Tri{4, 5, 7}, Tri{4, 7, 6}, Tri{1, 0, 2}, Tri{1, 2, 3}};
+// The cube [-1, 1]^3: corner i has x = P if bit 0 of i is set (else N), y bit 1, z bit 2; two
+// triangles a face, counter-clockwise seen from outside (GL's front faces, which culling keeps).
+constexpr lr::Vec3 kCorners[] = {{N, N, N}, {P, N, N}, {N, P, N}, {P, P, N},
+                                 {N, N, P}, {P, N, P}, {N, P, P}, {P, P, P}};
+constexpr std::array<uint16_t, 3> kTriangles[] = {{1, 3, 7}, {1, 7, 5}, {2, 0, 4}, {2, 4, 6},
+                                                  {2, 6, 7}, {2, 7, 3}, {4, 0, 1}, {4, 1, 5},
+                                                  {4, 5, 7}, {4, 7, 6}, {1, 0, 2}, {1, 2, 3}};
 // GL's material: colours Q1.15 (32768 = 1.0), shininess Q8.8 (0..128); emission 0 by default.
 constexpr lr::Material kTeal{.ambient = {0, 6554, 6554},
                              .diffuse = {3277, 19661, 21299},
                              .specular = {16384, 16384, 16384},
                              .shininess_q8 = 40 << 8};
-
 // Every store of the frame in one static object (flat-shaded draws need triangle_colors).
-constexpr lr::FrameCapacities kCaps{.width = kW,
-                                    .height = kH,
-                                    .strip_height = kStrip,
-                                    .vertices = 8,
-                                    .triangles = 12,
-                                    .active = 12,
-                                    .triangle_colors = 12};
-static lr::StaticFrameStorage<kCaps> store;
-static lr::Renderer<lr::Rgb888, kStrip> renderer;
-static std::array<lr::Rgb8, kW * kH> image;  // the frame: 3 bytes (R, G, B) a pixel
+constexpr lr::FrameCapacities kCaps{
+    .width = kW, .height = kH, .vertices = 8, .triangles = 12, .active = 12, .triangle_colors = 12};
+static lr::StaticFrameStorage<kCaps> store;  // (strips of kCaps.strip_height = 8 rows)
+static lr::Renderer<lr::Rgb888, kCaps.strip_height> renderer;
+static lr::Rgb8 image[kW * kH];  // the frame: 3 bytes (R, G, B) a pixel
 
 int main(int argc, char** argv) {
   char* end = nullptr;  // the angle: known only at run time
@@ -45,23 +36,23 @@ int main(int argc, char** argv) {
   lr::perspective(Fixed::from_int(45), Fixed::ratio(kW, kH), Fixed::ratio(1, 2),
                   Fixed::from_int(20), cam.projection);
   lr::look_at(cam.eye, {}, {{}, P, {}}, cam.view);
-  const lr::Vec3 to_light{P, Fixed::from_int(3), Fixed::from_int(2)};
+  const lr::Vec3 to_light{P, Fixed::from_int(3), Fixed::from_int(2)};  // white, from there
   const lr::LightSet lights{{lr::Light::directional(to_light, {32768, 32768, 32768})}, 1};
   renderer.configure(store.storage(), kW, kH);
   renderer.begin_frame(cam, lights, lr::Rgb8{16, 24, 48});
   // One colour per face, lit with its normal; back faces culled (the default is kNone).
   const lr::DrawState state{.shading = lr::Shading::kFlat, .cull = lr::Cull::kBack};
-  const lr::Mat4 model = lr::rotate_y(Fixed::from_int(static_cast<int32_t>(deg)));
   const lr::Mesh cube{kCorners, {}, {}, {}, kTriangles};  // positions, normals, colours, uvs
-  if (renderer.draw(cube, model, kTeal, state) != lr::Status::kOk) return 1;
+  const lr::Status drawn =
+      renderer.draw(cube, lr::rotate_y(Fixed::from_int(int32_t(deg))), kTeal, state);
   // The strips land in `image` (rows kW pixels apart); any frame buffer or canvas will do.
   lr::FrameBufferSink<lr::Rgb888> sink({std::as_writable_bytes(std::span(image)), kW * 3, kW, kH});
-  const lr::Status st = renderer.render(sink);
+  const lr::Status st = drawn == lr::Status::kOk ? renderer.render(sink) : drawn;
   const lr::FrameStats& s = renderer.stats();
   std::printf("quick_start: %ld degrees, %u triangles, %u culled, %u pixels\n", deg, s.triangles_in,
               s.culled_backface, s.pixels_written);
   std::FILE* f = std::fopen(argc > 1 ? argv[1] : "cube.ppm", "wb");
   const bool written = f && std::fprintf(f, "P6 %d %d 255\n", kW, kH) > 0 &&
-                       std::fwrite(image.data(), 3, image.size(), f) == image.size();
+                       std::fwrite(image, sizeof image, 1, f) == 1;
   return (f && std::fclose(f) == 0 && written && st == lr::Status::kOk) ? 0 : 1;
 }
