@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "firmware/common/semihost.hpp"
+#include "firmware/span_check/fill_check.hpp"
 #include "firmware/span_check/lane_cases.hpp"
 #include "lineraster/core/raster/untextured_rows.hpp"
 #include "lineraster/core/span/lane_rows.hpp"
@@ -107,6 +108,16 @@ int main() {
     sh::write_dec(t.differing);
     sh::write(" differ\n");
     ok = t.differing == 0 && t.triangles > 10000 && t.pixels > 100 && t.visits > 1000 && ok;
+  }
+  // The strip clear by hand (strip_fill.hpp) against memset / memcpy.
+  if constexpr (lr::fw::fill::kFillByHand) {
+    const lr::fw::fill::Result f = lr::fw::fill::run();
+    sh::write("lr_span_check: strip clear by hand == memset / memcpy: ");
+    sh::write_dec(f.cases);
+    sh::write(" fills, ");
+    sh::write_dec(f.differing);
+    sh::write(" differ\n");
+    ok = f.differing == 0 && f.cases > 5000 && ok;
   }
   const auto generic = [](const ActiveTriangle& t, StripRows& s) {
     lr::untextured_rows_per_span<PF, true, lr::UntexturedKind::kLanes>(t, s);
