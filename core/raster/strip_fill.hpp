@@ -3,7 +3,7 @@
 // the 16- and 32-bit pixels are stored a word at a time by hand: two STMs of eight registers a
 // loop, 64 bytes in four instructions, where newlib's memset stores about 8 bytes an instruction
 // and the memcpy doubling below about 3 (a 320 x 8 RGB565 strip and its depth: about 2,400
-// instructions by the C library, about 650 by hand).
+// instructions by the C library, about 650 by hand); on Armv6-M two STMs of four registers.
 // Elsewhere, and for other pixel sizes: memset when every byte of the value is the same (black,
 // white, a cleared 16-bit depth of 0xFFFF), else copies that double what is already filled.
 // firmware/span_check checks that both ways store the same bytes (fill_check.hpp).
@@ -37,14 +37,20 @@ void fill_pixels_c(T* p, size_t n, const T& value) {
   }
 }
 
-#if defined(__thumb2__) && !defined(__OPTIMIZE_SIZE__)
+#if defined(__thumb__) && !defined(__OPTIMIZE_SIZE__) && \
+    (defined(__thumb2__) || __ARM_ARCH_ISA_THUMB == 1)
 #define LR_FILL_BY_HAND 1
-// n words of w from p (word-aligned): 16 words a loop by hand, the rest one at a time. The
-// stores go through the asm (a "memory" clobber), so no C object is written as another type.
+// n words of w from p (word-aligned): a loop of two STMs by hand (eight registers each on
+// Thumb-2, 64 bytes a loop; four on Armv6-M, whose STM takes only r0-r7: 32 bytes a loop), then
+// the rest one word at a time. The stores go through the asm (a "memory" clobber), so no C object
+// is written as another type.
 inline void fill_words_by_hand(void* p, size_t n, uint32_t w) {
   register void* d asm("r0") = p;
-  register size_t loops asm("r1") = n / 16;
   register uint32_t a asm("r2") = w, b asm("r3") = w, c asm("r4") = w, e asm("r5") = w;
+#ifdef __thumb2__
+  constexpr size_t kLoopWords = 16;
+  register size_t loops asm("r1") = n / kLoopWords;
+  size_t rest = n % kLoopWords;
   register uint32_t f asm("r6") = w, g asm("r8") = w, h asm("r10") = w, k asm("r12") = w;
   asm volatile(
       "cbz     %[loops], 2f\n\t"
@@ -54,11 +60,42 @@ inline void fill_words_by_hand(void* p, size_t n, uint32_t w) {
       "subs    %[loops], %[loops], #1\n\t"
       "bne     1b\n\t"
       "2:\n\t"
-      : [d] "+r"(d), [loops] "+r"(loops)
+      "cmp     %[rest], #0\n\t"
+      "beq     4f\n\t"
+      "3:\n\t"
+      "stmia   %[d]!, {r2}\n\t"
+      "subs    %[rest], %[rest], #1\n\t"
+      "bne     3b\n\t"
+      "4:\n\t"
+      : [d] "+r"(d), [loops] "+r"(loops), [rest] "+r"(rest)
       : "r"(a), "r"(b), "r"(c), "r"(e), "r"(f), "r"(g), "r"(h), "r"(k)
       : "memory", "cc");
-  unsigned char* q = static_cast<unsigned char*>(d);
-  for (size_t i = 0, r = n % 16; i < r; ++i) std::memcpy(q + 4 * i, &w, 4);
+#else
+  constexpr size_t kLoopWords = 8;
+  register size_t loops asm("r1") = n / kLoopWords;
+  size_t rest = n % kLoopWords;
+  asm volatile(
+      ".syntax unified\n\t"  // (GCC passes Armv6-M asm in divided syntax and expects it back)
+      "cmp     %[loops], #0\n\t"
+      "beq     2f\n\t"
+      "1:\n\t"
+      "stmia   %[d]!, {r2, r3, r4, r5}\n\t"
+      "stmia   %[d]!, {r2, r3, r4, r5}\n\t"
+      "subs    %[loops], %[loops], #1\n\t"
+      "bne     1b\n\t"
+      "2:\n\t"
+      "cmp     %[rest], #0\n\t"
+      "beq     4f\n\t"
+      "3:\n\t"
+      "stmia   %[d]!, {r2}\n\t"
+      "subs    %[rest], %[rest], #1\n\t"
+      "bne     3b\n\t"
+      "4:\n\t"
+      ".syntax divided\n\t"
+      : [d] "+l"(d), [loops] "+l"(loops), [rest] "+l"(rest)
+      : "l"(a), "l"(b), "l"(c), "l"(e)
+      : "memory", "cc");
+#endif
 }
 
 // fill_pixels by hand: 2- and 4-byte pixels (an odd 16-bit pixel at either end alone).
