@@ -37,7 +37,8 @@
 
 namespace lr {
 
-// Fraction bits of a subpixel the short path keeps in x / w and y / w before rounding (at least):
+// Fraction bits of a subpixel the short path keeps in x / w and y / w before rounding (at least;
+// up to 10 for a draw whose position bound's cube lies inside the guard band: fraction_bits()):
 // x and y are within 2^-kShortPathFractionBits subpixels plus 2^-19 of their distance from the
 // centre of the quotients of the draw's clip coordinates (before rounding; tests/core/vertex_test).
 inline constexpr int kShortPathFractionBits = 5;

@@ -212,9 +212,10 @@ TEST(ShortPath, AgreesWithTheQuotientsOfItsClipCoordinates) {
       ASSERT_GT(w, 0.0);
       ASSERT_GE(v.w, 1u);  // (setup divides by it)
       ASSERT_EQ(v.outcode, 0);
-      // Rounding, then about two units of the draw's 2^-f (a row sum's error over W, the
-      // product's floor) and 2^-19 of the distance from the centre (r's and W's own errors).
-      const double unit = std::ldexp(2.5, -st.fraction_bits());
+      // Rounding, then a unit or so of the draw's 2^-f (the product's floor, a row sum's error
+      // over W), never more than 2^-5, and 2^-19 of the distance from the centre (r's and W's
+      // own errors).
+      const double unit = std::min(1.0 / 32, std::ldexp(1.25, -st.fraction_bits()));
       const double tx = 0.5 + unit + std::abs(qx) / 524288, ty = 0.5 + unit + std::abs(qy) / 524288;
       const double tz = 4096 + std::abs(qz) / 524288;
       const double ex = std::abs(v.x - (sx + qx)), ey = std::abs(v.y - (sy + qy));
