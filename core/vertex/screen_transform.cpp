@@ -98,15 +98,15 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
   if (n_max > ez - ew + 39) n_max = ez - ew + 39;
   if (n_max < 2) return;
   // A draw whose cube lies inside the band has every W at least its corners' least (w is linear
-  // in the position), less the row sums' error (a few units) and the corners' Q28.28 truncation:
-  // n_max need only reach clz of that. Smaller, it leaves f more bits (up to 10, beyond which
-  // x 2^f could leave int32): the error of x and y shrinks as 2^-f for no work per vertex.
+  // in the position), less 2^-12 of it for the row sums' few units and the corners' Q28.28
+  // truncation (W >= 2^22 where it matters): n_max need only reach clz of that, W = w 2^(ew - 28)
+  // from w in Q28.28, clz32(W) = clz64(w) - 4 - ew. Smaller, it leaves f more bits (up to 10,
+  // beyond which x 2^f could leave int32): the error of x and y shrinks as 2^-f for no work per
+  // vertex.
   if (cube_w > 0) {
-    const int64_t w_cube = ew >= 28 ? cube_w << (ew - 28) : cube_w >> (28 - ew);
-    const int64_t w_least = w_cube - (w_cube >> 16) - 16;
-    int n = w_least >= (int64_t{1} << 22) ? clz32(static_cast<uint32_t>(w_least)) : 9;
+    int n = clz64(static_cast<uint64_t>(cube_w - (cube_w >> 12))) - 4 - ew;
     if (n < 29 + exy - ew - 10) n = 29 + exy - ew - 10;  // f = 10 already
-    if (n < n_max) n_max = n;
+    if (n >= 2 && n < n_max) n_max = n;
   }
   if (ez > ew - 29 + n_max) ez = ew - 29 + n_max;
   // f at most 10 (x - sx and y - sy below 2^21, times 2^f below 2^31): exy lowered if need be.
