@@ -56,6 +56,8 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
   // Coordinates lie in [-(bound + 1), bound]; with bound < 2^(31 - ps) they stay in int32 when
   // shifted by ps, and bound 2^ps >= 2^30 (so a row's factors fit int32, below).
   if (bound > 0x7FFFFFFFu) bound = 0x7FFFFFFFu;  // no int32 coordinate is beyond
+  // The least w over the bound's cube when it lies inside the guard band (else 0).
+  const int64_t cube_w = guard_free_least_w(mvp, bound, guard);
   const int ps = bound == 0 ? 30 : clz32(bound) - 1;
   const uint32_t b = bound + 1;  // the largest magnitude, <= 2^31
   const int32_t sx = width * kHalfPixel, sy = height * kHalfPixel;
@@ -95,6 +97,17 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
   int ez = exponent[2];
   if (n_max > ez - ew + 39) n_max = ez - ew + 39;
   if (n_max < 2) return;
+  // A draw whose cube lies inside the band has every W at least its corners' least (w is linear
+  // in the position), less 2^-12 of it for the row sums' few units and the corners' Q28.28
+  // truncation (W >= 2^22 where it matters): n_max need only reach clz of that, W = w 2^(ew - 28)
+  // from w in Q28.28, clz32(W) = clz64(w) - 4 - ew. Smaller, it leaves f more bits (up to 10,
+  // beyond which x 2^f could leave int32): the error of x and y shrinks as 2^-f for no work per
+  // vertex.
+  if (cube_w > 0) {
+    int n = clz64(static_cast<uint64_t>(cube_w - (cube_w >> 12))) - 4 - ew;
+    if (n < 29 + exy - ew - 10) n = 29 + exy - ew - 10;  // f = 10 already
+    if (n >= 2 && n < n_max) n_max = n;
+  }
   if (ez > ew - 29 + n_max) ez = ew - 29 + n_max;
   // f at most 10 (x - sx and y - sy below 2^21, times 2^f below 2^31): exy lowered if need be.
   if (29 + exy - ew - n_max > 10) exy = n_max + 10 - 29 + ew;
@@ -130,7 +143,7 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
   w.x_span = static_cast<uint32_t>(2 * lx);
   w.y_lo = sy - ly;
   w.y_span = static_cast<uint32_t>(2 * ly);
-  guard_free_ = inside_guard_band(mvp, bound, guard);
+  guard_free_ = cube_w > 0;
   enabled_ = true;
 }
 
@@ -244,19 +257,22 @@ size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
 
 // Whether every position within the bound projects inside the guard band: the cube's corners
 // (exact clip coordinates) in front of the eye and within 7/8 of the band (the projection is
-// linear in clip space and the band convex: the cube's inside follows).
-bool ScreenTransform::inside_guard_band(const Mat4& mvp, uint32_t bound, GuardBand guard) {
+// linear in clip space and the band convex: the cube's inside follows). Then the least of the
+// corners' w (Q28.28, > 0), else 0.
+int64_t ScreenTransform::guard_free_least_w(const Mat4& mvp, uint32_t bound, GuardBand guard) {
   const int32_t hi = static_cast<int32_t>(bound), lo = -hi - 1;
+  int64_t least = INT64_MAX;
   for (int c = 0; c < 8; ++c) {
     const Vec3 p{Fixed::from_raw(c & 1 ? hi : lo), Fixed::from_raw(c & 2 ? hi : lo),
                  Fixed::from_raw(c & 4 ? hi : lo)};
     const ClipCoord q = transform_point(mvp, p);  // |coordinates| < 2^47 (the plain bound)
-    if (q.w <= 0) return false;
+    if (q.w <= 0) return 0;
     const int64_t gx = q.w * guard.gx - ((q.w * guard.gx) >> 3);
     const int64_t gy = q.w * guard.gy - ((q.w * guard.gy) >> 3);
-    if (q.x > gx || q.x < -gx || q.y > gy || q.y < -gy) return false;
+    if (q.x > gx || q.x < -gx || q.y > gy || q.y < -gy) return 0;
+    if (q.w < least) least = q.w;
   }
-  return true;
+  return least;
 }
 
 }  // namespace lr

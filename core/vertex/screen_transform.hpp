@@ -37,7 +37,8 @@
 
 namespace lr {
 
-// Fraction bits of a subpixel the short path keeps in x / w and y / w before rounding (at least):
+// Fraction bits of a subpixel the short path keeps in x / w and y / w before rounding (at least;
+// up to 10 for a draw whose position bound's cube lies inside the guard band: fraction_bits()):
 // x and y are within 2^-kShortPathFractionBits subpixels plus 2^-19 of their distance from the
 // centre of the quotients of the draw's clip coordinates (before rounding; tests/core/vertex_test).
 inline constexpr int kShortPathFractionBits = 5;
@@ -71,6 +72,9 @@ class ScreenTransform {
   bool enabled() const { return enabled_; }
   // Whether every position within the bound is inside the guard band (no test per vertex).
   bool guard_free() const { return guard_free_; }
+  // The fraction bits of a subpixel x and y keep before rounding (f, in [5, 10] when enabled):
+  // their error is a unit or so of 2^-f (docs/numerics.md#the-short-path).
+  int fraction_bits() const { return k_.f; }
 
   // p into v's x, y, z, w and outcode 0 (nothing else of v) when p is inside every plane and
   // its w is in the short path's range; false (v unchanged) otherwise: the vertex needs the
@@ -98,7 +102,7 @@ class ScreenTransform {
   static constexpr int32_t kMaxW = (int32_t{1} << 30) - 1;  // row sums are below 2^29 + 5
   static constexpr uint32_t kHalfDepth = kDepthMax / 2;     // 65535 * 2^15
 
-  static bool inside_guard_band(const Mat4& mvp, uint32_t bound, GuardBand guard);
+  static int64_t guard_free_least_w(const Mat4& mvp, uint32_t bound, GuardBand guard);
 
   // Rows x, y, z, w: a[j] = K_i m_ij 2^(E_i - ps), |a| < 2^31; t = K_i t_i 2^(E_i - 16),
   // with m, t the Q16.16 entries, K_i the row's viewport factor and E_i its exponent (x and y

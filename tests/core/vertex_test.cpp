@@ -212,8 +212,11 @@ TEST(ShortPath, AgreesWithTheQuotientsOfItsClipCoordinates) {
       ASSERT_GT(w, 0.0);
       ASSERT_GE(v.w, 1u);  // (setup divides by it)
       ASSERT_EQ(v.outcode, 0);
-      const double tx = 0.5 + 1.0 / 32 + std::abs(qx) / 524288,
-                   ty = 0.5 + 1.0 / 32 + std::abs(qy) / 524288;
+      // Rounding, then a unit or so of the draw's 2^-f (the product's floor, a row sum's error
+      // over W), never more than 2^-5, and 2^-19 of the distance from the centre (r's and W's
+      // own errors).
+      const double unit = std::min(1.0 / 32, std::ldexp(1.25, -st.fraction_bits()));
+      const double tx = 0.5 + unit + std::abs(qx) / 524288, ty = 0.5 + unit + std::abs(qy) / 524288;
       const double tz = 4096 + std::abs(qz) / 524288;
       const double ex = std::abs(v.x - (sx + qx)), ey = std::abs(v.y - (sy + qy));
       ASSERT_LE(ex, tx) << draw << " " << k;
@@ -246,26 +249,65 @@ TEST(ShortPath, AgreesWithTheQuotientsOfItsClipCoordinates) {
 }
 
 // Peer scene S1's draw (docs/measurements/peer_scenes.md): every vertex of a mesh in [-1, 1]^3
-// in front of a 60-degree camera takes the short path, with ten fraction bits or more.
-TEST(ShortPath, TakesEveryVertexOfThePeerScene) {
+// in front of a 60-degree camera takes the short path, and as the draw's cube lies inside the
+// guard band with w in a factor of two, with ten fraction bits (docs/numerics.md#the-short-path):
+// x and y within 2^-9 subpixel of the exact quotients of their clip coordinates before rounding
+// (five fraction bits, the bound for every draw, would allow 2^-5), so each is the quotient
+// rounded to nearest unless that lies within 2^-9 of a half. Checked on random positions and on
+// positions whose quotient lies within 2^-8 of a half (chosen from many random ones).
+TEST(ShortPath, TakesEveryVertexOfThePeerSceneWithTenFractionBits) {
   Camera cam;
   ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(4, 3), Fixed::from_int(1),
                           Fixed::from_int(10), cam.projection));
   const Mat4 model = translate({{}, {}, Fixed::from_double(-2.45)}) * rotate_y(Fixed::from_int(20));
   const Mat4 mvp = cam.projection * cam.view * model;
+  const double sx = 320 * 128.0, sy = 240 * 128.0;
+  // The exact quotients (display subpixels) of p's clip coordinates (products below 2^53: exact).
+  auto exact = [&](const Vec3& p) {
+    double c[4];
+    for (int i = 0; i < 4; ++i)
+      c[i] = (double(mvp.m[i][0].raw) * p.x.raw + double(mvp.m[i][1].raw) * p.y.raw +
+              double(mvp.m[i][2].raw) * p.z.raw) /
+                 4294967296.0 +
+             mvp.m[i][3].raw / 65536.0;
+    return std::array<double, 2>{sx + sx * c[0] / c[3], sy - sy * c[1] / c[3]};
+  };
+  auto near_half = [](double q, double d) { return std::abs(q - std::floor(q) - 0.5) < d; };
   std::mt19937_64 rng(1);
+  auto coordinate = [&] { return Fixed::from_raw(static_cast<int32_t>(rng() % 131073) - 65536); };
   std::vector<Vec3> p;
-  for (int i = 0; i < 5000; ++i)
-    p.push_back({Fixed::from_raw(static_cast<int32_t>(rng() % 131073) - 65536),
-                 Fixed::from_raw(static_cast<int32_t>(rng() % 131073) - 65536),
-                 Fixed::from_raw(static_cast<int32_t>(rng() % 131073) - 65536)});
+  for (int i = 0; i < 5000; ++i) p.push_back({coordinate(), coordinate(), coordinate()});
+  size_t constructed = 0;
+  for (int i = 0; i < 400000; ++i) {
+    const Vec3 q{coordinate(), coordinate(), coordinate()};
+    const auto e = exact(q);
+    if (near_half(e[0], 1.0 / 256) || near_half(e[1], 1.0 / 256)) {
+      p.push_back(q);
+      ++constructed;
+    }
+  }
   const ScreenTransform st(mvp, position_bound(p.data(), p.size()), 320, 240, GuardBand{25, 34});
   ASSERT_TRUE(st.enabled());
+  ASSERT_TRUE(st.guard_free());
+  EXPECT_EQ(st.fraction_bits(), 10);
+  double worst = 0;
+  size_t off = 0;
   for (const Vec3& q : p) {
     ScreenVertex v;
     ASSERT_TRUE(st.project(q, v));
     EXPECT_EQ(v.outcode, 0);
+    const auto e = exact(q);
+    const double ex = std::abs(v.x - e[0]), ey = std::abs(v.y - e[1]);
+    worst = std::max({worst, ex - 0.5, ey - 0.5});
+    ASSERT_LE(ex, 0.5 + 1.0 / 512) << e[0];
+    ASSERT_LE(ey, 0.5 + 1.0 / 512) << e[1];
+    off += v.x != std::llround(e[0]) || v.y != std::llround(e[1]);
   }
+  std::printf(
+      "peer draw: %zu vertices (%zu within 2^-8 of a half), worst x/y beyond half a subpixel "
+      "%.5f (2^-9 = %.5f); %zu not the rounded quotient\n",
+      p.size(), constructed, worst, 1.0 / 512, off);
+  EXPECT_GT(constructed, 2000u);
 }
 
 // A draw whose clip coordinates can reach 2^19 (the exact path's range limit: kClipOutOfRange
