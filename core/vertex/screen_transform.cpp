@@ -150,10 +150,16 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
 size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
                             const uint32_t (&tail)[2]) const {
   if (!kShortPathRun || !guard_free_) {
+    // The tail's fields assigned (a copy through a byte pointer made Armv6-M, which has no
+    // unaligned access, call memcpy for every vertex).
+    ScreenVertex proto;
+    __builtin_memcpy(reinterpret_cast<unsigned char*>(&proto) + 16, tail, 8);
     size_t k = 0;
     for (; k < count; ++k) {
       if (!project(p[k], out[k])) break;
-      __builtin_memcpy(reinterpret_cast<unsigned char*>(&out[k]) + 16, tail, 8);
+      out[k].color = proto.color;
+      out[k].outcode = proto.outcode;
+      out[k].color_pending = proto.color_pending;
     }
     return k;
   }
