@@ -148,8 +148,9 @@ class Renderer {
       kFeatures.two_sided ? &front_facing_clip : nullptr,
       kFeatures.strip_skipping ? &kSignRoutines : nullptr};
 
-  // render() with bands (kFeatures.bands), after its checks.
-  Status render_bands(FrameStats& stats, StripSink<PF>& sink, DepthSink* depth_sink);
+  // render() with bands (kFeatures.bands), after its checks. Inlined: one stack frame.
+  [[gnu::always_inline]] inline Status render_bands(FrameStats& stats, StripSink<PF>& sink,
+                                                    DepthSink* depth_sink);
 
   FrontEnd front_;
   StripLoop<PF, K, kSpans> strip_;
