@@ -171,6 +171,7 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
 // One triangle of a draw: culled, lit (lit Gouraud: its vertices on first use; flat: its face),
 // clipped when it crosses a plane, and binned. This and the two ends below are always inlined
 // into draw(): one loop body, whose locals share one stack frame.
+template <bool kTwoSided, bool kCache>
 void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   const size_t n = d.mesh.positions.size();
   if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
@@ -179,7 +180,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   }
   uint16_t vi[3] = {static_cast<uint16_t>(d.base + tri[0]), static_cast<uint16_t>(d.base + tri[1]),
                     static_cast<uint16_t>(d.base + tri[2])};
-  if (d.cached) {
+  if (kCache && d.cached) {
     // By value: vi stays in registers.
     const std::array<uint16_t, 3> c = (store_.*routines_->cache->corners)(
         d.stage, d.mesh, d.colors, tri, stats_.vertices_transformed, stats_.vertices_wide);
@@ -231,7 +232,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
     for (int k = 0; k < 3; ++k)
       clip[k] = d.stage.clip(d.mesh.positions[tri[static_cast<size_t>(k)]]);
   bool back = false;
-  if (d.plan.two_sided)
+  if (kTwoSided && d.plan.two_sided)
     back = oc_or == 0 ? back_facing(signed_area2(*sv[0], *sv[1], *sv[2]))
                       : !routines_->front_facing(clip);
   if (back && d.plan.gouraud)
@@ -241,7 +242,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   d.flat_colors(tri, *sv[2], back, flat, flat_spec);
   if (oc_or == 0) {
     bin_inside(d, vi, sv, back && d.plan.gouraud, flat, flat_spec, classified ? rows : nullptr,
-               d.cached);
+               kCache && d.cached);
     return;
   }
   clip_and_bin(d, vi, sv, clip, oc_or, back && d.plan.gouraud, flat, flat_spec);
@@ -497,20 +498,30 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
 void FrontEnd::triangle_loop(MeshDraw& d) {
   const auto count = static_cast<uint32_t>(d.mesh.triangles.size());
   if (d.cached || d.plan.two_sided || draw_colors_ || edges_.signing()) {
-    general_triangles(d, 0, count);
+    routines_->triangles(*this, d, 0, count);
     return;
   }
   for (uint32_t t = 0; t < count;) {
     t = lane_triangles(d, t);
-    if (t < count) t = general_triangles(d, t, t + 1);
+    if (t < count) t = routines_->triangles(*this, d, t, t + 1);
   }
 }
 
 // Triangles [t, end) through draw_triangle(), inlined here: one stack frame for its locals.
+template <bool kTwoSided, bool kCache>
 uint32_t FrontEnd::general_triangles(MeshDraw& d, uint32_t t, uint32_t end) {
-  for (; t < end; ++t) draw_triangle(d, d.mesh.triangles[t]);
+  for (; t < end; ++t) draw_triangle<kTwoSided, kCache>(d, d.mesh.triangles[t]);
   return t;
 }
+
+template <bool kTwoSided, bool kCache>
+uint32_t FrontEndParts::triangles(FrontEnd& fe, MeshDraw& d, uint32_t t, uint32_t end) {
+  return fe.general_triangles<kTwoSided, kCache>(d, t, end);
+}
+template uint32_t FrontEndParts::triangles<false, false>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<false, true>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<true, false>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<true, true>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
 
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
                              std::span<const std::array<uint16_t, 3>> triangles,

@@ -79,6 +79,7 @@ constexpr LightSet zero_lights() {
 }
 
 class FrontEnd;
+struct MeshDraw;  // one draw()'s context (mesh_draw.hpp)
 
 // The front end's routines for features a renderer may leave out
 // (core/raster/renderer_features.hpp), as plain functions that FrontEndRoutines can point at
@@ -94,6 +95,10 @@ struct FrontEndParts {
   static void sign_draw(FrontEnd& fe, uint8_t draw, const Material* per_pixel_material);
   static void sign_triangle(FrontEnd& fe, uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
                             Rgb8 flat, Rgb8 flat_spec, int32_t r0, int32_t r1);
+  // The general triangle loop (FrontEnd::general_triangles) with or without two-sided
+  // lighting's back faces and the vertex cache: the renderer links the one of its features.
+  template <bool kTwoSided, bool kCache>
+  static uint32_t triangles(FrontEnd& fe, MeshDraw& d, uint32_t t, uint32_t end);
 };
 struct BandRoutines {
   bool (*shrink)(FrontEnd&) = &FrontEndParts::shrink_band;
@@ -142,6 +147,10 @@ struct FrontEndRoutines {
   const CacheRoutines* cache = &kCacheRoutines;
   bool (*front_facing)(const ClipCoord (&)[3]) = &front_facing_clip;
   const SignRoutines* sign = &kSignRoutines;
+  // The general triangle loop: FrontEndParts::triangles<kTwoSided, kCache>, true where
+  // front_facing, cache are set (a loop without them would draw those draws wrong).
+  uint32_t (*triangles)(FrontEnd&, MeshDraw&, uint32_t,
+                        uint32_t) = &FrontEndParts::triangles<true, true>;
 };
 inline constexpr FrontEndRoutines kEveryRoutine{};
 
@@ -237,11 +246,13 @@ class FrontEnd {
   }
 
  private:
-  struct MeshDraw;  // one draw()'s context (mesh_draw.hpp)
   // The triangle loop (front_end.cpp): the lane (lane.cpp) for its common triangles, and
   // general_triangles(), one copy of draw_triangle() with its two ends always inlined into it
-  // (one stack frame), for the rest and for every draw the lane does not take.
+  // (one stack frame), for the rest and for every draw the lane does not take. kTwoSided,
+  // kCache: with two-sided lighting's back faces, with the vertex cache (FrontEndRoutines::
+  // triangles: the renderer's features).
   [[gnu::noinline]] void triangle_loop(MeshDraw& d);
+  template <bool kTwoSided, bool kCache>
   [[gnu::noinline]] uint32_t general_triangles(MeshDraw& d, uint32_t t, uint32_t end);
   [[gnu::noinline]] uint32_t lane_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] uint32_t lane_run_triangles(MeshDraw& d, uint32_t t);
@@ -249,6 +260,7 @@ class FrontEnd {
   // The lane's vertices to light (lane.cpp), at most kLightList at a time.
   static constexpr size_t kLightList = 48;
   [[gnu::noinline]] void light_list(MeshDraw& d, std::span<ScreenVertex* const> list);
+  template <bool kTwoSided, bool kCache>
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
                                                 ScreenVertex* const (&sv)[3], bool back_copies,

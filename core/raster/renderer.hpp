@@ -146,7 +146,8 @@ class Renderer {
       kFeatures.bands ? &kBandRoutines : nullptr,
       kFeatures.vertex_cache ? &kCacheRoutines : nullptr,
       kFeatures.two_sided ? &front_facing_clip : nullptr,
-      kFeatures.strip_skipping ? &kSignRoutines : nullptr};
+      kFeatures.strip_skipping ? &kSignRoutines : nullptr,
+      &FrontEndParts::triangles<kFeatures.two_sided, kFeatures.vertex_cache>};
 
   // render() with bands (kFeatures.bands), after its checks. Inlined: one stack frame.
   [[gnu::always_inline]] inline Status render_bands(FrameStats& stats, StripSink<PF>& sink,

@@ -109,10 +109,10 @@ lr_fw_stack_rules=(
   --indirect-from 'lr::(detail::)?fill_(tex_span_body|tex_span|phong_span)<' 'lr::fetch_batch<'
   --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'
   --indirect-from 'lr::FrontEnd::(draw(_screen)?|admitted)\(' 'lr::admits<|lr::DrawRecords::phong_record\('
-  --indirect-from 'lr::FrontEnd::(general_triangles|triangle_loop|run_mesh)\(' 'lr::VertexStage::light_face\('
+  --indirect-from 'lr::FrontEnd::(general_triangles<[^>]*>|triangle_loop|run_mesh)\(' 'lr::VertexStage::light_face\('
   --indirect-from 'lr::VertexStage::(light|light_face)\(' 'lr::light_point_split\('
   --indirect-from 'lr::VertexStage::transform_range\(' 'lr::VertexStage::attributes\('
   --indirect-from 'lr::FrontEnd::replay\(' 'lr::FrontEnd::(replay_screen|run_screen)\('
-  --indirect-from 'lr::FrontEnd::(bin|begin_frame|draw(_screen)?|general_triangles|triangle_loop|run_mesh|run_screen)\(' 'lr::FrontEndParts::|lr::VertexStore::(begin_cache|cache_corners|persist)\(|lr::front_facing_clip\('
+  --indirect-from 'lr::FrontEnd::(bin|begin_frame|draw(_screen)?|general_triangles<[^>]*>|triangle_loop|run_mesh|run_screen)\(' 'lr::FrontEndParts::|lr::VertexStore::(begin_cache|cache_corners|persist)\(|lr::front_facing_clip\('
   --indirect-from 'lr::(PanelSink|Panel|fw::demo::PanelOutput<.*>)::|lr::(send_commands?|write_window)\(' 'lr::fw::PpmPanelBus<.*>::|lr::PanelBus::'
 )
