@@ -113,6 +113,11 @@ lr_fw_stack_rules=(
   --indirect-from 'lr::VertexStage::(light|light_face)\(' 'lr::light_point_split\('
   --indirect-from 'lr::VertexStage::transform_range\(' 'lr::VertexStage::attributes\('
   --indirect-from 'lr::FrontEnd::replay\(' 'lr::FrontEnd::(replay_screen|run_screen)\('
-  --indirect-from 'lr::FrontEnd::(bin|begin_frame|draw(_screen)?|general_triangles<[^>]*>|triangle_loop|run_mesh|run_screen)\(' 'lr::FrontEndParts::|lr::VertexStore::(begin_cache|cache_corners|persist)\(|lr::front_facing_clip\('
+  --indirect-from 'lr::FrontEnd::bin\(' 'lr::FrontEndParts::(shrink_band|sign_triangle)\(|lr::VertexStore::persist\('
+  --indirect-from 'lr::FrontEnd::begin_frame\(' 'lr::FrontEndParts::sign_frame\('
+  --indirect-from 'lr::FrontEnd::draw(_screen)?\(' 'lr::FrontEndParts::sign_draw\('
+  --indirect-from 'lr::FrontEnd::general_triangles<[^>]*>\(' 'lr::VertexStore::cache_corners\(|lr::front_facing_clip\(|lr::FrontEndParts::polygon_outside_band\('
+  --indirect-from 'lr::FrontEnd::triangle_loop\(' 'lr::FrontEndParts::triangles<'
+  --indirect-from 'lr::FrontEnd::run_(mesh|screen)\(' 'lr::VertexStore::begin_cache\(|lr::FrontEndParts::compact_vertices\('
   --indirect-from 'lr::(PanelSink|Panel|fw::demo::PanelOutput<.*>)::|lr::(send_commands?|write_window)\(' 'lr::fw::PpmPanelBus<.*>::|lr::PanelBus::'
 )
