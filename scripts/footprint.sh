@@ -81,7 +81,7 @@ else
 fi
 
 # Symbols (nm -C, from the start of the name) no untextured image may hold (see below).
-lr_fp_untextured_unlinked='^(lr::light_point_split|lr::light_point|lr::VertexStage::light_face|lr::VertexStage::attributes|lr::transform_tangent|lr::DrawRecords::phong_record|lr::FrontEnd::run_screen|lr::detail::kMaterialTable|lr::find_material|lr::to_material|(lr::ColorPlanes )?lr::setup_planes|(void )?lr::legacy_rows|lr::FrontEnd::bin_band|lr::FrontEndParts::(shrink_band|compact_vertices|polygon_outside_band|sign_)|(unsigned long )?lr::FrontEnd::general_triangles<(true|false, true)>|lr::EdgeTable::shrink_window|lr::VertexStore::(begin_cache|cache_corners|persist)|lr::front_facing_clip|lr::InputHash::)\b'
+lr_fp_untextured_unlinked='^(lr::light_point_split|lr::light_point|lr::VertexStage::light_face|lr::VertexStage::attributes|lr::transform_tangent|lr::DrawRecords::phong_record|lr::FrontEnd::run_screen|lr::detail::kMaterialTable|lr::find_material|lr::to_material|(lr::ColorPlanes )?lr::setup_planes|(void )?lr::legacy_rows|lr::FrontEnd::bin_band|lr::FrontEndParts::(shrink_band|compact_vertices|polygon_outside_band|sign_)|(unsigned long )?lr::FrontEnd::general_triangles<(true|false, true)>|lr::EdgeTable::shrink_window|lr::VertexStore::(begin_cache|cache_corners|persist)|lr::front_facing_clip|lr::StripLoop<.*>::skip_strip|lr::InputHash::)\b'
 declare -A checksum_of  # config -> "core checksum" of the first core that ran it
 write_docs=0
 trees=()

@@ -177,7 +177,8 @@ Status Renderer<PF, K, kSpans, kFeatures>::render(StripSink<PF>& sink, DepthSink
     const bool fit = !front_.needs_bands() && !front_.band_dropped();
     Status st = strip_.begin(front_.frame(), stats, sink, depth_sink);
     if (st == Status::kOk)
-      st = strip_.strips(front_.frame(), 0, front_.frame().strips, sink, depth_sink);
+      st = strip_.template strips<kFeatures.strip_skipping>(
+          front_.frame(), 0, front_.frame().strips, sink, depth_sink);
     if (st == Status::kOk) st = strip_.end(sink, fit);
     if (st != Status::kOk) return st;
     if (front_.refused() != Status::kOk) return front_.refused();
@@ -214,7 +215,7 @@ Status Renderer<PF, K, kSpans, kFeatures>::render_bands(FrameStats& stats, Strip
       if (front_.band_dropped()) complete = false;
       s1 = front_.band_end();
     }
-    st = strip_.strips(front_.frame(), s0, s1, sink, depth_sink);
+    st = strip_.template strips<kFeatures.strip_skipping>(front_.frame(), s0, s1, sink, depth_sink);
     if (st != Status::kOk) return st;
     s0 = s1;
   }

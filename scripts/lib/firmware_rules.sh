@@ -103,7 +103,7 @@ lr_fw_guard() {
 # replays a band; the panel path (the Cortex-M7 demo) calls its bus; Reset_Handler calls the
 # static constructors (none: the images constant-initialise).
 lr_fw_stack_rules=(
-  --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|render_bands|strips|crowded_strip)\('
+  --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|render_bands|strips(<[^>]*>)?|crowded_strip)\('
   'OrderedStripSink<.*>::|lr::PanelSink::|lr::StripSink<.*>::(retains_frame|keep)\(|lr::(lanes_rows|untextured_rows_per_span|legacy_rows)<'
   --indirect-from 'lr::legacy_rows<' 'lr::fill_tex_span<|lr::fill_phong_span<'
   --indirect-from 'lr::(detail::)?fill_(tex_span_body|tex_span|phong_span)<' 'lr::fetch_batch<'
