@@ -175,10 +175,12 @@ Status Renderer<PF, K, kSpans, kFeatures>::render(StripSink<PF>& sink, DepthSink
     // Without bands: what the stores hold, in one pass; what did not fit was dropped (the
     // front end stopped binning when a store was full), and counted.
     const bool fit = !front_.needs_bands() && !front_.band_dropped();
-    Status st = strip_.begin(front_.frame(), stats, sink, depth_sink);
+    // (One BinnedFrame: each frame() is a copy on this frame, which is on the deepest path.)
+    const BinnedFrame frame = front_.frame();
+    Status st = strip_.begin(frame, stats, sink, depth_sink);
     if (st == Status::kOk)
-      st = strip_.template strips<kFeatures.strip_skipping>(
-          front_.frame(), 0, front_.frame().strips, sink, depth_sink);
+      st = strip_.template strips<kFeatures.strip_skipping>(frame, 0, frame.strips, sink,
+                                                            depth_sink);
     if (st == Status::kOk) st = strip_.end(sink, fit);
     if (st != Status::kOk) return st;
     if (front_.refused() != Status::kOk) return front_.refused();
