@@ -53,6 +53,13 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
 
 }  // namespace
 
+// Whether a mesh of n vertices can be drawn only through the vertex cache: larger than a store
+// it needs, which is large enough for the cache.
+bool FrontEnd::needs_cache(size_t n, const DrawPlan& plan) const {
+  return !store_.takes_mesh(n, plan.kind.phong, plan.uv, false) &&
+         store_.takes_mesh(n, plan.kind.phong, plan.uv);
+}
+
 Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int strip_height,
                            const FrontEndRoutines* routines) {
   configured_ = false;
@@ -67,6 +74,8 @@ Status FrontEnd::configure(const FrontEndStorage& s, int width, int height, int 
   if (!edges_.configure(s.triangles, s.triangle_colors, s.buckets, s.strip_inputs, width, height,
                         strip_height))
     return Status::kStoreTooSmall;
+  // Strip signatures asked of a renderer that leaves them out (RendererFeatures).
+  if (!s.strip_inputs.empty() && routines->sign == nullptr) return Status::kNotLinked;
   store_.configure(s.vertices, s.surfaces, s.tex_vertices, kMaxStoreEntries);
   records_.configure(s.draws, s.lighting_tables, s.pixel_lights);
   active_extra_ = s.active_extra;
@@ -93,17 +102,7 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
   refused_triangles_ = refused_vertices_ = 0;
   // What every strip depends on: the viewport, the background, the camera (per-pixel lighting
   // and environment maps read it) and the lights (per-pixel lighting).
-  uint32_t frame_signature = 0;
-  if (edges_.signing()) {
-    InputHash h;
-    h.add(static_cast<uint32_t>(width_) | static_cast<uint32_t>(height_) << 16);
-    h.add(static_cast<uint32_t>(strip_height_));
-    h.add(background);
-    h.add(camera);
-    h.add(lights);
-    frame_signature = h.value();
-  }
-  edges_.begin_frame(frame_signature);
+  edges_.begin_frame(edges_.signing() ? routines_->sign->frame(*this) : 0);
   stats_ = FrameStats{};
   stats_.bands = 1;
   stats_.bytes_per_vertex = sizeof(ScreenVertex);
@@ -134,39 +133,25 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
   }
   while (edges_.full()) {
     // The band (the first one: the whole frame, until now) ends higher up, until it is one
-    // strip (below the minimum: the triangle is dropped, and counted). From now on each draw
-    // keeps only the vertices its binned triangles use.
+    // strip (below the minimum, or without bands: the triangle is dropped, and counted). From
+    // now on each draw keeps only the vertices its binned triangles use.
+    if (routines_->bands == nullptr) {
+      edges_.set_dropped();
+      return Outcome::kCapacity;
+    }
     edges_.start_banding();
-    if (!shrink_band()) {
+    if (!routines_->bands->shrink(*this)) {
       edges_.set_dropped();
       return Outcome::kCapacity;
     }
     if (r0 > edges_.window_last()) return Outcome::kBinned;
     if (r1 > edges_.window_last()) r1 = edges_.window_last();
   }
-  if (edges_.signing()) {
-    const DrawRecord& d = records_[draw];
-    InputHash h(d.inputs);
-    h.add(v0);
-    h.add(v1);
-    h.add(v2);
-    if (d.phong) {
-      h.add(store_.surface(a));
-      h.add(store_.surface(b));
-      h.add(store_.surface(c));
-    }
-    if (d.uv) {
-      h.add(store_.tex(a));
-      h.add(store_.tex(b));
-      h.add(store_.tex(c));
-    }
-    h.add(flat);
-    h.add(flat_spec);
-    edges_.sign(r0, r1, h.value());
-  }
+  if (edges_.signing()) routines_->sign->triangle(*this, a, b, c, draw, flat, flat_spec, r0, r1);
   // Through the vertex cache: the triangle's vertices are copied out of it on first use.
   if (cached) {
-    if (!store_.persist(a) || !store_.persist(b) || !store_.persist(c)) {
+    const auto persist = routines_->cache->persist;
+    if (!(store_.*persist)(a) || !(store_.*persist)(b) || !(store_.*persist)(c)) {
       overflow_ = true;
       return Outcome::kVertexCapacity;
     }
@@ -186,6 +171,7 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
 // One triangle of a draw: culled, lit (lit Gouraud: its vertices on first use; flat: its face),
 // clipped when it crosses a plane, and binned. This and the two ends below are always inlined
 // into draw(): one loop body, whose locals share one stack frame.
+template <bool kTwoSided, bool kCache>
 void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   const size_t n = d.mesh.positions.size();
   if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
@@ -194,9 +180,9 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   }
   uint16_t vi[3] = {static_cast<uint16_t>(d.base + tri[0]), static_cast<uint16_t>(d.base + tri[1]),
                     static_cast<uint16_t>(d.base + tri[2])};
-  if (d.cached) {
+  if (kCache && d.cached) {
     // By value: vi stays in registers.
-    const std::array<uint16_t, 3> c = store_.cache_corners(
+    const std::array<uint16_t, 3> c = (store_.*routines_->cache->corners)(
         d.stage, d.mesh, d.colors, tri, stats_.vertices_transformed, stats_.vertices_wide);
     vi[0] = c[0];
     vi[1] = c[1];
@@ -246,9 +232,9 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
     for (int k = 0; k < 3; ++k)
       clip[k] = d.stage.clip(d.mesh.positions[tri[static_cast<size_t>(k)]]);
   bool back = false;
-  if (d.plan.two_sided)
-    back =
-        oc_or == 0 ? back_facing(signed_area2(*sv[0], *sv[1], *sv[2])) : !front_facing_clip(clip);
+  if (kTwoSided && d.plan.two_sided)
+    back = oc_or == 0 ? back_facing(signed_area2(*sv[0], *sv[1], *sv[2]))
+                      : !routines_->front_facing(clip);
   if (back && d.plan.gouraud)
     for (int k = 0; k < 3; ++k)
       d.back_colors[k] = d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], true);
@@ -256,7 +242,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   d.flat_colors(tri, *sv[2], back, flat, flat_spec);
   if (oc_or == 0) {
     bin_inside(d, vi, sv, back && d.plan.gouraud, flat, flat_spec, classified ? rows : nullptr,
-               d.cached);
+               kCache && d.cached);
     return;
   }
   clip_and_bin(d, vi, sv, clip, oc_or, back && d.plan.gouraud, flat, flat_spec);
@@ -367,7 +353,7 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
     return;
   }
   // Binning a band: a polygon wholly outside it is not kept (its vertices would fill the store).
-  if (edges_.banding() && polygon_outside_band(first, m, d.state.cull)) [[unlikely]]
+  if (edges_.banding() && routines_->bands->outside(*this, first, m, d.state.cull)) [[unlikely]]
     return;
   store_.take(static_cast<size_t>(m));
   bool binned = false;
@@ -401,7 +387,9 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   if (!admitted(state, plan.kind) ||
       (triangle_colors && plan.lit && routines_->face_light == nullptr) ||
       (plan.lit && !plan.kind.phong && plan.kind.position && routines_->point_light == nullptr) ||
-      ((plan.uv || plan.kind.phong) && routines_->attributes == nullptr))
+      ((plan.uv || plan.kind.phong) && routines_->attributes == nullptr) ||
+      (plan.two_sided && routines_->front_facing == nullptr) ||
+      (routines_->cache == nullptr && needs_cache(mesh.positions.size(), plan)))
     return refuse(Status::kNotLinked);
   if ((plan.uv && !store_.has_tex()) || ((plan.textured || plan.kind.phong) && !active_extra_) ||
       (plan.kind.phong &&
@@ -434,7 +422,8 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
     records_.drop_last();
     return refuse(Status::kCapacity, tri_count, false);
   }
-  if (edges_.signing()) records_.sign(draw_index, plan.kind.phong ? &material : nullptr);
+  if (edges_.signing())
+    routines_->sign->draw(*this, draw_index, plan.kind.phong ? &material : nullptr);
   DrawCall& call = record.call;
   call.mesh = mesh;
   call.screen = {};
@@ -442,7 +431,10 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   call.material.set(material);
   call.state.set(state);
   call.is_screen = false;
-  if (!overflow_) run_mesh(draw_index, mesh, model, material, state, plan, pl);
+  if (!overflow_)
+    run_mesh(draw_index, mesh, model, material, state, plan, pl);
+  else if (routines_->bands == nullptr)  // no band will bin it: dropped, and counted
+    stats_.dropped_vertex_capacity += tri_count;
   return Status::kOk;
 }
 
@@ -455,7 +447,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   const bool phong = plan.kind.phong, uv = plan.uv;
   // A mesh larger than the free store goes through the vertex cache at the top of the stores.
   const bool cached = !store_.mesh_fits(n, phong, uv);
-  if (cached && !store_.begin_cache(phong, uv)) {
+  if (cached && (routines_->cache == nullptr || !(store_.*routines_->cache->begin)(phong, uv))) {
     overflow_ = true;
     stats_.dropped_vertex_capacity += static_cast<uint32_t>(mesh.triangles.size());
     return;
@@ -496,7 +488,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
     d.diffuse_lights = colors.object;
   triangle_loop(d);
   if (cached) store_.end_cache();
-  if (edges_.banding()) compact_vertices(base, phong, uv);
+  if (edges_.banding()) routines_->bands->compact(*this, base, phong, uv);
 }
 
 // The triangle loop: the lane (lane.cpp) for a draw's common triangles, general_triangles() for
@@ -506,20 +498,30 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
 void FrontEnd::triangle_loop(MeshDraw& d) {
   const auto count = static_cast<uint32_t>(d.mesh.triangles.size());
   if (d.cached || d.plan.two_sided || draw_colors_ || edges_.signing()) {
-    general_triangles(d, 0, count);
+    routines_->triangles(*this, d, 0, count);
     return;
   }
   for (uint32_t t = 0; t < count;) {
     t = lane_triangles(d, t);
-    if (t < count) t = general_triangles(d, t, t + 1);
+    if (t < count) t = routines_->triangles(*this, d, t, t + 1);
   }
 }
 
 // Triangles [t, end) through draw_triangle(), inlined here: one stack frame for its locals.
+template <bool kTwoSided, bool kCache>
 uint32_t FrontEnd::general_triangles(MeshDraw& d, uint32_t t, uint32_t end) {
-  for (; t < end; ++t) draw_triangle(d, d.mesh.triangles[t]);
+  for (; t < end; ++t) draw_triangle<kTwoSided, kCache>(d, d.mesh.triangles[t]);
   return t;
 }
+
+template <bool kTwoSided, bool kCache>
+uint32_t FrontEndParts::triangles(FrontEnd& fe, MeshDraw& d, uint32_t t, uint32_t end) {
+  return fe.general_triangles<kTwoSided, kCache>(d, t, end);
+}
+template uint32_t FrontEndParts::triangles<false, false>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<false, true>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<true, false>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<true, true>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
 
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
                              std::span<const std::array<uint16_t, 3>> triangles,
@@ -540,7 +542,7 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   const uint8_t draw_index = records_.add(state, gouraud, static_cast<uint16_t>(store_.count()));
   records_[draw_index].triangle_colors = !gouraud;
   replay_screen_ = &FrontEnd::replay_screen;
-  if (edges_.signing()) records_.sign(draw_index, nullptr);
+  if (edges_.signing()) routines_->sign->draw(*this, draw_index, nullptr);
   DrawCall& call = records_[draw_index].call;
   call.mesh = Mesh{};
   call.mesh.triangles = triangles;
@@ -550,7 +552,10 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   call.material.set(Material{});
   call.state.set(state);
   call.is_screen = true;
-  if (!overflow_) run_screen(draw_index, vertices, tex, triangles, state);
+  if (!overflow_)
+    run_screen(draw_index, vertices, tex, triangles, state);
+  else if (routines_->bands == nullptr)
+    stats_.dropped_vertex_capacity += tri_count;
   return Status::kOk;
 }
 
@@ -597,7 +602,7 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
     const Outcome r = bin(vi[0], vi[1], vi[2], index, flat, flat_spec, state.cull);
     count_outcome(stats_, r == Outcome::kBinned, r);
   }
-  if (edges_.banding()) compact_vertices(base, false, uv);
+  if (edges_.banding()) routines_->bands->compact(*this, base, false, uv);
 }
 
 // A clipped polygon's vertices, projected at [first, first + m) but not yet kept: true when no
@@ -723,6 +728,55 @@ Status FrontEnd::bin_band(int s0, int s1, bool keep_partial) {
   }
   ++stats_.bands;
   return fit ? Status::kOk : Status::kCapacity;
+}
+
+bool FrontEndParts::shrink_band(FrontEnd& fe) {
+  return fe.shrink_band();
+}
+void FrontEndParts::compact_vertices(FrontEnd& fe, size_t first_vertex, bool surfaces, bool tex) {
+  fe.compact_vertices(first_vertex, surfaces, tex);
+}
+bool FrontEndParts::polygon_outside_band(FrontEnd& fe, uint16_t first, int m, Cull cull) {
+  return fe.polygon_outside_band(first, m, cull);
+}
+
+// What every strip depends on: the viewport, the background, the camera (per-pixel lighting
+// and environment maps read it) and the lights (per-pixel lighting).
+uint32_t FrontEndParts::sign_frame(const FrontEnd& fe) {
+  InputHash h;
+  h.add(static_cast<uint32_t>(fe.width_) | static_cast<uint32_t>(fe.height_) << 16);
+  h.add(static_cast<uint32_t>(fe.strip_height_));
+  h.add(fe.background_);
+  h.add(fe.camera_);
+  h.add(fe.lights_);
+  return h.value();
+}
+
+void FrontEndParts::sign_draw(FrontEnd& fe, uint8_t draw, const Material* per_pixel_material) {
+  fe.records_.sign(draw, per_pixel_material);
+}
+
+void FrontEndParts::sign_triangle(FrontEnd& fe, uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
+                                  Rgb8 flat, Rgb8 flat_spec, int32_t r0, int32_t r1) {
+  const DrawRecord& d = fe.records_[draw];
+  VertexStore& store = fe.store_;
+  InputHash h(d.inputs);
+  h.add(store.vertex(a));
+  h.add(store.vertex(b));
+  h.add(store.vertex(c));
+  if (d.phong) {
+    h.add(store.surface(a));
+    h.add(store.surface(b));
+    h.add(store.surface(c));
+  }
+  if (d.uv) {
+    h.add(store.tex(a));
+    h.add(store.tex(b));
+    h.add(store.tex(c));
+  }
+  h.add(flat);
+  h.add(flat_spec);
+  fe.edges_.sign(r0, r1, h.value());
 }
 
 bool FrontEnd::shrink_band() {

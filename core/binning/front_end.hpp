@@ -78,6 +78,52 @@ constexpr LightSet zero_lights() {
   return s;
 }
 
+class FrontEnd;
+struct MeshDraw;  // one draw()'s context (mesh_draw.hpp)
+
+// The front end's routines for features a renderer may leave out
+// (core/raster/renderer_features.hpp), as plain functions that FrontEndRoutines can point at
+// (front_end.cpp, front_end_parts.cpp).
+struct FrontEndParts {
+  // Bands (docs/bands.md): the table full, the band ends higher up (false: it is one strip); a
+  // band's draw keeps only the vertices its triangles use; a clipped polygon outside the band.
+  static bool shrink_band(FrontEnd& fe);
+  static void compact_vertices(FrontEnd& fe, size_t first_vertex, bool surfaces, bool tex);
+  static bool polygon_outside_band(FrontEnd& fe, uint16_t first, int m, Cull cull);
+  // Strip signatures (strip_inputs.hpp): the frame's, a draw's, a binned triangle's.
+  static uint32_t sign_frame(const FrontEnd& fe);
+  static void sign_draw(FrontEnd& fe, uint8_t draw, const Material* per_pixel_material);
+  static void sign_triangle(FrontEnd& fe, uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
+                            Rgb8 flat, Rgb8 flat_spec, int32_t r0, int32_t r1);
+  // The general triangle loop (FrontEnd::general_triangles) with or without two-sided
+  // lighting's back faces and the vertex cache: the renderer links the one of its features.
+  template <bool kTwoSided, bool kCache>
+  static uint32_t triangles(FrontEnd& fe, MeshDraw& d, uint32_t t, uint32_t end);
+};
+struct BandRoutines {
+  bool (*shrink)(FrontEnd&) = &FrontEndParts::shrink_band;
+  void (*compact)(FrontEnd&, size_t, bool, bool) = &FrontEndParts::compact_vertices;
+  bool (*outside)(FrontEnd&, uint16_t, int, Cull) = &FrontEndParts::polygon_outside_band;
+};
+inline constexpr BandRoutines kBandRoutines{};
+// The vertex cache (vertex_store.hpp): a mesh larger than the free vertex store.
+struct CacheRoutines {
+  bool (VertexStore::*begin)(bool, bool) = &VertexStore::begin_cache;
+  std::array<uint16_t, 3> (VertexStore::*corners)(const VertexStage&, const Mesh&,
+                                                  const VertexColors&,
+                                                  const std::array<uint16_t, 3>&, uint32_t&,
+                                                  uint32_t&) = &VertexStore::cache_corners;
+  bool (VertexStore::*persist)(uint16_t&) = &VertexStore::persist;
+};
+inline constexpr CacheRoutines kCacheRoutines{};
+struct SignRoutines {
+  uint32_t (*frame)(const FrontEnd&) = &FrontEndParts::sign_frame;
+  void (*draw)(FrontEnd&, uint8_t, const Material*) = &FrontEndParts::sign_draw;
+  void (*triangle)(FrontEnd&, uint16_t, uint16_t, uint16_t, uint8_t, Rgb8, Rgb8, int32_t,
+                   int32_t) = &FrontEndParts::sign_triangle;
+};
+inline constexpr SignRoutines kSignRoutines{};
+
 // What the front end calls for draws only some renderers take. Renderer<PF, K, kSpans> passes
 // the routines its span set admits draws for and nullptr for the others, which are then never
 // referenced (never linked: a Gouraud renderer links no flat, point, textured or Phong code of
@@ -91,6 +137,20 @@ struct FrontEndRoutines {
   // local viewer): per vertex and per face.
   PointLightFn point_light = &light_point_split;
   AttributesFn attributes = &VertexStage::attributes;  // textured and Phong draws' vertices
+  // The features of RendererFeatures (renderer_features.hpp), nullptr when left out: bands (a
+  // frame larger than the stores is then drawn as far as it fits: kCapacity), the vertex cache
+  // (a mesh larger than the vertex store: kNotLinked; one larger than its free part: as if the
+  // store were full), two-sided lighting's back-face test of clipped triangles (a lit Gouraud
+  // or flat draw under LightSet::two_sided: kNotLinked), strip signatures (a strip_inputs
+  // store: configure() returns kNotLinked).
+  const BandRoutines* bands = &kBandRoutines;
+  const CacheRoutines* cache = &kCacheRoutines;
+  bool (*front_facing)(const ClipCoord (&)[3]) = &front_facing_clip;
+  const SignRoutines* sign = &kSignRoutines;
+  // The general triangle loop: FrontEndParts::triangles<kTwoSided, kCache>, true where
+  // front_facing, cache are set (a loop without them would draw those draws wrong).
+  uint32_t (*triangles)(FrontEnd&, MeshDraw&, uint32_t,
+                        uint32_t) = &FrontEndParts::triangles<true, true>;
 };
 inline constexpr FrontEndRoutines kEveryRoutine{};
 
@@ -186,11 +246,13 @@ class FrontEnd {
   }
 
  private:
-  struct MeshDraw;  // one draw()'s context (mesh_draw.hpp)
   // The triangle loop (front_end.cpp): the lane (lane.cpp) for its common triangles, and
   // general_triangles(), one copy of draw_triangle() with its two ends always inlined into it
-  // (one stack frame), for the rest and for every draw the lane does not take.
+  // (one stack frame), for the rest and for every draw the lane does not take. kTwoSided,
+  // kCache: with two-sided lighting's back faces, with the vertex cache (FrontEndRoutines::
+  // triangles: the renderer's features).
   [[gnu::noinline]] void triangle_loop(MeshDraw& d);
+  template <bool kTwoSided, bool kCache>
   [[gnu::noinline]] uint32_t general_triangles(MeshDraw& d, uint32_t t, uint32_t end);
   [[gnu::noinline]] uint32_t lane_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] uint32_t lane_run_triangles(MeshDraw& d, uint32_t t);
@@ -198,6 +260,7 @@ class FrontEnd {
   // The lane's vertices to light (lane.cpp), at most kLightList at a time.
   static constexpr size_t kLightList = 48;
   [[gnu::noinline]] void light_list(MeshDraw& d, std::span<ScreenVertex* const> list);
+  template <bool kTwoSided, bool kCache>
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
                                                 ScreenVertex* const (&sv)[3], bool back_copies,
@@ -221,7 +284,8 @@ class FrontEnd {
   // bytes of RAM.
   static void replay_screen(FrontEnd& fe, uint8_t index, const DrawState& state);
   void (*replay_screen_)(FrontEnd& fe, uint8_t index, const DrawState& state) = nullptr;
-  [[gnu::noinline]] bool polygon_outside_band(uint16_t first, int m, Cull cull);
+  bool polygon_outside_band(uint16_t first, int m, Cull cull);
+  friend struct FrontEndParts;
   // The table full: the band (the frame's first, until then) ends higher up (EdgeTable::
   // shrink_window), its evicted triangles uncounted. False when it is one strip.
   bool shrink_band();
@@ -241,6 +305,7 @@ class FrontEnd {
   // (A flag, not a template parameter: one copy for the general triangle loop's rare paths.)
   Outcome bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
               Cull cull, const int32_t* rows = nullptr, bool cached = false);
+  bool needs_cache(size_t n, const DrawPlan& plan) const;
   // Refuses a draw the renderer links no routine for.
   bool admitted(const DrawState& state, const DrawKind& kind) const {
     return (!kind.phong || routines_->phong != nullptr) &&

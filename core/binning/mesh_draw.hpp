@@ -33,7 +33,7 @@ inline Rgb8 to_rgb8_sat(Color15 c) {
 }
 
 // What draw()'s triangle loop reads of its draw.
-struct FrontEnd::MeshDraw {
+struct MeshDraw {
   const Mesh& mesh;
   const DrawState& state;
   const VertexStage& stage;

@@ -1,12 +1,14 @@
 // The renderer: a front end (vertex stage and binning) and a strip loop, composed.
 //
-// Renderer<PF, K, kSpans>: PF the strip's pixel format (core/output/pixel_format.hpp: Rgb565Be,
-// Rgb565, Xrgb8888, Rgb888), K the strip height in rows (1..32, compile time), kSpans the span
-// states it links routines for (span_state.hpp: kAllSpans by default; draws outside the set are
-// refused). draw() and draw_screen() go to the front end (core/binning/front_end.hpp), which
-// bins the frame; render() hands the binned frame to the strip loop (core/raster/strip_loop.hpp),
-// which rasterizes it strip by strip into the sink. RAM: the caller's FrameStorage; nothing is
-// allocated, nothing holds a frame.
+// Renderer<PF, K, kSpans, kFeatures>: PF the strip's pixel format (core/output/pixel_format.hpp:
+// Rgb565Be, Rgb565, Xrgb8888, Rgb888), K the strip height in rows (1..32, compile time), kSpans
+// the span states it links routines for (span_state.hpp: kAllSpans by default; draws outside the
+// set are refused), kFeatures the front end's features it links (renderer_features.hpp: bands,
+// the vertex cache, two-sided lighting, strip skipping; kAllFeatures by default). draw() and
+// draw_screen() go to the front end (core/binning/front_end.hpp), which bins the frame; render()
+// hands the binned frame to the strip loop (core/raster/strip_loop.hpp), which rasterizes it strip
+// by strip into the sink. RAM: the caller's FrameStorage; nothing is allocated, nothing holds a
+// frame.
 #pragma once
 
 #include <algorithm>
@@ -20,13 +22,14 @@
 #include "lineraster/core/output/status.hpp"
 #include "lineraster/core/output/strip_sink.hpp"
 #include "lineraster/core/raster/frame_storage.hpp"
+#include "lineraster/core/raster/renderer_features.hpp"
 #include "lineraster/core/raster/strip_loop.hpp"
 #include "lineraster/core/span/admission.hpp"
 #include "lineraster/core/span/span_state.hpp"
 
 namespace lr {
 
-template <class PF, int K, SpanSet kSpans = kAllSpans>
+template <class PF, int K, SpanSet kSpans = kAllSpans, RendererFeatures kFeatures = kAllFeatures>
 class Renderer {
  public:
   using Pixel = typename PF::Storage;
@@ -133,11 +136,22 @@ class Renderer {
       (kSpans.has(SpanFamily::kUntextured) && detail::has(kSpans.colors, ColorPlanes::kNone));
   static constexpr bool kAttributes =
       kSpans.has(SpanFamily::kTextured) || kSpans.has(SpanFamily::kPhong);
+  // The features of kFeatures, nullptr for those it leaves out.
   static constexpr FrontEndRoutines kRoutines{
-      &admits<kSpans>, kSpans.has(SpanFamily::kPhong) ? &DrawRecords::phong_record : nullptr,
+      &admits<kSpans>,
+      kSpans.has(SpanFamily::kPhong) ? &DrawRecords::phong_record : nullptr,
       kFlat ? &VertexStage::light_face : nullptr,
       detail::has(kSpans.position, true) ? &light_point_split : nullptr,
-      kAttributes ? &VertexStage::attributes : nullptr};
+      kAttributes ? &VertexStage::attributes : nullptr,
+      kFeatures.bands ? &kBandRoutines : nullptr,
+      kFeatures.vertex_cache ? &kCacheRoutines : nullptr,
+      kFeatures.two_sided ? &front_facing_clip : nullptr,
+      kFeatures.strip_skipping ? &kSignRoutines : nullptr,
+      &FrontEndParts::triangles<kFeatures.two_sided, kFeatures.vertex_cache>};
+
+  // render() with bands (kFeatures.bands), after its checks. Inlined: one stack frame.
+  [[gnu::always_inline]] inline Status render_bands(FrameStats& stats, StripSink<PF>& sink,
+                                                    DepthSink* depth_sink);
 
   FrontEnd front_;
   StripLoop<PF, K, kSpans> strip_;
@@ -150,13 +164,35 @@ class Renderer {
 // doubling again made every other band a retry). Only a single strip that does not fit
 // drops work: what fit is drawn and kCapacity returned. One call of the strip loop's strips()
 // either way: it is inlined here once.
-template <class PF, int K, SpanSet kSpans>
-Status Renderer<PF, K, kSpans>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
+template <class PF, int K, SpanSet kSpans, RendererFeatures kFeatures>
+Status Renderer<PF, K, kSpans, kFeatures>::render(StripSink<PF>& sink, DepthSink* depth_sink) {
   // Only a begun frame has an edge table to walk: configure() leaves the buckets as the caller
   // gave them, and render() consumes them.
   if (const Status open = front_.frame_status(); open != Status::kOk) return open;
   front_.end_frame();
   FrameStats& stats = front_.mutable_stats();
+  if constexpr (!kFeatures.bands) {
+    // Without bands: what the stores hold, in one pass; what did not fit was dropped (the
+    // front end stopped binning when a store was full), and counted.
+    const bool fit = !front_.needs_bands() && !front_.band_dropped();
+    // (One BinnedFrame: each frame() is a copy on this frame, which is on the deepest path.)
+    const BinnedFrame frame = front_.frame();
+    Status st = strip_.begin(frame, stats, sink, depth_sink);
+    if (st == Status::kOk)
+      st = strip_.template strips<kFeatures.strip_skipping>(frame, 0, frame.strips, sink,
+                                                            depth_sink);
+    if (st == Status::kOk) st = strip_.end(sink, fit);
+    if (st != Status::kOk) return st;
+    if (front_.refused() != Status::kOk) return front_.refused();
+    return fit ? Status::kOk : Status::kCapacity;
+  } else {
+    return render_bands(stats, sink, depth_sink);
+  }
+}
+
+template <class PF, int K, SpanSet kSpans, RendererFeatures kFeatures>
+Status Renderer<PF, K, kSpans, kFeatures>::render_bands(FrameStats& stats, StripSink<PF>& sink,
+                                                        DepthSink* depth_sink) {
   const bool bands = front_.needs_bands();
   const bool first_binned = front_.first_band_binned();
   if (bands && !first_binned) front_.begin_bands();
@@ -181,7 +217,7 @@ Status Renderer<PF, K, kSpans>::render(StripSink<PF>& sink, DepthSink* depth_sin
       if (front_.band_dropped()) complete = false;
       s1 = front_.band_end();
     }
-    st = strip_.strips(front_.frame(), s0, s1, sink, depth_sink);
+    st = strip_.template strips<kFeatures.strip_skipping>(front_.frame(), s0, s1, sink, depth_sink);
     if (st != Status::kOk) return st;
     s0 = s1;
   }

@@ -72,9 +72,12 @@ class StripLoop {
   }
   // render() in its three steps: a frame binned in bands (Renderer::render) runs strips() once
   // per band, with that band's binned frame. end(complete = false): the frame dropped work, so
-  // its strip signatures describe nothing to keep.
+  // its strip signatures describe nothing to keep. kSkip: strips whose inputs did not change
+  // may be left out (RendererFeatures::strip_skipping; false: skip_strip() is not linked, and
+  // the frame's strip_inputs are not read).
   [[gnu::always_inline]] Status begin(const BinnedFrame& frame, FrameStats& stats,
                                       StripSink<PF>& sink, DepthSink* depth_sink);
+  template <bool kSkip = true>
   [[gnu::noinline]] Status strips(const BinnedFrame& frame, int s0, int s1, StripSink<PF>& sink,
                                   DepthSink* depth_sink);
   Status end(StripSink<PF>& sink, bool complete) {
@@ -153,6 +156,7 @@ inline Status StripLoop<PF, K, kSpans>::begin(const BinnedFrame& frame, FrameSta
 // Strips [s0, s1) of `frame` (the whole frame, or a band's binned frame: every triangle that
 // touches the band is in it, those from above in its first strip's bucket).
 template <class PF, int K, SpanSet kSpans>
+template <bool kSkip>
 Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1,
                                         StripSink<PF>& sink, DepthSink* depth_sink) {
   frame_ = frame;
@@ -166,7 +170,7 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
 
   Status st = Status::kOk;
   const bool may_skip = may_skip_;
-  uint32_t* inputs = frame_.strip_inputs.empty() ? nullptr : frame_.strip_inputs.data();
+  uint32_t* inputs = !kSkip || frame_.strip_inputs.empty() ? nullptr : frame_.strip_inputs.data();
   const auto last = static_cast<size_t>(frame_.strips);  // the last frame's half
   const Pixel bg = PF::encode(frame_.background);
   for (int s = s0; s < s1; ++s) {

@@ -55,8 +55,9 @@ class VertexStore {
   bool mesh_fits(size_t n, bool surfaces, bool tex) const {
     return vertices_fit(n) && (!surfaces || surfaces_fit(n)) && (!tex || tex_fit(n));
   }
-  bool takes_mesh(size_t n, bool surfaces, bool tex) const {
-    auto ok = [n](size_t size) { return n <= size || size >= kMinCachedStore; };
+  // (cache: false for a renderer without the vertex cache, core/raster/renderer_features.hpp.)
+  bool takes_mesh(size_t n, bool surfaces, bool tex, bool cache = true) const {
+    auto ok = [n, cache](size_t size) { return n <= size || (cache && size >= kMinCachedStore); };
     return ok(vertices_.size()) && (!surfaces || ok(surfaces_.size())) && (!tex || ok(tex_.size()));
   }
 

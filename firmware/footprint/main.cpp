@@ -160,7 +160,12 @@ lr::StaticFrameStorage<kCapacities> g_store;
 // Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
 alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_store_strip_buffers{};
 
-lr::Renderer<PF, kStripRows, kSpans> g_renderer;
+// The front end's features (core/raster/renderer_features.hpp): none but for every_feature.
+// The frame fits the stores (no bands, no vertex cache), the lights are one-sided and every
+// strip is rendered: the frame is the same as with every feature.
+constexpr lr::RendererFeatures kFeatures =
+    kConfig == kEveryFeature ? lr::kAllFeatures : lr::kNoFeatures;
+lr::Renderer<PF, kStripRows, kSpans, kFeatures> g_renderer;
 // The display: every strip folded into FNV-1a (the smoke test's checksum, so that frames compare
 // across cores and with the host), the lease protocol checked (firmware/common/ordered_sink.hpp).
 lr::fw::ChecksumConsumer<PF> g_checksum;

@@ -1,0 +1,33 @@
+// What a renderer links beyond its span routines: the front end's features a scene may not need.
+//
+// Renderer<PF, K, kSpans, kFeatures> (renderer.hpp) links the code of a feature only when
+// kFeatures has it; kAllFeatures, the default, has every one. A renderer without a feature
+// refuses what needs it with a status naming it, never draws it wrong (docs/footprint.md):
+//  - bands: a frame larger than the stores (docs/bands.md) is drawn as far as the stores hold
+//    it, and render() returns kCapacity (FrameStats counts what was dropped);
+//  - vertex_cache: a mesh with more vertices than the vertex store (surface, texture-entry
+//    store) is refused by draw() with kNotLinked; one larger than the store's free part is
+//    dropped as if the store were full (kCapacity, or the next band with bands);
+//  - two_sided: a lit Gouraud or flat draw under LightSet::two_sided is refused with kNotLinked;
+//  - strip_skipping: configure() with a FrameStorage::strip_inputs store returns kNotLinked.
+// A draw that needs none of them gives the same frame in every configuration.
+#pragma once
+
+namespace lr {
+
+struct RendererFeatures {
+  bool bands = true;           // frames larger than the stores, in bands of strips
+  bool vertex_cache = true;    // meshes larger than the vertex store, through the cache
+  bool two_sided = true;       // two-sided lighting (LightSet::two_sided)
+  bool strip_skipping = true;  // strips whose inputs did not change not rendered again
+
+  constexpr bool operator==(const RendererFeatures&) const = default;
+};
+
+// Every feature: the default, what every renderer had before the features were chosen.
+inline constexpr RendererFeatures kAllFeatures{};
+// None of them: the smallest renderer, for a scene whose frame fits its stores, one-sided
+// lighting, every strip rendered each frame (the footprint images: docs/measurements/footprint.md).
+inline constexpr RendererFeatures kNoFeatures{false, false, false, false};
+
+}  // namespace lr

@@ -1,0 +1,202 @@
+// A renderer without some of the front end's features (core/raster/renderer_features.hpp): a
+// draw that needs a feature it leaves out gets the status naming it, never a wrong frame; a
+// frame that needs none of them is the same, byte for byte, as with every feature.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "lineraster/core/raster/frame_storage.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "tests/support/recording_sink.hpp"
+
+namespace lr {
+namespace {
+
+using PF = Rgb565Be;
+constexpr int kW = 64, kH = 48, kK = 8;
+constexpr Rgb8 kBackground{10, 20, 30};
+
+Fixed fx(double v) {
+  return Fixed::from_raw(static_cast<int32_t>(std::lround(v * 65536.0)));
+}
+
+// An n x n grid of quads (2 n^2 triangles, (n + 1)^2 vertices) facing the camera, lit per
+// vertex, filling most of the viewport.
+struct Grid {
+  std::vector<Vec3> positions;
+  std::vector<Normal16> normals;
+  std::vector<std::array<uint16_t, 3>> triangles;
+  explicit Grid(int n) {
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        positions.push_back({fx(-1.2 + 2.4 * i / n), fx(-0.9 + 1.8 * j / n), fx(-2.0)});
+        // Normals leaning with x, so that the lighting varies over the grid.
+        normals.push_back({static_cast<int16_t>(-6000 + 12000 * i / n), 0, 15000});
+      }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const auto a = static_cast<uint16_t>(j * (n + 1) + i);
+        const auto b = static_cast<uint16_t>(a + 1), c = static_cast<uint16_t>(a + n + 1),
+                   d = static_cast<uint16_t>(a + n + 2);
+        triangles.push_back({a, b, d});
+        triangles.push_back({a, d, c});
+      }
+  }
+  Mesh mesh() const { return Mesh{positions, normals, {}, {}, triangles, {}}; }
+};
+
+Camera camera() {
+  Camera c;
+  EXPECT_TRUE(perspective(fx(60), Fixed::ratio(kW, kH), fx(0.5), fx(20), c.projection));
+  return c;
+}
+
+LightSet lights(bool two_sided = false) {
+  LightSet l;
+  l.lights[0].position = {fx(0.3), fx(0.5), fx(1.0)};  // directional (w = 0)
+  l.count = 1;
+  l.global_ambient = {6554, 6554, 6554};
+  l.two_sided = two_sided;
+  return l;
+}
+
+Material material() {
+  Material m;
+  m.diffuse = {26000, 20000, 9000};
+  m.specular = {16000, 16000, 16000};
+  m.shininess_q8 = 20 * 256;
+  return m;
+}
+
+DrawState lit_gouraud() {
+  DrawState s;
+  s.lighting = true;
+  s.shading = Shading::kGouraud;
+  s.depth_test = true;
+  s.cull = Cull::kBack;
+  return s;
+}
+
+FrameCapacities caps(size_t vertices = 512, size_t triangles = 512, bool strip_skipping = false) {
+  FrameCapacities c;
+  c.width = kW;
+  c.height = kH;
+  c.strip_height = kK;
+  c.vertices = vertices;
+  c.triangles = triangles;
+  c.draws = 4;
+  c.active = 256;
+  c.strip_skipping = strip_skipping;
+  return c;
+}
+
+// A renderer of the given features with its storage and a recording sink.
+template <RendererFeatures kFeatures>
+struct Rig {
+  explicit Rig(FrameCapacities c = caps()) : store(c) {}
+  BasicFrameStorage<std::vector> store;
+  std::unique_ptr<Renderer<PF, kK, kAllSpans, kFeatures>> r =
+      std::make_unique<Renderer<PF, kK, kAllSpans, kFeatures>>();
+  test::RecordingSink<PF> sink{size_t{kW} * kK};
+  Status status = Status::kOk;
+
+  Status configure() { return r->configure(store.storage(), kW, kH); }
+  // Configures, begins, draws the grid (the draw's status) and renders (status).
+  Status frame(const Grid& g, bool two_sided = false) {
+    EXPECT_EQ(configure(), Status::kOk);
+    EXPECT_EQ(r->begin_frame(camera(), lights(two_sided), kBackground), Status::kOk);
+    const Status drawn = r->draw(g.mesh(), Mat4::identity(), material(), lit_gouraud());
+    status = r->render(sink);
+    return drawn;
+  }
+  size_t covered() const {
+    size_t n = 0;
+    for (const auto p : sink.frame()) n += p != PF::encode(kBackground);
+    return n;
+  }
+};
+
+using Full = Rig<kAllFeatures>;
+using Lean = Rig<kNoFeatures>;
+
+TEST(RendererFeatures, WithoutFeaturesAFrameThatNeedsNoneIsTheSame) {
+  const Grid g(6);
+  Full full;
+  Lean lean;
+  ASSERT_EQ(full.frame(g), Status::kOk);
+  ASSERT_EQ(lean.frame(g), Status::kOk);
+  EXPECT_EQ(full.status, Status::kOk);
+  EXPECT_EQ(lean.status, Status::kOk);
+  EXPECT_GT(full.covered(), size_t{1000});
+  EXPECT_EQ(lean.sink.frame(), full.sink.frame());
+  EXPECT_EQ(lean.r->stats().triangles_binned, full.r->stats().triangles_binned);
+}
+
+TEST(RendererFeatures, WithoutBandsAFrameLargerThanTheTriangleStoreIsCapacity) {
+  const Grid g(8);  // 128 triangles, every one facing the camera
+  Full whole;       // stores that hold the frame
+  ASSERT_EQ(whole.frame(g), Status::kOk);
+  ASSERT_EQ(whole.status, Status::kOk);
+  Full banded(caps(512, 64));  // 64 triangles: drawn in bands
+  ASSERT_EQ(banded.frame(g), Status::kOk);
+  EXPECT_EQ(banded.status, Status::kOk);
+  EXPECT_GT(banded.r->stats().bands, 1u);
+  EXPECT_EQ(banded.sink.frame(), whole.sink.frame());
+  Lean lean(caps(512, 64));
+  ASSERT_EQ(lean.frame(g), Status::kOk);  // taken; what does not fit is dropped at binning
+  EXPECT_EQ(lean.status, Status::kCapacity);
+  EXPECT_EQ(lean.r->stats().bands, 1u);
+  EXPECT_EQ(lean.r->stats().triangles_binned, 64u);
+  EXPECT_EQ(lean.r->stats().dropped_triangle_capacity, 128u - 64u);
+}
+
+TEST(RendererFeatures, WithoutTheVertexCacheAMeshLargerThanTheVertexStoreIsNotLinked) {
+  const Grid g(15);  // 256 vertices, 450 triangles
+  Full whole;
+  ASSERT_EQ(whole.frame(g), Status::kOk);
+  Full cached(caps(200));  // through the vertex cache
+  ASSERT_EQ(cached.frame(g), Status::kOk);
+  EXPECT_EQ(cached.status, Status::kOk);
+  EXPECT_EQ(cached.sink.frame(), whole.sink.frame());
+  Lean lean(caps(200));
+  EXPECT_EQ(lean.frame(g), Status::kNotLinked);
+  EXPECT_EQ(lean.status, Status::kNotLinked);
+  EXPECT_EQ(lean.r->stats().draws_refused_not_linked, 1u);
+  EXPECT_EQ(lean.r->stats().triangles_binned, 0u);
+  EXPECT_EQ(lean.covered(), size_t{0});
+}
+
+TEST(RendererFeatures, WithoutTwoSidedLightingATwoSidedLitDrawIsNotLinked) {
+  const Grid g(4);
+  Full full;
+  ASSERT_EQ(full.frame(g, true), Status::kOk);
+  EXPECT_EQ(full.status, Status::kOk);
+  Lean lean;
+  EXPECT_EQ(lean.frame(g, true), Status::kNotLinked);
+  EXPECT_EQ(lean.status, Status::kNotLinked);
+  EXPECT_EQ(lean.r->stats().draws_refused_not_linked, 1u);
+  // Unlit, two-sided lighting does not apply: drawn.
+  ASSERT_EQ(lean.r->begin_frame(camera(), lights(true), kBackground), Status::kOk);
+  DrawState unlit = lit_gouraud();
+  unlit.lighting = false;
+  EXPECT_EQ(lean.r->draw(g.mesh(), Mat4::identity(), material(), unlit), Status::kOk);
+  EXPECT_EQ(lean.r->render(lean.sink), Status::kOk);
+  EXPECT_GT(lean.covered(), size_t{1000});
+}
+
+TEST(RendererFeatures, WithoutStripSkippingAStripInputsStoreIsNotLinked) {
+  Full full(caps(512, 512, true));
+  EXPECT_EQ(full.configure(), Status::kOk);
+  Lean lean(caps(512, 512, true));
+  EXPECT_EQ(lean.configure(), Status::kNotLinked);
+  EXPECT_EQ(lean.r->begin_frame(camera(), lights(), kBackground), Status::kNotConfigured);
+}
+
+}  // namespace
+}  // namespace lr
