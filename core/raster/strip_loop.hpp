@@ -431,6 +431,7 @@ template <class PF, int K, SpanSet kSpans>
     in.affine = kRgb565Lanes<PF> ? kAffineBound565 : kAffineBound8;
     if (dr.colors == ColorPlanes::kNone && !dr.triangle_colors)
       in.flat_pixel = pixel_bits<PF>(PF::encode(dr.color));
+    in.lanes_first = lanes_first_of(in);
   }
   const uint8_t draw = c.draw;
   const RowWindow& window = c.window;
@@ -451,17 +452,17 @@ template <class PF, int K, SpanSet kSpans>
     if (c.triangle_pixel)
       in.flat_pixel = pixel_bits<PF>(PF::encode(frame_.triangle_colors[node].primary));
     const UntexturedTriangle u = setup_untextured_triangle(v, window, in, t);
-    if (!u.pixels) {
+    if (!u.pixels()) {
       ++stats_->triangles_without_pixels;
       return false;
     }
-    if (u.wide) [[unlikely]]
+    if (u.wide()) [[unlikely]]
       ++stats_->triangles_wide;
     // The kinds' entries are untextured_row_index(depth, kind) = the first kind's + 2 kind.
     static_assert(untextured_row_index(true, UntexturedKind::kLanes) ==
                   untextured_row_index(true, UntexturedKind::kFlat) +
                       2 * static_cast<size_t>(UntexturedKind::kLanes));
-    t.rows = c.rows[2 * static_cast<size_t>(u.kind)];
+    t.rows = c.rows[u.row_offset()];
   }
   t.index = node;
   t.draw = draw;

@@ -135,7 +135,7 @@ TEST(Lanes, EveryPixelWithinOneRgb565StepOfTheExactColour) {
     ActiveTriangle t;
     const UntexturedTriangle u =
         setup_untextured_triangle(s, RowWindow{0, 31, lanes::kWidth}, in, t);
-    if (!u.pixels || u.kind != UntexturedKind::kLanes) continue;
+    if (!u.pixels() || u.kind() != UntexturedKind::kLanes) continue;
     ++triangles;
     std::fill(strip.depth.begin(), strip.depth.end(), 0xFFFF);
     std::fill(strip.px.begin(), strip.px.end(), 0);
