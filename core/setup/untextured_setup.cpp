@@ -285,6 +285,17 @@ bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const U
 }
 
 namespace {
+// Where a division is a library call (Armv6-M; hosts too, so that their tests run it), small_rows
+// first tries one candidate column on the middle vertex's row before dividing: the same answer.
+// A candidate's offset from the column base stays below kMaxCandidate, so that its products
+// with an edge's dy (below 2^14) fit 32 bits.
+#if defined(__arm__) && defined(__ARM_FEATURE_IDIV)
+constexpr bool kRowsCandidate = true;
+#else
+constexpr bool kRowsCandidate = true;
+#endif
+constexpr uint32_t kMaxCandidate = 1u << 16;
+
 // small_rows, inlined into setup_untextured_triangle (one copy in an image without
 // small_rows_by_hand).
 [[gnu::always_inline]] inline SmallRows small_rows_c(const ScreenVertex* const v[3],
@@ -346,11 +357,26 @@ namespace {
   // edge's last), where the triangle is widest, or another.
   const int32_t rm = mid >= first ? mid : first;
   const auto k = static_cast<uint32_t>(rm - first);
-  const int32_t cl = base + static_cast<int32_t>((ql + static_cast<uint32_t>(e2x) * k) /
-                                                 static_cast<uint32_t>(e2y));
-  const int32_t cs =
-      base + static_cast<int32_t>(mid >= first ? (qt + static_cast<uint32_t>(e1x) * k) / top_dy
-                                               : qb / btm_dy);
+  const uint32_t q_long = ql + static_cast<uint32_t>(e2x) * k;
+  const uint32_t q_short = mid >= first ? qt + static_cast<uint32_t>(e1x) * k : qb;
+  const uint32_t dy_short = mid >= first ? top_dy : btm_dy;
+  if constexpr (kRowsCandidate) {
+    // The column of (about: 5/16 for 1/3) the centroid: its centre on row rm is inside when the
+    // left edge's column is at or left of it and the right edge's right of it
+    // (floor(Q / dy) <= c < floor(Q' / dy') as products); mostly so, and then no division.
+    const int32_t c = (x0 + (((e1x + e2x) * 5) >> 4)) >> kSubpixelBits;
+    const uint32_t rel = static_cast<uint32_t>(c - base) + 1;  // 0 when c - base = -1
+    const uint32_t q_left = long_left ? q_long : q_short, q_right = long_left ? q_short : q_long;
+    const uint32_t dy_left = long_left ? static_cast<uint32_t>(e2y) : dy_short;
+    const uint32_t dy_right = long_left ? dy_short : static_cast<uint32_t>(e2y);
+    if (c >= 0 && c < w.width && rel - 1 <= kMaxCandidate && q_left < rel * dy_left &&
+        rel * dy_right <= q_right) {
+      out.result = SmallRows::kPixels;
+      return out;
+    }
+  }
+  const int32_t cl = base + static_cast<int32_t>(q_long / static_cast<uint32_t>(e2y));
+  const int32_t cs = base + static_cast<int32_t>(q_short / dy_short);
   const int32_t left = long_left ? cl : cs, right = long_left ? cs : cl;
   out.result =
       left < w.width && right > 0 && left < right ? SmallRows::kPixels : SmallRows::kLaterRows;
