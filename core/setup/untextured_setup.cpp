@@ -384,6 +384,56 @@ constexpr uint32_t kMaxCandidate = 1u << 16;
 }
 }  // namespace
 
+namespace {
+// setup_untextured_triangle after the rows (rows: their result; tried: lanes planes by hand were
+// tried with them, made: and made).
+[[gnu::always_inline]] inline UntexturedTriangle finish_triangle(const ScreenVertex* const v[3],
+                                                                 const RowWindow& w,
+                                                                 const UntexturedInput& in,
+                                                                 ActiveTriangle& t, SmallRows rows,
+                                                                 bool tried, bool made) {
+  if (rows.result == SmallRows::kSlow) [[unlikely]] {
+    const int32_t first = std::max(first_row_below(v[0]->y), w.first_min);
+    const int32_t last = std::min(last_row_at_or_above(v[2]->y), w.last_max);
+    if (!setup_rows(v, first, last, w.width, t)) return UntexturedTriangle::sliver();
+    const UntexturedSetup u = setup_untextured(v, in, t);
+    return UntexturedTriangle::made(u.kind, u.wide);
+  }
+  if (rows.result == SmallRows::kLaterRows && !later_rows_have_pixels(t, t.first_row, w.width))
+      [[unlikely]]
+    return UntexturedTriangle::sliver();
+  const int32_t d = rows.d;
+  const uint32_t m = rows.m;
+  const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
+
+  if (in.colors == ColorPlanes::kNone && !in.depth) {  // no plane at all
+    t.c[0].base = in.flat_pixel;
+    return UntexturedTriangle::made(UntexturedKind::kFlat, false);
+  }
+  UntexturedKind kind = in.colors == ColorPlanes::kNone     ? UntexturedKind::kFlat
+                        : in.colors == ColorPlanes::kAffine ? UntexturedKind::kAffine
+                                                            : UntexturedKind::kPerspective;
+  if (kind == UntexturedKind::kPerspective && in.affine_ok) {
+    const uint32_t wmin = std::min({va.w, vb.w, vc.w}), wmax = std::max({va.w, vb.w, vc.w});
+    if (wmax - wmin <= wmin >> in.affine.quick_shift || colors_within(v, wmin, wmax, in.affine))
+      kind = UntexturedKind::kAffine;
+  }
+  if (kind == UntexturedKind::kAffine && in.lanes) kind = UntexturedKind::kLanes;
+  if (!tried)
+    made = kind == UntexturedKind::kLanes && in.depth && kSmallPlanesByHand
+               ? small_lanes_planes_by_hand(v, d, m, t)
+               : kind != UntexturedKind::kPerspective && small_planes_c(v, d, m, in, kind, t);
+  else
+    made = made && kind == UntexturedKind::kLanes;  // else the planes made are not the kind's
+  if (!made) [[unlikely]] {
+    const UntexturedSetup u = setup_untextured(v, in, t);
+    return UntexturedTriangle::made(u.kind, u.wide);
+  }
+  return UntexturedTriangle::made(kind, false);
+}
+
+}  // namespace
+
 SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveTriangle& t) {
   return small_rows_c(v, w, t);
 }
@@ -772,10 +822,15 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 
 namespace {
 // The frame of the small lanes setup by hand (the words above), with the steps to take in word 21:
-// kRowsStep, kPlanesStep or both (the planes then only when the rows' result is kPixels).
-constexpr uint32_t kRowsStep = 1, kPlanesStep = 2;
+// kRowsStep, kPlanesStep or both (the planes then only when the rows' result is kPixels), and
+// LanesSetup's: kSortStep (the vertices from the three indices at word 23 into the vertex store
+// at word 24, sorted by y as sort_by_y sorts them) and kAffineStep (when the planes were made,
+// the affine colour test, its quick part's shift at word 25, the bound and green's weight at 26
+// and 27: the result 3 when it fails).
+constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8;
 struct LanesFrame {
-  uint32_t w[23];
+  uint32_t w[28];
+  LanesFrame() = default;
   LanesFrame(const ScreenVertex* const v[3], ActiveTriangle& t, uint32_t steps) {
     w[0] = reinterpret_cast<uintptr_t>(v[0]);
     w[1] = reinterpret_cast<uintptr_t>(v[1]);
@@ -812,8 +867,51 @@ struct LanesFrame {
   static_assert(offsetof(ActiveTriangle, z) == 52 && offsetof(ActiveTriangle, c) == 64 &&
                 sizeof(Plane) == 12 && offsetof(Plane, base) == 0 && offsetof(Plane, gx) == 4);
   static_assert(kFastMaxSpread == 10 && kFastMaxDepthSpread == 35 && kSmallMaxDepthBits == 26);
+  static_assert(offsetof(ScreenVertex, y) == 4 && offsetof(ScreenVertex, w) == 12 &&
+                offsetof(Color15, r) == 0 && sizeof(ScreenVertex) == 24);
   uint32_t* const f = frame.w;
   asm volatile(
+      "ldr    r0, [%[f], #84]\n\t"
+      "tst    r0, #4\n\t"
+      "beq    11f\n\t"
+      // the vertices: r0-r2, their y r4-r6
+      "ldr    r0, [%[f], #92]\n\t"
+      "ldr    r3, [%[f], #96]\n\t"
+      "ldrh   r4, [r0]\n\t"
+      "ldrh   r5, [r0, #2]\n\t"
+      "ldrh   r6, [r0, #4]\n\t"
+      "add    r4, r4, r4, lsl #1\n\t"
+      "add    r0, r3, r4, lsl #3\n\t"
+      "add    r5, r5, r5, lsl #1\n\t"
+      "add    r1, r3, r5, lsl #3\n\t"
+      "add    r6, r6, r6, lsl #1\n\t"
+      "add    r2, r3, r6, lsl #3\n\t"
+      "ldr    r4, [r0, #4]\n\t"
+      "ldr    r5, [r1, #4]\n\t"
+      "ldr    r6, [r2, #4]\n\t"
+      // sort_by_y's network: (0, 1), (1, 2), (0, 1), swapped when the later lies strictly above
+      "cmp    r5, r4\n\t"
+      "itttt  lt\n\t"
+      "movlt  r3, r0\n\t"
+      "movlt  r0, r1\n\t"
+      "movlt  r1, r3\n\t"
+      "movlt  r3, r4\n\t"
+      "itt    lt\n\t"
+      "movlt  r4, r5\n\t"
+      "movlt  r5, r3\n\t"
+      "cmp    r6, r5\n\t"
+      "itttt  lt\n\t"
+      "movlt  r3, r1\n\t"
+      "movlt  r1, r2\n\t"
+      "movlt  r2, r3\n\t"
+      "movlt  r5, r6\n\t"
+      "cmp    r5, r4\n\t"
+      "ittt   lt\n\t"
+      "movlt  r3, r0\n\t"
+      "movlt  r0, r1\n\t"
+      "movlt  r1, r3\n\t"
+      "stm    %[f], {r0, r1, r2}\n\t"
+      "11:\n\t"
       "ldr    r0, [%[f], #84]\n\t"
       "tst    r0, #1\n\t"
       "beq    10f\n\t" LR_SMALL_ROWS_ASM
@@ -822,7 +920,82 @@ struct LanesFrame {
       "ldr    r0, [%[f], #84]\n\t"
       "tst    r0, #2\n\t"
       "beq    20f\n\t"
-      "10:\n\t" LR_SMALL_PLANES_ASM "20:\n\t"
+      "10:\n\t" LR_SMALL_PLANES_ASM
+      // the affine colour test (affine_within): w_max - w_min <= w_min >> shift, or
+      // (w_max - w_min) D <= bound w_min with D the largest channel range (green's times its
+      // weight); else the result 3. w_min r8, w_max - w_min r9.
+      "cmp    r0, #0\n\t"
+      "beq    20f\n\t"
+      "ldr    r1, [%[f], #84]\n\t"
+      "tst    r1, #8\n\t"
+      "beq    20f\n\t"
+      "ldm    %[f], {r2, r3, r4}\n\t"
+      "ldr    r5, [r2, #12]\n\t"
+      "ldr    r6, [r3, #12]\n\t"
+      "ldr    r1, [r4, #12]\n\t"
+      "cmp    r5, r6\n\t"
+      "ite    lo\n\t"
+      "movlo  r8, r5\n\t"
+      "movhs  r8, r6\n\t"
+      "ite    lo\n\t"
+      "movlo  r9, r6\n\t"
+      "movhs  r9, r5\n\t"
+      "cmp    r1, r8\n\t"
+      "it     lo\n\t"
+      "movlo  r8, r1\n\t"
+      "cmp    r1, r9\n\t"
+      "it     hi\n\t"
+      "movhi  r9, r1\n\t"
+      "sub    r9, r9, r8\n\t"
+      "ldr    r1, [%[f], #100]\n\t"
+      "lsr    r1, r8, r1\n\t"
+      "cmp    r9, r1\n\t"
+      "bls    21f\n\t"
+      // the ranges of (g, r) as 16-bit lanes: maximum r10, minimum r11, then r10 - r11
+      "ldr    r5, [r2, #16]\n\t"
+      "ldr    r6, [r3, #16]\n\t"
+      "ldr    r1, [r4, #16]\n\t"
+      "usub16 r10, r5, r6\n\t"
+      "sel    r10, r5, r6\n\t"
+      "sel    r11, r6, r5\n\t"
+      "usub16 r12, r10, r1\n\t"
+      "sel    r10, r10, r1\n\t"
+      "usub16 r12, r11, r1\n\t"
+      "sel    r11, r1, r11\n\t"
+      "usub16 r10, r10, r11\n\t"
+      // blue's: the low lanes of the words at 20
+      "ldr    r5, [r2, #20]\n\t"
+      "ldr    r6, [r3, #20]\n\t"
+      "ldr    r1, [r4, #20]\n\t"
+      "usub16 r11, r5, r6\n\t"
+      "sel    r11, r5, r6\n\t"
+      "sel    r12, r6, r5\n\t"
+      "usub16 r5, r11, r1\n\t"
+      "sel    r11, r11, r1\n\t"
+      "usub16 r5, r12, r1\n\t"
+      "sel    r12, r1, r12\n\t"
+      "usub16 r11, r11, r12\n\t"
+      // D r11: the largest of blue's, red's and green's times its weight
+      "uxth   r11, r11\n\t"
+      "uxth   r12, r10\n\t"
+      "lsr    r10, r10, #16\n\t"
+      "ldrd   r5, r6, [%[f], #104]\n\t"
+      "mul    r10, r10, r6\n\t"
+      "cmp    r11, r12\n\t"
+      "it     lo\n\t"
+      "movlo  r11, r12\n\t"
+      "cmp    r11, r10\n\t"
+      "it     lo\n\t"
+      "movlo  r11, r10\n\t"
+      "umull  r1, r2, r9, r11\n\t"
+      "umull  r3, r4, r5, r8\n\t"
+      "subs   r3, r3, r1\n\t"
+      "sbcs   r4, r4, r2\n\t"
+      "it     lo\n\t"
+      "movlo  r0, #3\n\t"
+      "21:\n\t"
+      "str    r0, [%[f], #88]\n\t"
+      "20:\n\t"
       :
       : [f] "r"(f)
       : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc",
@@ -854,6 +1027,43 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint3
   frame.w[6] = m;
   small_lanes_asm(frame);
   return frame.planes();
+}
+
+namespace {
+[[gnu::noinline]] UntexturedTriangle finish_after_hand(const LanesFrame& f, const RowWindow& w,
+                                                       const UntexturedInput& in,
+                                                       ActiveTriangle& t) {
+  const ScreenVertex* const v[3] = {reinterpret_cast<const ScreenVertex*>(f.w[0]),
+                                    reinterpret_cast<const ScreenVertex*>(f.w[1]),
+                                    reinterpret_cast<const ScreenVertex*>(f.w[2])};
+  const SmallRows rows = f.rows();
+  return finish_triangle(v, w, in, t, rows, rows.result == SmallRows::kPixels, f.w[22] != 0);
+}
+}  // namespace
+
+void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
+                         const ScreenVertex* vertices) {
+  static_assert(sizeof(frame_) == sizeof(LanesFrame) && alignof(LanesSetup) >= 4);
+  w_ = &w;
+  in_ = &in;
+  frame_[3] = reinterpret_cast<uintptr_t>(&w);
+  frame_[21] = kSortStep | kRowsStep | kPlanesStep |
+               (in.colors == ColorPlanes::kPerspective ? kAffineStep : 0u);
+  frame_[24] = reinterpret_cast<uintptr_t>(vertices);
+  frame_[25] = static_cast<uint32_t>(in.affine.quick_shift);
+  frame_[26] = in.affine.bound;
+  frame_[27] = in.affine.green_weight;
+}
+
+UntexturedTriangle LanesSetup::set_up(const uint16_t index[3], ActiveTriangle& t) {
+  auto& f = *reinterpret_cast<LanesFrame*>(frame_);
+  f.w[4] = reinterpret_cast<uintptr_t>(&t);
+  f.w[22] = 0;
+  f.w[23] = reinterpret_cast<uintptr_t>(index);
+  small_lanes_asm(f);
+  if (f.w[22] == 1) [[likely]]
+    return UntexturedTriangle::made(UntexturedKind::kLanes, false);
+  return finish_after_hand(f, *w_, *in_, t);
 }
 #undef LR_SP_FINISH
 #undef LR_SP_PLANE
@@ -896,6 +1106,19 @@ bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindo
   rows = small_rows_by_hand(v, w, t);
   return false;
 }
+
+void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
+                         const ScreenVertex* vertices) {
+  w_ = &w;
+  in_ = &in;
+  vertices_ = vertices;
+}
+
+UntexturedTriangle LanesSetup::set_up(const uint16_t index[3], ActiveTriangle& t) {
+  const ScreenVertex* v[3] = {&vertices_[index[0]], &vertices_[index[1]], &vertices_[index[2]]};
+  sort_by_y(v);
+  return setup_untextured_triangle(v, *w_, *in_, t);
+}
 #endif
 #ifdef LR_SMALL_ROWS_ASM
 #undef LR_SMALL_ROWS_ASM
@@ -912,44 +1135,7 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
   } else {
     rows = kSmallRowsByHand ? small_rows_by_hand(v, w, t) : small_rows_c(v, w, t);
   }
-  if (rows.result == SmallRows::kSlow) [[unlikely]] {
-    const int32_t first = std::max(first_row_below(v[0]->y), w.first_min);
-    const int32_t last = std::min(last_row_at_or_above(v[2]->y), w.last_max);
-    if (!setup_rows(v, first, last, w.width, t)) return UntexturedTriangle::sliver();
-    const UntexturedSetup u = setup_untextured(v, in, t);
-    return UntexturedTriangle::made(u.kind, u.wide);
-  }
-  if (rows.result == SmallRows::kLaterRows && !later_rows_have_pixels(t, t.first_row, w.width))
-      [[unlikely]]
-    return UntexturedTriangle::sliver();
-  const int32_t d = rows.d;
-  const uint32_t m = rows.m;
-  const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
-
-  if (in.colors == ColorPlanes::kNone && !in.depth) {  // no plane at all
-    t.c[0].base = in.flat_pixel;
-    return UntexturedTriangle::made(UntexturedKind::kFlat, false);
-  }
-  UntexturedKind kind = in.colors == ColorPlanes::kNone     ? UntexturedKind::kFlat
-                        : in.colors == ColorPlanes::kAffine ? UntexturedKind::kAffine
-                                                            : UntexturedKind::kPerspective;
-  if (kind == UntexturedKind::kPerspective && in.affine_ok) {
-    const uint32_t wmin = std::min({va.w, vb.w, vc.w}), wmax = std::max({va.w, vb.w, vc.w});
-    if (wmax - wmin <= wmin >> in.affine.quick_shift || colors_within(v, wmin, wmax, in.affine))
-      kind = UntexturedKind::kAffine;
-  }
-  if (kind == UntexturedKind::kAffine && in.lanes) kind = UntexturedKind::kLanes;
-  if (!tried)
-    made = kind == UntexturedKind::kLanes && in.depth && kSmallPlanesByHand
-               ? small_lanes_planes_by_hand(v, d, m, t)
-               : kind != UntexturedKind::kPerspective && small_planes_c(v, d, m, in, kind, t);
-  else
-    made = made && kind == UntexturedKind::kLanes;  // else the planes made are not the kind's
-  if (!made) [[unlikely]] {
-    const UntexturedSetup u = setup_untextured(v, in, t);
-    return UntexturedTriangle::made(u.kind, u.wide);
-  }
-  return UntexturedTriangle::made(kind, false);
+  return finish_triangle(v, w, in, t, rows, tried, made);
 }
 
 UntexturedSetup setup_untextured(const ScreenVertex* const v[3], const UntexturedInput& in,

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 #include "lineraster/core/output/color.hpp"
 #include "lineraster/core/scene/draw_state.hpp"
@@ -98,6 +99,7 @@ class UntexturedTriangle {
   constexpr bool wide() const { return (bits_ & 8u) != 0; }
   // 2 kind: the offset of the kind's row loop from kFlat's (untextured_row_index).
   constexpr uint32_t row_offset() const { return bits_ & 6u; }
+  constexpr bool operator==(const UntexturedTriangle&) const = default;
 
  private:
   constexpr explicit UntexturedTriangle(uint32_t bits) : bits_(bits) {}
@@ -110,6 +112,25 @@ static_assert(kUntexturedKinds <= 4);
 // for all of it; the others setup_rows and setup_untextured.
 UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
                                              const UntexturedInput& in, ActiveTriangle& t);
+
+// setup_untextured_triangle for the triangles of one strip whose draw has lanes_first: what
+// stays the same between them (the window, the input, the vertex store) given once, then one call
+// per triangle from its three vertex indices (in submission order: sorted here by y). Where
+// kSmallPlanesByHand, vertex fetch, sort, rows, planes and the affine colour test's quick part
+// are one block of hand-made code (the rest, rare, as setup_untextured_triangle does it); the
+// same result and record as sort_by_y and setup_untextured_triangle everywhere. w and in must
+// outlive the calls (the strip loop's setup context holds them).
+class LanesSetup {
+ public:
+  void prepare(const RowWindow& w, const UntexturedInput& in, const ScreenVertex* vertices);
+  UntexturedTriangle set_up(const uint16_t index[3], ActiveTriangle& t);
+
+ private:
+  const RowWindow* w_ = nullptr;
+  const UntexturedInput* in_ = nullptr;
+  const ScreenVertex* vertices_ = nullptr;
+  uint32_t frame_[28] = {};  // the hand-made block's frame (untextured_setup.cpp)
+};
 
 // The planes of the triangle with vertices v sorted by y (setup_rows' order: vertex 0 is the
 // top one) and non-zero area.
@@ -183,6 +204,17 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint3
 // elsewhere: there only the rows are made).
 bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
                                   ActiveTriangle& t, SmallRows& rows);
+
+// What the strip loop keeps of LanesSetup: nothing where it is not by hand (its setup context
+// stays small on cores with few registers).
+struct NoLanesSetup {
+  void prepare(const RowWindow& /*w*/, const UntexturedInput& /*in*/,
+               const ScreenVertex* /*vertices*/) {}
+  UntexturedTriangle set_up(const uint16_t /*index*/[3], ActiveTriangle& /*t*/) {
+    return UntexturedTriangle::sliver();
+  }
+};
+using StripLanesSetup = std::conditional_t<kSmallPlanesByHand, LanesSetup, NoLanesSetup>;
 
 // The short path's limits (docs/numerics.md#untextured-planes): the largest edge component, the
 // spread of affine and flat triangles and of perspective ones, and the depth plane's spread plus

@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "lineraster/core/output/pixel_format.hpp"
 #include "lineraster/core/raster/untextured_rows.hpp"
@@ -311,6 +312,66 @@ inline Tally run_small_triangles(uint32_t cases, uint32_t seed = 99991u) {
       ++tally.triangles;
     else if (ra.result != SmallRows::kSlow)
       ++tally.visits;
+  }
+  return tally;
+}
+
+// Runs `cases` random triangles of random_triangle's kinds, their w and colours spread so that
+// the affine colour test goes every way, through LanesSetup (from their vertex indices in a
+// random order) and through sort_by_y and setup_untextured_triangle without lanes_first: the
+// same result and the same record. triangles counts the lanes ones, visits the slivers and
+// pixels the others (perspective planes, or the general path).
+inline Tally run_lanes_setup(uint32_t cases, uint32_t seed = 5151u) {
+  Random rng;
+  rng.s = seed;
+  Tally tally;
+  UntexturedInput in;
+  in.depth = true;
+  in.lanes = true;
+  in.affine_ok = true;
+  in.affine = kAffineBound565;
+  for (uint32_t c = 0; c < cases; ++c) {
+    in.colors = rng.in(0, 7) == 0 ? ColorPlanes::kAffine : ColorPlanes::kPerspective;
+    in.lanes_first = lanes_first_of(in);
+    ScreenVertex v[3];
+    random_triangle(rng, v);
+    if (signed_area2(v[0], v[1], v[2]) == 0) continue;
+    const uint32_t w0 = (1u << 16) + rng.next() % (1u << 22);
+    const int wmode = rng.in(0, 2);       // w equal, close (the quick test) or spread
+    const int cmode = rng.in(0, 2);       // colours random, close or equal
+    const bool near = rng.in(0, 3) != 0;  // depths close: the small path's planes
+    const uint32_t z0 = rng.next() % (kDepthMax - 8192u);
+    for (ScreenVertex& x : v) {
+      if (near) x.z = z0 + rng.next() % 8192u;
+      x.w = wmode == 0 ? w0 : wmode == 1 ? w0 + rng.next() % (w0 >> 5) : w0 + rng.next() % w0;
+      if (cmode > 0) {
+        const uint16_t spread = cmode == 1 ? 600 : 0;
+        x.color = Color15{static_cast<uint16_t>(16000 + rng.in(0, spread)),
+                          static_cast<uint16_t>(16000 + rng.in(0, spread)),
+                          static_cast<uint16_t>(16000 + rng.in(0, spread))};
+      }
+    }
+    uint16_t index[3] = {0, 1, 2};
+    for (int i = 2; i > 0; --i) std::swap(index[i], index[rng.in(0, i)]);
+    const RowWindow window{rng.in(-4, kHeight / 2), kHeight - 1, kWidth};
+    ActiveTriangle a, b;
+    std::memset(static_cast<void*>(&a), 0, sizeof a);
+    std::memset(static_cast<void*>(&b), 0, sizeof b);
+    LanesSetup lanes;
+    lanes.prepare(window, in, v);
+    const UntexturedTriangle ua = lanes.set_up(index, a);
+    const ScreenVertex* s[3] = {&v[index[0]], &v[index[1]], &v[index[2]]};
+    sort_by_y(s);
+    UntexturedInput plain = in;
+    plain.lanes_first = false;
+    const UntexturedTriangle ub = setup_untextured_triangle(s, window, plain, b);
+    if (!(ua == ub) || std::memcmp(&a, &b, sizeof a) != 0) ++tally.differing;
+    if (!ub.pixels())
+      ++tally.visits;
+    else if (ub.kind() == UntexturedKind::kLanes && !ub.wide())
+      ++tally.triangles;
+    else
+      ++tally.pixels;
   }
   return tally;
 }

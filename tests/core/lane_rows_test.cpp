@@ -83,6 +83,16 @@ TEST(SmallRows, PixelsOnTheMiddleRowAsTheRecordsColumnsSay) {
   EXPECT_GT(all_nudged, 10000);
 }
 
+// LanesSetup (the strip loop's call for lanes draws: by hand on Armv7E-M, lr_span_check compares
+// it there) against sort_by_y and setup_untextured_triangle.
+TEST(LanesSetup, FromIndicesAsSortAndSetup) {
+  const lanes::Tally t = lanes::run_lanes_setup(30000);
+  EXPECT_EQ(t.differing, 0u);
+  EXPECT_GT(t.triangles, 5000u);
+  EXPECT_GT(t.pixels, 1000u);
+  EXPECT_GT(t.visits, 1000u);
+}
+
 TEST(LaneSpan, StepsEqualTheDirectEvaluationOfThePlanes) {
   std::mt19937 rng(11);
   std::uniform_int_distribution<uint32_t> any;
