@@ -1055,15 +1055,12 @@ void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
   frame_[27] = in.affine.green_weight;
 }
 
-UntexturedTriangle LanesSetup::set_up(const uint16_t index[3], ActiveTriangle& t) {
-  auto& f = *reinterpret_cast<LanesFrame*>(frame_);
-  f.w[4] = reinterpret_cast<uintptr_t>(&t);
-  f.w[22] = 0;
-  f.w[23] = reinterpret_cast<uintptr_t>(index);
-  small_lanes_asm(f);
-  if (f.w[22] == 1) [[likely]]
-    return UntexturedTriangle::made(UntexturedKind::kLanes, false);
-  return finish_after_hand(f, *w_, *in_, t);
+void LanesSetup::block(uint32_t* frame) {
+  small_lanes_asm(*reinterpret_cast<LanesFrame*>(frame));
+}
+
+UntexturedTriangle LanesSetup::rest(const uint16_t /*index*/[3], ActiveTriangle& t) {
+  return finish_after_hand(*reinterpret_cast<const LanesFrame*>(frame_), *w_, *in_, t);
 }
 #undef LR_SP_FINISH
 #undef LR_SP_PLANE
@@ -1114,7 +1111,9 @@ void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
   vertices_ = vertices;
 }
 
-UntexturedTriangle LanesSetup::set_up(const uint16_t index[3], ActiveTriangle& t) {
+void LanesSetup::block(uint32_t* /*frame*/) {}
+
+UntexturedTriangle LanesSetup::rest(const uint16_t index[3], ActiveTriangle& t) {
   const ScreenVertex* v[3] = {&vertices_[index[0]], &vertices_[index[1]], &vertices_[index[2]]};
   sort_by_y(v);
   return setup_untextured_triangle(v, *w_, *in_, t);

@@ -113,25 +113,6 @@ static_assert(kUntexturedKinds <= 4);
 UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
                                              const UntexturedInput& in, ActiveTriangle& t);
 
-// setup_untextured_triangle for the triangles of one strip whose draw has lanes_first: what
-// stays the same between them (the window, the input, the vertex store) given once, then one call
-// per triangle from its three vertex indices (in submission order: sorted here by y). Where
-// kSmallPlanesByHand, vertex fetch, sort, rows, planes and the affine colour test's quick part
-// are one block of hand-made code (the rest, rare, as setup_untextured_triangle does it); the
-// same result and record as sort_by_y and setup_untextured_triangle everywhere. w and in must
-// outlive the calls (the strip loop's setup context holds them).
-class LanesSetup {
- public:
-  void prepare(const RowWindow& w, const UntexturedInput& in, const ScreenVertex* vertices);
-  UntexturedTriangle set_up(const uint16_t index[3], ActiveTriangle& t);
-
- private:
-  const RowWindow* w_ = nullptr;
-  const UntexturedInput* in_ = nullptr;
-  const ScreenVertex* vertices_ = nullptr;
-  uint32_t frame_[28] = {};  // the hand-made block's frame (untextured_setup.cpp)
-};
-
 // The planes of the triangle with vertices v sorted by y (setup_rows' order: vertex 0 is the
 // top one) and non-zero area.
 UntexturedSetup setup_untextured(const ScreenVertex* const v[3], const UntexturedInput& in,
@@ -204,6 +185,39 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint3
 // elsewhere: there only the rows are made).
 bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
                                   ActiveTriangle& t, SmallRows& rows);
+
+// setup_untextured_triangle for the triangles of one strip whose draw has lanes_first: what
+// stays the same between them (the window, the input, the vertex store) given once, then one call
+// per triangle from its three vertex indices (in submission order: sorted here by y). Where
+// kSmallPlanesByHand, vertex fetch, sort, rows, planes and the affine colour test's quick part
+// are one block of hand-made code (the rest, rare, as setup_untextured_triangle does it); the
+// same result and record as sort_by_y and setup_untextured_triangle everywhere. w and in must
+// outlive the calls (the strip loop's setup context holds them).
+class LanesSetup {
+ public:
+  void prepare(const RowWindow& w, const UntexturedInput& in, const ScreenVertex* vertices);
+  UntexturedTriangle set_up(const uint16_t index[3], ActiveTriangle& t) {
+    if constexpr (kSmallPlanesByHand) {  // 32-bit addresses
+      frame_[4] = static_cast<uint32_t>(reinterpret_cast<uintptr_t>(&t));
+      frame_[22] = 0;
+      frame_[23] = static_cast<uint32_t>(reinterpret_cast<uintptr_t>(index));
+      block(frame_);
+      if (frame_[22] == 1) [[likely]]  // a lanes triangle, rows and planes made
+        return UntexturedTriangle::made(UntexturedKind::kLanes, false);
+    }
+    return rest(index, t);
+  }
+
+ private:
+  // The hand-made block where kSmallPlanesByHand (nothing elsewhere), and what remains after it.
+  static void block(uint32_t* frame);
+  UntexturedTriangle rest(const uint16_t index[3], ActiveTriangle& t);
+
+  const RowWindow* w_ = nullptr;
+  const UntexturedInput* in_ = nullptr;
+  const ScreenVertex* vertices_ = nullptr;
+  uint32_t frame_[28] = {};  // the hand-made block's frame (untextured_setup.cpp)
+};
 
 // What the strip loop keeps of LanesSetup: nothing where it is not by hand (its setup context
 // stays small on cores with few registers).
