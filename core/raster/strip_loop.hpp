@@ -102,6 +102,8 @@ class StripLoop {
     bool triangle_pixel = false;  // flat with a colour per triangle
     const RowFn* rows = nullptr;  // the untextured row loops of the draw's depth test, by kind
     UntexturedInput in;           // the untextured setup's input for the draw
+    bool lanes = false;           // in.lanes_first where kSmallPlanesByHand: lanes_setup's
+    [[no_unique_address]] StripLanesSetup lanes_setup;  // prepared for the draw when lanes
   };
   SetupContext setup_context(int strip) const {
     SetupContext c;
@@ -405,9 +407,6 @@ template <class PF, int K, SpanSet kSpans>
 [[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node, SetupContext& c,
                                                                     uint16_t slot) {
   const BinnedTriangle& bt = frame_.triangles[node];
-  const ScreenVertex* v[3];
-  for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
-  sort_by_y(v);
   ActiveTriangle& t = storage_.active[slot];
   constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
@@ -435,9 +434,29 @@ template <class PF, int K, SpanSet kSpans>
     in.affine = kRgb565Lanes<PF> ? kAffineBound565 : kAffineBound8;
     if (dr.colors == ColorPlanes::kNone && !dr.triangle_colors)
       in.flat_pixel = pixel_bits<PF>(PF::encode(dr.color));
+    in.lanes_first = lanes_first_of(in);
+    c.lanes = kSmallPlanesByHand && in.lanes_first && !c.legacy;
+    if (kSmallPlanesByHand && c.lanes) c.lanes_setup.prepare(c.window, in, frame_.vertices.data());
   }
   const uint8_t draw = c.draw;
   const RowWindow& window = c.window;
+  if (kSmallPlanesByHand && c.lanes) [[likely]] {  // the common case: one call from the indices
+    t.ext = nullptr;
+    const UntexturedTriangle u = c.lanes_setup.set_up(bt.v, t);
+    if (!u.pixels()) {
+      ++stats_->triangles_without_pixels;
+      return false;
+    }
+    if (u.wide()) [[unlikely]]
+      ++stats_->triangles_wide;
+    t.rows = c.rows[u.row_offset()];
+    t.index = node;
+    t.draw = draw;
+    return true;
+  }
+  const ScreenVertex* v[3];
+  for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
+  sort_by_y(v);
   if (kTexture && c.legacy) {
     const DrawRecord& dr = frame_.draws[draw];
     const int32_t first = std::max<int32_t>(first_row_below(v[0]->y), window.first_min);
@@ -455,17 +474,17 @@ template <class PF, int K, SpanSet kSpans>
     if (c.triangle_pixel)
       in.flat_pixel = pixel_bits<PF>(PF::encode(frame_.triangle_colors[node].primary));
     const UntexturedTriangle u = setup_untextured_triangle(v, window, in, t);
-    if (!u.pixels) {
+    if (!u.pixels()) {
       ++stats_->triangles_without_pixels;
       return false;
     }
-    if (u.wide) [[unlikely]]
+    if (u.wide()) [[unlikely]]
       ++stats_->triangles_wide;
     // The kinds' entries are untextured_row_index(depth, kind) = the first kind's + 2 kind.
     static_assert(untextured_row_index(true, UntexturedKind::kLanes) ==
                   untextured_row_index(true, UntexturedKind::kFlat) +
                       2 * static_cast<size_t>(UntexturedKind::kLanes));
-    t.rows = c.rows[2 * static_cast<size_t>(u.kind)];
+    t.rows = c.rows[u.row_offset()];
   }
   t.index = node;
   t.draw = draw;

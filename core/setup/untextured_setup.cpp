@@ -284,235 +284,18 @@ bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const U
   return small_planes_c(v, d, m, in, kind, t);
 }
 
-#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && defined(__ARM_FEATURE_IDIV) && \
-    !defined(__OPTIMIZE_SIZE__)
-// small_planes of a lanes triangle with depth by hand (Armv7E-M): GCC 12 spilled the edges and
-// the plane kind's factor around every plane. The one operand (left to the compiler) points to a
-// frame of 22 words: the vertices (0, 4, 8), d (12), m (16), the triangle (20), the result (24,
-// 1 when the planes were made), then fx, fy (32), c0, r0 (40), rs, tg (48), the depth
-// differences (56), its a0 and scale exponent (64), a plane's a0 (72) and blue's differences (76).
-// While the planes are made: E1x r3, E1y r4, E2x r5, E2y r6, the factor r12, left lr.
-// LR_SP_SCALE: plane_scale of rs in r8 and s in r9: r12 = rs >> min(-s, 31) (or rs), lr = s or 0.
-#define LR_SP_SCALE       \
-  "usat   lr, #5, r9\n\t" \
-  "rsb    r9, r9, #0\n\t" \
-  "usat   r9, #5, r9\n\t" \
-  "asr    r12, r8, r9\n\t"
-// LR_SP_PLANE: d1 r0, d2 r1 -> off - px c0 - py r0 in r2, px r8, py r9 (r0, r1, r10, r11 scratch).
-#define LR_SP_PLANE                  \
-  "mul    r8, r0, r6\n\t"            \
-  "mls    r8, r1, r4, r8\n\t"        \
-  "mul    r9, r1, r3\n\t"            \
-  "mls    r9, r0, r5, r9\n\t"        \
-  "smmul  r8, r8, r12\n\t"           \
-  "smmul  r9, r9, r12\n\t"           \
-  "ldrd   r10, r11, [%[f], #32]\n\t" \
-  "smmul  r2, r9, r11\n\t"           \
-  "smmla  r2, r8, r10, r2\n\t"       \
-  "ldrd   r10, r11, [%[f], #40]\n\t" \
-  "mls    r2, r8, r10, r2\n\t"       \
-  "mls    r2, r9, r11, r2\n\t"
-// LR_SP_FINISH: the base (a0 from the frame's word 72, or OFF) and the gradients times 2^left.
-#define LR_SP_FINISH(OFF)    \
-  "lsl    r2, r2, lr\n\t"    \
-  "lsl    r8, r8, lr\n\t"    \
-  "lsl    r9, r9, lr\n\t"    \
-  "ldr    r10, [%[f], #" OFF \
-  "]\n\t"                    \
-  "add    r2, r2, r10\n\t"   \
-  "ldr    r10, [%[f], #20]\n\t"
-bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
-                                ActiveTriangle& t) {
-  static_assert(offsetof(ScreenVertex, z) == 8 && offsetof(ScreenVertex, color) == 16 &&
-                offsetof(Color15, g) == 2 && offsetof(Color15, b) == 4);
-  static_assert(offsetof(ActiveTriangle, z) == 52 && offsetof(ActiveTriangle, c) == 64 &&
-                sizeof(Plane) == 12 && offsetof(Plane, base) == 0 && offsetof(Plane, gx) == 4);
-  static_assert(kFastMaxSpread == 10 && kFastMaxDepthSpread == 35 && kSmallMaxDepthBits == 26 &&
-                kSmallEdgeBits == 14);
-  uint32_t frame[22];
-  frame[0] = reinterpret_cast<uintptr_t>(v[0]);
-  frame[1] = reinterpret_cast<uintptr_t>(v[1]);
-  frame[2] = reinterpret_cast<uintptr_t>(v[2]);
-  frame[3] = static_cast<uint32_t>(d);
-  frame[4] = m;
-  frame[5] = reinterpret_cast<uintptr_t>(&t);
-  uint32_t* const f = frame;
-  asm volatile(
-      // zbits r6, lz r11, bm r12, the limits
-      "ldm    %[f], {r0, r1, r2}\n\t"
-      "ldr    r3, [r0, #8]\n\t"
-      "ldr    r4, [r1, #8]\n\t"
-      "ldr    r5, [r2, #8]\n\t"
-      "lsr    r3, r3, #1\n\t"
-      "rsb    r4, r3, r4, lsr #1\n\t"
-      "rsb    r5, r3, r5, lsr #1\n\t"
-      "eor    r6, r4, r4, asr #31\n\t"
-      "sub    r6, r6, r4, asr #31\n\t"
-      "eor    r8, r5, r5, asr #31\n\t"
-      "sub    r8, r8, r5, asr #31\n\t"
-      "orr    r6, r6, r8\n\t"
-      "clz    r6, r6\n\t"
-      "rsb    r6, r6, #32\n\t"
-      "ldrd   r8, r9, [%[f], #12]\n\t"
-      "eor    r10, r8, r8, asr #31\n\t"
-      "sub    r10, r10, r8, asr #31\n\t"
-      "clz    r11, r10\n\t"
-      "clz    r12, r9\n\t"
-      "rsb    r12, r12, #32\n\t"
-      "add    lr, r11, r12, lsl #1\n\t"
-      "sub    lr, lr, #32\n\t"
-      "cmp    lr, #10\n\t"
-      "bgt    8f\n\t"
-      "cmp    r6, #26\n\t"
-      "bgt    8f\n\t"
-      "add    lr, lr, r6\n\t"
-      "cmp    lr, #35\n\t"
-      "bgt    8f\n\t"
-      // tg r9 = 36 - lz - bm; the depth differences below 2^16 (zsh = zbits - 16 or 0)
-      "rsb    r9, r11, #36\n\t"
-      "sub    r9, r9, r12\n\t"
-      "subs   r6, r6, #16\n\t"
-      "it     lt\n\t"
-      "movlt  r6, #0\n\t"
-      "asr    r4, r4, r6\n\t"
-      "asr    r5, r5, r6\n\t"
-      "add    r3, r3, #16384\n\t"
-      "sub    r6, r6, r9\n\t"
-      "strd   r4, r5, [%[f], #56]\n\t"
-      "strd   r3, r6, [%[f], #64]\n\t"
-      // rs = recip62(|d| << lz), signed like d
-      "lsl    r10, r10, r11\n\t"
-      "lsr    r3, r10, #16\n\t"
-      "mov    r4, #-1\n\t"
-      "udiv   r3, r4, r3\n\t"
-      "lsl    r3, r3, #14\n\t"
-      "umull  r4, r5, r10, r3\n\t"
-      "rsb    r5, r5, #0x40000000\n\t"
-      "lsl    r5, r5, #2\n\t"
-      "smmul  r5, r3, r5\n\t"
-      "adds   r3, r3, r5\n\t"
-      "it     vs\n\t"
-      "mvnvs  r3, #0x80000000\n\t"
-      "cmp    r8, #0\n\t"
-      "it     lt\n\t"
-      "neglt  r3, r3\n\t"
-      "strd   r3, r9, [%[f], #48]\n\t"
-      // the reference pixel and the edges times 2^(14 - bm)
-      "rsb    r12, r12, #14\n\t"
-      "ldrd   r4, r5, [r0]\n\t"
-      "ldrd   r8, r9, [r1]\n\t"
-      "ldrd   r10, r11, [r2]\n\t"
-      "sub    r8, r8, r4\n\t"
-      "sub    r9, r9, r5\n\t"
-      "sub    r10, r10, r4\n\t"
-      "sub    r11, r11, r5\n\t"
-      "sub    r6, r4, #1\n\t"
-      "asr    r6, r6, #8\n\t"
-      "lsl    lr, r6, #8\n\t"
-      "add    lr, lr, #128\n\t"
-      "sub    lr, lr, r4\n\t"
-      "lsl    lr, lr, #24\n\t"
-      "sub    r4, r5, #1\n\t"
-      "asr    r4, r4, #8\n\t"
-      "lsl    r3, r4, #8\n\t"
-      "add    r3, r3, #128\n\t"
-      "sub    r3, r3, r5\n\t"
-      "lsl    r3, r3, #24\n\t"
-      "strd   lr, r3, [%[f], #32]\n\t"
-      "strd   r6, r4, [%[f], #40]\n\t"
-      "lsl    r3, r8, r12\n\t"
-      "lsl    r4, r9, r12\n\t"
-      "lsl    r5, r10, r12\n\t"
-      "lsl    r6, r11, r12\n\t"
-      // depth: rs, 2^(zsh - tg)
-      "ldr    r8, [%[f], #48]\n\t"
-      "ldr    r9, [%[f], #68]\n\t" LR_SP_SCALE
-      "ldrd   r0, r1, [%[f], #56]\n\t" LR_SP_PLANE LR_SP_FINISH("64")
-      "str    r2, [r10, #52]\n\t"
-      "strd   r8, r9, [r10, #56]\n\t"
-      // green: rs 63 / 64, 2^(17 - tg), a0 63 c 2^11 + 2^25
-      "ldrd   r8, r9, [%[f], #48]\n\t"
-      "sub    r8, r8, r8, asr #6\n\t"
-      "rsb    r9, r9, #17\n\t" LR_SP_SCALE
-      "ldm    %[f], {r0, r1, r2}\n\t"
-      "ldrh   r10, [r0, #18]\n\t"
-      "ldrh   r0, [r1, #18]\n\t"
-      "ldrh   r1, [r2, #18]\n\t"
-      "sub    r0, r0, r10\n\t"
-      "sub    r1, r1, r10\n\t"
-      "mov    r11, #129024\n\t"
-      "mul    r10, r10, r11\n\t"
-      "add    r10, r10, #0x2000000\n\t"
-      "str    r10, [%[f], #72]\n\t" LR_SP_PLANE LR_SP_FINISH("72")
-      "str    r2, [r10, #76]\n\t"
-      "strd   r8, r9, [r10, #80]\n\t"
-      // red and blue: rs 31 / 32, 2^(1 - tg), a0 (31 c >> 4) + 2^10 in each lane
-      "ldrd   r8, r9, [%[f], #48]\n\t"
-      "sub    r8, r8, r8, asr #5\n\t"
-      "rsb    r9, r9, #1\n\t" LR_SP_SCALE
-      "ldm    %[f], {r0, r1, r2}\n\t"
-      "ldrh   r10, [r0, #16]\n\t"
-      "ldrh   r11, [r0, #20]\n\t"
-      "rsb    r8, r10, r10, lsl #5\n\t"
-      "lsr    r8, r8, #4\n\t"
-      "rsb    r9, r11, r11, lsl #5\n\t"
-      "lsr    r9, r9, #4\n\t"
-      "add    r8, r8, r9, lsl #16\n\t"
-      "add    r8, r8, #1024\n\t"
-      "add    r8, r8, #0x4000000\n\t"
-      "str    r8, [%[f], #72]\n\t"
-      "ldrh   r8, [r1, #20]\n\t"
-      "ldrh   r9, [r2, #20]\n\t"
-      "sub    r8, r8, r11\n\t"
-      "sub    r9, r9, r11\n\t"
-      "strd   r8, r9, [%[f], #76]\n\t"
-      "ldrh   r0, [r1, #16]\n\t"
-      "ldrh   r1, [r2, #16]\n\t"
-      "sub    r0, r0, r10\n\t"
-      "sub    r1, r1, r10\n\t" LR_SP_PLANE
-      // blue into r11 (off - px c0 - py r0), r0 (px), r10 (py)
-      "ldrd   r0, r1, [%[f], #76]\n\t"
-      "mul    r10, r1, r3\n\t"
-      "mls    r10, r0, r5, r10\n\t"
-      "mul    r0, r0, r6\n\t"
-      "mls    r0, r1, r4, r0\n\t"
-      "smmul  r0, r0, r12\n\t"
-      "smmul  r10, r10, r12\n\t"
-      "ldrd   r1, r11, [%[f], #32]\n\t"
-      "smmul  r11, r10, r11\n\t"
-      "smmla  r11, r0, r1, r11\n\t"
-      "ldr    r1, [%[f], #40]\n\t"
-      "mls    r11, r0, r1, r11\n\t"
-      "ldr    r1, [%[f], #44]\n\t"
-      "mls    r11, r10, r1, r11\n\t"
-      "add    r2, r2, r11, lsl #16\n\t"
-      "add    r8, r8, r0, lsl #16\n\t"
-      "add    r9, r9, r10, lsl #16\n\t" LR_SP_FINISH("72")
-      "str    r2, [r10, #64]\n\t"
-      "strd   r8, r9, [r10, #68]\n\t"
-      "movs   r0, #1\n\t"
-      "b      9f\n\t"
-      "8:\n\t"
-      "movs   r0, #0\n\t"
-      "9:\n\t"
-      "str    r0, [%[f], #24]\n\t"
-      :
-      : [f] "r"(f)
-      : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc",
-        "memory");
-  return frame[6] != 0;
-}
-#undef LR_SP_FINISH
-#undef LR_SP_PLANE
-#undef LR_SP_SCALE
-#else
-bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*/, uint32_t /*m*/,
-                                ActiveTriangle& /*t*/) {
-  return false;
-}
-#endif
-
 namespace {
+// Where a division is a library call (Armv6-M; hosts too, so that their tests run it), small_rows
+// first tries one candidate column on the middle vertex's row before dividing: the same answer.
+// A candidate's offset from the column base stays below kMaxCandidate, so that its products
+// with an edge's dy (below 2^14) fit 32 bits.
+#if defined(__arm__) && defined(__ARM_FEATURE_IDIV)
+constexpr bool kRowsCandidate = true;
+#else
+constexpr bool kRowsCandidate = true;
+#endif
+constexpr uint32_t kMaxCandidate = 1u << 16;
+
 // small_rows, inlined into setup_untextured_triangle (one copy in an image without
 // small_rows_by_hand).
 [[gnu::always_inline]] inline SmallRows small_rows_c(const ScreenVertex* const v[3],
@@ -574,16 +357,81 @@ namespace {
   // edge's last), where the triangle is widest, or another.
   const int32_t rm = mid >= first ? mid : first;
   const auto k = static_cast<uint32_t>(rm - first);
-  const int32_t cl = base + static_cast<int32_t>((ql + static_cast<uint32_t>(e2x) * k) /
-                                                 static_cast<uint32_t>(e2y));
-  const int32_t cs =
-      base + static_cast<int32_t>(mid >= first ? (qt + static_cast<uint32_t>(e1x) * k) / top_dy
-                                               : qb / btm_dy);
+  const uint32_t q_long = ql + static_cast<uint32_t>(e2x) * k;
+  const uint32_t q_short = mid >= first ? qt + static_cast<uint32_t>(e1x) * k : qb;
+  const uint32_t dy_short = mid >= first ? top_dy : btm_dy;
+  if constexpr (kRowsCandidate) {
+    // The column of (about: 5/16 for 1/3) the centroid: its centre on row rm is inside when the
+    // left edge's column is at or left of it and the right edge's right of it
+    // (floor(Q / dy) <= c < floor(Q' / dy') as products); mostly so, and then no division.
+    const int32_t c = (x0 + (((e1x + e2x) * 5) >> 4)) >> kSubpixelBits;
+    const uint32_t rel = static_cast<uint32_t>(c - base) + 1;  // 0 when c - base = -1
+    const uint32_t q_left = long_left ? q_long : q_short, q_right = long_left ? q_short : q_long;
+    const uint32_t dy_left = long_left ? static_cast<uint32_t>(e2y) : dy_short;
+    const uint32_t dy_right = long_left ? dy_short : static_cast<uint32_t>(e2y);
+    if (c >= 0 && c < w.width && rel - 1 <= kMaxCandidate && q_left < rel * dy_left &&
+        rel * dy_right <= q_right) {
+      out.result = SmallRows::kPixels;
+      return out;
+    }
+  }
+  const int32_t cl = base + static_cast<int32_t>(q_long / static_cast<uint32_t>(e2y));
+  const int32_t cs = base + static_cast<int32_t>(q_short / dy_short);
   const int32_t left = long_left ? cl : cs, right = long_left ? cs : cl;
   out.result =
       left < w.width && right > 0 && left < right ? SmallRows::kPixels : SmallRows::kLaterRows;
   return out;
 }
+}  // namespace
+
+namespace {
+// setup_untextured_triangle after the rows (rows: their result; tried: lanes planes by hand were
+// tried with them, made: and made).
+[[gnu::always_inline]] inline UntexturedTriangle finish_triangle(const ScreenVertex* const v[3],
+                                                                 const RowWindow& w,
+                                                                 const UntexturedInput& in,
+                                                                 ActiveTriangle& t, SmallRows rows,
+                                                                 bool tried, bool made) {
+  if (rows.result == SmallRows::kSlow) [[unlikely]] {
+    const int32_t first = std::max(first_row_below(v[0]->y), w.first_min);
+    const int32_t last = std::min(last_row_at_or_above(v[2]->y), w.last_max);
+    if (!setup_rows(v, first, last, w.width, t)) return UntexturedTriangle::sliver();
+    const UntexturedSetup u = setup_untextured(v, in, t);
+    return UntexturedTriangle::made(u.kind, u.wide);
+  }
+  if (rows.result == SmallRows::kLaterRows && !later_rows_have_pixels(t, t.first_row, w.width))
+      [[unlikely]]
+    return UntexturedTriangle::sliver();
+  const int32_t d = rows.d;
+  const uint32_t m = rows.m;
+  const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
+
+  if (in.colors == ColorPlanes::kNone && !in.depth) {  // no plane at all
+    t.c[0].base = in.flat_pixel;
+    return UntexturedTriangle::made(UntexturedKind::kFlat, false);
+  }
+  UntexturedKind kind = in.colors == ColorPlanes::kNone     ? UntexturedKind::kFlat
+                        : in.colors == ColorPlanes::kAffine ? UntexturedKind::kAffine
+                                                            : UntexturedKind::kPerspective;
+  if (kind == UntexturedKind::kPerspective && in.affine_ok) {
+    const uint32_t wmin = std::min({va.w, vb.w, vc.w}), wmax = std::max({va.w, vb.w, vc.w});
+    if (wmax - wmin <= wmin >> in.affine.quick_shift || colors_within(v, wmin, wmax, in.affine))
+      kind = UntexturedKind::kAffine;
+  }
+  if (kind == UntexturedKind::kAffine && in.lanes) kind = UntexturedKind::kLanes;
+  if (!tried)
+    made = kind == UntexturedKind::kLanes && in.depth && kSmallPlanesByHand
+               ? small_lanes_planes_by_hand(v, d, m, t)
+               : kind != UntexturedKind::kPerspective && small_planes_c(v, d, m, in, kind, t);
+  else
+    made = made && kind == UntexturedKind::kLanes;  // else the planes made are not the kind's
+  if (!made) [[unlikely]] {
+    const UntexturedSetup u = setup_untextured(v, in, t);
+    return UntexturedTriangle::made(u.kind, u.wide);
+  }
+  return UntexturedTriangle::made(kind, false);
+}
+
 }  // namespace
 
 SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveTriangle& t) {
@@ -592,10 +440,417 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 
 #if defined(__thumb2__) && defined(__ARM_FEATURE_IDIV) && !defined(__OPTIMIZE_SIZE__)
 // small_rows by hand (Armv7-M with a divider): GCC 12 spilled a quarter of it. The one operand
-// (r7) points to a frame of 10 words: the vertices (0, 4, 8), the window (12), the triangle
-// (16), then d (20), m (24), the result (28), the column base (32) and the width (36).
-SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
-                             ActiveTriangle& t) {
+// (left to the compiler) points to the frame of small_lanes_asm below: the vertices (0, 4, 8),
+// the window (12), the triangle (16), then d (20), m (24), the result (28), the column base (32)
+// and the width (36). Ends with the result in r0.
+#define LR_SMALL_ROWS_ASM                                                                        \
+  "ldm    %[f], {r0, r1, r2}\n\t"                                                                \
+  "ldrd   r3, r4, [r0]\n\t"                                                                      \
+  "ldrd   r5, r6, [r1]\n\t"                                                                      \
+  "ldrd   r8, r9, [r2]\n\t"                                                                      \
+  "ldr    lr, [%[f], #12]\n\t" /* first r10, last r11 */                                         \
+  "sub    r10, r4, #128\n\t"                                                                     \
+  "asr    r10, r10, #8\n\t"                                                                      \
+  "add    r10, r10, #1\n\t"                                                                      \
+  "ldr    r12, [lr]\n\t"                                                                         \
+  "cmp    r10, r12\n\t"                                                                          \
+  "it     lt\n\t"                                                                                \
+  "movlt  r10, r12\n\t"                                                                          \
+  "sub    r11, r9, #128\n\t"                                                                     \
+  "asr    r11, r11, #8\n\t"                                                                      \
+  "ldr    r12, [lr, #4]\n\t"                                                                     \
+  "cmp    r11, r12\n\t"                                                                          \
+  "it     gt\n\t"                                                                                \
+  "movgt  r11, r12\n\t" /* e1x r5, e1y r6, e2x r8, e2y r9; m */                                  \
+  "sub    r5, r5, r3\n\t"                                                                        \
+  "sub    r6, r6, r4\n\t"                                                                        \
+  "sub    r8, r8, r3\n\t"                                                                        \
+  "sub    r9, r9, r4\n\t"                                                                        \
+  "eor    r12, r5, r5, asr #31\n\t"                                                              \
+  "sub    r12, r12, r5, asr #31\n\t"                                                             \
+  "eor    r0, r8, r8, asr #31\n\t"                                                               \
+  "sub    r0, r0, r8, asr #31\n\t"                                                               \
+  "orr    r12, r12, r0\n\t"                                                                      \
+  "orr    r12, r12, r9\n\t"                                                                      \
+  "str    r12, [%[f], #24]\n\t"                                                                  \
+  "cmp    r12, #16384\n\t"                                                                       \
+  "bhs    8f\n\t"                                                                                \
+  "cmp    r10, r11\n\t"                                                                          \
+  "bgt    8f\n\t" /* mid r0 = clamp((yb - 128) >> 8, first - 1, last); the rows */               \
+  "add    r0, r4, r6\n\t"                                                                        \
+  "sub    r0, r0, #128\n\t"                                                                      \
+  "asr    r0, r0, #8\n\t"                                                                        \
+  "sub    r1, r10, #1\n\t"                                                                       \
+  "cmp    r0, r1\n\t"                                                                            \
+  "it     lt\n\t"                                                                                \
+  "movlt  r0, r1\n\t"                                                                            \
+  "cmp    r0, r11\n\t"                                                                           \
+  "it     gt\n\t"                                                                                \
+  "movgt  r0, r11\n\t"                                                                           \
+  "ldr    r1, [%[f], #16]\n\t"                                                                   \
+  "strh   r10, [r1, #36]\n\t"                                                                    \
+  "strh   r0, [r1, #38]\n\t"                                                                     \
+  "strh   r11, [r1, #40]\n\t" /* cb r11, cmax r12, xa r3 = x0 + 128 - 256 cb, the width in lr */ \
+  "movs   r11, #0\n\t"                                                                           \
+  "cmp    r5, r11\n\t"                                                                           \
+  "it     lt\n\t"                                                                                \
+  "movlt  r11, r5\n\t"                                                                           \
+  "cmp    r8, r11\n\t"                                                                           \
+  "it     lt\n\t"                                                                                \
+  "movlt  r11, r8\n\t"                                                                           \
+  "movs   r12, #0\n\t"                                                                           \
+  "cmp    r5, r12\n\t"                                                                           \
+  "it     gt\n\t"                                                                                \
+  "movgt  r12, r5\n\t"                                                                           \
+  "cmp    r8, r12\n\t"                                                                           \
+  "it     gt\n\t"                                                                                \
+  "movgt  r12, r8\n\t"                                                                           \
+  "add    r11, r11, r3\n\t"                                                                      \
+  "sub    r11, r11, #128\n\t"                                                                    \
+  "asr    r11, r11, #8\n\t"                                                                      \
+  "add    r12, r12, r3\n\t"                                                                      \
+  "add    r12, r12, #127\n\t"                                                                    \
+  "asr    r12, r12, #8\n\t"                                                                      \
+  "add    r3, r3, #128\n\t"                                                                      \
+  "sub    r3, r3, r11, lsl #8\n\t"                                                               \
+  "ldr    lr, [lr, #8]\n\t"                                                                      \
+  "str    lr, [%[f], #36]\n\t" /* inside: ucb r12 = cb, base 0, flags 4; else ucb 0, base cb,    \
+                                  flags 0 (in r2) */                                             \
+  "cmp    r11, #0\n\t"                                                                           \
+  "blt    1f\n\t"                                                                                \
+  "cmp    r12, lr\n\t"                                                                           \
+  "bgt    1f\n\t"                                                                                \
+  "mov    r12, r11\n\t"                                                                          \
+  "movs   r11, #0\n\t"                                                                           \
+  "movs   r2, #4\n\t"                                                                            \
+  "b      2f\n\t"                                                                                \
+  "1:\n\t"                                                                                       \
+  "movs   r12, #0\n\t"                                                                           \
+  "movs   r2, #0\n\t"                                                                            \
+  "2:\n\t"                                                                                       \
+  "strh   r11, [r1, #42]\n\t"                                                                    \
+  "str    r11, [%[f], #32]\n\t" /* d, the flags (kBottomRight when d > 0) */                     \
+  "mul    r11, r5, r9\n\t"                                                                       \
+  "mls    r11, r8, r6, r11\n\t"                                                                  \
+  "str    r11, [%[f], #20]\n\t"                                                                  \
+  "cmp    r11, #0\n\t"                                                                           \
+  "it     gt\n\t"                                                                                \
+  "orrgt  r2, r2, #1\n\t"                                                                        \
+  "strb   r2, [r1, #47]\n\t" /* t0 r4 = 256 first + 128 - y0; the bottom edge at row mid + 1 */  \
+  "lsl    r11, r10, #8\n\t"                                                                      \
+  "add    r11, r11, #128\n\t"                                                                    \
+  "sub    r4, r11, r4\n\t"                                                                       \
+  "sub    r11, r0, r10\n\t"                                                                      \
+  "add    r11, r11, #1\n\t"                                                                      \
+  "lsl    r11, r11, #8\n\t"                                                                      \
+  "add    r11, r11, r4\n\t"                                                                      \
+  "sub    r11, r11, r6\n\t"                                                                      \
+  "sub    lr, r8, r5\n\t"                                                                        \
+  "mul    r11, lr, r11\n\t"                                                                      \
+  "str    lr, [r1, #28]\n\t"                                                                     \
+  "sub    lr, r9, r6\n\t"                                                                        \
+  "add    r0, r3, r5\n\t"                                                                        \
+  "mla    r11, r0, lr, r11\n\t"                                                                  \
+  "sub    r11, r11, #1\n\t"                                                                      \
+  "asr    r11, r11, #8\n\t"                                                                      \
+  "cmp    lr, #1\n\t"                                                                            \
+  "it     lt\n\t"                                                                                \
+  "movlt  lr, #1\n\t"                                                                            \
+  "mla    r11, r12, lr, r11\n\t"                                                                 \
+  "str    r11, [r1, #24]\n\t"                                                                    \
+  "str    lr, [r1, #32]\n\t" /* the long edge ql r11, the top edge qt lr (top_dy in r6) */       \
+  "mul    r11, r3, r9\n\t"                                                                       \
+  "mla    r11, r8, r4, r11\n\t"                                                                  \
+  "sub    r11, r11, #1\n\t"                                                                      \
+  "asr    r11, r11, #8\n\t"                                                                      \
+  "mla    r11, r12, r9, r11\n\t"                                                                 \
+  "mul    lr, r3, r6\n\t"                                                                        \
+  "mla    lr, r5, r4, lr\n\t"                                                                    \
+  "sub    lr, lr, #1\n\t"                                                                        \
+  "asr    lr, lr, #8\n\t"                                                                        \
+  "cmp    r6, #1\n\t"                                                                            \
+  "it     lt\n\t"                                                                                \
+  "movlt  r6, #1\n\t"                                                                            \
+  "mla    lr, r12, r6, lr\n\t" /* the record, left edge first */                                 \
+  "tst    r2, #1\n\t"                                                                            \
+  "beq    3f\n\t"                                                                                \
+  "strd   r11, lr, [r1]\n\t"                                                                     \
+  "strd   r8, r5, [r1, #8]\n\t"                                                                  \
+  "strd   r9, r6, [r1, #16]\n\t"                                                                 \
+  "b      4f\n\t"                                                                                \
+  "3:\n\t"                                                                                       \
+  "strd   lr, r11, [r1]\n\t"                                                                     \
+  "strd   r5, r8, [r1, #8]\n\t"                                                                  \
+  "strd   r6, r9, [r1, #16]\n\t"                                                                 \
+  "4:\n\t" /* the columns at the row max(mid, first): long cl r11, short cs lr */                \
+  "ldrsh  r0, [r1, #38]\n\t"                                                                     \
+  "subs   r3, r0, r10\n\t"                                                                       \
+  "bge    5f\n\t"                                                                                \
+  "udiv   r11, r11, r9\n\t"                                                                      \
+  "ldr    r4, [r1, #24]\n\t"                                                                     \
+  "ldr    r12, [r1, #32]\n\t"                                                                    \
+  "udiv   lr, r4, r12\n\t"                                                                       \
+  "b      6f\n\t"                                                                                \
+  "5:\n\t"                                                                                       \
+  "mla    r11, r8, r3, r11\n\t"                                                                  \
+  "udiv   r11, r11, r9\n\t"                                                                      \
+  "mla    lr, r5, r3, lr\n\t"                                                                    \
+  "udiv   lr, lr, r6\n\t"                                                                        \
+  "6:\n\t"                                                                                       \
+  "ldrd   r0, r12, [%[f], #32]\n\t"                                                              \
+  "add    r11, r11, r0\n\t"                                                                      \
+  "add    lr, lr, r0\n\t"                                                                        \
+  "tst    r2, #1\n\t"                                                                            \
+  "ite    ne\n\t"                                                                                \
+  "movne  r3, r11\n\t"                                                                           \
+  "moveq  r3, lr\n\t"                                                                            \
+  "ite    ne\n\t"                                                                                \
+  "movne  r4, lr\n\t"                                                                            \
+  "moveq  r4, r11\n\t"                                                                           \
+  "movs   r0, #2\n\t"                                                                            \
+  "cmp    r3, r12\n\t"                                                                           \
+  "bge    9f\n\t"                                                                                \
+  "cmp    r4, #0\n\t"                                                                            \
+  "ble    9f\n\t"                                                                                \
+  "cmp    r3, r4\n\t"                                                                            \
+  "bge    9f\n\t"                                                                                \
+  "movs   r0, #1\n\t"                                                                            \
+  "b      9f\n\t"                                                                                \
+  "8:\n\t"                                                                                       \
+  "movs   r0, #0\n\t"                                                                            \
+  "9:\n\t"                                                                                       \
+  "str    r0, [%[f], #28]\n\t"
+#endif
+
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && defined(__ARM_FEATURE_IDIV) && \
+    !defined(__OPTIMIZE_SIZE__)
+// small_planes of a lanes triangle with depth by hand (Armv7E-M): GCC 12 spilled the edges and
+// the plane kind's factor around every plane. The frame as the rows' (d at 20, m at 24, the
+// triangle at 16), then fx, fy (32), c0, r0 (40), rs, tg (48), the depth differences (56), its a0
+// and scale exponent (64), a plane's a0 (72), blue's differences (76) and the result (88, 1 when
+// the planes were made). While the planes are made: E1x r3, E1y r4, E2x r5, E2y r6, the factor
+// r12, left lr.
+// LR_SP_SCALE: plane_scale of rs in r8 and s in r9: r12 = rs >> min(-s, 31) (or rs), lr = s or 0.
+#define LR_SP_SCALE       \
+  "usat   lr, #5, r9\n\t" \
+  "rsb    r9, r9, #0\n\t" \
+  "usat   r9, #5, r9\n\t" \
+  "asr    r12, r8, r9\n\t"
+// LR_SP_PLANE: d1 r0, d2 r1 -> off - px c0 - py r0 in r2, px r8, py r9 (r0, r1, r10, r11 scratch).
+#define LR_SP_PLANE                  \
+  "mul    r8, r0, r6\n\t"            \
+  "mls    r8, r1, r4, r8\n\t"        \
+  "mul    r9, r1, r3\n\t"            \
+  "mls    r9, r0, r5, r9\n\t"        \
+  "smmul  r8, r8, r12\n\t"           \
+  "smmul  r9, r9, r12\n\t"           \
+  "ldrd   r10, r11, [%[f], #32]\n\t" \
+  "smmul  r2, r9, r11\n\t"           \
+  "smmla  r2, r8, r10, r2\n\t"       \
+  "ldrd   r10, r11, [%[f], #40]\n\t" \
+  "mls    r2, r8, r10, r2\n\t"       \
+  "mls    r2, r9, r11, r2\n\t"
+// LR_SP_FINISH: the base (a0 from the frame's word 72, or OFF) and the gradients times 2^left;
+// the triangle in r10.
+#define LR_SP_FINISH(OFF)    \
+  "lsl    r2, r2, lr\n\t"    \
+  "lsl    r8, r8, lr\n\t"    \
+  "lsl    r9, r9, lr\n\t"    \
+  "ldr    r10, [%[f], #" OFF \
+  "]\n\t"                    \
+  "add    r2, r2, r10\n\t"   \
+  "ldr    r10, [%[f], #16]\n\t"
+#define LR_SMALL_PLANES_ASM                  \
+  /* zbits r6, lz r11, bm r12, the limits */ \
+  "ldm    %[f], {r0, r1, r2}\n\t" \
+  "ldr    r3, [r0, #8]\n\t" \
+  "ldr    r4, [r1, #8]\n\t" \
+  "ldr    r5, [r2, #8]\n\t" \
+  "lsr    r3, r3, #1\n\t" \
+  "rsb    r4, r3, r4, lsr #1\n\t" \
+  "rsb    r5, r3, r5, lsr #1\n\t" \
+  "eor    r6, r4, r4, asr #31\n\t" \
+  "sub    r6, r6, r4, asr #31\n\t" \
+  "eor    r8, r5, r5, asr #31\n\t" \
+  "sub    r8, r8, r5, asr #31\n\t" \
+  "orr    r6, r6, r8\n\t" \
+  "clz    r6, r6\n\t" \
+  "rsb    r6, r6, #32\n\t" \
+  "ldrd   r8, r9, [%[f], #20]\n\t" \
+  "eor    r10, r8, r8, asr #31\n\t" \
+  "sub    r10, r10, r8, asr #31\n\t" \
+  "clz    r11, r10\n\t" \
+  "clz    r12, r9\n\t" \
+  "rsb    r12, r12, #32\n\t" \
+  "add    lr, r11, r12, lsl #1\n\t" \
+  "sub    lr, lr, #32\n\t" \
+  "cmp    lr, #10\n\t" \
+  "bgt    18f\n\t" \
+  "cmp    r6, #26\n\t" \
+  "bgt    18f\n\t" \
+  "add    lr, lr, r6\n\t" \
+  "cmp    lr, #35\n\t" \
+  "bgt    18f\n\t" \
+  /* tg r9 = 36 - lz - bm; the depth differences below 2^16 (zsh = zbits - 16 or 0) */ \
+  "rsb    r9, r11, #36\n\t" \
+  "sub    r9, r9, r12\n\t" \
+  "subs   r6, r6, #16\n\t" \
+  "it     lt\n\t" \
+  "movlt  r6, #0\n\t" \
+  "asr    r4, r4, r6\n\t" \
+  "asr    r5, r5, r6\n\t" \
+  "add    r3, r3, #16384\n\t" \
+  "sub    r6, r6, r9\n\t" \
+  "strd   r4, r5, [%[f], #56]\n\t" \
+  "strd   r3, r6, [%[f], #64]\n\t" \
+  /* rs = recip62(|d| << lz), signed like d */ \
+  "lsl    r10, r10, r11\n\t" \
+  "lsr    r3, r10, #16\n\t" \
+  "mov    r4, #-1\n\t" \
+  "udiv   r3, r4, r3\n\t" \
+  "lsl    r3, r3, #14\n\t" \
+  "umull  r4, r5, r10, r3\n\t" \
+  "rsb    r5, r5, #0x40000000\n\t" \
+  "lsl    r5, r5, #2\n\t" \
+  "smmul  r5, r3, r5\n\t" \
+  "adds   r3, r3, r5\n\t" \
+  "it     vs\n\t" \
+  "mvnvs  r3, #0x80000000\n\t" \
+  "cmp    r8, #0\n\t" \
+  "it     lt\n\t" \
+  "neglt  r3, r3\n\t" \
+  "strd   r3, r9, [%[f], #48]\n\t" \
+  /* the reference pixel and the edges times 2^(14 - bm) */ \
+  "rsb    r12, r12, #14\n\t" \
+  "ldrd   r4, r5, [r0]\n\t" \
+  "ldrd   r8, r9, [r1]\n\t" \
+  "ldrd   r10, r11, [r2]\n\t" \
+  "sub    r8, r8, r4\n\t" \
+  "sub    r9, r9, r5\n\t" \
+  "sub    r10, r10, r4\n\t" \
+  "sub    r11, r11, r5\n\t" \
+  "sub    r6, r4, #1\n\t" \
+  "asr    r6, r6, #8\n\t" \
+  "lsl    lr, r6, #8\n\t" \
+  "add    lr, lr, #128\n\t" \
+  "sub    lr, lr, r4\n\t" \
+  "lsl    lr, lr, #24\n\t" \
+  "sub    r4, r5, #1\n\t" \
+  "asr    r4, r4, #8\n\t" \
+  "lsl    r3, r4, #8\n\t" \
+  "add    r3, r3, #128\n\t" \
+  "sub    r3, r3, r5\n\t" \
+  "lsl    r3, r3, #24\n\t" \
+  "strd   lr, r3, [%[f], #32]\n\t" \
+  "strd   r6, r4, [%[f], #40]\n\t" \
+  "lsl    r3, r8, r12\n\t" \
+  "lsl    r4, r9, r12\n\t" \
+  "lsl    r5, r10, r12\n\t" \
+  "lsl    r6, r11, r12\n\t" \
+  /* depth: rs, 2^(zsh - tg) */ \
+  "ldr    r8, [%[f], #48]\n\t" \
+  "ldr    r9, [%[f], #68]\n\t" LR_SP_SCALE \
+  "ldrd   r0, r1, [%[f], #56]\n\t" LR_SP_PLANE LR_SP_FINISH("64") \
+  "str    r2, [r10, #52]\n\t" \
+  "strd   r8, r9, [r10, #56]\n\t" \
+  /* green: rs 63 / 64, 2^(17 - tg), a0 63 c 2^11 + 2^25 */ \
+  "ldrd   r8, r9, [%[f], #48]\n\t" \
+  "sub    r8, r8, r8, asr #6\n\t" \
+  "rsb    r9, r9, #17\n\t" LR_SP_SCALE \
+  "ldm    %[f], {r0, r1, r2}\n\t" \
+  "ldrh   r10, [r0, #18]\n\t" \
+  "ldrh   r0, [r1, #18]\n\t" \
+  "ldrh   r1, [r2, #18]\n\t" \
+  "sub    r0, r0, r10\n\t" \
+  "sub    r1, r1, r10\n\t" \
+  "mov    r11, #129024\n\t" \
+  "mul    r10, r10, r11\n\t" \
+  "add    r10, r10, #0x2000000\n\t" \
+  "str    r10, [%[f], #72]\n\t" LR_SP_PLANE LR_SP_FINISH("72") \
+  "str    r2, [r10, #76]\n\t" \
+  "strd   r8, r9, [r10, #80]\n\t" \
+  /* red and blue: rs 31 / 32, 2^(1 - tg), a0 (31 c >> 4) + 2^10 in each lane */ \
+  "ldrd   r8, r9, [%[f], #48]\n\t" \
+  "sub    r8, r8, r8, asr #5\n\t" \
+  "rsb    r9, r9, #1\n\t" LR_SP_SCALE \
+  "ldm    %[f], {r0, r1, r2}\n\t" \
+  "ldrh   r10, [r0, #16]\n\t" \
+  "ldrh   r11, [r0, #20]\n\t" \
+  "rsb    r8, r10, r10, lsl #5\n\t" \
+  "lsr    r8, r8, #4\n\t" \
+  "rsb    r9, r11, r11, lsl #5\n\t" \
+  "lsr    r9, r9, #4\n\t" \
+  "add    r8, r8, r9, lsl #16\n\t" \
+  "add    r8, r8, #1024\n\t" \
+  "add    r8, r8, #0x4000000\n\t" \
+  "str    r8, [%[f], #72]\n\t" \
+  "ldrh   r8, [r1, #20]\n\t" \
+  "ldrh   r9, [r2, #20]\n\t" \
+  "sub    r8, r8, r11\n\t" \
+  "sub    r9, r9, r11\n\t" \
+  "strd   r8, r9, [%[f], #76]\n\t" \
+  "ldrh   r0, [r1, #16]\n\t" \
+  "ldrh   r1, [r2, #16]\n\t" \
+  "sub    r0, r0, r10\n\t" \
+  "sub    r1, r1, r10\n\t" LR_SP_PLANE \
+  /* blue into r11 (off - px c0 - py r0), r0 (px), r10 (py) */ \
+  "ldrd   r0, r1, [%[f], #76]\n\t" \
+  "mul    r10, r1, r3\n\t" \
+  "mls    r10, r0, r5, r10\n\t" \
+  "mul    r0, r0, r6\n\t" \
+  "mls    r0, r1, r4, r0\n\t" \
+  "smmul  r0, r0, r12\n\t" \
+  "smmul  r10, r10, r12\n\t" \
+  "ldrd   r1, r11, [%[f], #32]\n\t" \
+  "smmul  r11, r10, r11\n\t" \
+  "smmla  r11, r0, r1, r11\n\t" \
+  "ldr    r1, [%[f], #40]\n\t" \
+  "mls    r11, r0, r1, r11\n\t" \
+  "ldr    r1, [%[f], #44]\n\t" \
+  "mls    r11, r10, r1, r11\n\t" \
+  "add    r2, r2, r11, lsl #16\n\t" \
+  "add    r8, r8, r0, lsl #16\n\t" \
+  "add    r9, r9, r10, lsl #16\n\t" LR_SP_FINISH("72") \
+  "str    r2, [r10, #64]\n\t" \
+  "strd   r8, r9, [r10, #68]\n\t" \
+  "movs   r0, #1\n\t" \
+  "b      19f\n\t" \
+  "18:\n\t" \
+  "movs   r0, #0\n\t" \
+  "19:\n\t" \
+  "str    r0, [%[f], #88]\n\t"
+
+namespace {
+// The frame of the small lanes setup by hand (the words above), with the steps to take in word 21:
+// kRowsStep, kPlanesStep or both (the planes then only when the rows' result is kPixels), and
+// LanesSetup's: kSortStep (the vertices from the three indices at word 23 into the vertex store
+// at word 24, sorted by y as sort_by_y sorts them) and kAffineStep (when the planes were made,
+// the affine colour test, its quick part's shift at word 25, the bound and green's weight at 26
+// and 27: the result 3 when it fails).
+constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8;
+struct LanesFrame {
+  uint32_t w[28];
+  LanesFrame() = default;
+  LanesFrame(const ScreenVertex* const v[3], ActiveTriangle& t, uint32_t steps) {
+    w[0] = reinterpret_cast<uintptr_t>(v[0]);
+    w[1] = reinterpret_cast<uintptr_t>(v[1]);
+    w[2] = reinterpret_cast<uintptr_t>(v[2]);
+    w[4] = reinterpret_cast<uintptr_t>(&t);
+    w[21] = steps;
+    w[22] = 0;
+  }
+  SmallRows rows() const {
+    SmallRows out;
+    out.d = static_cast<int32_t>(w[5]);
+    out.m = w[6];
+    out.result = static_cast<uint8_t>(w[7]);
+    return out;
+  }
+  bool planes() const { return w[22] != 0; }
+};
+// Both steps in one block: a triangle that has pixels on its first rows (the common one) gets its
+// rows and planes in one call, nothing reloaded from C between them.
+[[gnu::noinline]] void small_lanes_asm(LanesFrame& frame) {
   static_assert(offsetof(RowWindow, first_min) == 0 && offsetof(RowWindow, last_max) == 4 &&
                 offsetof(RowWindow, width) == 8);
   static_assert(offsetof(ActiveTriangle, edge_q) == 0 && offsetof(ActiveTriangle, edge_dx) == 8 &&
@@ -607,6 +862,218 @@ SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
   static_assert(ActiveTriangle::kBottomRight == 1 && ActiveTriangle::kInside == 4 &&
                 kSmallEdgeBits == 14 && kSubpixelBits == 8);
   static_assert(SmallRows::kSlow == 0 && SmallRows::kPixels == 1 && SmallRows::kLaterRows == 2);
+  static_assert(offsetof(ScreenVertex, z) == 8 && offsetof(ScreenVertex, color) == 16 &&
+                offsetof(Color15, g) == 2 && offsetof(Color15, b) == 4);
+  static_assert(offsetof(ActiveTriangle, z) == 52 && offsetof(ActiveTriangle, c) == 64 &&
+                sizeof(Plane) == 12 && offsetof(Plane, base) == 0 && offsetof(Plane, gx) == 4);
+  static_assert(kFastMaxSpread == 10 && kFastMaxDepthSpread == 35 && kSmallMaxDepthBits == 26);
+  static_assert(offsetof(ScreenVertex, y) == 4 && offsetof(ScreenVertex, w) == 12 &&
+                offsetof(Color15, r) == 0 && sizeof(ScreenVertex) == 24);
+  uint32_t* const f = frame.w;
+  asm volatile(
+      "ldr    r0, [%[f], #84]\n\t"
+      "tst    r0, #4\n\t"
+      "beq    11f\n\t"
+      // the vertices: r0-r2, their y r4-r6
+      "ldr    r0, [%[f], #92]\n\t"
+      "ldr    r3, [%[f], #96]\n\t"
+      "ldrh   r4, [r0]\n\t"
+      "ldrh   r5, [r0, #2]\n\t"
+      "ldrh   r6, [r0, #4]\n\t"
+      "add    r4, r4, r4, lsl #1\n\t"
+      "add    r0, r3, r4, lsl #3\n\t"
+      "add    r5, r5, r5, lsl #1\n\t"
+      "add    r1, r3, r5, lsl #3\n\t"
+      "add    r6, r6, r6, lsl #1\n\t"
+      "add    r2, r3, r6, lsl #3\n\t"
+      "ldr    r4, [r0, #4]\n\t"
+      "ldr    r5, [r1, #4]\n\t"
+      "ldr    r6, [r2, #4]\n\t"
+      // sort_by_y's network: (0, 1), (1, 2), (0, 1), swapped when the later lies strictly above
+      "cmp    r5, r4\n\t"
+      "itttt  lt\n\t"
+      "movlt  r3, r0\n\t"
+      "movlt  r0, r1\n\t"
+      "movlt  r1, r3\n\t"
+      "movlt  r3, r4\n\t"
+      "itt    lt\n\t"
+      "movlt  r4, r5\n\t"
+      "movlt  r5, r3\n\t"
+      "cmp    r6, r5\n\t"
+      "itttt  lt\n\t"
+      "movlt  r3, r1\n\t"
+      "movlt  r1, r2\n\t"
+      "movlt  r2, r3\n\t"
+      "movlt  r5, r6\n\t"
+      "cmp    r5, r4\n\t"
+      "ittt   lt\n\t"
+      "movlt  r3, r0\n\t"
+      "movlt  r0, r1\n\t"
+      "movlt  r1, r3\n\t"
+      "stm    %[f], {r0, r1, r2}\n\t"
+      "11:\n\t"
+      "ldr    r0, [%[f], #84]\n\t"
+      "tst    r0, #1\n\t"
+      "beq    10f\n\t" LR_SMALL_ROWS_ASM
+      "cmp    r0, #1\n\t"
+      "bne    20f\n\t"
+      "ldr    r0, [%[f], #84]\n\t"
+      "tst    r0, #2\n\t"
+      "beq    20f\n\t"
+      "10:\n\t" LR_SMALL_PLANES_ASM
+      // the affine colour test (affine_within): w_max - w_min <= w_min >> shift, or
+      // (w_max - w_min) D <= bound w_min with D the largest channel range (green's times its
+      // weight); else the result 3. w_min r8, w_max - w_min r9.
+      "cmp    r0, #0\n\t"
+      "beq    20f\n\t"
+      "ldr    r1, [%[f], #84]\n\t"
+      "tst    r1, #8\n\t"
+      "beq    20f\n\t"
+      "ldm    %[f], {r2, r3, r4}\n\t"
+      "ldr    r5, [r2, #12]\n\t"
+      "ldr    r6, [r3, #12]\n\t"
+      "ldr    r1, [r4, #12]\n\t"
+      "cmp    r5, r6\n\t"
+      "ite    lo\n\t"
+      "movlo  r8, r5\n\t"
+      "movhs  r8, r6\n\t"
+      "ite    lo\n\t"
+      "movlo  r9, r6\n\t"
+      "movhs  r9, r5\n\t"
+      "cmp    r1, r8\n\t"
+      "it     lo\n\t"
+      "movlo  r8, r1\n\t"
+      "cmp    r1, r9\n\t"
+      "it     hi\n\t"
+      "movhi  r9, r1\n\t"
+      "sub    r9, r9, r8\n\t"
+      "ldr    r1, [%[f], #100]\n\t"
+      "lsr    r1, r8, r1\n\t"
+      "cmp    r9, r1\n\t"
+      "bls    21f\n\t"
+      // the ranges of (g, r) as 16-bit lanes: maximum r10, minimum r11, then r10 - r11
+      "ldr    r5, [r2, #16]\n\t"
+      "ldr    r6, [r3, #16]\n\t"
+      "ldr    r1, [r4, #16]\n\t"
+      "usub16 r10, r5, r6\n\t"
+      "sel    r10, r5, r6\n\t"
+      "sel    r11, r6, r5\n\t"
+      "usub16 r12, r10, r1\n\t"
+      "sel    r10, r10, r1\n\t"
+      "usub16 r12, r11, r1\n\t"
+      "sel    r11, r1, r11\n\t"
+      "usub16 r10, r10, r11\n\t"
+      // blue's: the low lanes of the words at 20
+      "ldr    r5, [r2, #20]\n\t"
+      "ldr    r6, [r3, #20]\n\t"
+      "ldr    r1, [r4, #20]\n\t"
+      "usub16 r11, r5, r6\n\t"
+      "sel    r11, r5, r6\n\t"
+      "sel    r12, r6, r5\n\t"
+      "usub16 r5, r11, r1\n\t"
+      "sel    r11, r11, r1\n\t"
+      "usub16 r5, r12, r1\n\t"
+      "sel    r12, r1, r12\n\t"
+      "usub16 r11, r11, r12\n\t"
+      // D r11: the largest of blue's, red's and green's times its weight
+      "uxth   r11, r11\n\t"
+      "uxth   r12, r10\n\t"
+      "lsr    r10, r10, #16\n\t"
+      "ldrd   r5, r6, [%[f], #104]\n\t"
+      "mul    r10, r10, r6\n\t"
+      "cmp    r11, r12\n\t"
+      "it     lo\n\t"
+      "movlo  r11, r12\n\t"
+      "cmp    r11, r10\n\t"
+      "it     lo\n\t"
+      "movlo  r11, r10\n\t"
+      "umull  r1, r2, r9, r11\n\t"
+      "umull  r3, r4, r5, r8\n\t"
+      "subs   r3, r3, r1\n\t"
+      "sbcs   r4, r4, r2\n\t"
+      "it     lo\n\t"
+      "movlo  r0, #3\n\t"
+      "21:\n\t"
+      "str    r0, [%[f], #88]\n\t"
+      "20:\n\t"
+      :
+      : [f] "r"(f)
+      : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc",
+        "memory");
+}
+}  // namespace
+
+SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
+                             ActiveTriangle& t) {
+  LanesFrame frame(v, t, kRowsStep);
+  frame.w[3] = reinterpret_cast<uintptr_t>(&w);
+  small_lanes_asm(frame);
+  return frame.rows();
+}
+
+bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
+                                  ActiveTriangle& t, SmallRows& rows) {
+  LanesFrame frame(v, t, kRowsStep | kPlanesStep);
+  frame.w[3] = reinterpret_cast<uintptr_t>(&w);
+  small_lanes_asm(frame);
+  rows = frame.rows();
+  return frame.planes();
+}
+
+bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
+                                ActiveTriangle& t) {
+  LanesFrame frame(v, t, kPlanesStep);
+  frame.w[5] = static_cast<uint32_t>(d);
+  frame.w[6] = m;
+  small_lanes_asm(frame);
+  return frame.planes();
+}
+
+namespace {
+[[gnu::noinline]] UntexturedTriangle finish_after_hand(const LanesFrame& f, const RowWindow& w,
+                                                       const UntexturedInput& in,
+                                                       ActiveTriangle& t) {
+  const ScreenVertex* const v[3] = {reinterpret_cast<const ScreenVertex*>(f.w[0]),
+                                    reinterpret_cast<const ScreenVertex*>(f.w[1]),
+                                    reinterpret_cast<const ScreenVertex*>(f.w[2])};
+  const SmallRows rows = f.rows();
+  return finish_triangle(v, w, in, t, rows, rows.result == SmallRows::kPixels, f.w[22] != 0);
+}
+}  // namespace
+
+void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
+                         const ScreenVertex* vertices) {
+  static_assert(sizeof(frame_) == sizeof(LanesFrame) && alignof(LanesSetup) >= 4);
+  w_ = &w;
+  in_ = &in;
+  frame_[3] = reinterpret_cast<uintptr_t>(&w);
+  frame_[21] = kSortStep | kRowsStep | kPlanesStep |
+               (in.colors == ColorPlanes::kPerspective ? kAffineStep : 0u);
+  frame_[24] = reinterpret_cast<uintptr_t>(vertices);
+  frame_[25] = static_cast<uint32_t>(in.affine.quick_shift);
+  frame_[26] = in.affine.bound;
+  frame_[27] = in.affine.green_weight;
+}
+
+void LanesSetup::block(uint32_t* frame) {
+  small_lanes_asm(*reinterpret_cast<LanesFrame*>(frame));
+}
+
+UntexturedTriangle LanesSetup::rest(const uint16_t /*index*/[3], ActiveTriangle& t) {
+  return finish_after_hand(*reinterpret_cast<const LanesFrame*>(frame_), *w_, *in_, t);
+}
+#undef LR_SP_FINISH
+#undef LR_SP_PLANE
+#undef LR_SP_SCALE
+#undef LR_SMALL_PLANES_ASM
+#else
+bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*/, uint32_t /*m*/,
+                                ActiveTriangle& /*t*/) {
+  return false;
+}
+#if defined(__thumb2__) && defined(__ARM_FEATURE_IDIV) && !defined(__OPTIMIZE_SIZE__)
+SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
+                             ActiveTriangle& t) {
   uint32_t frame[10];
   frame[0] = reinterpret_cast<uintptr_t>(v[0]);
   frame[1] = reinterpret_cast<uintptr_t>(v[1]);
@@ -614,196 +1081,11 @@ SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
   frame[3] = reinterpret_cast<uintptr_t>(&w);
   frame[4] = reinterpret_cast<uintptr_t>(&t);
   uint32_t* const f = frame;
-  asm volatile(
-      "ldm    %[f], {r0, r1, r2}\n\t"
-      "ldrd   r3, r4, [r0]\n\t"
-      "ldrd   r5, r6, [r1]\n\t"
-      "ldrd   r8, r9, [r2]\n\t"
-      "ldr    lr, [%[f], #12]\n\t"
-      // first r10, last r11
-      "sub    r10, r4, #128\n\t"
-      "asr    r10, r10, #8\n\t"
-      "add    r10, r10, #1\n\t"
-      "ldr    r12, [lr]\n\t"
-      "cmp    r10, r12\n\t"
-      "it     lt\n\t"
-      "movlt  r10, r12\n\t"
-      "sub    r11, r9, #128\n\t"
-      "asr    r11, r11, #8\n\t"
-      "ldr    r12, [lr, #4]\n\t"
-      "cmp    r11, r12\n\t"
-      "it     gt\n\t"
-      "movgt  r11, r12\n\t"
-      // e1x r5, e1y r6, e2x r8, e2y r9; m
-      "sub    r5, r5, r3\n\t"
-      "sub    r6, r6, r4\n\t"
-      "sub    r8, r8, r3\n\t"
-      "sub    r9, r9, r4\n\t"
-      "eor    r12, r5, r5, asr #31\n\t"
-      "sub    r12, r12, r5, asr #31\n\t"
-      "eor    r0, r8, r8, asr #31\n\t"
-      "sub    r0, r0, r8, asr #31\n\t"
-      "orr    r12, r12, r0\n\t"
-      "orr    r12, r12, r9\n\t"
-      "str    r12, [%[f], #24]\n\t"
-      "cmp    r12, #16384\n\t"
-      "bhs    8f\n\t"
-      "cmp    r10, r11\n\t"
-      "bgt    8f\n\t"
-      // mid r0 = clamp((yb - 128) >> 8, first - 1, last); the rows
-      "add    r0, r4, r6\n\t"
-      "sub    r0, r0, #128\n\t"
-      "asr    r0, r0, #8\n\t"
-      "sub    r1, r10, #1\n\t"
-      "cmp    r0, r1\n\t"
-      "it     lt\n\t"
-      "movlt  r0, r1\n\t"
-      "cmp    r0, r11\n\t"
-      "it     gt\n\t"
-      "movgt  r0, r11\n\t"
-      "ldr    r1, [%[f], #16]\n\t"
-      "strh   r10, [r1, #36]\n\t"
-      "strh   r0, [r1, #38]\n\t"
-      "strh   r11, [r1, #40]\n\t"
-      // cb r11, cmax r12, xa r3 = x0 + 128 - 256 cb, the width in lr
-      "movs   r11, #0\n\t"
-      "cmp    r5, r11\n\t"
-      "it     lt\n\t"
-      "movlt  r11, r5\n\t"
-      "cmp    r8, r11\n\t"
-      "it     lt\n\t"
-      "movlt  r11, r8\n\t"
-      "movs   r12, #0\n\t"
-      "cmp    r5, r12\n\t"
-      "it     gt\n\t"
-      "movgt  r12, r5\n\t"
-      "cmp    r8, r12\n\t"
-      "it     gt\n\t"
-      "movgt  r12, r8\n\t"
-      "add    r11, r11, r3\n\t"
-      "sub    r11, r11, #128\n\t"
-      "asr    r11, r11, #8\n\t"
-      "add    r12, r12, r3\n\t"
-      "add    r12, r12, #127\n\t"
-      "asr    r12, r12, #8\n\t"
-      "add    r3, r3, #128\n\t"
-      "sub    r3, r3, r11, lsl #8\n\t"
-      "ldr    lr, [lr, #8]\n\t"
-      "str    lr, [%[f], #36]\n\t"
-      // inside: ucb r12 = cb, base 0, flags 4; else ucb 0, base cb, flags 0 (in r2)
-      "cmp    r11, #0\n\t"
-      "blt    1f\n\t"
-      "cmp    r12, lr\n\t"
-      "bgt    1f\n\t"
-      "mov    r12, r11\n\t"
-      "movs   r11, #0\n\t"
-      "movs   r2, #4\n\t"
-      "b      2f\n\t"
-      "1:\n\t"
-      "movs   r12, #0\n\t"
-      "movs   r2, #0\n\t"
-      "2:\n\t"
-      "strh   r11, [r1, #42]\n\t"
-      "str    r11, [%[f], #32]\n\t"
-      // d, the flags (kBottomRight when d > 0)
-      "mul    r11, r5, r9\n\t"
-      "mls    r11, r8, r6, r11\n\t"
-      "str    r11, [%[f], #20]\n\t"
-      "cmp    r11, #0\n\t"
-      "it     gt\n\t"
-      "orrgt  r2, r2, #1\n\t"
-      "strb   r2, [r1, #47]\n\t"
-      // t0 r4 = 256 first + 128 - y0; the bottom edge at row mid + 1
-      "lsl    r11, r10, #8\n\t"
-      "add    r11, r11, #128\n\t"
-      "sub    r4, r11, r4\n\t"
-      "sub    r11, r0, r10\n\t"
-      "add    r11, r11, #1\n\t"
-      "lsl    r11, r11, #8\n\t"
-      "add    r11, r11, r4\n\t"
-      "sub    r11, r11, r6\n\t"
-      "sub    lr, r8, r5\n\t"
-      "mul    r11, lr, r11\n\t"
-      "str    lr, [r1, #28]\n\t"
-      "sub    lr, r9, r6\n\t"
-      "add    r0, r3, r5\n\t"
-      "mla    r11, r0, lr, r11\n\t"
-      "sub    r11, r11, #1\n\t"
-      "asr    r11, r11, #8\n\t"
-      "cmp    lr, #1\n\t"
-      "it     lt\n\t"
-      "movlt  lr, #1\n\t"
-      "mla    r11, r12, lr, r11\n\t"
-      "str    r11, [r1, #24]\n\t"
-      "str    lr, [r1, #32]\n\t"
-      // the long edge ql r11, the top edge qt lr (top_dy in r6)
-      "mul    r11, r3, r9\n\t"
-      "mla    r11, r8, r4, r11\n\t"
-      "sub    r11, r11, #1\n\t"
-      "asr    r11, r11, #8\n\t"
-      "mla    r11, r12, r9, r11\n\t"
-      "mul    lr, r3, r6\n\t"
-      "mla    lr, r5, r4, lr\n\t"
-      "sub    lr, lr, #1\n\t"
-      "asr    lr, lr, #8\n\t"
-      "cmp    r6, #1\n\t"
-      "it     lt\n\t"
-      "movlt  r6, #1\n\t"
-      "mla    lr, r12, r6, lr\n\t"
-      // the record, left edge first
-      "tst    r2, #1\n\t"
-      "beq    3f\n\t"
-      "strd   r11, lr, [r1]\n\t"
-      "strd   r8, r5, [r1, #8]\n\t"
-      "strd   r9, r6, [r1, #16]\n\t"
-      "b      4f\n\t"
-      "3:\n\t"
-      "strd   lr, r11, [r1]\n\t"
-      "strd   r5, r8, [r1, #8]\n\t"
-      "strd   r6, r9, [r1, #16]\n\t"
-      "4:\n\t"
-      // the columns at the row max(mid, first): long cl r11, short cs lr
-      "ldrsh  r0, [r1, #38]\n\t"
-      "subs   r3, r0, r10\n\t"
-      "bge    5f\n\t"
-      "udiv   r11, r11, r9\n\t"
-      "ldr    r4, [r1, #24]\n\t"
-      "ldr    r12, [r1, #32]\n\t"
-      "udiv   lr, r4, r12\n\t"
-      "b      6f\n\t"
-      "5:\n\t"
-      "mla    r11, r8, r3, r11\n\t"
-      "udiv   r11, r11, r9\n\t"
-      "mla    lr, r5, r3, lr\n\t"
-      "udiv   lr, lr, r6\n\t"
-      "6:\n\t"
-      "ldrd   r0, r12, [%[f], #32]\n\t"
-      "add    r11, r11, r0\n\t"
-      "add    lr, lr, r0\n\t"
-      "tst    r2, #1\n\t"
-      "ite    ne\n\t"
-      "movne  r3, r11\n\t"
-      "moveq  r3, lr\n\t"
-      "ite    ne\n\t"
-      "movne  r4, lr\n\t"
-      "moveq  r4, r11\n\t"
-      "movs   r0, #2\n\t"
-      "cmp    r3, r12\n\t"
-      "bge    9f\n\t"
-      "cmp    r4, #0\n\t"
-      "ble    9f\n\t"
-      "cmp    r3, r4\n\t"
-      "bge    9f\n\t"
-      "movs   r0, #1\n\t"
-      "b      9f\n\t"
-      "8:\n\t"
-      "movs   r0, #0\n\t"
-      "9:\n\t"
-      "str    r0, [%[f], #28]\n\t"
-      :
-      : [f] "r"(f)
-      : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc",
-        "memory");
+  asm volatile(LR_SMALL_ROWS_ASM
+               :
+               : [f] "r"(f)
+               : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr",
+                 "cc", "memory");
   SmallRows out;
   out.d = static_cast<int32_t>(frame[5]);
   out.m = frame[6];
@@ -816,46 +1098,43 @@ SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
   return small_rows_c(v, w, t);
 }
 #endif
+bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
+                                  ActiveTriangle& t, SmallRows& rows) {
+  rows = small_rows_by_hand(v, w, t);
+  return false;
+}
+
+void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
+                         const ScreenVertex* vertices) {
+  w_ = &w;
+  in_ = &in;
+  vertices_ = vertices;
+}
+
+void LanesSetup::block(uint32_t* /*frame*/) {}
+
+UntexturedTriangle LanesSetup::rest(const uint16_t index[3], ActiveTriangle& t) {
+  const ScreenVertex* v[3] = {&vertices_[index[0]], &vertices_[index[1]], &vertices_[index[2]]};
+  sort_by_y(v);
+  return setup_untextured_triangle(v, *w_, *in_, t);
+}
+#endif
+#ifdef LR_SMALL_ROWS_ASM
+#undef LR_SMALL_ROWS_ASM
+#endif
 
 UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
                                              const UntexturedInput& in, ActiveTriangle& t) {
-  const SmallRows rows = kSmallRowsByHand ? small_rows_by_hand(v, w, t) : small_rows_c(v, w, t);
-  if (rows.result == SmallRows::kSlow) [[unlikely]] {
-    const int32_t first = std::max(first_row_below(v[0]->y), w.first_min);
-    const int32_t last = std::min(last_row_at_or_above(v[2]->y), w.last_max);
-    if (!setup_rows(v, first, last, w.width, t)) return {false, UntexturedKind::kFlat, false};
-    const UntexturedSetup u = setup_untextured(v, in, t);
-    return {true, u.kind, u.wide};
+  SmallRows rows;
+  // Lanes planes by hand made with the rows (tried: the rows had pixels on their first rows).
+  bool tried = false, made = false;
+  if (kSmallPlanesByHand && in.lanes_first) {
+    made = small_lanes_triangle_by_hand(v, w, t, rows);
+    tried = rows.result == SmallRows::kPixels;
+  } else {
+    rows = kSmallRowsByHand ? small_rows_by_hand(v, w, t) : small_rows_c(v, w, t);
   }
-  if (rows.result == SmallRows::kLaterRows && !later_rows_have_pixels(t, t.first_row, w.width))
-      [[unlikely]]
-    return {false, UntexturedKind::kFlat, false};
-  const int32_t d = rows.d;
-  const uint32_t m = rows.m;
-  const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
-
-  if (in.colors == ColorPlanes::kNone && !in.depth) {  // no plane at all
-    t.c[0].base = in.flat_pixel;
-    return {true, UntexturedKind::kFlat, false};
-  }
-  UntexturedKind kind = in.colors == ColorPlanes::kNone     ? UntexturedKind::kFlat
-                        : in.colors == ColorPlanes::kAffine ? UntexturedKind::kAffine
-                                                            : UntexturedKind::kPerspective;
-  if (kind == UntexturedKind::kPerspective && in.affine_ok) {
-    const uint32_t wmin = std::min({va.w, vb.w, vc.w}), wmax = std::max({va.w, vb.w, vc.w});
-    if (wmax - wmin <= wmin >> in.affine.quick_shift || colors_within(v, wmin, wmax, in.affine))
-      kind = UntexturedKind::kAffine;
-  }
-  if (kind == UntexturedKind::kAffine && in.lanes) kind = UntexturedKind::kLanes;
-  const bool made =
-      kind == UntexturedKind::kLanes && in.depth && kSmallPlanesByHand
-          ? small_lanes_planes_by_hand(v, d, m, t)
-          : kind != UntexturedKind::kPerspective && small_planes_c(v, d, m, in, kind, t);
-  if (!made) [[unlikely]] {
-    const UntexturedSetup u = setup_untextured(v, in, t);
-    return {true, u.kind, u.wide};
-  }
-  return {true, kind, false};
+  return finish_triangle(v, w, in, t, rows, tried, made);
 }
 
 UntexturedSetup setup_untextured(const ScreenVertex* const v[3], const UntexturedInput& in,

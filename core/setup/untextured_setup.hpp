@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 #include "lineraster/core/output/color.hpp"
 #include "lineraster/core/scene/draw_state.hpp"
@@ -61,7 +62,16 @@ struct UntexturedInput {
   bool affine_ok = false;  // a kPerspective triangle may get affine planes (routine linked)
   AffineBound affine{};
   uint32_t flat_pixel = 0;  // kFlat: the pixel, as PixelBits stores it
+  // Most triangles are lanes triangles with depth (lanes_first_of): where kSmallPlanesByHand,
+  // their rows and planes are made in one step, before the affine colour test.
+  bool lanes_first = false;
 };
+// What UntexturedInput::lanes_first should be for the rest of the input.
+constexpr bool lanes_first_of(const UntexturedInput& in) {
+  return in.lanes && in.depth &&
+         (in.colors == ColorPlanes::kAffine ||
+          (in.colors == ColorPlanes::kPerspective && in.affine_ok));
+}
 
 struct UntexturedSetup {
   UntexturedKind kind;
@@ -76,11 +86,26 @@ struct RowWindow {
   int32_t width = 0;
 };
 
-struct UntexturedTriangle {
-  bool pixels;  // false: a sliver, whose rows cover no pixel centre (no planes were made)
-  UntexturedKind kind;
-  bool wide;
+// What setup_untextured_triangle made, in one word (returned in a register): bit 0 pixels (0: a
+// sliver, whose rows cover no pixel centre; no planes were made), bits 1-2 the kind, bit 3 wide.
+class UntexturedTriangle {
+ public:
+  static constexpr UntexturedTriangle sliver() { return UntexturedTriangle(0); }
+  static constexpr UntexturedTriangle made(UntexturedKind kind, bool wide) {
+    return UntexturedTriangle(1u | static_cast<uint32_t>(kind) << 1 | (wide ? 8u : 0u));
+  }
+  constexpr bool pixels() const { return (bits_ & 1u) != 0; }
+  constexpr UntexturedKind kind() const { return static_cast<UntexturedKind>((bits_ >> 1) & 3u); }
+  constexpr bool wide() const { return (bits_ & 8u) != 0; }
+  // 2 kind: the offset of the kind's row loop from kFlat's (untextured_row_index).
+  constexpr uint32_t row_offset() const { return bits_ & 6u; }
+  constexpr bool operator==(const UntexturedTriangle&) const = default;
+
+ private:
+  constexpr explicit UntexturedTriangle(uint32_t bits) : bits_(bits) {}
+  uint32_t bits_;
 };
+static_assert(kUntexturedKinds <= 4);
 
 // The whole setup of an untextured triangle (vertices v sorted by y, non-zero area): rows,
 // edges (setup_rows) and planes. Triangles within 64 pixels take one path in 32-bit arithmetic
@@ -155,6 +180,55 @@ inline constexpr bool kSmallPlanesByHand = false;
 #endif
 bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
                                 ActiveTriangle& t);
+// small_rows_by_hand and, when its result is kPixels, small_lanes_planes_by_hand in one call
+// (one block of hand-made code where kSmallPlanesByHand): whether the planes were made (false
+// elsewhere: there only the rows are made).
+bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
+                                  ActiveTriangle& t, SmallRows& rows);
+
+// setup_untextured_triangle for the triangles of one strip whose draw has lanes_first: what
+// stays the same between them (the window, the input, the vertex store) given once, then one call
+// per triangle from its three vertex indices (in submission order: sorted here by y). Where
+// kSmallPlanesByHand, vertex fetch, sort, rows, planes and the affine colour test's quick part
+// are one block of hand-made code (the rest, rare, as setup_untextured_triangle does it); the
+// same result and record as sort_by_y and setup_untextured_triangle everywhere. w and in must
+// outlive the calls (the strip loop's setup context holds them).
+class LanesSetup {
+ public:
+  void prepare(const RowWindow& w, const UntexturedInput& in, const ScreenVertex* vertices);
+  UntexturedTriangle set_up(const uint16_t index[3], ActiveTriangle& t) {
+    if constexpr (kSmallPlanesByHand) {  // 32-bit addresses
+      frame_[4] = static_cast<uint32_t>(reinterpret_cast<uintptr_t>(&t));
+      frame_[22] = 0;
+      frame_[23] = static_cast<uint32_t>(reinterpret_cast<uintptr_t>(index));
+      block(frame_);
+      if (frame_[22] == 1) [[likely]]  // a lanes triangle, rows and planes made
+        return UntexturedTriangle::made(UntexturedKind::kLanes, false);
+    }
+    return rest(index, t);
+  }
+
+ private:
+  // The hand-made block where kSmallPlanesByHand (nothing elsewhere), and what remains after it.
+  static void block(uint32_t* frame);
+  UntexturedTriangle rest(const uint16_t index[3], ActiveTriangle& t);
+
+  const RowWindow* w_ = nullptr;
+  const UntexturedInput* in_ = nullptr;
+  const ScreenVertex* vertices_ = nullptr;
+  uint32_t frame_[28] = {};  // the hand-made block's frame (untextured_setup.cpp)
+};
+
+// What the strip loop keeps of LanesSetup: nothing where it is not by hand (its setup context
+// stays small on cores with few registers).
+struct NoLanesSetup {
+  void prepare(const RowWindow& /*w*/, const UntexturedInput& /*in*/,
+               const ScreenVertex* /*vertices*/) {}
+  UntexturedTriangle set_up(const uint16_t /*index*/[3], ActiveTriangle& /*t*/) {
+    return UntexturedTriangle::sliver();
+  }
+};
+using StripLanesSetup = std::conditional_t<kSmallPlanesByHand, LanesSetup, NoLanesSetup>;
 
 // The short path's limits (docs/numerics.md#untextured-planes): the largest edge component, the
 // spread of affine and flat triangles and of perspective ones, and the depth plane's spread plus

@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "lineraster/core/output/pixel_format.hpp"
 #include "lineraster/core/raster/untextured_rows.hpp"
@@ -92,6 +93,7 @@ Tally run_cases(uint32_t cases, Strip& a, Strip& b, DrawA&& draw_a, DrawB&& draw
   in.depth = true;
   in.lanes = true;
   in.affine = kAffineBound565;
+  in.lanes_first = lanes_first_of(in);
   for (uint32_t c = 0; c < cases; ++c) {
     ScreenVertex v[3];
     random_triangle(rng, v);
@@ -106,7 +108,7 @@ Tally run_cases(uint32_t cases, Strip& a, Strip& b, DrawA&& draw_a, DrawB&& draw
     ActiveTriangle t;
     const RowWindow window{strip0 * k, kHeight - 1, kWidth};
     const UntexturedTriangle u = setup_untextured_triangle(s, window, in, t);
-    if (!u.pixels || u.kind != UntexturedKind::kLanes ||
+    if (!u.pixels() || u.kind() != UntexturedKind::kLanes ||
         (t.flags & ActiveTriangle::kWideEdges) != 0)
       continue;
     ++tally.triangles;
@@ -244,6 +246,132 @@ inline Tally run_small_planes(uint32_t cases, uint32_t seed = 777u) {
       ++tally.triangles;
     else
       ++tally.visits;
+  }
+  return tally;
+}
+
+// Runs `cases` random small triangles (run_small_planes' kinds) in random windows through the
+// C forms (small_rows, then small_planes when the rows have pixels on their first rows) and
+// through small_lanes_triangle_by_hand (both steps in one call): the same rows, edges, flags and
+// answers, and the same planes when they were made. triangles counts those with planes, visits
+// those with rows only (pixels on later rows only, or planes refused).
+inline Tally run_small_triangles(uint32_t cases, uint32_t seed = 99991u) {
+  Random rng;
+  rng.s = seed;
+  Tally tally;
+  UntexturedInput in;
+  in.colors = ColorPlanes::kAffine;
+  in.depth = true;
+  in.lanes = true;
+  constexpr int32_t kSizes[4] = {kSubpixel / 4, 2 * kSubpixel, 12 * kSubpixel, 31 * kSubpixel};
+  for (uint32_t c = 0; c < cases; ++c) {
+    ScreenVertex v[3];
+    const int32_t size = kSizes[rng.in(0, 3)];
+    const int32_t cx = rng.in(-8 * kSubpixel, (kWidth + 8) * kSubpixel);
+    const int32_t cy = rng.in(-8 * kSubpixel, (kHeight + 8) * kSubpixel);
+    const int zmode = rng.in(0, 3);
+    const uint32_t z0 = rng.next() % (kDepthMax + 1u);
+    for (int i = 0; i < 3; ++i) {
+      v[i].x = cx + rng.in(-size, size);
+      v[i].y = cy + rng.in(-size, size);
+      v[i].z = zmode == 0   ? rng.next() % (kDepthMax + 1u)
+               : zmode == 1 ? std::min<uint32_t>(z0 + rng.next() % 4096u, kDepthMax)
+               : zmode == 2 ? std::min<uint32_t>(z0 + rng.next() % (1u << 26), kDepthMax)
+                            : z0;
+      v[i].w = 1u << 16;
+      v[i].color = Color15{static_cast<uint16_t>(rng.in(0, Color15::kOne)),
+                           static_cast<uint16_t>(rng.in(0, Color15::kOne)),
+                           static_cast<uint16_t>(rng.in(0, Color15::kOne))};
+    }
+    if (signed_area2(v[0], v[1], v[2]) == 0) continue;
+    const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
+    sort_by_y(s);
+    const RowWindow window{rng.in(-4, kHeight / 2), kHeight - 1, kWidth};
+    ActiveTriangle a, b;
+    const SmallRows ra = small_rows(s, window, a);
+    const bool made_a = ra.result == SmallRows::kPixels &&
+                        small_planes(s, ra.d, ra.m, in, UntexturedKind::kLanes, a);
+    SmallRows rb;
+    const bool made_b = small_lanes_triangle_by_hand(s, window, b, rb);
+    bool same = ra.result == rb.result && ra.m == rb.m && made_a == made_b;
+    if (same && ra.result != SmallRows::kSlow) {
+      same = ra.d == rb.d && a.first_row == b.first_row && a.mid_row == b.mid_row &&
+             a.last_row == b.last_row && a.col_base == b.col_base && a.flags == b.flags &&
+             a.bottom.q == b.bottom.q && a.bottom.dx == b.bottom.dx && a.bottom.dy == b.bottom.dy;
+      for (int i = 0; i < 2; ++i)
+        same = same && a.edge_q[i] == b.edge_q[i] && a.edge_dx[i] == b.edge_dx[i] &&
+               a.edge_dy[i] == b.edge_dy[i];
+    }
+    const auto same_plane = [](const Plane& p, const Plane& q) {
+      return p.base == q.base && p.gx == q.gx && p.gy == q.gy;
+    };
+    if (same && made_a)
+      same = same_plane(a.z, b.z) && same_plane(a.c[0], b.c[0]) && same_plane(a.c[1], b.c[1]);
+    if (!same) ++tally.differing;
+    if (made_a)
+      ++tally.triangles;
+    else if (ra.result != SmallRows::kSlow)
+      ++tally.visits;
+  }
+  return tally;
+}
+
+// Runs `cases` random triangles of random_triangle's kinds, their w and colours spread so that
+// the affine colour test goes every way, through LanesSetup (from their vertex indices in a
+// random order) and through sort_by_y and setup_untextured_triangle without lanes_first: the
+// same result and the same record. triangles counts the lanes ones, visits the slivers and
+// pixels the others (perspective planes, or the general path).
+inline Tally run_lanes_setup(uint32_t cases, uint32_t seed = 5151u) {
+  Random rng;
+  rng.s = seed;
+  Tally tally;
+  UntexturedInput in;
+  in.depth = true;
+  in.lanes = true;
+  in.affine_ok = true;
+  in.affine = kAffineBound565;
+  for (uint32_t c = 0; c < cases; ++c) {
+    in.colors = rng.in(0, 7) == 0 ? ColorPlanes::kAffine : ColorPlanes::kPerspective;
+    in.lanes_first = lanes_first_of(in);
+    ScreenVertex v[3];
+    random_triangle(rng, v);
+    if (signed_area2(v[0], v[1], v[2]) == 0) continue;
+    const uint32_t w0 = (1u << 16) + rng.next() % (1u << 22);
+    const int wmode = rng.in(0, 2);       // w equal, close (the quick test) or spread
+    const int cmode = rng.in(0, 2);       // colours random, close or equal
+    const bool near = rng.in(0, 3) != 0;  // depths close: the small path's planes
+    const uint32_t z0 = rng.next() % (kDepthMax - 8192u);
+    for (ScreenVertex& x : v) {
+      if (near) x.z = z0 + rng.next() % 8192u;
+      x.w = wmode == 0 ? w0 : wmode == 1 ? w0 + rng.next() % (w0 >> 5) : w0 + rng.next() % w0;
+      if (cmode > 0) {
+        const uint16_t spread = cmode == 1 ? 600 : 0;
+        x.color = Color15{static_cast<uint16_t>(16000 + rng.in(0, spread)),
+                          static_cast<uint16_t>(16000 + rng.in(0, spread)),
+                          static_cast<uint16_t>(16000 + rng.in(0, spread))};
+      }
+    }
+    uint16_t index[3] = {0, 1, 2};
+    for (int i = 2; i > 0; --i) std::swap(index[i], index[rng.in(0, i)]);
+    const RowWindow window{rng.in(-4, kHeight / 2), kHeight - 1, kWidth};
+    ActiveTriangle a, b;
+    std::memset(static_cast<void*>(&a), 0, sizeof a);
+    std::memset(static_cast<void*>(&b), 0, sizeof b);
+    LanesSetup lanes;
+    lanes.prepare(window, in, v);
+    const UntexturedTriangle ua = lanes.set_up(index, a);
+    const ScreenVertex* s[3] = {&v[index[0]], &v[index[1]], &v[index[2]]};
+    sort_by_y(s);
+    UntexturedInput plain = in;
+    plain.lanes_first = false;
+    const UntexturedTriangle ub = setup_untextured_triangle(s, window, plain, b);
+    if (!(ua == ub) || std::memcmp(&a, &b, sizeof a) != 0) ++tally.differing;
+    if (!ub.pixels())
+      ++tally.visits;
+    else if (ub.kind() == UntexturedKind::kLanes && !ub.wide())
+      ++tally.triangles;
+    else
+      ++tally.pixels;
   }
   return tally;
 }

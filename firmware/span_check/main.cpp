@@ -95,6 +95,33 @@ int main() {
     sh::write(" differ\n");
     ok = t.differing == 0 && t.triangles > 10000 && t.visits > 100 && ok;
   }
+  // Both in one call (the strip loop's way for lanes triangles with depth) against the C forms.
+  if constexpr (lr::kSmallPlanesByHand) {
+    const lanes::Tally t = lanes::run_small_triangles(20000);
+    sh::write("lr_span_check: small rows and planes in one call by hand == C: ");
+    sh::write_dec(t.triangles);
+    sh::write(" triangles with planes, ");
+    sh::write_dec(t.visits);
+    sh::write(" with rows only, ");
+    sh::write_dec(t.differing);
+    sh::write(" differ\n");
+    ok = t.differing == 0 && t.triangles > 5000 && t.visits > 100 && ok;
+  }
+  // The strip loop's lanes setup from vertex indices (by hand: fetch, sort, rows, planes, the
+  // affine colour test) against sort_by_y and setup_untextured_triangle.
+  if constexpr (lr::kSmallPlanesByHand) {
+    const lanes::Tally t = lanes::run_lanes_setup(30000);
+    sh::write("lr_span_check: lanes setup from indices by hand == sort and setup: ");
+    sh::write_dec(t.triangles);
+    sh::write(" lanes triangles, ");
+    sh::write_dec(t.pixels);
+    sh::write(" others, ");
+    sh::write_dec(t.visits);
+    sh::write(" slivers, ");
+    sh::write_dec(t.differing);
+    sh::write(" differ\n");
+    ok = t.differing == 0 && t.triangles > 5000 && t.pixels > 1000 && t.visits > 1000 && ok;
+  }
   // The small triangles' rows and edges by hand (untextured_setup.cpp) against their C form.
   if constexpr (lr::kSmallRowsByHand) {
     const lanes::Tally t = lanes::run_small_rows(40000);

@@ -15,6 +15,8 @@
 #include "firmware/span_check/lane_cases.hpp"
 #include "lineraster/core/output/pixel_format.hpp"
 #include "lineraster/core/raster/untextured_rows.hpp"
+#include "lineraster/core/setup/row_edge.hpp"
+#include "lineraster/core/setup/untextured_setup.hpp"
 #include "lineraster/core/span/lane_rows.hpp"
 #include "lineraster/core/span/lane_span.hpp"
 
@@ -38,6 +40,57 @@ TEST(LaneRows, CLoopDrawsWhatTheGenericRowLoopDraws) {
   EXPECT_EQ(t.differing, 0u);
   EXPECT_GT(t.triangles, 8000u);
   EXPECT_GT(t.pixels, 100000u);
+}
+
+// small_rows' answer (kPixels: the middle vertex's row, or the first, has a pixel centre inside
+// the triangle and the viewport's columns) against that row's columns from the record it made,
+// whichever way it reached it (a candidate column's products, or the divisions).
+TEST(SmallRows, PixelsOnTheMiddleRowAsTheRecordsColumnsSay) {
+  lanes::Random rng;
+  rng.s = 31337u;
+  int pixels = 0, later = 0, all_nudged = 0;
+  for (int c = 0; c < 200000; ++c) {
+    ScreenVertex v[3];
+    lanes::random_triangle(rng, v);
+    if (rng.in(0, 2) == 0) {  // centres on edges, columns on their bounds
+      const int32_t nudge = rng.in(-1, 1);
+      for (ScreenVertex& x : v) {
+        x.x = (x.x & ~(kHalfPixel - 1)) + nudge;
+        x.y = (x.y & ~(kHalfPixel - 1)) + nudge;
+      }
+      ++all_nudged;
+    }
+    if (signed_area2(v[0], v[1], v[2]) == 0) continue;
+    const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
+    sort_by_y(s);
+    const RowWindow window{rng.in(-4, lanes::kHeight), lanes::kHeight - 1, lanes::kWidth};
+    ActiveTriangle t;
+    const SmallRows r = small_rows(s, window, t);
+    if (r.result == SmallRows::kSlow) continue;
+    const int32_t rm = t.mid_row >= t.first_row ? t.mid_row : t.first_row;
+    const int ss = t.short_side(), ls = 1 - ss;
+    int32_t col[2];
+    col[ls] = DivideEdge(t.side_edge(ls), t.col_base, rm - t.first_row).column();
+    col[ss] = t.mid_row >= t.first_row
+                  ? DivideEdge(t.side_edge(ss), t.col_base, rm - t.first_row).column()
+                  : DivideEdge(t.bottom, t.col_base, 0).column();
+    const bool has = col[0] < lanes::kWidth && col[1] > 0 && col[0] < col[1];
+    ASSERT_EQ(r.result, has ? SmallRows::kPixels : SmallRows::kLaterRows) << c;
+    (has ? pixels : later)++;
+  }
+  EXPECT_GT(pixels, 20000);
+  EXPECT_GT(later, 2000);
+  EXPECT_GT(all_nudged, 10000);
+}
+
+// LanesSetup (the strip loop's call for lanes draws: by hand on Armv7E-M, lr_span_check compares
+// it there) against sort_by_y and setup_untextured_triangle.
+TEST(LanesSetup, FromIndicesAsSortAndSetup) {
+  const lanes::Tally t = lanes::run_lanes_setup(30000);
+  EXPECT_EQ(t.differing, 0u);
+  EXPECT_GT(t.triangles, 5000u);
+  EXPECT_GT(t.pixels, 1000u);
+  EXPECT_GT(t.visits, 1000u);
 }
 
 TEST(LaneSpan, StepsEqualTheDirectEvaluationOfThePlanes) {
@@ -135,7 +188,7 @@ TEST(Lanes, EveryPixelWithinOneRgb565StepOfTheExactColour) {
     ActiveTriangle t;
     const UntexturedTriangle u =
         setup_untextured_triangle(s, RowWindow{0, 31, lanes::kWidth}, in, t);
-    if (!u.pixels || u.kind != UntexturedKind::kLanes) continue;
+    if (!u.pixels() || u.kind() != UntexturedKind::kLanes) continue;
     ++triangles;
     std::fill(strip.depth.begin(), strip.depth.end(), 0xFFFF);
     std::fill(strip.px.begin(), strip.px.end(), 0);

@@ -259,9 +259,9 @@ TEST(UntexturedPlanes, SmallTrianglesInInt32WithinTheBound) {
     if (2 * bm - l + zbits > kFastMaxDepthSpread) continue;
     ActiveTriangle t;
     const UntexturedTriangle got = setup_untextured_triangle(v, RowWindow{0, 240, 320}, in, t);
-    if (!got.pixels) continue;
-    ASSERT_FALSE(got.wide);
-    ASSERT_EQ(got.kind, UntexturedKind::kAffine);
+    if (!got.pixels()) continue;
+    ASSERT_FALSE(got.wide());
+    ASSERT_EQ(got.kind(), UntexturedKind::kAffine);
     if (zbits > kSmallMaxDepthBits) {
       // setup_untextured's short path (fast_plane): its own bound.
       const int p = 11 + bm - l;

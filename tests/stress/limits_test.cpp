@@ -229,7 +229,7 @@ Plane depth_plane(const ScreenVertex* const tv[3], int w, int h) {
   in.colors = ColorPlanes::kNone;
   in.depth = true;
   ActiveTriangle t{};
-  EXPECT_TRUE(setup_untextured_triangle(tv, RowWindow{0, h - 1, w}, in, t).pixels);
+  EXPECT_TRUE(setup_untextured_triangle(tv, RowWindow{0, h - 1, w}, in, t).pixels());
   return t.z;
 }
 double exact_half_depth(const ScreenVertex* const tv[3], int x, int y) {
