@@ -191,6 +191,31 @@ Tally run_spans(uint32_t cases, Strip& a, Strip& b, SpanA&& span_a, SpanB&& span
   return tally;
 }
 
+// A random small triangle for run_small_planes and run_small_triangles: a size of a quarter
+// pixel to 31 pixels, its centre in [x_lo, x_hi] x [y_lo, y_hi] (subpixels), depths random, close
+// (12 bits), spread (26 bits) or equal, random colours.
+inline void random_small_triangle(Random& rng, ScreenVertex (&v)[3], int32_t x_lo, int32_t x_hi,
+                                  int32_t y_lo, int32_t y_hi) {
+  constexpr int32_t kSizes[4] = {kSubpixel / 4, 2 * kSubpixel, 12 * kSubpixel, 31 * kSubpixel};
+  const int32_t size = kSizes[rng.in(0, 3)];
+  const int32_t cx = rng.in(x_lo, x_hi);
+  const int32_t cy = rng.in(y_lo, y_hi);
+  const int zmode = rng.in(0, 3);
+  const uint32_t z0 = rng.next() % (kDepthMax + 1u);
+  for (int i = 0; i < 3; ++i) {
+    v[i].x = cx + rng.in(-size, size);
+    v[i].y = cy + rng.in(-size, size);
+    v[i].z = zmode == 0   ? rng.next() % (kDepthMax + 1u)
+             : zmode == 1 ? std::min<uint32_t>(z0 + rng.next() % 4096u, kDepthMax)
+             : zmode == 2 ? std::min<uint32_t>(z0 + rng.next() % (1u << 26), kDepthMax)
+                          : z0;
+    v[i].w = 1u << 16;
+    v[i].color = Color15{static_cast<uint16_t>(rng.in(0, Color15::kOne)),
+                         static_cast<uint16_t>(rng.in(0, Color15::kOne)),
+                         static_cast<uint16_t>(rng.in(0, Color15::kOne))};
+  }
+}
+
 // Runs `cases` random small triangles (every edge component below 2^kSmallEdgeBits subpixels,
 // from a quarter pixel to 62 pixels; depths spread, close (differences of 12 bits, or of up to
 // 26 of which the small path keeps 16) or equal; random colours) through
@@ -205,26 +230,10 @@ inline Tally run_small_planes(uint32_t cases, uint32_t seed = 777u) {
   in.colors = ColorPlanes::kAffine;
   in.depth = true;
   in.lanes = true;
-  constexpr int32_t kSizes[4] = {kSubpixel / 4, 2 * kSubpixel, 12 * kSubpixel, 31 * kSubpixel};
   for (uint32_t c = 0; c < cases; ++c) {
     ScreenVertex v[3];
-    const int32_t size = kSizes[rng.in(0, 3)];
-    const int32_t cx = rng.in(-40 * kSubpixel, 400 * kSubpixel);
-    const int32_t cy = rng.in(-40 * kSubpixel, 300 * kSubpixel);
-    const int zmode = rng.in(0, 3);
-    const uint32_t z0 = rng.next() % (kDepthMax + 1u);
-    for (int i = 0; i < 3; ++i) {
-      v[i].x = cx + rng.in(-size, size);
-      v[i].y = cy + rng.in(-size, size);
-      v[i].z = zmode == 0   ? rng.next() % (kDepthMax + 1u)
-               : zmode == 1 ? std::min<uint32_t>(z0 + rng.next() % 4096u, kDepthMax)
-               : zmode == 2 ? std::min<uint32_t>(z0 + rng.next() % (1u << 26), kDepthMax)
-                            : z0;
-      v[i].w = 1u << 16;
-      v[i].color = Color15{static_cast<uint16_t>(rng.in(0, Color15::kOne)),
-                           static_cast<uint16_t>(rng.in(0, Color15::kOne)),
-                           static_cast<uint16_t>(rng.in(0, Color15::kOne))};
-    }
+    random_small_triangle(rng, v, -40 * kSubpixel, 400 * kSubpixel, -40 * kSubpixel,
+                          300 * kSubpixel);
     const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
     sort_by_y(s);
     const int32_t e1x = s[1]->x - s[0]->x, e1y = s[1]->y - s[0]->y;
@@ -263,26 +272,10 @@ inline Tally run_small_triangles(uint32_t cases, uint32_t seed = 99991u) {
   in.colors = ColorPlanes::kAffine;
   in.depth = true;
   in.lanes = true;
-  constexpr int32_t kSizes[4] = {kSubpixel / 4, 2 * kSubpixel, 12 * kSubpixel, 31 * kSubpixel};
   for (uint32_t c = 0; c < cases; ++c) {
     ScreenVertex v[3];
-    const int32_t size = kSizes[rng.in(0, 3)];
-    const int32_t cx = rng.in(-8 * kSubpixel, (kWidth + 8) * kSubpixel);
-    const int32_t cy = rng.in(-8 * kSubpixel, (kHeight + 8) * kSubpixel);
-    const int zmode = rng.in(0, 3);
-    const uint32_t z0 = rng.next() % (kDepthMax + 1u);
-    for (int i = 0; i < 3; ++i) {
-      v[i].x = cx + rng.in(-size, size);
-      v[i].y = cy + rng.in(-size, size);
-      v[i].z = zmode == 0   ? rng.next() % (kDepthMax + 1u)
-               : zmode == 1 ? std::min<uint32_t>(z0 + rng.next() % 4096u, kDepthMax)
-               : zmode == 2 ? std::min<uint32_t>(z0 + rng.next() % (1u << 26), kDepthMax)
-                            : z0;
-      v[i].w = 1u << 16;
-      v[i].color = Color15{static_cast<uint16_t>(rng.in(0, Color15::kOne)),
-                           static_cast<uint16_t>(rng.in(0, Color15::kOne)),
-                           static_cast<uint16_t>(rng.in(0, Color15::kOne))};
-    }
+    random_small_triangle(rng, v, -8 * kSubpixel, (kWidth + 8) * kSubpixel, -8 * kSubpixel,
+                          (kHeight + 8) * kSubpixel);
     if (signed_area2(v[0], v[1], v[2]) == 0) continue;
     const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
     sort_by_y(s);

@@ -21,49 +21,13 @@
 #include "lineraster/core/setup/triangle_rows.hpp"
 #include "lineraster/core/setup/triangle_setup.hpp"
 #include "lineraster/core/setup/untextured_setup.hpp"
-#include "tests/reference/int128.hpp"
 #include "tests/support/core_harness.hpp"
+#include "tests/support/plane_error.hpp"
 
 namespace lr {
 namespace {
 
-#if defined(__SIZEOF_INT128__)
-__extension__ typedef __int128 i128;
-#else
-using i128 = ref::Int128;  // 32-bit targets (the armhf test build): the same exact values
-#endif
-
-uint32_t low_word(const i128& v) {
-#if defined(__SIZEOF_INT128__)
-  return static_cast<uint32_t>(static_cast<uint64_t>(v));
-#else
-  return static_cast<uint32_t>(v.lo());
-#endif
-}
-
-// The plane's error at pixel (c, r) against the exact plane through the vertex values a,
-// modulo 2^32, in units.
-double plane_error(const ScreenVertex* const v[3], const uint32_t a[3], const Plane& p, int32_t c,
-                   int32_t r) {
-  const int64_t x0 = v[0]->x, y0 = v[0]->y;
-  const int64_t ex1 = v[1]->x - x0, ey1 = v[1]->y - y0, ex2 = v[2]->x - x0, ey2 = v[2]->y - y0;
-  const i128 d = i128{ex1} * ey2 - i128{ex2} * ey1;
-  const i128 da1 = i128{a[1]} - a[0], da2 = i128{a[2]} - a[0];
-  const i128 px = i128{c} * kSubpixel + kHalfPixel - x0, py = i128{r} * kSubpixel + kHalfPixel - y0;
-  i128 n = px * (da1 * ey2 - da2 * ey1) + py * (da2 * ex1 - da1 * ex2);
-  i128 dd = d;
-  if (dd < 0) {
-    n = -n;
-    dd = -dd;
-  }
-  i128 t = n / dd, rem = n % dd;  // n = t dd + rem, rem in [0, dd)
-  if (rem < 0) {
-    t = t - 1;
-    rem = rem + dd;
-  }
-  const auto diff = static_cast<int32_t>(p.at(c, r) - a[0] - low_word(t));
-  return diff - static_cast<double>(rem) / static_cast<double>(dd);
-}
+using test::plane_error;
 
 int bit_length(uint32_t v) {
   return v == 0 ? 0 : 32 - clz32(v);
