@@ -222,9 +222,9 @@ class LanesSetup {
 // What the strip loop keeps of LanesSetup: nothing where it is not by hand (its setup context
 // stays small on cores with few registers).
 struct NoLanesSetup {
-  void prepare(const RowWindow& /*w*/, const UntexturedInput& /*in*/,
-               const ScreenVertex* /*vertices*/) {}
-  UntexturedTriangle set_up(const uint16_t /*index*/[3], ActiveTriangle& /*t*/) {
+  static void prepare(const RowWindow& /*w*/, const UntexturedInput& /*in*/,
+                      const ScreenVertex* /*vertices*/) {}
+  static UntexturedTriangle set_up(const uint16_t /*index*/[3], ActiveTriangle& /*t*/) {
     return UntexturedTriangle::sliver();
   }
 };
