@@ -30,11 +30,12 @@ namespace {
 using lr::test::TmpDir;
 
 const std::string kData = std::string(LR_SOURCE_DIR) + "/tests/host/data/";
+const std::string kCube = kData + "cube.obj";
 
 // One of the two tools: how it is run to write `out`, and what it writes.
 struct Tool {
   const char* name;  // as it prefixes its messages
-  std::string (*args)(const std::string& out);
+  std::string (*args)(const std::string& obj, const std::string& out);
   const char* extension;  // a name it accepts for --out
 };
 
@@ -44,14 +45,13 @@ void PrintTo(const Tool& t, std::ostream* os) {
 
 const Tool kTools[] = {
     {"lineraster-sim",
-     [](const std::string& out) {
-       return std::string(LR_SIM) + " --obj " + kData + "cube.obj --width 32 --height 24 --out " +
-              out;
+     [](const std::string& obj, const std::string& out) {
+       return std::string(LR_SIM) + " --obj " + obj + " --width 32 --height 24 --out " + out;
      },
      ".png"},
     {"lineraster-asset",
-     [](const std::string& out) {
-       return std::string(LR_ASSET) + " --obj " + kData + "cube.obj --name cube --out " + out;
+     [](const std::string& obj, const std::string& out) {
+       return std::string(LR_ASSET) + " --obj " + obj + " --name cube --out " + out;
      },
      ".hpp"},
 };
@@ -99,7 +99,7 @@ class OutputSafety : public ::testing::TestWithParam<Tool> {
   std::string out_name(const std::string& stem) const { return stem + tool().extension; }
   // Runs the tool onto `out`: exit status 2 and exactly the line "TOOL: MESSAGE".
   void expect_refused(const std::string& out, const std::string& message) {
-    const Outcome r = run(tool().args(out), logs_);
+    const Outcome r = run(tool().args(kCube, out), logs_);
     EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_EQ(r.err, std::string(tool().name) + ": " + message + "\n");
     EXPECT_EQ(r.out, "");
@@ -169,7 +169,7 @@ TEST_P(OutputSafety, ALinkToARegularFileReplacesTheTargetAndStaysALink) {
   const std::string link = dir_.file(out_name("link"));
   const std::string link_text = "sub/" + out_name("target");  // relative, as people make them
   ASSERT_EQ(symlink(link_text.c_str(), link.c_str()), 0);
-  const Outcome r = run(tool().args(link), logs_);
+  const Outcome r = run(tool().args(kCube, link), logs_);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err, "");
   const struct stat ls = lstat_of(link);
@@ -247,9 +247,15 @@ TEST_P(OutputSafety, AReadOnlyFileIsRefusedAndKept) {
     as_user = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
     ASSERT_EQ(chmod(dir_.path().c_str(), 0777), 0);
   }
+  // The input copied beside it: the unprivileged user may not reach the sources (a checkout
+  // under root's 0700 home).
+  TmpDir in("lr_out_safety_in");
+  ASSERT_EQ(chmod(in.path().c_str(), 0755), 0);
+  for (const char* f : {"cube.obj", "cube.mtl", "checker.png"})
+    std::filesystem::copy_file(kData + f, in.file(f));
   const std::string ro = dir_.write(out_name("ro"), "keep me\n");
   ASSERT_EQ(chmod(ro.c_str(), 0444), 0);
-  const Outcome r = run(as_user + tool().args(ro), logs_);
+  const Outcome r = run(as_user + tool().args(in.file("cube.obj"), ro), logs_);
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_EQ(r.err, std::string(tool().name) + ": " + ro +
                        ": cannot open for writing: Permission denied\n");
@@ -261,12 +267,12 @@ TEST_P(OutputSafety, AReadOnlyFileIsRefusedAndKept) {
 // keeps its own.
 TEST_P(OutputSafety, NewFilesFollowTheUmaskAndReplacedFilesKeepTheirMode) {
   const std::string fresh = dir_.file(out_name("new"));
-  Outcome r = run("sh -c 'umask 027; " + tool().args(fresh) + "'", logs_);
+  Outcome r = run("sh -c 'umask 027; " + tool().args(kCube, fresh) + "'", logs_);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(lstat_of(fresh).st_mode & 0777, 0640u);
   const std::string old = dir_.write(out_name("old"), "old\n");
   ASSERT_EQ(chmod(old.c_str(), 0604), 0);
-  r = run("sh -c 'umask 077; " + tool().args(old) + "'", logs_);
+  r = run("sh -c 'umask 077; " + tool().args(kCube, old) + "'", logs_);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(lstat_of(old).st_mode & 0777, 0604u);
   EXPECT_NE(slurp(old), "old\n");
