@@ -56,8 +56,6 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
   // Coordinates lie in [-(bound + 1), bound]; with bound < 2^(31 - ps) they stay in int32 when
   // shifted by ps, and bound 2^ps >= 2^30 (so a row's factors fit int32, below).
   if (bound > 0x7FFFFFFFu) bound = 0x7FFFFFFFu;  // no int32 coordinate is beyond
-  // The least w over the bound's cube when it lies inside the guard band (else 0).
-  const int64_t cube_w = guard_free_least_w(mvp, bound, guard);
   const int ps = bound == 0 ? 30 : clz32(bound) - 1;
   const uint32_t b = bound + 1;  // the largest magnitude, <= 2^31
   const int32_t sx = width * kHalfPixel, sy = height * kHalfPixel;
@@ -81,6 +79,10 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
     // V 2^32 < 2^L, E = 61 - L: every row sum |V| 2^E below 2^29.
     exponent[i] = 61 - with_k.bit_length();
   }
+  // The least w over the bound's cube when it lies inside the guard band (else 0): only now,
+  // with every row below 2^50 in Q32.32, are the corners' clip coordinates below 2^46 in Q28.28
+  // (guard_free_least_w's products by the band's factors below 2^59).
+  const int64_t cube_w = guard_free_least_w(mvp, bound, guard);
   const int ew = exponent[3];
   int exy = exponent[0] < exponent[1] ? exponent[0] : exponent[1];
   // n = clz(W) is at least 2 (W < 2^30). r = recip >> (n_max - n) is 2^(61 - n_max) / W, so
@@ -271,7 +273,7 @@ int64_t ScreenTransform::guard_free_least_w(const Mat4& mvp, uint32_t bound, Gua
   for (int c = 0; c < 8; ++c) {
     const Vec3 p{Fixed::from_raw(c & 1 ? hi : lo), Fixed::from_raw(c & 2 ? hi : lo),
                  Fixed::from_raw(c & 4 ? hi : lo)};
-    const ClipCoord q = transform_point(mvp, p);  // |coordinates| < 2^47 (the plain bound)
+    const ClipCoord q = transform_point(mvp, p);  // |coordinates| < 2^46 (the plain bound)
     if (q.w <= 0) return 0;
     const int64_t gx = q.w * guard.gx - ((q.w * guard.gx) >> 3);
     const int64_t gy = q.w * guard.gy - ((q.w * guard.gy) >> 3);

@@ -344,6 +344,17 @@ TEST(ShortPath, NeverGivesAZeroW) {
   EXPECT_EQ(v.x, 320 * 128 + 4096);  // x / w = 0.1: a tenth of the half width right of centre
 }
 
+// A draw beyond the short path's range (rows of 2^50 and more in Q32.32) with a tiny viewport's
+// wide guard band: the exact path whole, and no overflow on the way (the guard-band test of the
+// cube's corners multiplied clip coordinates of up to 2^60 by the band's factor: UBSan in the
+// random call-order tests).
+TEST(ShortPath, HugeRowsAndAWideBandAreLeftToTheExactPath) {
+  Mat4 mvp{};  // w = -32768 x: about 2^58 in Q28.28 at the corner x = -2^31
+  mvp.m[3][0] = Fixed::from_raw(-0x7FFFFFFF);
+  const ScreenTransform st(mvp, 0x7FFFFFFFu, 24, 24, GuardBand{341, 341});
+  EXPECT_FALSE(st.enabled());
+}
+
 // Lights in model space: a rigid model's lit colours against GL's model evaluated in double
 // (the normal through the inverse transpose of the Q16.16 model matrix, normalised), diffuse and
 // specular (gold: shininess 51.2), both sides: within 4 Q1.15 units (1/32 of an 8-bit level),
