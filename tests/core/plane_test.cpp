@@ -23,6 +23,7 @@ namespace lr {
 namespace {
 
 using test::plane_error;
+using test::sample_bounding_box;
 
 // The previous implementation, kept as the reference of the exact path.
 bool reference_gradient(int64_t n, int64_t area, int64_t& g) {
@@ -76,33 +77,16 @@ struct Errors {
 void check_bound(const ScreenVertex* const v[3], const uint32_t a[3], bool fast,
                  std::mt19937_64& rng, Errors& e) {
   const Plane p = make_plane(v, a);
-  const int32_t xl = std::min({v[0]->x, v[1]->x, v[2]->x}),
-                xh = std::max({v[0]->x, v[1]->x, v[2]->x});
-  const int32_t yl = std::min({v[0]->y, v[1]->y, v[2]->y}),
-                yh = std::max({v[0]->y, v[1]->y, v[2]->y});
-  // Pixel centres inside [xl, xh] x [yl, yh].
-  const int32_t c0 = first_row_below(xl - 1), c1 = last_row_at_or_above(xh);
-  const int32_t r0 = first_row_below(yl - 1), r1 = last_row_at_or_above(yh);
-  if (c0 > c1 || r0 > r1) return;
   const double term = fast ? fast_term(v) : 0.0;
-  auto sample = [&](int32_t c, int32_t r) {
+  sample_bounding_box(v, rng, [&](int32_t c, int32_t r, double distance) {
     const double err = std::fabs(plane_error(v, a, p, c, r));
-    const double dx = std::fabs((c * 256.0 + 128 - v[0]->x) / 256);
-    const double dy = std::fabs((r * 256.0 + 128 - v[0]->y) / 256);
-    const double bound = term + 0.5 * (dx + dy + 1) + 1e-6;
+    const double bound = term + 0.5 * (distance + 1) + 1e-6;
     ++e.samples;
     e.max_abs = std::max(e.max_abs, err);
     e.max_ratio = std::max(e.max_ratio, err / bound);
     if (err > bound && e.over++ < 5)
       ADD_FAILURE() << "error " << err << " > bound " << bound << " at (" << c << "," << r << ")";
-  };
-  sample(c0, r0);
-  sample(c1, r0);
-  sample(c0, r1);
-  sample(c1, r1);
-  for (int k = 0; k < 4; ++k)
-    sample(c0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(c1 - c0 + 1)),
-           r0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(r1 - r0 + 1)));
+  });
 }
 
 TEST(PlaneGradient, WithinTheDocumentedBoundOnBothPathsAndExactOnTheExactPath) {

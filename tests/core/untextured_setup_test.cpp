@@ -28,6 +28,7 @@ namespace lr {
 namespace {
 
 using test::plane_error;
+using test::sample_bounding_box;
 
 int bit_length(uint32_t v) {
   return v == 0 ? 0 : 32 - clz32(v);
@@ -57,20 +58,11 @@ struct Errors {
 // box against the derived bound.
 void check(const ScreenVertex* const v[3], const uint32_t a[3], const Plane& p, int s,
            std::mt19937_64& rng, Errors& e) {
-  const int32_t xl = std::min({v[0]->x, v[1]->x, v[2]->x}),
-                xh = std::max({v[0]->x, v[1]->x, v[2]->x});
-  const int32_t yl = std::min({v[0]->y, v[1]->y, v[2]->y}),
-                yh = std::max({v[0]->y, v[1]->y, v[2]->y});
-  const int32_t c0 = first_row_below(xl - 1), c1 = last_row_at_or_above(xh);
-  const int32_t r0 = first_row_below(yl - 1), r1 = last_row_at_or_above(yh);
-  if (c0 > c1 || r0 > r1) return;
   const uint32_t range = std::max({mag(int64_t{a[1]} - a[0]), mag(int64_t{a[2]} - a[0]), 1u});
   const double unit = std::ldexp(1.0, s);
-  auto sample = [&](int32_t c, int32_t r) {
+  sample_bounding_box(v, rng, [&](int32_t c, int32_t r, double distance) {
     const double err = std::fabs(plane_error(v, a, p, c, r));
-    const double dx = std::fabs((c * 256.0 + 128 - v[0]->x) / 256);
-    const double dy = std::fabs((r * 256.0 + 128 - v[0]->y) / 256);
-    const double bound = (5 * unit + (s < 0 ? 0.5 : 0.0)) * (dx + dy + 1) + 8 * unit + 1;
+    const double bound = (5 * unit + (s < 0 ? 0.5 : 0.0)) * (distance + 1) + 8 * unit + 1;
     ++e.samples;
     e.max_ratio = std::max(e.max_ratio, err / bound);
     e.max_relative = std::max(e.max_relative, err / range);
@@ -78,14 +70,7 @@ void check(const ScreenVertex* const v[3], const uint32_t a[3], const Plane& p, 
     if (err > bound && e.over++ < 5)
       ADD_FAILURE() << "error " << err << " > bound " << bound << " at (" << c << "," << r
                     << "), s " << s;
-  };
-  sample(c0, r0);
-  sample(c1, r0);
-  sample(c0, r1);
-  sample(c1, r1);
-  for (int k = 0; k < 4; ++k)
-    sample(c0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(c1 - c0 + 1)),
-           r0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(r1 - r0 + 1)));
+  });
 }
 
 TEST(UntexturedPlanes, ShortPathWithinTheDocumentedBound) {

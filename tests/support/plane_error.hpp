@@ -3,7 +3,10 @@
 // on 32-bit targets), the core's value taken modulo 2^32 as the core's planes wrap.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
+#include <random>
 
 #include "lineraster/core/setup/triangle_setup.hpp"
 #include "lineraster/core/vertex/screen_vertex.hpp"
@@ -48,6 +51,32 @@ inline double plane_error(const ScreenVertex* const v[3], const uint32_t a[3], c
   // got - (a0 + t + rem / dd), the integer part taken modulo 2^32.
   const auto diff = static_cast<int32_t>(p.at(c, r) - a[0] - low_word(t));
   return diff - static_cast<double>(rem) / static_cast<double>(dd);
+}
+
+// Calls sample(c, r, distance) at the corners and four random pixel centres of the bounding box
+// of v (the pixel centres inside it); distance is |dx| + |dy| in pixels from v[0] to the centre,
+// the factor of a plane's gradient error there.
+template <class Sample>
+void sample_bounding_box(const ScreenVertex* const v[3], std::mt19937_64& rng, Sample&& sample) {
+  const int32_t xl = std::min({v[0]->x, v[1]->x, v[2]->x}),
+                xh = std::max({v[0]->x, v[1]->x, v[2]->x});
+  const int32_t yl = std::min({v[0]->y, v[1]->y, v[2]->y}),
+                yh = std::max({v[0]->y, v[1]->y, v[2]->y});
+  const int32_t c0 = first_row_below(xl - 1), c1 = last_row_at_or_above(xh);
+  const int32_t r0 = first_row_below(yl - 1), r1 = last_row_at_or_above(yh);
+  if (c0 > c1 || r0 > r1) return;
+  auto at = [&](int32_t c, int32_t r) {
+    const double dx = (c * double{kSubpixel} + kHalfPixel - v[0]->x) / kSubpixel;
+    const double dy = (r * double{kSubpixel} + kHalfPixel - v[0]->y) / kSubpixel;
+    sample(c, r, std::abs(dx) + std::abs(dy));
+  };
+  at(c0, r0);
+  at(c1, r0);
+  at(c0, r1);
+  at(c1, r1);
+  for (int k = 0; k < 4; ++k)
+    at(c0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(c1 - c0 + 1)),
+       r0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(r1 - r0 + 1)));
 }
 
 }  // namespace lr::test
