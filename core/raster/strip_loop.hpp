@@ -111,7 +111,7 @@ class StripLoop {
     return c;
   }
   bool activate(int strip);
-  bool set_up(uint16_t node, SetupContext& c, uint16_t slot);
+  bool set_up(uint16_t node, const BinnedTriangle& bt, SetupContext& c, uint16_t slot);
   SetupInput setup_input(uint16_t node, const BinnedTriangle& bt, const DrawRecord& dr) const;
   uint8_t draw_of(const BinnedTriangle& bt) const;
   void crowded_strip(int strip, Pixel* pixels, int y0, int rows);
@@ -311,7 +311,7 @@ void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, i
     while (node != kNoTriangle && free_count_ > 0) {
       const uint16_t n = tris[node].next;
       const uint16_t slot = free_slots[--free_count_];
-      if (set_up(node, context, slot)) {
+      if (set_up(node, tris[node], context, slot)) {
         order[batch++] = slot;
         ++stats_->triangles_set_up;
       } else
@@ -362,51 +362,68 @@ template <class PF, int K, SpanSet kSpans>
 bool StripLoop<PF, K, kSpans>::activate(int strip) {
   const std::span<BinnedTriangle> tris = frame_.triangles;
   uint16_t& head = frame_.buckets[static_cast<size_t>(strip)];
-  size_t m = 0;
-  for (uint16_t i = head; i != kNoTriangle; i = tris[i].next) ++m;
-  if (m == 0) return true;
-  if (m > free_count_) return false;
-  uint16_t node = head;
-  head = kNoTriangle;
+  if (head == kNoTriangle) return true;
+  uint16_t* const order = storage_.active_index.data();
+  uint16_t* const free_slots = order + storage_.active.size();
+  FrameStats& stats = *stats_;
+  const size_t free_before = free_count_;
 
-  // Merge from the back: existing entries are in ascending submission order, the bucket gives
-  // descending order.
-  uint16_t* order = storage_.active_index.data();
-  uint16_t* free_slots = order + storage_.active.size();
-  ptrdiff_t i = static_cast<ptrdiff_t>(active_count_) - 1;
-  ptrdiff_t out = static_cast<ptrdiff_t>(active_count_ + m) - 1;
-  size_t added = 0;
-  // The free count in a local (set_up's calls would make the member a load and a store per
-  // triangle); a sliver leaves its slot on top of the free list for the next triangle.
-  size_t free = free_count_;
+  // First every triangle of the bucket (latest submission first) is set up in the slot on top
+  // of the free list, which a triangle set up takes (a sliver leaves it for the next): the new
+  // slots end as free_slots[free, free_before), the earliest submission first. The loop keeps
+  // little in registers (set_up's block needs them). A bucket of more triangles than there are
+  // free slots is refused when the first one past them comes, as a count beforehand would:
+  // what set_up wrote went to free slots only, and its counts are put back.
+  const uint32_t without_pixels = stats.triangles_without_pixels, wide = stats.triangles_wide;
+  size_t free = free_before, room = free_before;
   SetupContext context = setup_context(strip);
-  for (; node != kNoTriangle; node = tris[node].next) {
-    while (i >= 0 && storage_.active[order[i]].index > node) order[out--] = order[i--];
-    const uint16_t slot = free_slots[free - 1];
-    if (!set_up(node, context, slot)) continue;
-    --free;
-    order[out--] = slot;
-    ++added;
+  for (uint16_t node = head; node != kNoTriangle;) {
+    if (room == 0) [[unlikely]] {
+      stats.triangles_without_pixels = without_pixels;
+      stats.triangles_wide = wide;
+      return false;
+    }
+    --room;
+    const BinnedTriangle& bt = tris[node];
+    if (set_up(node, bt, context, free_slots[free - 1])) --free;
+    node = bt.next;
   }
+  head = kNoTriangle;
   free_count_ = free;
-  // Without slivers the new and the old entries meet; else close the gap between them.
-  const ptrdiff_t gap = out - i;
-  for (ptrdiff_t k = i + 1; gap > 0 && k <= static_cast<ptrdiff_t>(active_count_ + added) - 1; ++k)
-    order[k] = order[k + gap];
+
+  // Then the new slots are merged into the active list (ascending submission order) from the
+  // back: each new one, from the latest, moves up the entries of later submission. `top` is the
+  // submission index of the last entry not moved yet (-1: none is left).
+  const ActiveTriangle* const active = storage_.active.data();
+  const uint16_t* const fresh = free_slots + free;
+  const size_t added = free_before - free;
+  uint16_t* src = order + active_count_;
+  uint16_t* dst = src + added;
+  int32_t top = src == order ? -1 : active[src[-1]].index;
+  for (const uint16_t* f = fresh + added; f != fresh;) {
+    const uint16_t slot = *--f;
+    const int32_t index = active[slot].index;
+    while (top > index) {
+      *--dst = *--src;
+      top = src == order ? -1 : active[src[-1]].index;
+    }
+    *--dst = slot;
+  }
   active_count_ += added;
-  stats_->triangles_set_up += static_cast<uint32_t>(added);
-  if (active_count_ > stats_->max_active) stats_->max_active = static_cast<uint32_t>(active_count_);
+  stats.triangles_set_up += static_cast<uint32_t>(added);
+  if (active_count_ > stats.max_active) stats.max_active = static_cast<uint32_t>(active_count_);
   return true;
 }
 
-// Sets binned triangle `node` up in active slot `slot`, from the later of its first row and the
-// strip's (triangles carried over a skipped or crowded strip, or binned into a band that starts
-// below their top). False for a sliver between pixel centres: no planes, the slot unused. The
-// caller counts the triangles set up (FrameStats::triangles_set_up).
+// Sets binned triangle `node` (bt, its record) up in active slot `slot`, from the later of its
+// first row and the strip's (triangles carried over a skipped or crowded strip, or binned into a
+// band that starts below their top). False for a sliver between pixel centres: no planes, the slot
+// unused. The caller counts the triangles set up (FrameStats::triangles_set_up).
 template <class PF, int K, SpanSet kSpans>
-[[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node, SetupContext& c,
+[[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node,
+                                                                    const BinnedTriangle& bt,
+                                                                    SetupContext& c,
                                                                     uint16_t slot) {
-  const BinnedTriangle& bt = frame_.triangles[node];
   ActiveTriangle& t = storage_.active[slot];
   constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
@@ -441,7 +458,8 @@ template <class PF, int K, SpanSet kSpans>
   const uint8_t draw = c.draw;
   const RowWindow& window = c.window;
   if (kSmallPlanesByHand && c.lanes) [[likely]] {  // the common case: one call from the indices
-    t.ext = nullptr;
+    // Neither t.ext nor t.draw is stored: only the textured and Phong rows read them
+    // (legacy_rows), and a lanes triangle's rows are untextured.
     const UntexturedTriangle u = c.lanes_setup.set_up(bt.v, t);
     if (!u.pixels()) {
       ++stats_->triangles_without_pixels;
@@ -451,7 +469,6 @@ template <class PF, int K, SpanSet kSpans>
       ++stats_->triangles_wide;
     t.rows = c.rows[u.row_offset()];
     t.index = node;
-    t.draw = draw;
     return true;
   }
   const ScreenVertex* v[3];
