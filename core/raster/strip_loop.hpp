@@ -111,7 +111,8 @@ class StripLoop {
     return c;
   }
   bool activate(int strip);
-  bool set_up(uint16_t node, const BinnedTriangle& bt, SetupContext& c, uint16_t slot);
+  bool set_up(uint16_t node, const BinnedTriangle& bt, SetupContext& c, uint16_t slot,
+              ActiveTriangle& t);
   SetupInput setup_input(uint16_t node, const BinnedTriangle& bt, const DrawRecord& dr) const;
   uint8_t draw_of(const BinnedTriangle& bt) const;
   void crowded_strip(int strip, Pixel* pixels, int y0, int rows);
@@ -311,7 +312,7 @@ void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, i
     while (node != kNoTriangle && free_count_ > 0) {
       const uint16_t n = tris[node].next;
       const uint16_t slot = free_slots[--free_count_];
-      if (set_up(node, tris[node], context, slot)) {
+      if (set_up(node, tris[node], context, slot, storage_.active[slot])) {
         order[batch++] = slot;
         ++stats_->triangles_set_up;
       } else
@@ -375,7 +376,9 @@ bool StripLoop<PF, K, kSpans>::activate(int strip) {
   // free slots is refused when the first one past them comes, as a count beforehand would:
   // what set_up wrote went to free slots only, and its counts are put back.
   const uint32_t without_pixels = stats.triangles_without_pixels, wide = stats.triangles_wide;
-  size_t free = free_before, room = free_before;
+  ActiveTriangle* const active = storage_.active.data();
+  uint16_t* top_slot = free_slots + free_before;  // one past the top of the free list
+  size_t room = free_before;
   SetupContext context = setup_context(strip);
   for (uint16_t node = head; node != kNoTriangle;) {
     if (room == 0) [[unlikely]] {
@@ -385,16 +388,17 @@ bool StripLoop<PF, K, kSpans>::activate(int strip) {
     }
     --room;
     const BinnedTriangle& bt = tris[node];
-    if (set_up(node, bt, context, free_slots[free - 1])) --free;
+    const uint16_t slot = top_slot[-1];
+    if (set_up(node, bt, context, slot, active[slot])) --top_slot;
     node = bt.next;
   }
   head = kNoTriangle;
+  const auto free = static_cast<size_t>(top_slot - free_slots);
   free_count_ = free;
 
   // Then the new slots are merged into the active list (ascending submission order) from the
   // back: each new one, from the latest, moves up the entries of later submission. `top` is the
   // submission index of the last entry not moved yet (-1: none is left).
-  const ActiveTriangle* const active = storage_.active.data();
   const uint16_t* const fresh = free_slots + free;
   const size_t added = free_before - free;
   uint16_t* src = order + active_count_;
@@ -415,16 +419,15 @@ bool StripLoop<PF, K, kSpans>::activate(int strip) {
   return true;
 }
 
-// Sets binned triangle `node` (bt, its record) up in active slot `slot`, from the later of its
-// first row and the strip's (triangles carried over a skipped or crowded strip, or binned into a
-// band that starts below their top). False for a sliver between pixel centres: no planes, the slot
-// unused. The caller counts the triangles set up (FrameStats::triangles_set_up).
+// Sets binned triangle `node` (bt, its record) up in active slot `slot` (t, its record), from the
+// later of its first row and the strip's (triangles carried over a skipped or crowded strip, or
+// binned into a band that starts below their top). False for a sliver between pixel centres: no
+// planes, the slot unused. The caller counts the triangles set up (FrameStats::triangles_set_up).
 template <class PF, int K, SpanSet kSpans>
 [[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node,
                                                                     const BinnedTriangle& bt,
-                                                                    SetupContext& c,
-                                                                    uint16_t slot) {
-  ActiveTriangle& t = storage_.active[slot];
+                                                                    SetupContext& c, uint16_t slot,
+                                                                    ActiveTriangle& t) {
   constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
   // Consecutive triangles mostly share their draw: its vertex range before the search, and what
