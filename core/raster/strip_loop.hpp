@@ -97,6 +97,8 @@ class StripLoop {
     // The vertices of the draw found last: [vertex_lo, vertex_lo + vertex_count), draw_of's
     // answer for every triangle whose first vertex lies there (none at first).
     uint32_t vertex_lo = 0, vertex_count = 0;
+    // vertex_count when the draw is lanes, else 0: the lanes path's one test per triangle.
+    uint32_t lanes_count = 0;
     uint8_t draw = 0;
     bool legacy = false;          // textured or Phong: setup_rows and setup_planes
     bool triangle_pixel = false;  // flat with a colour per triangle
@@ -113,6 +115,7 @@ class StripLoop {
   bool activate(int strip);
   bool set_up(uint16_t node, const BinnedTriangle& bt, SetupContext& c, uint16_t slot,
               ActiveTriangle& t);
+  bool set_up_lanes(uint16_t node, const BinnedTriangle& bt, SetupContext& c, ActiveTriangle& t);
   SetupInput setup_input(uint16_t node, const BinnedTriangle& bt, const DrawRecord& dr) const;
   uint8_t draw_of(const BinnedTriangle& bt) const;
   void crowded_strip(int strip, Pixel* pixels, int y0, int rows);
@@ -430,6 +433,9 @@ template <class PF, int K, SpanSet kSpans>
                                                                     ActiveTriangle& t) {
   constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
+  // The common case first: a triangle of the lanes draw found last.
+  if (kSmallPlanesByHand && uint32_t{bt.v[0]} - c.vertex_lo < c.lanes_count) [[likely]]
+    return set_up_lanes(node, bt, c, t);
   // Consecutive triangles mostly share their draw: its vertex range before the search, and what
   // setup needs of the draw only when it changes.
   if (uint32_t{bt.v[0]} - c.vertex_lo >= c.vertex_count) [[unlikely]] {
@@ -457,23 +463,11 @@ template <class PF, int K, SpanSet kSpans>
     in.lanes_first = lanes_first_of(in);
     c.lanes = kSmallPlanesByHand && in.lanes_first && !c.legacy;
     if (kSmallPlanesByHand && c.lanes) c.lanes_setup.prepare(c.window, in, frame_.vertices.data());
+    c.lanes_count = c.lanes ? c.vertex_count : 0;
   }
+  if (kSmallPlanesByHand && c.lanes) return set_up_lanes(node, bt, c, t);
   const uint8_t draw = c.draw;
   const RowWindow& window = c.window;
-  if (kSmallPlanesByHand && c.lanes) [[likely]] {  // the common case: one call from the indices
-    // Neither t.ext nor t.draw is stored: only the textured and Phong rows read them
-    // (legacy_rows), and a lanes triangle's rows are untextured.
-    const UntexturedTriangle u = c.lanes_setup.set_up(bt.v, t);
-    if (!u.pixels()) {
-      ++stats_->triangles_without_pixels;
-      return false;
-    }
-    if (u.wide()) [[unlikely]]
-      ++stats_->triangles_wide;
-    t.rows = c.rows[u.row_offset()];
-    t.index = node;
-    return true;
-  }
   const ScreenVertex* v[3];
   for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
   sort_by_y(v);
@@ -508,6 +502,26 @@ template <class PF, int K, SpanSet kSpans>
   }
   t.index = node;
   t.draw = draw;
+  return true;
+}
+
+// set_up of a triangle of a lanes draw (c prepared for it): one call from the indices. Neither
+// t.ext nor t.draw is stored: only the textured and Phong rows read them (legacy_rows), and a
+// lanes triangle's rows are untextured.
+template <class PF, int K, SpanSet kSpans>
+[[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up_lanes(uint16_t node,
+                                                                          const BinnedTriangle& bt,
+                                                                          SetupContext& c,
+                                                                          ActiveTriangle& t) {
+  const UntexturedTriangle u = c.lanes_setup.set_up(bt.v, t);
+  if (!u.pixels()) {
+    ++stats_->triangles_without_pixels;
+    return false;
+  }
+  if (u.wide()) [[unlikely]]
+    ++stats_->triangles_wide;
+  t.rows = c.rows[u.row_offset()];
+  t.index = node;
   return true;
 }
 
