@@ -107,12 +107,15 @@ class StripLoop {
     bool lanes = false;           // in.lanes_first where kSmallPlanesByHand: lanes_setup's
     [[no_unique_address]] StripLanesSetup lanes_setup;  // prepared for the draw when lanes
   };
+  RowWindow strip_window(int strip) const {
+    return RowWindow{std::max(0, strip * K), frame_.height - 1, frame_.width};
+  }
   SetupContext setup_context(int strip) const {
     SetupContext c;
-    c.window = RowWindow{std::max(0, strip * K), frame_.height - 1, frame_.width};
+    c.window = strip_window(strip);
     return c;
   }
-  bool activate(int strip);
+  bool activate(int strip, SetupContext& context);
   bool set_up(uint16_t node, const BinnedTriangle& bt, SetupContext& c, uint16_t slot,
               ActiveTriangle& t);
   bool set_up_lanes(uint16_t node, const BinnedTriangle& bt, SetupContext& c, ActiveTriangle& t);
@@ -179,6 +182,7 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
   uint32_t* inputs = !kSkip || frame_.strip_inputs.empty() ? nullptr : frame_.strip_inputs.data();
   const auto last = static_cast<size_t>(frame_.strips);  // the last frame's half
   const Pixel bg = PF::encode(frame_.background);
+  SetupContext context = setup_context(s0);  // made once: activate renews what a strip needs
   for (int s = s0; s < s1; ++s) {
     const int y0 = s * K;
     const int rows = std::min(K, frame_.height - y0);
@@ -203,7 +207,7 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
     std::span<Pixel> px = lease.pixels();
     if (px.size() < count) return Status::kInvalidArgument;
     fill_pixels(px.data(), count, bg);
-    const bool fits = activate(s);
+    const bool fits = activate(s, context);
     std::span<uint16_t> depth = storage_.depth.first(count);
     if (!fits) {
       fill_pixels(depth.data(), count, uint16_t{0xFFFF});
@@ -363,7 +367,7 @@ void StripLoop<PF, K, kSpans>::resolve_fetchers() {
 // Moves the triangles of the strip's bucket into the active list; false (nothing moved) when
 // they do not all fit beside those already active (the strip is then crowded_strip's).
 template <class PF, int K, SpanSet kSpans>
-bool StripLoop<PF, K, kSpans>::activate(int strip) {
+bool StripLoop<PF, K, kSpans>::activate(int strip, SetupContext& context) {
   const std::span<BinnedTriangle> tris = frame_.triangles;
   uint16_t& head = frame_.buckets[static_cast<size_t>(strip)];
   if (head == kNoTriangle) return true;
@@ -382,7 +386,11 @@ bool StripLoop<PF, K, kSpans>::activate(int strip) {
   ActiveTriangle* const active = storage_.active.data();
   uint16_t* top_slot = free_slots + free_before;  // one past the top of the free list
   size_t room = free_before;
-  SetupContext context = setup_context(strip);
+  // The context as setup_context(strip) makes it, for what set_up reads before a draw is found
+  // (the rest is set when one is).
+  context.window = strip_window(strip);
+  context.vertex_count = 0;
+  context.lanes_count = 0;
   for (uint16_t node = head; node != kNoTriangle;) {
     if (room == 0) [[unlikely]] {
       stats.triangles_without_pixels = without_pixels;
