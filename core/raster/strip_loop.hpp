@@ -521,14 +521,19 @@ template <class PF, int K, SpanSet kSpans>
                                                                           const BinnedTriangle& bt,
                                                                           SetupContext& c,
                                                                           ActiveTriangle& t) {
+  constexpr UntexturedTriangle kLanes = UntexturedTriangle::made(UntexturedKind::kLanes, false);
   const UntexturedTriangle u = c.lanes_setup.set_up(bt.v, t);
-  if (!u.pixels()) {
-    ++stats_->triangles_without_pixels;
-    return false;
+  if (u == kLanes) [[likely]] {  // what the setup block makes (its row loop known here)
+    t.rows = c.rows[kLanes.row_offset()];
+  } else {
+    if (!u.pixels()) {
+      ++stats_->triangles_without_pixels;
+      return false;
+    }
+    if (u.wide()) [[unlikely]]
+      ++stats_->triangles_wide;
+    t.rows = c.rows[u.row_offset()];
   }
-  if (u.wide()) [[unlikely]]
-    ++stats_->triangles_wide;
-  t.rows = c.rows[u.row_offset()];
   t.index = node;
   return true;
 }
