@@ -103,6 +103,7 @@ class StripLoop {
     bool legacy = false;          // textured or Phong: setup_rows and setup_planes
     bool triangle_pixel = false;  // flat with a colour per triangle
     const RowFn* rows = nullptr;  // the untextured row loops of the draw's depth test, by kind
+    RowFn lanes_rows = nullptr;   // rows' kLanes entry (what the setup block mostly makes)
     UntexturedInput in;           // the untextured setup's input for the draw
     bool lanes = false;           // in.lanes_first where kSmallPlanesByHand: lanes_setup's
     [[no_unique_address]] StripLanesSetup lanes_setup;  // prepared for the draw when lanes
@@ -460,6 +461,7 @@ template <class PF, int K, SpanSet kSpans>
     c.triangle_pixel = dr.colors == ColorPlanes::kNone && dr.triangle_colors;
     c.rows =
         &kUntexturedRowTable<PF, kSpans>[untextured_row_index(dr.depth, UntexturedKind::kFlat)];
+    c.lanes_rows = c.rows[UntexturedTriangle::made(UntexturedKind::kLanes, false).row_offset()];
     UntexturedInput& in = c.in;
     in.colors = dr.colors;
     in.depth = dr.depth;
@@ -524,7 +526,7 @@ template <class PF, int K, SpanSet kSpans>
   constexpr UntexturedTriangle kLanes = UntexturedTriangle::made(UntexturedKind::kLanes, false);
   const UntexturedTriangle u = c.lanes_setup.set_up(bt.v, t);
   if (u == kLanes) [[likely]] {  // what the setup block makes (its row loop known here)
-    t.rows = c.rows[kLanes.row_offset()];
+    t.rows = c.lanes_rows;
   } else {
     if (!u.pixels()) {
       ++stats_->triangles_without_pixels;
