@@ -97,21 +97,29 @@ class StripLoop {
     // The vertices of the draw found last: [vertex_lo, vertex_lo + vertex_count), draw_of's
     // answer for every triangle whose first vertex lies there (none at first).
     uint32_t vertex_lo = 0, vertex_count = 0;
+    // vertex_count when the draw is lanes, else 0: the lanes path's one test per triangle.
+    uint32_t lanes_count = 0;
     uint8_t draw = 0;
     bool legacy = false;          // textured or Phong: setup_rows and setup_planes
     bool triangle_pixel = false;  // flat with a colour per triangle
     const RowFn* rows = nullptr;  // the untextured row loops of the draw's depth test, by kind
+    RowFn lanes_rows = nullptr;   // rows' kLanes entry (what the setup block mostly makes)
     UntexturedInput in;           // the untextured setup's input for the draw
     bool lanes = false;           // in.lanes_first where kSmallPlanesByHand: lanes_setup's
     [[no_unique_address]] StripLanesSetup lanes_setup;  // prepared for the draw when lanes
   };
+  RowWindow strip_window(int strip) const {
+    return RowWindow{std::max(0, strip * K), frame_.height - 1, frame_.width};
+  }
   SetupContext setup_context(int strip) const {
     SetupContext c;
-    c.window = RowWindow{std::max(0, strip * K), frame_.height - 1, frame_.width};
+    c.window = strip_window(strip);
     return c;
   }
-  bool activate(int strip);
-  bool set_up(uint16_t node, SetupContext& c, uint16_t slot);
+  bool activate(int strip, SetupContext& context);
+  bool set_up(uint16_t node, const BinnedTriangle& bt, SetupContext& c, uint16_t slot,
+              ActiveTriangle& t);
+  bool set_up_lanes(uint16_t node, const BinnedTriangle& bt, SetupContext& c, ActiveTriangle& t);
   SetupInput setup_input(uint16_t node, const BinnedTriangle& bt, const DrawRecord& dr) const;
   uint8_t draw_of(const BinnedTriangle& bt) const;
   void crowded_strip(int strip, Pixel* pixels, int y0, int rows);
@@ -175,6 +183,7 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
   uint32_t* inputs = !kSkip || frame_.strip_inputs.empty() ? nullptr : frame_.strip_inputs.data();
   const auto last = static_cast<size_t>(frame_.strips);  // the last frame's half
   const Pixel bg = PF::encode(frame_.background);
+  SetupContext context = setup_context(s0);  // made once: activate renews what a strip needs
   for (int s = s0; s < s1; ++s) {
     const int y0 = s * K;
     const int rows = std::min(K, frame_.height - y0);
@@ -199,7 +208,7 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
     std::span<Pixel> px = lease.pixels();
     if (px.size() < count) return Status::kInvalidArgument;
     fill_pixels(px.data(), count, bg);
-    const bool fits = activate(s);
+    const bool fits = activate(s, context);
     std::span<uint16_t> depth = storage_.depth.first(count);
     if (!fits) {
       fill_pixels(depth.data(), count, uint16_t{0xFFFF});
@@ -311,7 +320,7 @@ void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, i
     while (node != kNoTriangle && free_count_ > 0) {
       const uint16_t n = tris[node].next;
       const uint16_t slot = free_slots[--free_count_];
-      if (set_up(node, context, slot)) {
+      if (set_up(node, tris[node], context, slot, storage_.active[slot])) {
         order[batch++] = slot;
         ++stats_->triangles_set_up;
       } else
@@ -359,57 +368,83 @@ void StripLoop<PF, K, kSpans>::resolve_fetchers() {
 // Moves the triangles of the strip's bucket into the active list; false (nothing moved) when
 // they do not all fit beside those already active (the strip is then crowded_strip's).
 template <class PF, int K, SpanSet kSpans>
-bool StripLoop<PF, K, kSpans>::activate(int strip) {
+bool StripLoop<PF, K, kSpans>::activate(int strip, SetupContext& context) {
   const std::span<BinnedTriangle> tris = frame_.triangles;
   uint16_t& head = frame_.buckets[static_cast<size_t>(strip)];
-  size_t m = 0;
-  for (uint16_t i = head; i != kNoTriangle; i = tris[i].next) ++m;
-  if (m == 0) return true;
-  if (m > free_count_) return false;
-  uint16_t node = head;
-  head = kNoTriangle;
+  if (head == kNoTriangle) return true;
+  uint16_t* const order = storage_.active_index.data();
+  uint16_t* const free_slots = order + storage_.active.size();
+  FrameStats& stats = *stats_;
+  const size_t free_before = free_count_;
 
-  // Merge from the back: existing entries are in ascending submission order, the bucket gives
-  // descending order.
-  uint16_t* order = storage_.active_index.data();
-  uint16_t* free_slots = order + storage_.active.size();
-  ptrdiff_t i = static_cast<ptrdiff_t>(active_count_) - 1;
-  ptrdiff_t out = static_cast<ptrdiff_t>(active_count_ + m) - 1;
-  size_t added = 0;
-  // The free count in a local (set_up's calls would make the member a load and a store per
-  // triangle); a sliver leaves its slot on top of the free list for the next triangle.
-  size_t free = free_count_;
-  SetupContext context = setup_context(strip);
-  for (; node != kNoTriangle; node = tris[node].next) {
-    while (i >= 0 && storage_.active[order[i]].index > node) order[out--] = order[i--];
-    const uint16_t slot = free_slots[free - 1];
-    if (!set_up(node, context, slot)) continue;
-    --free;
-    order[out--] = slot;
-    ++added;
+  // First every triangle of the bucket (latest submission first) is set up in the slot on top
+  // of the free list, which a triangle set up takes (a sliver leaves it for the next): the new
+  // slots end as free_slots[free, free_before), the earliest submission first. The loop keeps
+  // little in registers (set_up's block needs them). A bucket of more triangles than there are
+  // free slots is refused when the first one past them comes, as a count beforehand would:
+  // what set_up wrote went to free slots only, and its counts are put back.
+  const uint32_t without_pixels = stats.triangles_without_pixels, wide = stats.triangles_wide;
+  ActiveTriangle* const active = storage_.active.data();
+  uint16_t* top_slot = free_slots + free_before;  // one past the top of the free list
+  size_t room = free_before;
+  // The context as setup_context(strip) makes it, for what set_up reads before a draw is found
+  // (the rest is set when one is).
+  context.window = strip_window(strip);
+  context.vertex_count = 0;
+  context.lanes_count = 0;
+  for (uint16_t node = head; node != kNoTriangle;) {
+    if (room == 0) [[unlikely]] {
+      stats.triangles_without_pixels = without_pixels;
+      stats.triangles_wide = wide;
+      return false;
+    }
+    --room;
+    const BinnedTriangle& bt = tris[node];
+    const uint16_t slot = top_slot[-1];
+    if (set_up(node, bt, context, slot, active[slot])) --top_slot;
+    node = bt.next;
   }
+  head = kNoTriangle;
+  const auto free = static_cast<size_t>(top_slot - free_slots);
   free_count_ = free;
-  // Without slivers the new and the old entries meet; else close the gap between them.
-  const ptrdiff_t gap = out - i;
-  for (ptrdiff_t k = i + 1; gap > 0 && k <= static_cast<ptrdiff_t>(active_count_ + added) - 1; ++k)
-    order[k] = order[k + gap];
+
+  // Then the new slots are merged into the active list (ascending submission order) from the
+  // back: each new one, from the latest, moves up the entries of later submission. `top` is the
+  // submission index of the last entry not moved yet (-1: none is left).
+  const uint16_t* const fresh = free_slots + free;
+  const size_t added = free_before - free;
+  uint16_t* src = order + active_count_;
+  uint16_t* dst = src + added;
+  int32_t top = src == order ? -1 : active[src[-1]].index;
+  for (const uint16_t* f = fresh + added; f != fresh;) {
+    const uint16_t slot = *--f;
+    const int32_t index = active[slot].index;
+    while (top > index) {
+      *--dst = *--src;
+      top = src == order ? -1 : active[src[-1]].index;
+    }
+    *--dst = slot;
+  }
   active_count_ += added;
-  stats_->triangles_set_up += static_cast<uint32_t>(added);
-  if (active_count_ > stats_->max_active) stats_->max_active = static_cast<uint32_t>(active_count_);
+  stats.triangles_set_up += static_cast<uint32_t>(added);
+  if (active_count_ > stats.max_active) stats.max_active = static_cast<uint32_t>(active_count_);
   return true;
 }
 
-// Sets binned triangle `node` up in active slot `slot`, from the later of its first row and the
-// strip's (triangles carried over a skipped or crowded strip, or binned into a band that starts
-// below their top). False for a sliver between pixel centres: no planes, the slot unused. The
-// caller counts the triangles set up (FrameStats::triangles_set_up).
+// Sets binned triangle `node` (bt, its record) up in active slot `slot` (t, its record), from the
+// later of its first row and the strip's (triangles carried over a skipped or crowded strip, or
+// binned into a band that starts below their top). False for a sliver between pixel centres: no
+// planes, the slot unused. The caller counts the triangles set up (FrameStats::triangles_set_up).
 template <class PF, int K, SpanSet kSpans>
-[[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node, SetupContext& c,
-                                                                    uint16_t slot) {
-  const BinnedTriangle& bt = frame_.triangles[node];
-  ActiveTriangle& t = storage_.active[slot];
+[[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up(uint16_t node,
+                                                                    const BinnedTriangle& bt,
+                                                                    SetupContext& c, uint16_t slot,
+                                                                    ActiveTriangle& t) {
   constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
+  // The common case first: a triangle of the lanes draw found last.
+  if (kSmallPlanesByHand && uint32_t{bt.v[0]} - c.vertex_lo < c.lanes_count) [[likely]]
+    return set_up_lanes(node, bt, c, t);
   // Consecutive triangles mostly share their draw: its vertex range before the search, and what
   // setup needs of the draw only when it changes.
   if (uint32_t{bt.v[0]} - c.vertex_lo >= c.vertex_count) [[unlikely]] {
@@ -426,6 +461,7 @@ template <class PF, int K, SpanSet kSpans>
     c.triangle_pixel = dr.colors == ColorPlanes::kNone && dr.triangle_colors;
     c.rows =
         &kUntexturedRowTable<PF, kSpans>[untextured_row_index(dr.depth, UntexturedKind::kFlat)];
+    c.lanes_rows = c.rows[UntexturedTriangle::made(UntexturedKind::kLanes, false).row_offset()];
     UntexturedInput& in = c.in;
     in.colors = dr.colors;
     in.depth = dr.depth;
@@ -437,23 +473,11 @@ template <class PF, int K, SpanSet kSpans>
     in.lanes_first = lanes_first_of(in);
     c.lanes = kSmallPlanesByHand && in.lanes_first && !c.legacy;
     if (kSmallPlanesByHand && c.lanes) c.lanes_setup.prepare(c.window, in, frame_.vertices.data());
+    c.lanes_count = c.lanes ? c.vertex_count : 0;
   }
+  if (kSmallPlanesByHand && c.lanes) return set_up_lanes(node, bt, c, t);
   const uint8_t draw = c.draw;
   const RowWindow& window = c.window;
-  if (kSmallPlanesByHand && c.lanes) [[likely]] {  // the common case: one call from the indices
-    t.ext = nullptr;
-    const UntexturedTriangle u = c.lanes_setup.set_up(bt.v, t);
-    if (!u.pixels()) {
-      ++stats_->triangles_without_pixels;
-      return false;
-    }
-    if (u.wide()) [[unlikely]]
-      ++stats_->triangles_wide;
-    t.rows = c.rows[u.row_offset()];
-    t.index = node;
-    t.draw = draw;
-    return true;
-  }
   const ScreenVertex* v[3];
   for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
   sort_by_y(v);
@@ -488,6 +512,31 @@ template <class PF, int K, SpanSet kSpans>
   }
   t.index = node;
   t.draw = draw;
+  return true;
+}
+
+// set_up of a triangle of a lanes draw (c prepared for it): one call from the indices. Neither
+// t.ext nor t.draw is stored: only the textured and Phong rows read them (legacy_rows), and a
+// lanes triangle's rows are untextured.
+template <class PF, int K, SpanSet kSpans>
+[[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up_lanes(uint16_t node,
+                                                                          const BinnedTriangle& bt,
+                                                                          SetupContext& c,
+                                                                          ActiveTriangle& t) {
+  constexpr UntexturedTriangle kLanes = UntexturedTriangle::made(UntexturedKind::kLanes, false);
+  const UntexturedTriangle u = c.lanes_setup.set_up(bt.v, t);
+  if (u == kLanes) [[likely]] {  // what the setup block makes (its row loop known here)
+    t.rows = c.lanes_rows;
+  } else {
+    if (!u.pixels()) {
+      ++stats_->triangles_without_pixels;
+      return false;
+    }
+    if (u.wide()) [[unlikely]]
+      ++stats_->triangles_wide;
+    t.rows = c.rows[u.row_offset()];
+  }
+  t.index = node;
   return true;
 }
 

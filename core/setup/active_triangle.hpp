@@ -72,7 +72,7 @@ struct ActiveTriangle {
   int16_t last_row = 0;   // last row to draw (inclusive, clamped to the viewport)
   int16_t col_base = 0;   // the edges' column base
   uint16_t index = 0;     // binned triangle index: submission order
-  uint8_t draw = 0;       // draw record of the triangle's state
+  uint8_t draw = 0;       // draw record of the triangle's state (read by textured and Phong rows)
   uint8_t flags = 0;      // kBottomRight, kWideEdges, kInside
   // The top and bottom edges are the right ones (the middle vertex lies right of the long edge).
   static constexpr uint8_t kBottomRight = 1;
@@ -92,7 +92,8 @@ struct ActiveTriangle {
   Plane z;
   Plane c[3];  // right after z: a row loop reads z, c[0] and c[1] as one block
   Plane q;
-  // Textured and Phong triangles: their slot's planes (nullptr for the others).
+  // Textured and Phong triangles: their slot's planes. The others' rows never read it (nor draw):
+  // the strip loop's lanes setup stores neither (the other untextured setups store both).
   ActiveExtra* ext = nullptr;
 };
 static_assert(sizeof(ActiveExtra) == 124);

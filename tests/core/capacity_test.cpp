@@ -217,6 +217,37 @@ TEST(Capacity, SliversBetweenPixelCentresTakeNoActiveSlot) {
   EXPECT_EQ(colours.size(), 5u);  // four triangles and the background
 }
 
+// The same slivers with fewer active slots than the strips' triangles: a bucket that does not
+// fit is refused once its triangles run past the free slots (the strip loop sets up those
+// before, here slivers), and its crowded strip sets them up again. The frame is the one-pass
+// frame and each sliver is counted once.
+TEST(Capacity, CrowdedStripsWithSliversCountEachSliverOnce) {
+  ScreenScene s;
+  s.add(2 * S, 2 * S, 2 * S, 44 * S, 60 * S, 2 * S);      // rows 2..43, from strip 0
+  s.add(4 * S, 9 * S, 40 * S, 40 * S, 50 * S, 12 * S);    // from strip 1, over the first
+  s.add(10 * S, 11 * S, 30 * S, 46 * S, 56 * S, 20 * S);  // from strip 1, over both
+  // Slivers from strip 1 (as above): the first of its bucket (latest submission first).
+  for (int64_t x : {10 * S, 14 * S, 20 * S})
+    s.add(x + 154, 10 * S, x + 205, 10 * S, x + 20 * S + 179, 30 * S);
+  s.add(30 * S, 17 * S, 33 * S, 47 * S, 62 * S, 30 * S);  // from strip 2
+  CoreHarness<8> ref(64, 48);
+  ref.begin();
+  ref.renderer().draw_screen(s.vertices, s.triangles, test::coverage_state());
+  const host::ImageRgb8 want = ref.render();
+  EXPECT_EQ(ref.renderer().stats().triangles_without_pixels, 3u);
+  EXPECT_EQ(ref.renderer().stats().strip_passes, 0u);
+  for (size_t active = 1; active <= 3; ++active) {
+    CoreHarness<8> small(64, 48, 100, 100, active);
+    small.begin();
+    small.renderer().draw_screen(s.vertices, s.triangles, test::coverage_state());
+    EXPECT_EQ(small.render().rgb, want.rgb) << active << " active slots";
+    const FrameStats& st = small.renderer().stats();
+    EXPECT_GT(st.strip_passes, 0u) << active;
+    EXPECT_EQ(st.triangles_without_pixels, 3u) << active;
+    EXPECT_EQ(st.triangles_wide, 0u) << active;
+  }
+}
+
 TEST(Capacity, DrawTableFullIsReported) {
   ScreenScene a = squares(1);
   CoreHarness<8> small(64, 64, 100, 100, 16, /*max_draws=*/1);
