@@ -9,14 +9,34 @@
 
 #include "firmware/bin_check/bin_cases.hpp"
 #include "lineraster/core/binning/edge_table.hpp"
+#include "lineraster/core/setup/triangle_rows.hpp"
 
 namespace lr {
 namespace {
 
 namespace bins = fw::bins;
 
+// The order in which a binned triangle's vertices are stored, from its definition: the rotation
+// of (a, b, c) that starts at sort_by_y's first, unless setup's one compare (sort_below_top)
+// does not sort that rotation as sort_by_y sorts (a, b, c): then sort_by_y's order itself.
+std::array<uint16_t, 3> reference_order(const ScreenVertex* base,
+                                        const std::array<uint16_t, 3>& in) {
+  const ScreenVertex* s[3] = {&base[in[0]], &base[in[1]], &base[in[2]]};
+  sort_by_y(s);
+  size_t top = 0;
+  while (&base[in[top]] != s[0]) ++top;
+  std::array<uint16_t, 3> out = {in[top], in[(top + 1) % 3], in[(top + 2) % 3]};
+  const ScreenVertex* r[3] = {&base[out[0]], &base[out[1]], &base[out[2]]};
+  sort_below_top(r);
+  if (r[1] != s[1] || r[2] != s[2]) {
+    out[1] = static_cast<uint16_t>(s[1] - base);
+    out[2] = static_cast<uint16_t>(s[2] - base);
+  }
+  return out;
+}
+
 // The lane as the binner would do it: classify_inline() with back faces culled, then the
-// pending vertices, then EdgeTable::add()'s bucket push.
+// pending vertices, then EdgeTable::add()'s bucket push, the vertices in reference_order().
 BinLaneStop reference(const std::array<uint16_t, 3>*& tp, BinLane& k) {
   static BinnedTriangle scratch[bins::kCapacity];
   static uint16_t buckets[bins::kStrips];
@@ -48,7 +68,8 @@ BinLaneStop reference(const std::array<uint16_t, 3>*& tp, BinLane& k) {
     const uint32_t index = k.count++;
     uint16_t& head = k.buckets[table.strip_of_row(r0)];
     BinnedTriangle& t = k.triangles[index];
-    for (size_t c = 0; c < 3; ++c) t.v[c] = static_cast<uint16_t>(k.first2 + (*tp)[c]);
+    const std::array<uint16_t, 3> order = reference_order(k.vertices, *tp);
+    for (size_t c = 0; c < 3; ++c) t.v[c] = static_cast<uint16_t>(k.first2 + order[c]);
     t.next = head;
     head = static_cast<uint16_t>(index);
   }
@@ -73,6 +94,42 @@ TEST(BinLane, CLaneBinsWhatTheEdgeTableBins) {
   EXPECT_GT(t.zero, 1000u);
   EXPECT_GT(t.offscreen, 500u);
   EXPECT_GT(t.lit, 20000u);
+}
+
+// Every order of every triangle with corners on rows 0..3 (ties of every kind): stored with the
+// top first, the other two sorted by one compare as sort_by_y sorts the submitted order, and a
+// rotation (the winding kept) except where b is on top and a level with c.
+TEST(BinLane, TopFirstSortsAsSortByYAndKeepsTheWinding) {
+  uint32_t rotations = 0, reversed = 0;
+  for (int32_t ya = 0; ya < 4; ++ya)
+    for (int32_t yb = 0; yb < 4; ++yb)
+      for (int32_t yc = 0; yc < 4; ++yc) {
+        ScreenVertex v[3]{};
+        v[0].y = ya * 256;
+        v[1].y = yb * 256;
+        v[2].y = yc * 256;
+        uint16_t t[3];
+        store_top_first(t, uint16_t{0}, uint16_t{1}, uint16_t{2}, v[1].y - v[0].y, v[2].y - v[0].y);
+        const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
+        sort_by_y(s);
+        const ScreenVertex* r[3] = {&v[t[0]], &v[t[1]], &v[t[2]]};
+        EXPECT_EQ(r[0], s[0]) << ya << yb << yc;
+        sort_below_top(r);
+        EXPECT_TRUE(r[1] == s[1] && r[2] == s[2]) << ya << yb << yc;
+        const bool rotation = t[1] == (t[0] + 1) % 3 && t[2] == (t[0] + 2) % 3;
+        const bool exception = yb < ya && ya == yc;
+        EXPECT_EQ(rotation, !exception) << ya << yb << yc;
+        if (exception) {
+          EXPECT_EQ(t[0], 1);
+          EXPECT_EQ(t[1], 0);
+          EXPECT_EQ(t[2], 2);
+          ++reversed;
+        } else {
+          ++rotations;
+        }
+      }
+  EXPECT_EQ(rotations + reversed, 64u);
+  EXPECT_EQ(reversed, 6u);  // yb < ya == yc: (ya, yb) in {(1, 0), (2, 0..1), (3, 0..2)}
 }
 
 }  // namespace
