@@ -30,7 +30,7 @@ struct alignas(8) BinLane {
   uint32_t first2;            // 20: the draw's first store index in both halves (x 0x10001)
   ScreenVertex* vertices;     // 24: the draw's first vertex
   uint32_t n;                 // 28: its vertex count (first_out_of_range())
-  const std::array<uint16_t, 3>* end;  // 32: the end of its triangles
+  const std::array<uint16_t, 3>* end;  // 32: the end of its triangles (the asm: in a register)
   int32_t height, width;               // 36, 40: the viewport
   ScreenVertex** list;                 // 44: the next free entry of the list of vertices to light
   ScreenVertex** list_limit;           // 48: the last entry at which three more still fit
@@ -224,8 +224,7 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   "pkhbt   r6, r6, r10, lsl #16\n\t" /* v2 next */                                                \
   "strd    r4, r6, [r12]\n\t"                                                                     \
   "add     %[tp], %[tp], #6\n\t" /* the next (3b's, without a branch there) */                    \
-  "ldr     r8, [%[k], #32]\n\t"                                                                   \
-  "cmp     %[tp], r8\n\t"                                                                         \
+  "cmp     %[tp], %[e]\n\t"                                                                       \
   "bne     1b\n\t"                                                                                \
   "mov     %[a], #0\n\t" /* kBinLaneEnd */                                                        \
   "b       9f\n"                                                                                  \
@@ -295,8 +294,7 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "blt     4f\n\t"  // no back face: area <= 0
       "3:\n\t"          // the next
       "add     %[tp], %[tp], #6\n\t"
-      "ldr     %[a], [%[k], #32]\n\t"
-      "cmp     %[tp], %[a]\n\t"
+      "cmp     %[tp], %[e]\n\t"
       "bne     1b\n\t"
       "mov     %[a], #0\n\t"  // kBinLaneEnd
       "b       9f\n"
@@ -337,7 +335,7 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "mov     %[a], #1\n"  // kBinLaneFlush
       "9:\n"
       : [tp] "+r"(tp), [a] "=&r"(a), [b] "=&r"(b)
-      : [k] "r"(&k)
+      : [k] "r"(&k), [e] "r"(k.end)
       : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   return static_cast<BinLaneStop>(a);
 #else
