@@ -154,15 +154,18 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 }
 
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
-// bin_lane_asm()'s rows from a = min(dy1, dy2), b = max(dy1, dy2) (r9: y0): the vertex a on top
-// (min(0, ..) = 0, max(0, ..) the max), or another (min(0, ..) the min).
-#define LR_BIN_LANE_ROWS_TOP   \
-  "add     %[a], r9, #128\n\t" \
-  "add     %[b], %[b], %[a]\n\t"
-#define LR_BIN_LANE_ROWS_BELOW            \
-  "bic     %[b], %[b], %[b], asr #31\n\t" \
-  "add     r9, r9, #128\n\t"              \
-  "add     %[a], %[a], r9\n\t"            \
+// bin_lane_asm()'s rows from the registers MIN and MAX holding min(dy1, dy2) and max(dy1, dy2)
+// (r9: y0): the vertex a on top (min(0, ..) = 0, max(0, ..) the max), or another (min(0, ..) the
+// min).
+#define LR_BIN_LANE_ROWS_TOP(MAX) \
+  "add     %[a], r9, #128\n\t"    \
+  "add     %[b], " MAX ", %[a]\n\t"
+#define LR_BIN_LANE_ROWS_BELOW(MIN, MAX) \
+  "bic     %[b], " MAX ", " MAX          \
+  ", asr #31\n\t"                        \
+  "add     r9, r9, #128\n\t"             \
+  "add     %[a], " MIN                   \
+  ", r9\n\t"                             \
   "add     %[b], %[b], r9\n\t"
 // The rest of bin_lane_asm() for one vertex on top (N: the labels' digit): the rows, the columns,
 // the pending vertices and the record, its indices read from the triangle at byte offsets O0, O1
@@ -309,23 +312,20 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       // the vertex on top (store_top_first) picks the tail that stores them in its order.
       "cmp     r11, lr\n\t"
       "bgt     42f\n\t"
-      "mov     %[a], r11\n\t"  // dy1 <= dy2
-      "mov     %[b], lr\n\t"
-      "cmp     r11, #0\n\t"
-      "bge     70f\n\t"  // a on top
+      "cmp     r11, #0\n\t"  // dy1 <= dy2
+      "bge     70f\n\t"      // a on top
       "cmp     lr, #0\n\t"
       "beq     73f\n\t"  // b on top, a level with c
       "b       71f\n"    // b on top
       "42:\n\t"
-      "mov     %[a], lr\n\t"  // dy2 < dy1
-      "mov     %[b], r11\n\t"
-      "cmp     lr, #0\n\t"
-      "bge     70f\n\t"  // a on top
+      "cmp     lr, #0\n\t"  // dy2 < dy1
+      "bge     74f\n\t"     // a on top
       // c on top
-      LR_BIN_LANE_TAIL("2", LR_BIN_LANE_ROWS_BELOW, "#4", "#0", "#2")
-      LR_BIN_LANE_TAIL("0", LR_BIN_LANE_ROWS_TOP, "#0", "#2", "#4")
-      LR_BIN_LANE_TAIL("1", LR_BIN_LANE_ROWS_BELOW, "#2", "#4", "#0")
-      LR_BIN_LANE_TAIL("3", LR_BIN_LANE_ROWS_BELOW, "#2", "#0", "#4")
+      LR_BIN_LANE_TAIL("2", LR_BIN_LANE_ROWS_BELOW("lr", "r11"), "#4", "#0", "#2")
+      LR_BIN_LANE_TAIL("0", LR_BIN_LANE_ROWS_TOP("lr"), "#0", "#2", "#4")
+      LR_BIN_LANE_TAIL("4", LR_BIN_LANE_ROWS_TOP("r11"), "#0", "#2", "#4")
+      LR_BIN_LANE_TAIL("1", LR_BIN_LANE_ROWS_BELOW("r11", "lr"), "#2", "#4", "#0")
+      LR_BIN_LANE_TAIL("3", LR_BIN_LANE_ROWS_BELOW("r11", "lr"), "#2", "#0", "#4")
       "83:\n\t"
       "ldr     r8, [%[k], #56]\n\t"
       "add     r8, r8, #1\n\t"
