@@ -169,7 +169,7 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   "add     %[b], %[b], r9\n\t"
 // The rest of bin_lane_asm() for one vertex on top (N: the labels' digit): the rows, the columns,
 // the pending vertices and the record, its indices read from the triangle at byte offsets O0, O1
-// and O2 (store_top_first's order).
+// and O2 (store_top_first's order; tp is on the next triangle already).
 #define LR_BIN_LANE_TAIL(N, ROWS, O0, O1, O2)                                                     \
   "7" N ":\n\t" ROWS                                                                              \
   "ldrd    r9, r11, [%[k], #36]\n\t" /* height, width */                                          \
@@ -226,8 +226,7 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   "add     r6, r6, lr\n\t"                                                                        \
   "pkhbt   r6, r6, r10, lsl #16\n\t" /* v2 next */                                                \
   "strd    r4, r6, [r12]\n\t"                                                                     \
-  "add     %[tp], %[tp], #6\n\t" /* the next (3b's, without a branch there) */                    \
-  "cmp     %[tp], %[e]\n\t"                                                                       \
+  "cmp     %[tp], %[e]\n\t" /* the next (3b's, without a branch there) */                         \
   "bne     1b\n\t"                                                                                \
   "mov     %[a], #0\n\t" /* kBinLaneEnd */                                                        \
   "b       9f\n"                                                                                  \
@@ -262,10 +261,12 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   "b       6" N "b\n"
 #endif
 
-// bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): about 26 instructions a
-// back face and 86 a binned front face. Rows as (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for
-// the clamp at 0; the constants of a binned face read with one LDM; the record's halves built
-// from the indices with one ORR and PKHBT.
+// bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): 24 instructions a back
+// face and 78 to 83 a binned front face without pending vertices. The indices read with
+// post-increment (tp on the next triangle from there on), the end in a register; rows as
+// (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for the clamp at 0, in one of five tails picked by
+// the vertex on top (store_top_first), which also stores the indices in its order; the constants
+// of a binned face read with one LDM; the record's halves built with one ORR and PKHBT.
 inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) {
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
   // Low registers: CBZ and CBNZ test them.
@@ -274,9 +275,9 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
   asm volatile(
       "1:\n\t"
       "ldr     %[a], [%[k], #24]\n\t"  // the vertices (24 bytes each)
-      "ldrh    r4, [%[tp]]\n\t"
-      "ldrh    r5, [%[tp], #2]\n\t"
-      "ldrh    r6, [%[tp], #4]\n\t"
+      "ldrh    r4, [%[tp]], #2\n\t"  // tp on the next triangle
+      "ldrh    r5, [%[tp]], #2\n\t"
+      "ldrh    r6, [%[tp]], #2\n\t"
       "add     r4, r4, r4, lsl #1\n\t"
       "add     r4, %[a], r4, lsl #3\n\t"
       "add     r5, r5, r5, lsl #1\n\t"
@@ -295,8 +296,7 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "cmp     %[a], #1\n\t"
       "sbcs    %[a], %[b], #0\n\t"
       "blt     4f\n\t"  // no back face: area <= 0
-      "3:\n\t"          // the next
-      "add     %[tp], %[tp], #6\n\t"
+      "3:\n\t"  // the next
       "cmp     %[tp], %[e]\n\t"
       "bne     1b\n\t"
       "mov     %[a], #0\n\t"  // kBinLaneEnd
@@ -321,18 +321,19 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "cmp     lr, #0\n\t"  // dy2 < dy1
       "bge     74f\n\t"     // a on top
       // c on top
-      LR_BIN_LANE_TAIL("2", LR_BIN_LANE_ROWS_BELOW("lr", "r11"), "#4", "#0", "#2")
-      LR_BIN_LANE_TAIL("0", LR_BIN_LANE_ROWS_TOP("lr"), "#0", "#2", "#4")
-      LR_BIN_LANE_TAIL("4", LR_BIN_LANE_ROWS_TOP("r11"), "#0", "#2", "#4")
-      LR_BIN_LANE_TAIL("1", LR_BIN_LANE_ROWS_BELOW("r11", "lr"), "#2", "#4", "#0")
-      LR_BIN_LANE_TAIL("3", LR_BIN_LANE_ROWS_BELOW("r11", "lr"), "#2", "#0", "#4")
+      LR_BIN_LANE_TAIL("2", LR_BIN_LANE_ROWS_BELOW("lr", "r11"), "#-2", "#-6", "#-4")
+      LR_BIN_LANE_TAIL("0", LR_BIN_LANE_ROWS_TOP("lr"), "#-6", "#-4", "#-2")
+      LR_BIN_LANE_TAIL("4", LR_BIN_LANE_ROWS_TOP("r11"), "#-6", "#-4", "#-2")
+      LR_BIN_LANE_TAIL("1", LR_BIN_LANE_ROWS_BELOW("r11", "lr"), "#-4", "#-2", "#-6")
+      LR_BIN_LANE_TAIL("3", LR_BIN_LANE_ROWS_BELOW("r11", "lr"), "#-4", "#-6", "#-2")
       "83:\n\t"
       "ldr     r8, [%[k], #56]\n\t"
       "add     r8, r8, #1\n\t"
       "str     r8, [%[k], #56]\n\t"
       "b       3b\n"
       "84:\n\t"
-      "mov     %[a], #1\n"  // kBinLaneFlush
+      "sub     %[tp], %[tp], #6\n\t"  // the triangle not done
+      "mov     %[a], #1\n"             // kBinLaneFlush
       "9:\n"
       : [tp] "+r"(tp), [a] "=&r"(a), [b] "=&r"(b)
       : [k] "r"(&k), [e] "r"(k.end)
