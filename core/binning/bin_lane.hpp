@@ -262,9 +262,9 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 #endif
 
 // bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): 24 instructions a back
-// face and 78 to 83 a binned front face without pending vertices. The indices read with
+// face and 78 to 80 a binned front face without pending vertices. The indices read with
 // post-increment (tp on the next triangle from there on), the end in a register; rows as
-// (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for the clamp at 0, in one of five tails picked by
+// (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for the clamp at 0, in one of four tails picked by
 // the vertex on top (store_top_first), which also stores the indices in its order; the constants
 // of a binned face read with one LDM; the record's halves built with one ORR and PKHBT.
 inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) {
@@ -314,9 +314,8 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "bgt     42f\n\t"
       "cmp     r11, #0\n\t"  // dy1 <= dy2
       "bge     70f\n\t"      // a on top
-      "cmp     lr, #0\n\t"
-      "beq     73f\n\t"  // b on top, a level with c
-      "b       71f\n"    // b on top
+      // b on top
+      LR_BIN_LANE_TAIL("1", LR_BIN_LANE_ROWS_BELOW("r11", "lr"), "#-4", "#-2", "#-6")
       "42:\n\t"
       "cmp     lr, #0\n\t"  // dy2 < dy1
       "bge     74f\n\t"     // a on top
@@ -324,8 +323,6 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       LR_BIN_LANE_TAIL("2", LR_BIN_LANE_ROWS_BELOW("lr", "r11"), "#-2", "#-6", "#-4")
       LR_BIN_LANE_TAIL("0", LR_BIN_LANE_ROWS_TOP("lr"), "#-6", "#-4", "#-2")
       LR_BIN_LANE_TAIL("4", LR_BIN_LANE_ROWS_TOP("r11"), "#-6", "#-4", "#-2")
-      LR_BIN_LANE_TAIL("1", LR_BIN_LANE_ROWS_BELOW("r11", "lr"), "#-4", "#-2", "#-6")
-      LR_BIN_LANE_TAIL("3", LR_BIN_LANE_ROWS_BELOW("r11", "lr"), "#-4", "#-6", "#-2")
       "83:\n\t"
       "ldr     r8, [%[k], #56]\n\t"
       "add     r8, r8, #1\n\t"

@@ -17,24 +17,25 @@ inline constexpr size_t kMaxStoreEntries = 0xFFFF;  // indices are uint16; 0xFFF
 
 // 8 bytes, word-aligned (the front end's lane stores one with a doubleword store).
 struct alignas(4) BinnedTriangle {
-  uint16_t v[3];  // vertex store indices, top first (top_first() below; a Phong draw's as given)
+  uint16_t v[3];  // vertex store indices, topmost first (store_top_first() below)
   uint16_t next;  // next triangle of the same bucket (lists are built by prepending, so
                   // they run from the latest submission to the earliest)
 };
 static_assert(sizeof(BinnedTriangle) == 8);
 
 // The order in which binning stores a triangle's vertices (a, b, c as submitted; dy1 = yb - ya,
-// dy2 = yc - ya in subpixels): sort_by_y's first (the topmost, the earliest of a tie) first, so
-// that setup sorts the other two with one compare (sort_below_top: the later swapped when it lies
-// strictly above). A rotation of (a, b, c), which keeps the winding, except where no rotation
-// sorts as sort_by_y does: b on top and a level with c, stored (b, a, c) (the winding reversed;
-// the strip loop reads the winding only from Phong draws', which keep their order).
+// dy2 = yc - ya in subpixels): the rotation of (a, b, c) that puts the topmost first (of a tie,
+// the earliest of a, b, c), so that the winding stays and setup sorts the other two with one
+// compare (sort_below_top in core/setup/triangle_rows.hpp: the later swapped when it lies
+// strictly above). That sorts as sort_by_y sorts (a, b, c) except where b is on top and a is
+// level with c: sort_by_y(a, b, c) gives (b, a, c), the rotation (b, c, a) (a flat bottom whose
+// two corners come in the other order).
 template <class T>
 constexpr void store_top_first(T (&v)[3], T a, T b, T c, int32_t dy1, int32_t dy2) {
   if (dy1 <= dy2 && dy1 < 0) {  // b on top
     v[0] = b;
-    v[1] = dy2 == 0 ? a : c;
-    v[2] = dy2 == 0 ? c : a;
+    v[1] = c;
+    v[2] = a;
   } else if (dy2 < dy1 && dy2 < 0) {  // c on top
     v[0] = c;
     v[1] = a;

@@ -20,8 +20,9 @@ inline void sort_by_y(const ScreenVertex* v[3]) {
   if (v[1]->y < v[0]->y) std::swap(v[0], v[1]);
 }
 
-// sort_by_y for a binned triangle's vertices (top first: store_top_first in
-// core/binning/binned_triangle.hpp): the other two in its order with its last compare.
+// sort_by_y for a binned triangle's vertices (topmost first: store_top_first in
+// core/binning/binned_triangle.hpp): the other two in its order with its last compare (the same
+// order as sort_by_y's on them).
 inline void sort_below_top(const ScreenVertex* v[3]) {
   if (v[2]->y < v[1]->y) std::swap(v[1], v[2]);
 }

@@ -824,7 +824,7 @@ namespace {
 // The frame of the small lanes setup by hand (the words above), with the steps to take in word 21:
 // kRowsStep, kPlanesStep or both (the planes then only when the rows' result is kPixels), and
 // LanesSetup's: kSortStep (the vertices from the three indices at word 23 into the vertex store
-// at word 24, binned top first: sorted by y as sort_by_y sorts them with sort_below_top's compare)
+// at word 24, binned topmost first: the other two sorted by sort_below_top's compare)
 // and kAffineStep (when the planes were made, the affine colour test, its quick part's shift at
 // word 25, the bound and green's weight at 26 and 27: the result 3 when it fails).
 constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8;

@@ -358,7 +358,7 @@ inline Tally run_lanes_setup(uint32_t cases, uint32_t seed = 5151u) {
     LanesSetup lanes;
     lanes.prepare(window, in, v);
     const UntexturedTriangle ua = lanes.set_up(index, a);
-    const ScreenVertex* s[3] = {&v[order[0]], &v[order[1]], &v[order[2]]};
+    const ScreenVertex* s[3] = {&v[index[0]], &v[index[1]], &v[index[2]]};
     sort_by_y(s);
     UntexturedInput plain = in;
     plain.lanes_first = false;
