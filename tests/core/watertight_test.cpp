@@ -153,7 +153,7 @@ TEST(Watertight, BinnedTrianglesComeTopFirstAsRotations) {
         EXPECT_LE(top, sv[bt.v[1]].y);
         EXPECT_LE(top, sv[bt.v[2]].y);
         const uint32_t base = bt.v[0] - bt.v[0] % 3u, first = bt.v[0] - base;
-        if (bt.v[0] >= pos.size() || bt.v[1] - base >= 3u || bt.v[2] - base >= 3u) {
+        if (size_t{bt.v[0]} >= pos.size() || bt.v[1] - base >= 3u || bt.v[2] - base >= 3u) {
           ++fanned;  // a piece of a cut triangle
           continue;
         }
