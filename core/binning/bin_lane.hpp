@@ -30,7 +30,7 @@ struct alignas(8) BinLane {
   uint32_t first2;            // 20: the draw's first store index in both halves (x 0x10001)
   ScreenVertex* vertices;     // 24: the draw's first vertex
   uint32_t n;                 // 28: its vertex count (first_out_of_range())
-  const std::array<uint16_t, 3>* end;  // 32: the end of its triangles
+  const std::array<uint16_t, 3>* end;  // 32: the end of its triangles (the asm: in a register)
   int32_t height, width;               // 36, 40: the viewport
   ScreenVertex** list;                 // 44: the next free entry of the list of vertices to light
   ScreenVertex** list_limit;           // 48: the last entry at which three more still fit
@@ -49,8 +49,8 @@ enum BinLaneStop : uint32_t { kBinLaneEnd, kBinLaneFlush };
 // without area and faces whose bounds (clamped to the viewport) hold no pixel centre counted; every
 // other face's vertices whose colour waits for their first use (color_pending) put on the list,
 // their flags cleared; the face appended to the bucket of its first row's strip as EdgeTable::add()
-// appends it. Exact: twice the signed area in 64 bits (the deltas are below 2^23 inside the guard
-// band, each product below 2^46).
+// appends it, its vertices top first (store_top_first). Exact: twice the signed area in 64 bits
+// (the deltas are below 2^23 inside the guard band, each product below 2^46).
 inline BinLaneStop bin_lane_portable(const std::array<uint16_t, 3>*& tp, BinLane& k) {
   for (; tp != k.end; ++tp) {
     const uint32_t i0 = (*tp)[0], i1 = (*tp)[1], i2 = (*tp)[2];
@@ -92,9 +92,8 @@ inline BinLaneStop bin_lane_portable(const std::array<uint16_t, 3>*& tp, BinLane
     uint16_t& head = k.buckets[(static_cast<uint32_t>(a) * k.strip_reciprocal) >> 17];
     BinnedTriangle& t = k.triangles[index];
     const auto first = static_cast<uint16_t>(k.first2);
-    t.v[0] = static_cast<uint16_t>(first + i0);
-    t.v[1] = static_cast<uint16_t>(first + i1);
-    t.v[2] = static_cast<uint16_t>(first + i2);
+    store_top_first(t.v, static_cast<uint16_t>(first + i0), static_cast<uint16_t>(first + i1),
+                    static_cast<uint16_t>(first + i2), dy1, dy2);
     t.next = head;
     head = static_cast<uint16_t>(index);
   }
@@ -154,10 +153,120 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   return tp + (p - tp->data()) / 3;
 }
 
-// bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): about 26 instructions a
-// back face and 86 a binned front face. Rows as (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for
-// the clamp at 0; the constants of a binned face read with one LDM; the record's halves built
-// from the indices with one ORR and PKHBT.
+#if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
+// bin_lane_asm()'s rows from the registers MIN and MAX holding min(dy1, dy2) and max(dy1, dy2)
+// (r9: y0): the vertex a on top (min(0, ..) = 0, max(0, ..) the max), or another (min(0, ..) the
+// min).
+#define LR_BIN_LANE_ROWS_TOP(MAX) \
+  "add     %[a], r9, #128\n\t"    \
+  "add     %[b], " MAX ", %[a]\n\t"
+#define LR_BIN_LANE_ROWS_BELOW(MIN, MAX) \
+  "bic     %[b], " MAX ", " MAX          \
+  ", asr #31\n\t"                        \
+  "add     r9, r9, #128\n\t"             \
+  "add     %[a], " MIN                   \
+  ", r9\n\t"                             \
+  "add     %[b], %[b], r9\n\t"
+// The rest of bin_lane_asm() for one vertex on top (N: the labels' digit): the rows, the columns,
+// the pending vertices and the record, its indices read from the triangle at byte offsets O0, O1
+// and O2 (store_top_first's order; tp is on the next triangle already).
+#define LR_BIN_LANE_TAIL(N, ROWS, O0, O1, O2)                                                     \
+  "7" N ":\n\t" ROWS                                                                              \
+  "ldrd    r9, r11, [%[k], #36]\n\t" /* height, width */                                          \
+  "usat    %[a], #16, %[a], asr #8\n\t"                                                           \
+  "asr     %[b], %[b], #8\n\t"                                                                    \
+  "cmp     %[a], %[b]\n\t"                                                                        \
+  "bge     83f\n\t"                                                                               \
+  "cmp     %[a], r9\n\t"                                                                          \
+  "bge     83f\n\t" /* Columns: c0 = max(0, (x0 + 127 + min(0, dx1, dx2)) >> 8), c1 likewise with \
+                       the max. */                                                                \
+  "rsb     r12, r12, #0\n\t" /* dx2 */                                                            \
+  "cmp     r10, r12\n\t"                                                                          \
+  "itete   lt\n\t"                                                                                \
+  "movlt   r9, r10\n\t"                                                                           \
+  "movge   r9, r12\n\t"                                                                           \
+  "movlt   lr, r12\n\t"                                                                           \
+  "movge   lr, r10\n\t"                                                                           \
+  "and     r9, r9, r9, asr #31\n\t"                                                               \
+  "bic     lr, lr, lr, asr #31\n\t"                                                               \
+  "add     r8, r8, #127\n\t"                                                                      \
+  "add     r9, r9, r8\n\t"                                                                        \
+  "add     lr, lr, r8\n\t"                                                                        \
+  "usat    r9, #16, r9, asr #8\n\t"                                                               \
+  "asr     lr, lr, #8\n\t"                                                                        \
+  "cmp     r9, lr\n\t"                                                                            \
+  "bge     83f\n\t"                                                                               \
+  "cmp     r9, r11\n\t"                                                                           \
+  "bge     83f\n\t"                                                                               \
+  "ldrb    r8, [r4, #23]\n\t" /* a vertex waiting for its colour */                               \
+  "ldrb    r9, [r5, #23]\n\t"                                                                     \
+  "ldrb    r10, [r6, #23]\n\t"                                                                    \
+  "orr     r8, r8, r9\n\t"                                                                        \
+  "orrs    r8, r8, r10\n\t"                                                                       \
+  "bne     5" N                                                                                   \
+  "f\n\t"                                                                                         \
+  "6" N                                                                                           \
+  ":\n\t"                                                                                         \
+  "ldm     %[k], {r8, r9, r10, r11, r12, lr}\n\t" /* count capacity m buckets triangles first2 */ \
+  "mul     r9, %[a], r10\n\t"                                                                     \
+  "lsr     r9, r9, #17\n\t"            /* the strip */                                            \
+  "ldrh    r10, [r11, r9, lsl #1]\n\t" /* its head: the record's next */                          \
+  "strh    r8, [r11, r9, lsl #1]\n\t"                                                             \
+  "add     r12, r12, r8, lsl #3\n\t"                                                              \
+  "add     r8, r8, #1\n\t"                                                                        \
+  "str     r8, [%[k]]\n\t"                                                                        \
+  "ldrh    r4, [%[tp], " O0                                                                       \
+  "]\n\t"                                                                                         \
+  "ldrh    r5, [%[tp], " O1                                                                       \
+  "]\n\t"                                                                                         \
+  "ldrh    r6, [%[tp], " O2                                                                       \
+  "]\n\t"                                                                                         \
+  "orr     r4, r4, r5, lsl #16\n\t"                                                               \
+  "add     r4, r4, lr\n\t" /* v0 v1 */                                                            \
+  "add     r6, r6, lr\n\t"                                                                        \
+  "pkhbt   r6, r6, r10, lsl #16\n\t" /* v2 next */                                                \
+  "strd    r4, r6, [r12]\n\t"                                                                     \
+  "cmp     %[tp], %[e]\n\t" /* the next (3b's, without a branch there) */                         \
+  "bne     1b\n\t"                                                                                \
+  "mov     %[a], #0\n\t" /* kBinLaneEnd */                                                        \
+  "b       9f\n"                                                                                  \
+  "5" N                                                                                           \
+  ":\n\t" /* pending vertices onto the list, their flags cleared */                               \
+  "ldrd    r8, r9, [%[k], #44]\n\t"                                                               \
+  "cmp     r8, r9\n\t"                                                                            \
+  "bhi     84f\n\t"                                                                               \
+  "mov     r10, #0\n\t"                                                                           \
+  "ldrb    %[b], [r4, #23]\n\t"                                                                   \
+  "cbz     %[b], 5" N                                                                             \
+  "1f\n\t"                                                                                        \
+  "strb    r10, [r4, #23]\n\t"                                                                    \
+  "str     r4, [r8], #4\n"                                                                        \
+  "5" N                                                                                           \
+  "1:\n\t"                                                                                        \
+  "ldrb    %[b], [r5, #23]\n\t"                                                                   \
+  "cbz     %[b], 5" N                                                                             \
+  "2f\n\t"                                                                                        \
+  "strb    r10, [r5, #23]\n\t"                                                                    \
+  "str     r5, [r8], #4\n"                                                                        \
+  "5" N                                                                                           \
+  "2:\n\t"                                                                                        \
+  "ldrb    %[b], [r6, #23]\n\t"                                                                   \
+  "cbz     %[b], 5" N                                                                             \
+  "3f\n\t"                                                                                        \
+  "strb    r10, [r6, #23]\n\t"                                                                    \
+  "str     r6, [r8], #4\n"                                                                        \
+  "5" N                                                                                           \
+  "3:\n\t"                                                                                        \
+  "str     r8, [%[k], #44]\n\t"                                                                   \
+  "b       6" N "b\n"
+#endif
+
+// bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): 24 instructions a back
+// face and 78 to 80 a binned front face without pending vertices. The indices read with
+// post-increment (tp on the next triangle from there on), the end in a register; rows as
+// (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for the clamp at 0, in one of four tails picked by
+// the vertex on top (store_top_first), which also stores the indices in its order; the constants
+// of a binned face read with one LDM; the record's halves built with one ORR and PKHBT.
 inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) {
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
   // Low registers: CBZ and CBNZ test them.
@@ -166,9 +275,9 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
   asm volatile(
       "1:\n\t"
       "ldr     %[a], [%[k], #24]\n\t"  // the vertices (24 bytes each)
-      "ldrh    r4, [%[tp]]\n\t"
-      "ldrh    r5, [%[tp], #2]\n\t"
-      "ldrh    r6, [%[tp], #4]\n\t"
+      "ldrh    r4, [%[tp]], #2\n\t"  // tp on the next triangle
+      "ldrh    r5, [%[tp]], #2\n\t"
+      "ldrh    r6, [%[tp]], #2\n\t"
       "add     r4, r4, r4, lsl #1\n\t"
       "add     r4, %[a], r4, lsl #3\n\t"
       "add     r5, r5, r5, lsl #1\n\t"
@@ -187,10 +296,8 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "cmp     %[a], #1\n\t"
       "sbcs    %[a], %[b], #0\n\t"
       "blt     4f\n\t"  // no back face: area <= 0
-      "3:\n\t"          // the next
-      "add     %[tp], %[tp], #6\n\t"
-      "ldr     %[a], [%[k], #32]\n\t"
-      "cmp     %[tp], %[a]\n\t"
+      "3:\n\t"  // the next
+      "cmp     %[tp], %[e]\n\t"
       "bne     1b\n\t"
       "mov     %[a], #0\n\t"  // kBinLaneEnd
       "b       9f\n"
@@ -201,110 +308,43 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "str     r8, [%[k], #52]\n\t"
       "b       3b\n"
       "41:\n\t"
-      // Rows: a = max(0, (y0 + 128 + min(0, dy1, dy2)) >> 8), b = (y0 + 128 + max(..)) >> 8.
+      // Rows: a = max(0, (y0 + 128 + min(0, dy1, dy2)) >> 8), b = (y0 + 128 + max(..)) >> 8;
+      // the vertex on top (store_top_first) picks the tail that stores them in its order.
       "cmp     r11, lr\n\t"
-      "itete   lt\n\t"
-      "movlt   %[a], r11\n\t"
-      "movge   %[a], lr\n\t"
-      "movlt   %[b], lr\n\t"
-      "movge   %[b], r11\n\t"
-      "and     %[a], %[a], %[a], asr #31\n\t"
-      "bic     %[b], %[b], %[b], asr #31\n\t"
-      "add     r9, r9, #128\n\t"
-      "add     %[a], %[a], r9\n\t"
-      "add     %[b], %[b], r9\n\t"
-      "ldrd    r9, r11, [%[k], #36]\n\t"  // height, width
-      "usat    %[a], #16, %[a], asr #8\n\t"
-      "asr     %[b], %[b], #8\n\t"
-      "cmp     %[a], %[b]\n\t"
-      "bge     83f\n\t"
-      "cmp     %[a], r9\n\t"
-      "bge     83f\n\t"
-      // Columns: c0 = max(0, (x0 + 127 + min(0, dx1, dx2)) >> 8), c1 likewise with the max.
-      "rsb     r12, r12, #0\n\t"  // dx2
-      "cmp     r10, r12\n\t"
-      "itete   lt\n\t"
-      "movlt   r9, r10\n\t"
-      "movge   r9, r12\n\t"
-      "movlt   lr, r12\n\t"
-      "movge   lr, r10\n\t"
-      "and     r9, r9, r9, asr #31\n\t"
-      "bic     lr, lr, lr, asr #31\n\t"
-      "add     r8, r8, #127\n\t"
-      "add     r9, r9, r8\n\t"
-      "add     lr, lr, r8\n\t"
-      "usat    r9, #16, r9, asr #8\n\t"
-      "asr     lr, lr, #8\n\t"
-      "cmp     r9, lr\n\t"
-      "bge     83f\n\t"
-      "cmp     r9, r11\n\t"
-      "bge     83f\n\t"
-      "ldrb    r8, [r4, #23]\n\t"  // a vertex waiting for its colour
-      "ldrb    r9, [r5, #23]\n\t"
-      "ldrb    r10, [r6, #23]\n\t"
-      "orr     r8, r8, r9\n\t"
-      "orrs    r8, r8, r10\n\t"
-      "bne     5f\n\t"
-      "6:\n\t"
-      "ldm     %[k], {r8, r9, r10, r11, r12, lr}\n\t"  // count capacity m buckets triangles first2
-      "mul     r9, %[a], r10\n\t"
-      "lsr     r9, r9, #17\n\t"             // the strip
-      "ldrh    r10, [r11, r9, lsl #1]\n\t"  // its head: the record's next
-      "strh    r8, [r11, r9, lsl #1]\n\t"
-      "add     r12, r12, r8, lsl #3\n\t"
-      "add     r8, r8, #1\n\t"
-      "str     r8, [%[k]]\n\t"
-      "ldrh    r4, [%[tp]]\n\t"
-      "ldrh    r5, [%[tp], #2]\n\t"
-      "ldrh    r6, [%[tp], #4]\n\t"
-      "orr     r4, r4, r5, lsl #16\n\t"
-      "add     r4, r4, lr\n\t"  // v0 v1
-      "add     r6, r6, lr\n\t"
-      "pkhbt   r6, r6, r10, lsl #16\n\t"  // v2 next
-      "strd    r4, r6, [r12]\n\t"
-      "add     %[tp], %[tp], #6\n\t"  // the next (3b's, without a branch there)
-      "ldr     r8, [%[k], #32]\n\t"
-      "cmp     %[tp], r8\n\t"
-      "bne     1b\n\t"
-      "mov     %[a], #0\n\t"  // kBinLaneEnd
-      "b       9f\n"
-      "5:\n\t"  // pending vertices onto the list, their flags cleared
-      "ldrd    r8, r9, [%[k], #44]\n\t"
-      "cmp     r8, r9\n\t"
-      "bhi     84f\n\t"
-      "mov     r10, #0\n\t"
-      "ldrb    %[b], [r4, #23]\n\t"
-      "cbz     %[b], 51f\n\t"
-      "strb    r10, [r4, #23]\n\t"
-      "str     r4, [r8], #4\n"
-      "51:\n\t"
-      "ldrb    %[b], [r5, #23]\n\t"
-      "cbz     %[b], 52f\n\t"
-      "strb    r10, [r5, #23]\n\t"
-      "str     r5, [r8], #4\n"
-      "52:\n\t"
-      "ldrb    %[b], [r6, #23]\n\t"
-      "cbz     %[b], 53f\n\t"
-      "strb    r10, [r6, #23]\n\t"
-      "str     r6, [r8], #4\n"
-      "53:\n\t"
-      "str     r8, [%[k], #44]\n\t"
-      "b       6b\n"
+      "bgt     42f\n\t"
+      "cmp     r11, #0\n\t"  // dy1 <= dy2
+      "bge     70f\n\t"      // a on top
+      // b on top
+      LR_BIN_LANE_TAIL("1", LR_BIN_LANE_ROWS_BELOW("r11", "lr"), "#-4", "#-2", "#-6")
+      "42:\n\t"
+      "cmp     lr, #0\n\t"  // dy2 < dy1
+      "bge     74f\n\t"     // a on top
+      // c on top
+      LR_BIN_LANE_TAIL("2", LR_BIN_LANE_ROWS_BELOW("lr", "r11"), "#-2", "#-6", "#-4")
+      LR_BIN_LANE_TAIL("0", LR_BIN_LANE_ROWS_TOP("lr"), "#-6", "#-4", "#-2")
+      LR_BIN_LANE_TAIL("4", LR_BIN_LANE_ROWS_TOP("r11"), "#-6", "#-4", "#-2")
       "83:\n\t"
       "ldr     r8, [%[k], #56]\n\t"
       "add     r8, r8, #1\n\t"
       "str     r8, [%[k], #56]\n\t"
       "b       3b\n"
       "84:\n\t"
-      "mov     %[a], #1\n"  // kBinLaneFlush
+      "sub     %[tp], %[tp], #6\n\t"  // the triangle not done
+      "mov     %[a], #1\n"             // kBinLaneFlush
       "9:\n"
       : [tp] "+r"(tp), [a] "=&r"(a), [b] "=&r"(b)
-      : [k] "r"(&k)
+      : [k] "r"(&k), [e] "r"(k.end)
       : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   return static_cast<BinLaneStop>(a);
 #else
   return bin_lane_portable(tp, k);
 #endif
 }
+
+#if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
+#undef LR_BIN_LANE_TAIL
+#undef LR_BIN_LANE_ROWS_BELOW
+#undef LR_BIN_LANE_ROWS_TOP
+#endif
 
 }  // namespace lr

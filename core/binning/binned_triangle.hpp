@@ -17,11 +17,35 @@ inline constexpr size_t kMaxStoreEntries = 0xFFFF;  // indices are uint16; 0xFFF
 
 // 8 bytes, word-aligned (the front end's lane stores one with a doubleword store).
 struct alignas(4) BinnedTriangle {
-  uint16_t v[3];  // vertex store indices
+  uint16_t v[3];  // vertex store indices, topmost first (store_top_first() below)
   uint16_t next;  // next triangle of the same bucket (lists are built by prepending, so
                   // they run from the latest submission to the earliest)
 };
 static_assert(sizeof(BinnedTriangle) == 8);
+
+// The order in which binning stores a triangle's vertices (a, b, c as submitted; dy1 = yb - ya,
+// dy2 = yc - ya in subpixels): the rotation of (a, b, c) that puts the topmost first (of a tie,
+// the earliest of a, b, c), so that the winding stays and setup sorts the other two with one
+// compare (sort_below_top in core/setup/triangle_rows.hpp: the later swapped when it lies
+// strictly above). That sorts as sort_by_y sorts (a, b, c) except where b is on top and a is
+// level with c: sort_by_y(a, b, c) gives (b, a, c), the rotation (b, c, a) (a flat bottom whose
+// two corners come in the other order).
+template <class T>
+constexpr void store_top_first(T (&v)[3], T a, T b, T c, int32_t dy1, int32_t dy2) {
+  if (dy1 <= dy2 && dy1 < 0) {  // b on top
+    v[0] = b;
+    v[1] = c;
+    v[2] = a;
+  } else if (dy2 < dy1 && dy2 < 0) {  // c on top
+    v[0] = c;
+    v[1] = a;
+    v[2] = b;
+  } else {
+    v[0] = a;
+    v[1] = b;
+    v[2] = c;
+  }
+}
 
 // A flat-shaded triangle's colours (FrameStorage::triangle_colors, one per binned triangle):
 // lit by its face normal or its provoking vertex's, the primary colour (of the texture's

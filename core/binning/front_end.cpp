@@ -160,9 +160,7 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
   // it is added: a dropped one was never counted here).
   edges_.note_carried(rows[0]);
   BinnedTriangle& t = edges_.add(r0);
-  t.v[0] = a;
-  t.v[1] = b;
-  t.v[2] = c;
+  store_top_first(t.v, a, b, c, v1.y - v0.y, v2.y - v0.y);
   if (draw_colors_) edges_.set_colors({flat, flat_spec});
   ++stats_.triangles_binned;
   return Outcome::kBinned;

@@ -480,7 +480,7 @@ template <class PF, int K, SpanSet kSpans>
   const RowWindow& window = c.window;
   const ScreenVertex* v[3];
   for (int k = 0; k < 3; ++k) v[k] = &frame_.vertices[bt.v[k]];
-  sort_by_y(v);
+  sort_below_top(v);  // (binned top first)
   if (kTexture && c.legacy) {
     const DrawRecord& dr = frame_.draws[draw];
     const int32_t first = std::max<int32_t>(first_row_below(v[0]->y), window.first_min);

@@ -20,6 +20,13 @@ inline void sort_by_y(const ScreenVertex* v[3]) {
   if (v[1]->y < v[0]->y) std::swap(v[0], v[1]);
 }
 
+// sort_by_y for a binned triangle's vertices (topmost first: store_top_first in
+// core/binning/binned_triangle.hpp): the other two in its order with its last compare (the same
+// order as sort_by_y's on them).
+inline void sort_below_top(const ScreenVertex* v[3]) {
+  if (v[2]->y < v[1]->y) std::swap(v[1], v[2]);
+}
+
 // The rows (first..last, inclusive: the strip loop's, clamped to the viewport), the middle row,
 // the edges and the flags of the triangle whose vertices v are sorted by y and whose area is not
 // zero. False when none of those rows has a pixel centre inside the triangle and inside the

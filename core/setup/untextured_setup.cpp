@@ -824,9 +824,9 @@ namespace {
 // The frame of the small lanes setup by hand (the words above), with the steps to take in word 21:
 // kRowsStep, kPlanesStep or both (the planes then only when the rows' result is kPixels), and
 // LanesSetup's: kSortStep (the vertices from the three indices at word 23 into the vertex store
-// at word 24, sorted by y as sort_by_y sorts them) and kAffineStep (when the planes were made,
-// the affine colour test, its quick part's shift at word 25, the bound and green's weight at 26
-// and 27: the result 3 when it fails).
+// at word 24, binned topmost first: the other two sorted by sort_below_top's compare)
+// and kAffineStep (when the planes were made, the affine colour test, its quick part's shift at
+// word 25, the bound and green's weight at 26 and 27: the result 3 when it fails).
 constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8;
 struct LanesFrame {
   uint32_t w[28];
@@ -874,7 +874,7 @@ struct LanesFrame {
       "ldr    r0, [%[f], #84]\n\t"
       "tst    r0, #4\n\t"
       "beq    11f\n\t"
-      // the vertices: r0-r2, their y r4-r6
+      // the vertices: r0-r2 (binned top first: store_top_first), the y of the other two r5, r6
       "ldr    r0, [%[f], #92]\n\t"
       "ldr    r3, [%[f], #96]\n\t"
       "ldrh   r4, [r0]\n\t"
@@ -886,30 +886,14 @@ struct LanesFrame {
       "add    r1, r3, r5, lsl #3\n\t"
       "add    r6, r6, r6, lsl #1\n\t"
       "add    r2, r3, r6, lsl #3\n\t"
-      "ldr    r4, [r0, #4]\n\t"
       "ldr    r5, [r1, #4]\n\t"
       "ldr    r6, [r2, #4]\n\t"
-      // sort_by_y's network: (0, 1), (1, 2), (0, 1), swapped when the later lies strictly above
-      "cmp    r5, r4\n\t"
-      "itttt  lt\n\t"
-      "movlt  r3, r0\n\t"
-      "movlt  r0, r1\n\t"
-      "movlt  r1, r3\n\t"
-      "movlt  r3, r4\n\t"
-      "itt    lt\n\t"
-      "movlt  r4, r5\n\t"
-      "movlt  r5, r3\n\t"
+      // sort_below_top: the later swapped when it lies strictly above
       "cmp    r6, r5\n\t"
-      "itttt  lt\n\t"
+      "ittt   lt\n\t"
       "movlt  r3, r1\n\t"
       "movlt  r1, r2\n\t"
       "movlt  r2, r3\n\t"
-      "movlt  r5, r6\n\t"
-      "cmp    r5, r4\n\t"
-      "ittt   lt\n\t"
-      "movlt  r3, r0\n\t"
-      "movlt  r0, r1\n\t"
-      "movlt  r1, r3\n\t"
       "stm    %[f], {r0, r1, r2}\n\t"
       "11:\n\t"
       "ldr    r0, [%[f], #84]\n\t"
@@ -1115,7 +1099,7 @@ void LanesSetup::block(uint32_t* /*frame*/) {}
 
 UntexturedTriangle LanesSetup::rest(const uint16_t index[3], ActiveTriangle& t) {
   const ScreenVertex* v[3] = {&vertices_[index[0]], &vertices_[index[1]], &vertices_[index[2]]};
-  sort_by_y(v);
+  sort_below_top(v);
   return setup_untextured_triangle(v, *w_, *in_, t);
 }
 #endif

@@ -188,7 +188,8 @@ bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindo
 
 // setup_untextured_triangle for the triangles of one strip whose draw has lanes_first: what
 // stays the same between them (the window, the input, the vertex store) given once, then one call
-// per triangle from its three vertex indices (in submission order: sorted here by y). Where
+// per triangle from its three vertex indices (as binned, top first: store_top_first; the other
+// two sorted here by sort_below_top). Where
 // kSmallPlanesByHand, vertex fetch, sort, rows, planes and the affine colour test's quick part
 // are one block of hand-made code (the rest, rare, as setup_untextured_triangle does it); the
 // same result and record as sort_by_y and setup_untextured_triangle everywhere. w and in must

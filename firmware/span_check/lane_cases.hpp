@@ -311,9 +311,10 @@ inline Tally run_small_triangles(uint32_t cases, uint32_t seed = 99991u) {
 
 // Runs `cases` random triangles of random_triangle's kinds, their w and colours spread so that
 // the affine colour test goes every way, through LanesSetup (from their vertex indices in a
-// random order) and through sort_by_y and setup_untextured_triangle without lanes_first: the
-// same result and the same record. triangles counts the lanes ones, visits the slivers and
-// pixels the others (perspective planes, or the general path).
+// random order, stored top first as binning stores them) and through sort_by_y and
+// setup_untextured_triangle without lanes_first: the same result and the same record. triangles
+// counts the lanes ones, visits the slivers and pixels the others (perspective planes, or the
+// general path).
 inline Tally run_lanes_setup(uint32_t cases, uint32_t seed = 5151u) {
   Random rng;
   rng.s = seed;
@@ -344,8 +345,12 @@ inline Tally run_lanes_setup(uint32_t cases, uint32_t seed = 5151u) {
                           static_cast<uint16_t>(16000 + rng.in(0, spread))};
       }
     }
-    uint16_t index[3] = {0, 1, 2};
-    for (int i = 2; i > 0; --i) std::swap(index[i], index[rng.in(0, i)]);
+    uint16_t order[3] = {0, 1, 2};
+    for (int i = 2; i > 0; --i) std::swap(order[i], order[rng.in(0, i)]);
+    // As binned: top first.
+    uint16_t index[3];
+    store_top_first(index, order[0], order[1], order[2], v[order[1]].y - v[order[0]].y,
+                    v[order[2]].y - v[order[0]].y);
     const RowWindow window{rng.in(-4, kHeight / 2), kHeight - 1, kWidth};
     ActiveTriangle a, b;
     std::memset(static_cast<void*>(&a), 0, sizeof a);

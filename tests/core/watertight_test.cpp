@@ -3,6 +3,9 @@
 // convex closed mesh with back faces culled is covered exactly once inside its silhouette.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+
 #include "lineraster/core/scene/camera.hpp"
 #include "lineraster/host_sim/scene/mesh_prep.hpp"
 #include "tests/support/core_harness.hpp"
@@ -103,6 +106,69 @@ TEST(Watertight, SelfOverlappingClosedMeshMatchesTheReferenceHitForHit) {
   EXPECT_EQ(r.written, r.ref_hits);  // overlapping front faces: several hits, the same ones
   EXPECT_GE(r.max_hits, 2);
   EXPECT_GT(r.covered, 5000u);
+}
+
+// Binning stores each triangle top first (store_top_first): the rotation of its submitted order
+// that starts at its topmost vertex, of a tie the earliest. Through the front end's C lane
+// (Gouraud, one-sided, nothing cut), its per-triangle path (flat colours; both facings drawn)
+// and the fans of triangles cut by the near plane (new vertices: topmost first).
+TEST(Watertight, BinnedTrianglesComeTopFirstAsRotations) {
+  const host::HostMesh sphere = host::make_uv_sphere(24, 36);
+  const auto fx = [](double v) { return Fixed::from_raw(int32_t(std::lround(v * 65536))); };
+  std::vector<Vec3> pos;
+  std::vector<Rgb8> col;
+  std::vector<std::array<uint16_t, 3>> tri;
+  for (size_t t = 0; t < sphere.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const auto& p = sphere.positions[sphere.triangles[t][size_t(k)]];
+      pos.push_back({fx(p[0]), fx(p[1]), fx(p[2])});
+      col.push_back(to_rgb8(test::id_color(uint32_t(t))));
+    }
+    const auto b = uint16_t(3 * t);
+    tri.push_back({b, uint16_t(b + 1), uint16_t(b + 2)});
+  }
+  uint32_t rotations = 0, ties = 0, fanned = 0;
+  for (const double distance : {2.6, 1.08})
+    for (const bool flat : {false, true}) {
+      // Level with the equator: its corners on one row (ties of every kind).
+      const Vec3 eye{fx(0.3 * distance), Fixed{}, fx(0.95 * distance)};
+      Camera cam;
+      cam.eye = eye;
+      ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(160, 120), Fixed::from_double(0.1),
+                              Fixed::from_int(50), cam.projection));
+      // Far: at the centre. Near: along the surface, which crosses the near plane on screen.
+      const Vec3 target = distance > 2 ? Vec3{} : Vec3{fx(1.5), Fixed{}, fx(0.6)};
+      ASSERT_TRUE(look_at(eye, target, {Fixed{}, Fixed::from_int(1), Fixed{}}, cam.view));
+      test::CoreHarness<8> core(160, 120);
+      core.begin({0, 0, 0}, cam);
+      DrawState st = test::coverage_state();
+      st.shading = flat ? Shading::kFlat : Shading::kGouraud;
+      st.cull = flat ? Cull::kNone : Cull::kBack;
+      ASSERT_EQ(core.renderer().draw(Mesh{pos, {}, col, {}, tri}, Mat4::identity(), Material{}, st),
+                Status::kOk);
+      core.render();
+      const auto sv = core.renderer().screen_vertices();
+      for (const BinnedTriangle& bt : core.renderer().binned_triangles()) {
+        const int32_t top = sv[bt.v[0]].y;
+        EXPECT_LE(top, sv[bt.v[1]].y);
+        EXPECT_LE(top, sv[bt.v[2]].y);
+        const uint32_t base = bt.v[0] - bt.v[0] % 3u, first = bt.v[0] - base;
+        if (size_t{bt.v[0]} >= pos.size() || bt.v[1] - base >= 3u || bt.v[2] - base >= 3u) {
+          ++fanned;  // a piece of a cut triangle
+          continue;
+        }
+        EXPECT_EQ(bt.v[1], base + (first + 1) % 3);
+        EXPECT_EQ(bt.v[2], base + (first + 2) % 3);
+        for (uint32_t k = 0; k < first; ++k) EXPECT_GT(sv[base + k].y, top);  // the earliest
+        ++rotations;
+        ties += sv[bt.v[1]].y == top || sv[bt.v[2]].y == top;
+      }
+    }
+  EXPECT_GT(rotations, 1000u);
+  EXPECT_GT(ties, 20u);  // the equator's corners
+  EXPECT_GT(fanned, 0u);
+  std::printf("[ top first ] %u rotations (%u with a level corner at the top), %u fanned pieces\n",
+              rotations, ties, fanned);
 }
 
 }  // namespace
