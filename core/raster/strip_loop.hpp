@@ -24,6 +24,7 @@
 #include "lineraster/core/raster/legacy_rows.hpp"
 #include "lineraster/core/raster/row_loop.hpp"
 #include "lineraster/core/raster/strip_fill.hpp"
+#include "lineraster/core/raster/strip_visit.hpp"
 #include "lineraster/core/raster/untextured_rows.hpp"
 #include "lineraster/core/setup/active_triangle.hpp"
 #include "lineraster/core/setup/triangle_rows.hpp"
@@ -626,26 +627,19 @@ void StripLoop<PF, K, kSpans>::add_counts(const StripRows& s) {
 }
 
 // Draws every active triangle's rows of the strip sr, in submission order, and retires those
-// that end in it (retire's work in the same pass: one loop per strip visit).
+// that end in it (retire's work in the same pass: one loop per strip visit; runs of lanes
+// triangles in one call where they have the hand-allocated form).
 template <class PF, int K, SpanSet kSpans>
 void StripLoop<PF, K, kSpans>::visit(StripRows& sr) {
   uint16_t* const order = storage_.active_index.data();
-  uint16_t* const free_slots = order + storage_.active.size();
-  const ActiveTriangle* const active = storage_.active.data();
-  const size_t count = active_count_;
-  const int32_t last = sr.y_last;
-  size_t kept = 0, free = free_count_;
-  for (size_t i = 0; i < count; ++i) {
-    const uint16_t slot = order[i];
-    const ActiveTriangle& t = active[slot];
-    t.rows(t, sr);
-    if (t.last_row <= last)
-      free_slots[free++] = slot;
-    else
-      order[kept++] = slot;
-  }
-  active_count_ = kept;
-  free_count_ = free;
+  ActiveList list{order, order + storage_.active.size(), storage_.active.data(), active_count_,
+                  free_count_};
+  constexpr RowFn kLanes = lanes_run_rows<PF, kSpans>();
+  visit_active(list, sr, kLanes, [](const ActiveTriangle& t, LaneRun& run, StripRows& s) {
+    if constexpr (kLanes != nullptr) lanes_run<PF>(t, run, s);
+  });
+  active_count_ = list.count;
+  free_count_ = list.free;
 }
 
 template <class PF, int K, SpanSet kSpans>
