@@ -52,15 +52,17 @@ template <class PF, bool kDepth, UntexturedKind kKind>
 // than 2^(kLanesMaxEdgeBits - 7) and their height is below 2^kLanesMaxEdgeBits subpixels
 // (setup_rows' bound, docs/numerics.md#edge-columns).
 static_assert((kLanesMaxEdgeBits - kSubpixelBits + 1) + kLanesMaxEdgeBits <= 32);
-template <class PF>
-void lanes_rows(const ActiveTriangle& t, StripRows& s) {
-  lane_visit<PF>(t, s);
-}
-
-// A run of lanes triangles (t the first) in one call, where lanes_rows is their row loop.
+// A run of lanes triangles (t the first) in one call: the strip loop's visit (visit_active).
 template <class PF>
 [[gnu::noinline]] void lanes_run(const ActiveTriangle& t, LaneRun& run, StripRows& s) {
   lane_run<PF>(t, run, s);
+}
+// One visit (crowded strips): a run of one, its slot in neither list (one copy of the loop).
+template <class PF>
+void lanes_rows(const ActiveTriangle& t, StripRows& s) {
+  uint16_t slot = 0, list = 0;
+  LaneRun run{&slot, &list, &list, &slot + 1, &t, nullptr, s.y_last};
+  lanes_run<PF>(t, run, s);
 }
 
 // The lanes row loop of a renderer's set when the strip loop visits them in runs (lanes_run):
