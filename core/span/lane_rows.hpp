@@ -221,18 +221,19 @@ namespace detail {
   "add    r3, r4\n\t"               \
   "add    r6, r6, r12, lsr #26\n\t" \
   "stm    r5, {r1, r2, r3, r6}\n\t"
-// The pick-up: the strip's words (pixels, depth, y0, y_last, width) in one LDM, the rows, then
+// The pick-up: the strip's words (pixels, depth, y0, y_last, width) in one LDM (the depth
+// offset stored once per run: the next triangle enters at label 0), the rows, then
 // the edges straight into the row loop's registers (q, dx, dy: the record's first six words),
 // stored as the frame. Below the middle vertex from the start, the short side's edge is the
 // bottom one. Then the two loops (kInside without the clamp) and the counts.
 #define LR_LANE_VISIT(SWAP) \
   asm volatile(                                                            \
       "ldr    lr, [%[a], #64]\n\t"                                         \
-      "0:\n\t"                                                              \
       "ldr    r0, [%[a], #68]\n\t"                                         \
       "ldm    r0, {r0, r1, r2, r3, r11}\n\t"                               \
       "subs   r1, r1, r0\n\t"                                              \
       "str    r1, [%[a], #52]\n\t"                                         \
+      "0:\n\t"                                                              \
       "ldrsh  r4, [lr, #36]\n\t"                                           \
       "ldrsh  r5, [lr, #40]\n\t"                                           \
       "ldrsh  r8, [lr, #38]\n\t"                                           \
@@ -311,6 +312,8 @@ namespace detail {
       "cmp    r9, r6\n\t"                                                  \
       "bne    19f\n\t"                                                     \
       "str    r12, [%[a], #60]\n\t"                                        \
+      "ldr    r0, [%[a], #68]\n\t"                                         \
+      "ldm    r0, {r0, r1, r2, r3, r11}\n\t"                               \
       "b      0b\n\t"                                                      \
       "19:\n\t" LR_LANE_FLUSH                                               \
       :                                                                    \
