@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 #include "lineraster/core/binning/front_end.hpp"
 #include "lineraster/core/output/depth_sink.hpp"
@@ -137,6 +138,12 @@ class StripLoop {
   static constexpr bool kAffineColors[2] = {
       kUsedRoutines<kSpans>.untextured[untextured_index(false, ColorPlanes::kAffine)],
       kUsedRoutines<kSpans>.untextured[untextured_index(true, ColorPlanes::kAffine)]};
+
+  // The lanes row loop where visit() takes runs of lanes triangles in one call (else nullptr),
+  // and the run's words (in the object: on the stack they would deepen its deepest path).
+  static constexpr RowFn kRunRows = lanes_run_rows<PF, kSpans>();
+  struct NoLaneRun {};
+  [[no_unique_address]] std::conditional_t<kRunRows != nullptr, LaneRun, NoLaneRun> lane_run_{};
 
   StripStorage storage_{};
   BinnedFrame frame_{};  // the frame being rendered
@@ -634,10 +641,15 @@ void StripLoop<PF, K, kSpans>::visit(StripRows& sr) {
   uint16_t* const order = storage_.active_index.data();
   ActiveList list{order, order + storage_.active.size(), storage_.active.data(), active_count_,
                   free_count_};
-  constexpr RowFn kLanes = lanes_run_rows<PF, kSpans>();
-  visit_active(list, sr, kLanes, [](const ActiveTriangle& t, LaneRun& run, StripRows& s) {
-    if constexpr (kLanes != nullptr) lanes_run<PF>(t, run, s);
-  });
+  const auto run = [](const ActiveTriangle& t, LaneRun& r, StripRows& s) {
+    if constexpr (kRunRows != nullptr) lanes_run<PF>(t, r, s);
+  };
+  if constexpr (kRunRows != nullptr) {
+    visit_active(list, sr, kRunRows, lane_run_, run);
+  } else {
+    LaneRun unused{};
+    visit_active(list, sr, nullptr, unused, run);
+  }
   active_count_ = list.count;
   free_count_ = list.free;
 }

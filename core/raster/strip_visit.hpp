@@ -26,11 +26,12 @@ struct ActiveList {
 };
 
 // Visits the strip sr: triangles whose rows are `lanes` (nullptr: none) in runs through
-// run(t, LaneRun&, sr), the others through their rows. Leaves in `list` the kept triangles and
-// the free slots.
+// run(t, r, sr), the others through their rows. Leaves in `list` the kept triangles and the free
+// slots. r: the run's words (the strip loop keeps them in its object, not on the stack, whose
+// deepest path goes through the visit).
 template <class Run>
 [[gnu::always_inline]] inline void visit_active(ActiveList& list, StripRows& sr, RowFn lanes,
-                                                Run&& run) {
+                                                LaneRun& r, Run&& run) {
   uint16_t* const order = list.order;
   uint16_t* const free_slots = list.free_slots;
   const ActiveTriangle* const active = list.active;
@@ -41,7 +42,7 @@ template <class Run>
     const uint16_t slot = order[i];
     const ActiveTriangle& t = active[slot];
     if (lanes != nullptr && t.rows == lanes) {
-      LaneRun r{order + i, order + kept, free_slots + free, order + count, active, lanes, last};
+      r = LaneRun{order + i, order + kept, free_slots + free, order + count, active, lanes, last};
       run(t, r, sr);
       i = static_cast<size_t>(r.next - order);
       kept = static_cast<size_t>(r.kept - order);

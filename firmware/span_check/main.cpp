@@ -70,14 +70,18 @@ int main() {
     // Runs of lanes triangles in one call, by hand and in C, in strips mixed with others.
     constexpr lr::RowFn kLanes = &lr::lanes_rows<PF>;
     const auto runs_by_hand = [](lr::ActiveList& x, StripRows& s) {
-      lr::visit_active(x, s, kLanes, [](const ActiveTriangle& t, lr::LaneRun& r, StripRows& sr) {
-        lr::lane_run<PF>(t, r, sr);
-      });
+      lr::LaneRun words{};
+      lr::visit_active(x, s, kLanes, words,
+                       [](const ActiveTriangle& t, lr::LaneRun& r, StripRows& sr) {
+                         lr::lane_run<PF>(t, r, sr);
+                       });
     };
     const auto runs_portable = [](lr::ActiveList& x, StripRows& s) {
-      lr::visit_active(x, s, kLanes, [](const ActiveTriangle& t, lr::LaneRun& r, StripRows& sr) {
-        lr::lane_run_portable<PF>(t, r, sr);
-      });
+      lr::LaneRun words{};
+      lr::visit_active(x, s, kLanes, words,
+                       [](const ActiveTriangle& t, lr::LaneRun& r, StripRows& sr) {
+                         lr::lane_run_portable<PF>(t, r, sr);
+                       });
     };
     const lanes::StripTally t =
         lanes::run_strips(3000, g_a, g_b, kLanes, runs_by_hand, runs_portable);

@@ -50,12 +50,14 @@ TEST(LaneRows, RunsOfLanesTrianglesVisitAsOneAtATime) {
   static lanes::Strip a, b;
   constexpr RowFn kLanes = &lanes_rows<PF>;
   const auto runs = [](ActiveList& x, StripRows& s) {
-    visit_active(x, s, kLanes, [](const ActiveTriangle& t, LaneRun& r, StripRows& sr) {
+    LaneRun words{};
+    visit_active(x, s, kLanes, words, [](const ActiveTriangle& t, LaneRun& r, StripRows& sr) {
       lane_run_portable<PF>(t, r, sr);
     });
   };
   const auto single = [](ActiveList& x, StripRows& s) {
-    visit_active(x, s, nullptr, [](const ActiveTriangle&, LaneRun&, StripRows&) {});
+    LaneRun words{};
+    visit_active(x, s, nullptr, words, [](const ActiveTriangle&, LaneRun&, StripRows&) {});
   };
   const lanes::StripTally t = lanes::run_strips(6000, a, b, kLanes, runs, single);
   std::printf(
