@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 #include "lineraster/core/binning/front_end.hpp"
 #include "lineraster/core/output/depth_sink.hpp"
@@ -24,6 +25,7 @@
 #include "lineraster/core/raster/legacy_rows.hpp"
 #include "lineraster/core/raster/row_loop.hpp"
 #include "lineraster/core/raster/strip_fill.hpp"
+#include "lineraster/core/raster/strip_visit.hpp"
 #include "lineraster/core/raster/untextured_rows.hpp"
 #include "lineraster/core/setup/active_triangle.hpp"
 #include "lineraster/core/setup/triangle_rows.hpp"
@@ -136,6 +138,12 @@ class StripLoop {
   static constexpr bool kAffineColors[2] = {
       kUsedRoutines<kSpans>.untextured[untextured_index(false, ColorPlanes::kAffine)],
       kUsedRoutines<kSpans>.untextured[untextured_index(true, ColorPlanes::kAffine)]};
+
+  // The lanes row loop where visit() takes runs of lanes triangles in one call (else nullptr),
+  // and the run's words (in the object: on the stack they would deepen its deepest path).
+  static constexpr RowFn kRunRows = lanes_run_rows<PF, kSpans>();
+  struct NoLaneRun {};
+  [[no_unique_address]] std::conditional_t<kRunRows != nullptr, LaneRun, NoLaneRun> lane_run_{};
 
   StripStorage storage_{};
   BinnedFrame frame_{};  // the frame being rendered
@@ -626,26 +634,24 @@ void StripLoop<PF, K, kSpans>::add_counts(const StripRows& s) {
 }
 
 // Draws every active triangle's rows of the strip sr, in submission order, and retires those
-// that end in it (retire's work in the same pass: one loop per strip visit).
+// that end in it (retire's work in the same pass: one loop per strip visit; runs of lanes
+// triangles in one call where they have the hand-allocated form).
 template <class PF, int K, SpanSet kSpans>
 void StripLoop<PF, K, kSpans>::visit(StripRows& sr) {
   uint16_t* const order = storage_.active_index.data();
-  uint16_t* const free_slots = order + storage_.active.size();
-  const ActiveTriangle* const active = storage_.active.data();
-  const size_t count = active_count_;
-  const int32_t last = sr.y_last;
-  size_t kept = 0, free = free_count_;
-  for (size_t i = 0; i < count; ++i) {
-    const uint16_t slot = order[i];
-    const ActiveTriangle& t = active[slot];
-    t.rows(t, sr);
-    if (t.last_row <= last)
-      free_slots[free++] = slot;
-    else
-      order[kept++] = slot;
+  ActiveList list{order, order + storage_.active.size(), storage_.active.data(), active_count_,
+                  free_count_};
+  const auto run = [](const ActiveTriangle& t, LaneRun& r, StripRows& s) {
+    if constexpr (kRunRows != nullptr) lanes_run<PF>(t, r, s);
+  };
+  if constexpr (kRunRows != nullptr) {
+    visit_active(list, sr, kRunRows, lane_run_, run);
+  } else {
+    LaneRun unused{};
+    visit_active(list, sr, nullptr, unused, run);
   }
-  active_count_ = kept;
-  free_count_ = free;
+  active_count_ = list.count;
+  free_count_ = list.free;
 }
 
 template <class PF, int K, SpanSet kSpans>

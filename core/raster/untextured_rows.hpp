@@ -52,10 +52,23 @@ template <class PF, bool kDepth, UntexturedKind kKind>
 // than 2^(kLanesMaxEdgeBits - 7) and their height is below 2^kLanesMaxEdgeBits subpixels
 // (setup_rows' bound, docs/numerics.md#edge-columns).
 static_assert((kLanesMaxEdgeBits - kSubpixelBits + 1) + kLanesMaxEdgeBits <= 32);
+// A run of lanes triangles (t the first) in one call: the strip loop's visit (visit_active).
+template <class PF>
+[[gnu::noinline]] void lanes_run(const ActiveTriangle& t, LaneRun& run, StripRows& s) {
+  lane_run<PF>(t, run, s);
+}
+// One visit (crowded strips): a run of one, its slot in neither list (one copy of the loop).
 template <class PF>
 void lanes_rows(const ActiveTriangle& t, StripRows& s) {
-  lane_visit<PF>(t, s);
+  uint16_t slot = 0, list = 0;
+  LaneRun run{&slot, &list, &list, &slot + 1, &t, nullptr, s.y_last};
+  lanes_run<PF>(t, run, s);
 }
+
+// The lanes row loop of a renderer's set when the strip loop visits them in runs (lanes_run):
+// where they have the hand-allocated form; nullptr elsewhere.
+template <class PF, SpanSet kSet>
+constexpr RowFn lanes_run_rows();
 
 // The row loop of a (depth test, kind).
 template <class PF, bool kDepth, UntexturedKind kKind>
@@ -121,5 +134,15 @@ inline constexpr size_t kUntexturedRows = 2 * static_cast<size_t>(kUntexturedKin
 template <class PF, SpanSet kSet = kAllSpans>
 inline constexpr std::array<RowFn, kUntexturedRows> kUntexturedRowTable =
     detail::untextured_row_table<PF, kSet>(std::make_index_sequence<kUntexturedRows>{});
+
+template <class PF, SpanSet kSet>
+constexpr RowFn lanes_run_rows() {
+  if constexpr (kLaneVisitAsm && kRgb565Lanes<PF>) {
+    constexpr RowFn kRows =
+        kUntexturedRowTable<PF, kSet>[untextured_row_index(true, UntexturedKind::kLanes)];
+    if constexpr (kRows != nullptr && kRows == &lanes_rows<PF>) return kRows;
+  }
+  return nullptr;
+}
 
 }  // namespace lr

@@ -73,6 +73,35 @@ inline void lane_visit_portable(const ActiveTriangle& t, StripRows& s) {
   s.written += tested - rejected;
 }
 
+// A run: consecutive lanes triangles of a strip's active list (those whose rows are `lanes`),
+// visited in one call from the order entry `next` on, each then retired as StripLoop::visit
+// retires: its slot to the free list when it ends in the strip (last_row <= y_last), else to
+// the kept list. The call returns at the first entry of another kind, or at `end`, with next,
+// kept and free past what it did. The layout is read by the Armv7E-M form.
+struct LaneRun {
+  const uint16_t* next;          // the order entry of the run's first triangle
+  uint16_t* kept;                // where the next kept slot goes (the order, compacted)
+  uint16_t* free;                // where the next free slot goes
+  const uint16_t* end;           // one past the active list's last entry
+  const ActiveTriangle* active;  // the active slots
+  RowFn lanes;                   // the rows of the triangles the run takes
+  int32_t y_last;                // the strip's last row
+};
+
+// The run in C: lane_visit_portable per triangle.
+template <class PF>
+inline void lane_run_portable(const ActiveTriangle& t, LaneRun& run, StripRows& s) {
+  const ActiveTriangle* u = &t;
+  for (;;) {
+    const uint16_t slot = *run.next++;
+    lane_visit_portable<PF>(*u, s);
+    *(u->last_row <= run.y_last ? run.free : run.kept)++ = slot;
+    if (run.next == run.end) return;
+    u = &run.active[*run.next];
+    if (u->rows != run.lanes) return;
+  }
+}
+
 #if defined(__thumb2__) && (defined(__ARM_ARCH_7EM__) || defined(__ARM_ARCH_8M_MAIN__))
 inline constexpr bool kLaneVisitAsm = true;
 #else
@@ -82,8 +111,9 @@ inline constexpr bool kLaneVisitAsm = false;
 namespace detail {
 // The visit by hand (Armv7E-M: LDM/STM, UDIV, MLA, REV16). The one operand (in r7, the register
 // the loop leaves to the compiler: Thumb's frame pointer) points to the visit's frame, a local
-// array of 18 words: the triangle's address at 64 (then in lr) and the strip's at 68, and the
-// visit's state:
+// array of 18 words: the run's address at 56 (LaneRun), the counts between the run's triangles
+// at 60, the first triangle's address at 64 (then in lr) and the strip's at 68, and the visit's
+// state:
 //   0 q[0]  4 q[1]  8 px (the row's pixel in column 0)  12 row  16 dx[0]  20 dx[1]
 //   24 stride (bytes per row)  28 dy[0]  32 dy[1]  36 col_base  40 width  44 stop  48 last
 //   52 depth offset (bytes from a pixel to its depth)
@@ -94,8 +124,11 @@ namespace detail {
 // depths' end r2; per pixel the depth and the pixel in r0, green in r11. A rejected pixel is
 // taken off the strip's written count at once (the visit adds every pixel in its spans at the
 // end). Instructions: per written pixel 16, per rejected one 8 (plus the count); per row with a
-// span 35 (kInside 29), without one 20 (14); per visit about 45 (pick-up into the row loop's
-// registers, which enters past its LDM, and the counts). The row loop, its labels numbered from
+// span 35 (kInside 29), without one 20 (14); per visit about 48 (pick-up into the row loop's
+// registers, which enters past its LDM, the retire and the next triangle's test: label 10). The
+// counts of a run stay in r12 (saved at 60 over a pick-up) and go to the strip at the run's end
+// or once it has 32 rows or more (its fields then hold the next visit: at most 63 rows, spans
+// and 63 x kMaxViewport pixels). The row loop, its labels numbered from
 // N, with CLAMP between the columns and the span.
 #define LR_LANE_ROWS(N1, N8, N2, N3, N4, N7, CLAMP, SWAP)                        \
   N1 ":\n\t"                                                                     \
@@ -176,16 +209,31 @@ namespace detail {
   "cmp    r1, r11\n\t"             \
   "it     gt\n\t"                  \
   "movgt  r1, r11\n\t"
-// The pick-up: the strip's words (pixels, depth, y0, y_last, width) in one LDM, the rows, then
+// The counts of r12 added to the strip's (StripRows::spans, tested, written, rows).
+#define LR_LANE_FLUSH               \
+  "ldr    r5, [%[a], #68]\n\t"      \
+  "add    r5, #32\n\t"              \
+  "ldm    r5, {r1, r2, r3, r6}\n\t" \
+  "ubfx   r4, r12, #20, #6\n\t"     \
+  "add    r1, r4\n\t"               \
+  "ubfx   r4, r12, #0, #20\n\t"     \
+  "add    r2, r4\n\t"               \
+  "add    r3, r4\n\t"               \
+  "add    r6, r6, r12, lsr #26\n\t" \
+  "stm    r5, {r1, r2, r3, r6}\n\t"
+// The pick-up: the strip's words (pixels, depth, y0, y_last, width) in one LDM (the depth
+// offset stored once per run: the next triangle enters at label 0), the rows, then
 // the edges straight into the row loop's registers (q, dx, dy: the record's first six words),
 // stored as the frame. Below the middle vertex from the start, the short side's edge is the
 // bottom one. Then the two loops (kInside without the clamp) and the counts.
 #define LR_LANE_VISIT(SWAP) \
   asm volatile(                                                            \
-      "ldrd   lr, r12, [%[a], #64]\n\t"                                    \
-      "ldm    r12, {r0, r1, r2, r3, r11}\n\t"                              \
+      "ldr    lr, [%[a], #64]\n\t"                                         \
+      "ldr    r0, [%[a], #68]\n\t"                                         \
+      "ldm    r0, {r0, r1, r2, r3, r11}\n\t"                               \
       "subs   r1, r1, r0\n\t"                                              \
       "str    r1, [%[a], #52]\n\t"                                         \
+      "0:\n\t"                                                              \
       "ldrsh  r4, [lr, #36]\n\t"                                           \
       "ldrsh  r5, [lr, #40]\n\t"                                           \
       "ldrsh  r8, [lr, #38]\n\t"                                           \
@@ -213,8 +261,8 @@ namespace detail {
       "stm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"    \
       "ldrb   r12, [lr, #47]\n\t"                                          \
       "tst    r12, #4\n\t"                                                 \
-      "rsb    r12, r3, #0\n\t"                                             \
-      "lsl    r12, r12, #26\n\t"                                           \
+      "ldr    r12, [%[a], #60]\n\t"                                        \
+      "sub    r12, r12, r3, lsl #26\n\t"                                   \
       "bne    18f\n\t"                                                     \
       "b      8f\n\t"                                                      \
       "5:\n\t"                                                             \
@@ -237,30 +285,46 @@ namespace detail {
       "str    r4, [r0, #16]\n\t"                                           \
       "str    r5, [r0, #28]\n\t"                                           \
       "tst    r12, #4\n\t"                                                 \
-      "rsb    r12, r3, #0\n\t"                                             \
-      "lsl    r12, r12, #26\n\t"                                           \
+      "ldr    r12, [%[a], #60]\n\t"                                        \
+      "sub    r12, r12, r3, lsl #26\n\t"                                   \
       "bne    11f\n\t"                                                     \
       LR_LANE_ROWS("1", "8", "2", "3", "4", "7", LR_LANE_CLAMP, SWAP)      \
       LR_LANE_ROWS("11", "18", "12", "13", "14", "17", "", SWAP)           \
       "9:\n\t"                                                             \
-      "add    r12, r12, r0, lsl #26\n\t"                                   \
-      "ldr    r5, [%[a], #68]\n\t"                                         \
-      "add    r5, #32\n\t"                                                 \
-      "ldm    r5, {r1, r2, r3, r6}\n\t"                                    \
-      "ubfx   r4, r12, #20, #6\n\t"                                        \
-      "add    r1, r4\n\t"                                                  \
-      "ubfx   r4, r12, #0, #20\n\t"                                        \
-      "add    r2, r4\n\t"                                                  \
-      "add    r3, r4\n\t"                                                  \
-      "add    r6, r6, r12, lsr #26\n\t"                                    \
-      "stm    r5, {r1, r2, r3, r6}\n\t"                                    \
+      "adds   r12, r12, r0, lsl #26\n\t"                                   \
+      "bpl    10f\n\t" LR_LANE_FLUSH "mov    r12, #0\n\t"                  \
+      "10:\n\t"                                                            \
+      "ldr    r0, [%[a], #56]\n\t"                                         \
+      "ldm    r0, {r1, r2, r3, r4, r5, r6, r8}\n\t"                        \
+      "ldrh   r10, [r1], #2\n\t"                                           \
+      "ldrsh  r9, [lr, #40]\n\t"                                           \
+      "cmp    r9, r8\n\t"                                                  \
+      "ite    le\n\t"                                                      \
+      "strhle r10, [r3], #2\n\t"                                           \
+      "strhgt r10, [r2], #2\n\t"                                           \
+      "stm    r0, {r1, r2, r3}\n\t"                                        \
+      "cmp    r1, r4\n\t"                                                  \
+      "beq    19f\n\t"                                                     \
+      "ldrh   r10, [r1]\n\t"                                               \
+      "mov    r9, %[size]\n\t"                                             \
+      "mla    lr, r10, r9, r5\n\t"                                         \
+      "ldr    r9, [lr, %[rows]]\n\t"                                       \
+      "cmp    r9, r6\n\t"                                                  \
+      "bne    19f\n\t"                                                     \
+      "str    r12, [%[a], #60]\n\t"                                        \
+      "ldr    r0, [%[a], #68]\n\t"                                         \
+      "ldm    r0, {r0, r1, r2, r3, r11}\n\t"                               \
+      "b      0b\n\t"                                                      \
+      "19:\n\t" LR_LANE_FLUSH                                               \
       :                                                                    \
-      : [a] "r"(ts)                                                        \
+      : [a] "r"(ts), [size] "i"(sizeof(ActiveTriangle)),                   \
+        [rows] "i"(offsetof(ActiveTriangle, rows))                         \
       : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", \
         "cc", "memory")
 
 template <bool kSwap>
-[[gnu::always_inline]] inline void lane_visit_asm(const ActiveTriangle& t, StripRows& s) {
+[[gnu::always_inline]] inline void lane_run_asm(const ActiveTriangle& t, LaneRun& run,
+                                                StripRows& s) {
 #if defined(__thumb2__) && (defined(__ARM_ARCH_7EM__) || defined(__ARM_ARCH_8M_MAIN__))
   static_assert(offsetof(ActiveTriangle, edge_q) == 0 && offsetof(ActiveTriangle, edge_dx) == 8 &&
                 offsetof(ActiveTriangle, edge_dy) == 16 && offsetof(ActiveTriangle, bottom) == 24 &&
@@ -270,9 +334,17 @@ template <bool kSwap>
                 offsetof(ActiveTriangle, col_base) == 42 && offsetof(ActiveTriangle, flags) == 47 &&
                 offsetof(ActiveTriangle, z) == 52 && offsetof(ActiveTriangle, c) == 64);
   static_assert(ActiveTriangle::kBottomRight == 1 && ActiveTriangle::kInside == 4);
-  // The visit's frame, then the triangle's and the strip's addresses (a local array, so that
-  // the compiler's stack figures, and scripts/stack_usage.py's, include it).
+  static_assert(sizeof(ActiveTriangle) < 256 && offsetof(ActiveTriangle, rows) < 4096);
+  static_assert(offsetof(LaneRun, next) == 0 && offsetof(LaneRun, kept) == 4 &&
+                offsetof(LaneRun, free) == 8 && offsetof(LaneRun, end) == 12 &&
+                offsetof(LaneRun, active) == 16 && offsetof(LaneRun, lanes) == 20 &&
+                offsetof(LaneRun, y_last) == 24);
+  // The visit's frame, then the run's address, the counts (r12 between triangles), the
+  // triangle's and the strip's addresses (a local array, so that the compiler's stack figures,
+  // and scripts/stack_usage.py's, include it).
   uint32_t frame[18];
+  frame[14] = reinterpret_cast<uintptr_t>(&run);
+  frame[15] = 0;
   frame[16] = reinterpret_cast<uintptr_t>(&t);
   frame[17] = reinterpret_cast<uintptr_t>(&s);
   uint32_t* const ts = frame;
@@ -287,23 +359,33 @@ template <bool kSwap>
     LR_LANE_VISIT("");
 #else
   (void)t;
+  (void)run;
   (void)s;
 #endif
 }
 #undef LR_LANE_VISIT
+#undef LR_LANE_FLUSH
 #undef LR_LANE_CLAMP
 #undef LR_LANE_ROWS
 }  // namespace detail
 
-// The visit: by hand on Armv7E-M for the RGB565 formats (whose from_value is the value or its
-// byte swap), in C elsewhere.
+// The run: by hand on Armv7E-M for the RGB565 formats (whose from_value is the value or its
+// byte swap), in C elsewhere. t is run.active[*run.next].
 template <class PF>
-[[gnu::always_inline]] inline void lane_visit(const ActiveTriangle& t, StripRows& s) {
+[[gnu::always_inline]] inline void lane_run(const ActiveTriangle& t, LaneRun& run, StripRows& s) {
   constexpr unsigned kProbe = PF::from_value(0x1234u);
   if constexpr (kLaneVisitAsm && (kProbe == 0x1234u || kProbe == 0x3412u))
-    detail::lane_visit_asm<kProbe == 0x3412u>(t, s);
+    detail::lane_run_asm<kProbe == 0x3412u>(t, run, s);
   else
-    lane_visit_portable<PF>(t, s);
+    lane_run_portable<PF>(t, run, s);
+}
+
+// One visit (a run of one triangle, its slot in neither list).
+template <class PF>
+[[gnu::always_inline]] inline void lane_visit(const ActiveTriangle& t, StripRows& s) {
+  uint16_t slot = 0, list = 0;
+  LaneRun run{&slot, &list, &list, &slot + 1, &t, nullptr, s.y_last};
+  lane_run<PF>(t, run, s);
 }
 
 }  // namespace lr

@@ -14,6 +14,7 @@
 #include <cstring>
 
 #include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/raster/strip_visit.hpp"
 #include "lineraster/core/raster/untextured_rows.hpp"
 #include "lineraster/core/setup/active_triangle.hpp"
 #include "lineraster/core/setup/strip_rows.hpp"
@@ -137,6 +138,113 @@ Tally run_cases(uint32_t cases, Strip& a, Strip& b, DrawA&& draw_a, DrawB&& draw
         same = same && a.px[i] == b.px[i] && a.depth[i] == b.depth[i];
       if (!same) ++tally.differing;
     }
+  }
+  return tally;
+}
+
+// What run_strips compared: strips, the active triangles in them, those of them in lanes runs
+// of two or more, those of another kind, those kept and freed, pixels, and strips that differ.
+struct StripTally {
+  uint32_t strips = 0, triangles = 0, in_runs = 0, others = 0, kept = 0, freed = 0, pixels = 0,
+           differing = 0;
+};
+
+// Runs `cases` random strips of up to kSlots active triangles (lanes ones, whose rows are
+// `lanes`, and others of the generic row loop: the affine kind, lanes with wide edges), in random
+// slots and order beside random free slots, visited by visit_a and visit_b (ActiveList&,
+// StripRows&) from two copies of the same lists and strip contents: pixels, depths, counts, the
+// kept order and the free list must be equal.
+inline constexpr size_t kSlots = 12;
+template <class VisitA, class VisitB>
+StripTally run_strips(uint32_t cases, Strip& a, Strip& b, RowFn lanes, VisitA&& visit_a,
+                      VisitB&& visit_b, uint32_t seed = 60606u) {
+  Random rng;
+  rng.s = seed;
+  StripTally tally;
+  UntexturedInput in;
+  in.colors = ColorPlanes::kAffine;
+  in.depth = true;
+  in.lanes = true;
+  in.affine = kAffineBound565;
+  in.lanes_first = lanes_first_of(in);
+  static std::array<ActiveTriangle, kSlots> active;
+  for (uint32_t c = 0; c < cases; ++c) {
+    const int k = rng.in(1, kMaxRows);
+    const int32_t y0 = k * rng.in(0, (kHeight - 1) / k);
+    const int32_t rows = std::min<int32_t>(k, kHeight - y0);
+    const RowWindow window{y0, kHeight - 1, kWidth};
+    // The slots in a random order: the first `count` active, the rest free.
+    std::array<uint16_t, kSlots> slots;
+    for (size_t i = 0; i < kSlots; ++i) slots[i] = static_cast<uint16_t>(i);
+    for (size_t i = kSlots - 1; i > 0; --i)
+      std::swap(slots[i], slots[static_cast<size_t>(rng.in(0, static_cast<int32_t>(i)))]);
+    const auto want = static_cast<size_t>(rng.in(1, static_cast<int32_t>(kSlots) - 2));
+    size_t count = 0;
+    for (int attempt = 0; attempt < 200 && count < want; ++attempt) {
+      ScreenVertex v[3];
+      random_triangle(rng, v);
+      // Mostly near the strip.
+      const int32_t dy = (y0 + rows / 2) * kSubpixel - (v[0].y + v[1].y + v[2].y) / 3;
+      for (ScreenVertex& x : v) x.y += dy + rng.in(-4 * kSubpixel, 4 * kSubpixel);
+      if (signed_area2(v[0], v[1], v[2]) == 0) continue;
+      const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
+      sort_by_y(s);
+      ActiveTriangle& t = active[slots[count]];
+      const UntexturedTriangle u = setup_untextured_triangle(s, window, in, t);
+      if (!u.pixels() || t.first_row > y0 + rows - 1) continue;
+      const bool wide = (t.flags & ActiveTriangle::kWideEdges) != 0;
+      if (u.kind() == UntexturedKind::kLanes && !wide)
+        t.rows = lanes;
+      else if (u.kind() == UntexturedKind::kLanes)
+        t.rows = &untextured_rows_per_span<PF, true, UntexturedKind::kLanes>;
+      else if (u.kind() == UntexturedKind::kAffine)
+        t.rows = &untextured_rows_per_span<PF, true, UntexturedKind::kAffine>;
+      else
+        continue;
+      ++count;
+    }
+    if (count == 0) continue;
+    ++tally.strips;
+    tally.triangles += static_cast<uint32_t>(count);
+    for (size_t i = 0; i < count; ++i) {
+      const ActiveTriangle& t = active[slots[i]];
+      const bool run = t.rows == lanes && ((i > 0 && active[slots[i - 1]].rows == lanes) ||
+                                           (i + 1 < count && active[slots[i + 1]].rows == lanes));
+      tally.in_runs += run ? 1u : 0u;
+      tally.others += t.rows != lanes ? 1u : 0u;
+      (t.last_row > y0 + rows - 1 ? tally.kept : tally.freed)++;
+    }
+    // The lists: order then free slots, as the strip loop keeps them.
+    std::array<uint16_t, 2 * kSlots> la{}, lb{};
+    std::copy(slots.begin(), slots.begin() + static_cast<std::ptrdiff_t>(count), la.begin());
+    const size_t free = kSlots - count;
+    std::copy(slots.begin() + static_cast<std::ptrdiff_t>(count), slots.end(), la.begin() + kSlots);
+    lb = la;
+    ActiveList xa{la.data(), la.data() + kSlots, active.data(), count, free};
+    ActiveList xb{lb.data(), lb.data() + kSlots, active.data(), count, free};
+    for (size_t i = 0; i < static_cast<size_t>(kWidth * rows); ++i) {
+      a.px[i] = b.px[i] = static_cast<uint16_t>(rng.next());
+      a.depth[i] = b.depth[i] = static_cast<uint16_t>(rng.next() % 4 == 0 ? 0xFFFFu : rng.next());
+    }
+    StripRows sa, sb;
+    sa.pixels = a.px.data();
+    sa.depth = a.depth.data();
+    sb.pixels = b.px.data();
+    sb.depth = b.depth.data();
+    sa.y0 = sb.y0 = y0;
+    sa.y_last = sb.y_last = y0 + rows - 1;
+    sa.width = sb.width = kWidth;
+    visit_a(xa, sa);
+    visit_b(xb, sb);
+    tally.pixels += sa.tested;
+    bool same = sa.spans == sb.spans && sa.tested == sb.tested && sa.written == sb.written &&
+                sa.rows == sb.rows && xa.count == xb.count && xa.free == xb.free &&
+                xa.free == kSlots - xa.count;
+    for (size_t i = 0; same && i < xa.count; ++i) same = la[i] == lb[i];
+    for (size_t i = 0; same && i < xa.free; ++i) same = la[kSlots + i] == lb[kSlots + i];
+    for (size_t i = 0; i < static_cast<size_t>(kWidth * rows); ++i)
+      same = same && a.px[i] == b.px[i] && a.depth[i] == b.depth[i];
+    if (!same) ++tally.differing;
   }
   return tally;
 }

@@ -10,6 +10,7 @@
 #include "firmware/common/semihost.hpp"
 #include "firmware/span_check/fill_check.hpp"
 #include "firmware/span_check/lane_cases.hpp"
+#include "lineraster/core/raster/strip_visit.hpp"
 #include "lineraster/core/raster/untextured_rows.hpp"
 #include "lineraster/core/span/lane_rows.hpp"
 
@@ -66,6 +67,41 @@ int main() {
     ok = report("hand-allocated loop == C loop",
                 lanes::run_cases(kCases, g_a, g_b, by_hand, portable)) &&
          ok;
+    // Runs of lanes triangles in one call, by hand and in C, in strips mixed with others.
+    constexpr lr::RowFn kLanes = &lr::lanes_rows<PF>;
+    const auto runs_by_hand = [](lr::ActiveList& x, StripRows& s) {
+      lr::LaneRun words{};
+      lr::visit_active(x, s, kLanes, words,
+                       [](const ActiveTriangle& t, lr::LaneRun& r, StripRows& sr) {
+                         lr::lane_run<PF>(t, r, sr);
+                       });
+    };
+    const auto runs_portable = [](lr::ActiveList& x, StripRows& s) {
+      lr::LaneRun words{};
+      lr::visit_active(x, s, kLanes, words,
+                       [](const ActiveTriangle& t, lr::LaneRun& r, StripRows& sr) {
+                         lr::lane_run_portable<PF>(t, r, sr);
+                       });
+    };
+    const lanes::StripTally t =
+        lanes::run_strips(3000, g_a, g_b, kLanes, runs_by_hand, runs_portable);
+    sh::write("lr_span_check: runs by hand == C runs: ");
+    sh::write_dec(t.strips);
+    sh::write(" strips, ");
+    sh::write_dec(t.triangles);
+    sh::write(" triangles (");
+    sh::write_dec(t.in_runs);
+    sh::write(" in runs, ");
+    sh::write_dec(t.others);
+    sh::write(" others, ");
+    sh::write_dec(t.kept);
+    sh::write(" kept, ");
+    sh::write_dec(t.freed);
+    sh::write(" freed), ");
+    sh::write_dec(t.differing);
+    sh::write(" strips differ\n");
+    ok = t.differing == 0 && t.strips > 2000 && t.in_runs > 5000 && t.others > 500 &&
+         t.kept > 2000 && t.freed > 2000 && ok;
   } else {
     sh::write("lr_span_check: no hand-allocated visit on this core\n");
   }

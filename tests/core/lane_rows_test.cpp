@@ -14,6 +14,7 @@
 
 #include "firmware/span_check/lane_cases.hpp"
 #include "lineraster/core/output/pixel_format.hpp"
+#include "lineraster/core/raster/strip_visit.hpp"
 #include "lineraster/core/raster/untextured_rows.hpp"
 #include "lineraster/core/setup/row_edge.hpp"
 #include "lineraster/core/setup/untextured_setup.hpp"
@@ -39,6 +40,36 @@ TEST(LaneRows, CLoopDrawsWhatTheGenericRowLoopDraws) {
               t.visits, t.pixels, t.differing);
   EXPECT_EQ(t.differing, 0u);
   EXPECT_GT(t.triangles, 8000u);
+  EXPECT_GT(t.pixels, 100000u);
+}
+
+// The strip visit with runs of lanes triangles in one call (visit_active with lane_run) against
+// the visit one triangle at a time: strips of lanes triangles mixed with others, kept and
+// freed. lr_span_check runs the same cases on the targets with the hand-allocated run.
+TEST(LaneRows, RunsOfLanesTrianglesVisitAsOneAtATime) {
+  static lanes::Strip a, b;
+  constexpr RowFn kLanes = &lanes_rows<PF>;
+  const auto runs = [](ActiveList& x, StripRows& s) {
+    LaneRun words{};
+    visit_active(x, s, kLanes, words, [](const ActiveTriangle& t, LaneRun& r, StripRows& sr) {
+      lane_run_portable<PF>(t, r, sr);
+    });
+  };
+  const auto single = [](ActiveList& x, StripRows& s) {
+    LaneRun words{};
+    visit_active(x, s, nullptr, words, [](const ActiveTriangle&, LaneRun&, StripRows&) {});
+  };
+  const lanes::StripTally t = lanes::run_strips(6000, a, b, kLanes, runs, single);
+  std::printf(
+      "[ lanes ] %u strips, %u triangles (%u in runs, %u others, %u kept, %u freed), "
+      "%u pixels: %u strips differ\n",
+      t.strips, t.triangles, t.in_runs, t.others, t.kept, t.freed, t.pixels, t.differing);
+  EXPECT_EQ(t.differing, 0u);
+  EXPECT_GT(t.strips, 5000u);
+  EXPECT_GT(t.in_runs, 10000u);
+  EXPECT_GT(t.others, 1000u);
+  EXPECT_GT(t.kept, 5000u);
+  EXPECT_GT(t.freed, 5000u);
   EXPECT_GT(t.pixels, 100000u);
 }
 
