@@ -823,19 +823,18 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 namespace {
 // The frame of the small lanes setup by hand (the words above), with the steps to take in word 21:
 // kRowsStep, kPlanesStep or both (the planes then only when the rows' result is kPixels), and
-// LanesSetup's: kSortStep (the vertices from the three indices at word 23 into the vertex store
-// at word 24, binned topmost first: the other two sorted by sort_below_top's compare)
+// LanesSetup's: kSortStep (the vertices from the three indices (small_lanes_asm's index) into the
+// vertex store at word 24, binned topmost first: the other two sorted by sort_below_top's compare)
 // and kAffineStep (when the planes were made, the affine colour test, its quick part's shift at
 // word 25, the bound and green's weight at 26 and 27: the result 3 when it fails).
 constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8;
 struct LanesFrame {
   uint32_t w[28];
   LanesFrame() = default;
-  LanesFrame(const ScreenVertex* const v[3], ActiveTriangle& t, uint32_t steps) {
+  LanesFrame(const ScreenVertex* const v[3], uint32_t steps) {
     w[0] = reinterpret_cast<uintptr_t>(v[0]);
     w[1] = reinterpret_cast<uintptr_t>(v[1]);
     w[2] = reinterpret_cast<uintptr_t>(v[2]);
-    w[4] = reinterpret_cast<uintptr_t>(&t);
     w[21] = steps;
     w[22] = 0;
   }
@@ -850,7 +849,12 @@ struct LanesFrame {
 };
 // Both steps in one block: a triangle that has pixels on its first rows (the common one) gets its
 // rows and planes in one call, nothing reloaded from C between them.
-[[gnu::noinline]] void small_lanes_asm(LanesFrame& frame) {
+//
+// t goes to word 4 from the block; index (LanesSetup's, for kSortStep: else unused) is read
+// from its register. Returns 1 exactly when the rows and planes were made and the affine test
+// (when a step) held: LanesSetup's usual result, read from no frame word.
+[[gnu::noinline]] uint32_t small_lanes_asm(LanesFrame& frame, ActiveTriangle* t,
+                                           const uint16_t* index) {
   static_assert(offsetof(RowWindow, first_min) == 0 && offsetof(RowWindow, last_max) == 4 &&
                 offsetof(RowWindow, width) == 8);
   static_assert(offsetof(ActiveTriangle, edge_q) == 0 && offsetof(ActiveTriangle, edge_dx) == 8 &&
@@ -870,16 +874,20 @@ struct LanesFrame {
   static_assert(offsetof(ScreenVertex, y) == 4 && offsetof(ScreenVertex, w) == 12 &&
                 offsetof(Color15, r) == 0 && sizeof(ScreenVertex) == 24);
   uint32_t* const f = frame.w;
+  // The status in r0; t and index in r1, r2 (operands, so as not to be clobbers).
+  register uint32_t status asm("r0");
+  register ActiveTriangle* t_reg asm("r1") = t;
+  register const uint16_t* index_reg asm("r2") = index;
   asm volatile(
+      "str    r1, [%[f], #16]\n\t"
       "ldr    r0, [%[f], #84]\n\t"
       "tst    r0, #4\n\t"
       "beq    11f\n\t"
       // the vertices: r0-r2 (binned top first: store_top_first), the y of the other two r5, r6
-      "ldr    r0, [%[f], #92]\n\t"
       "ldr    r3, [%[f], #96]\n\t"
-      "ldrh   r4, [r0]\n\t"
-      "ldrh   r5, [r0, #2]\n\t"
-      "ldrh   r6, [r0, #4]\n\t"
+      "ldrh   r4, [r2]\n\t"
+      "ldrh   r5, [r2, #2]\n\t"
+      "ldrh   r6, [r2, #4]\n\t"
       "add    r4, r4, r4, lsl #1\n\t"
       "add    r0, r3, r4, lsl #3\n\t"
       "add    r5, r5, r5, lsl #1\n\t"
@@ -895,10 +903,11 @@ struct LanesFrame {
       "movlt  r1, r2\n\t"
       "movlt  r2, r3\n\t"
       "stm    %[f], {r0, r1, r2}\n\t"
+      "b      12f\n\t"  // kSortStep comes with kRowsStep
       "11:\n\t"
-      "ldr    r0, [%[f], #84]\n\t"
       "tst    r0, #1\n\t"
-      "beq    10f\n\t" LR_SMALL_ROWS_ASM
+      "beq    10f\n\t"
+      "12:\n\t" LR_SMALL_ROWS_ASM
       "cmp    r0, #1\n\t"
       "bne    20f\n\t"
       "ldr    r0, [%[f], #84]\n\t"
@@ -980,36 +989,36 @@ struct LanesFrame {
       "21:\n\t"
       "str    r0, [%[f], #88]\n\t"
       "20:\n\t"
-      :
+      : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
       : [f] "r"(f)
-      : "r0", "r1", "r2", "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc",
-        "memory");
+      : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
+  return status;
 }
 }  // namespace
 
 SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
                              ActiveTriangle& t) {
-  LanesFrame frame(v, t, kRowsStep);
+  LanesFrame frame(v, kRowsStep);
   frame.w[3] = reinterpret_cast<uintptr_t>(&w);
-  small_lanes_asm(frame);
+  small_lanes_asm(frame, &t, nullptr);
   return frame.rows();
 }
 
 bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
                                   ActiveTriangle& t, SmallRows& rows) {
-  LanesFrame frame(v, t, kRowsStep | kPlanesStep);
+  LanesFrame frame(v, kRowsStep | kPlanesStep);
   frame.w[3] = reinterpret_cast<uintptr_t>(&w);
-  small_lanes_asm(frame);
+  small_lanes_asm(frame, &t, nullptr);
   rows = frame.rows();
   return frame.planes();
 }
 
 bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
                                 ActiveTriangle& t) {
-  LanesFrame frame(v, t, kPlanesStep);
+  LanesFrame frame(v, kPlanesStep);
   frame.w[5] = static_cast<uint32_t>(d);
   frame.w[6] = m;
-  small_lanes_asm(frame);
+  small_lanes_asm(frame, &t, nullptr);
   return frame.planes();
 }
 
@@ -1039,8 +1048,8 @@ void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
   frame_[27] = in.affine.green_weight;
 }
 
-void LanesSetup::block(uint32_t* frame) {
-  small_lanes_asm(*reinterpret_cast<LanesFrame*>(frame));
+uint32_t LanesSetup::block(uint32_t* frame, ActiveTriangle& t, const uint16_t index[3]) {
+  return small_lanes_asm(*reinterpret_cast<LanesFrame*>(frame), &t, index);
 }
 
 UntexturedTriangle LanesSetup::rest(const uint16_t /*index*/[3], ActiveTriangle& t) {
@@ -1095,7 +1104,10 @@ void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
   vertices_ = vertices;
 }
 
-void LanesSetup::block(uint32_t* /*frame*/) {}
+uint32_t LanesSetup::block(uint32_t* /*frame*/, ActiveTriangle& /*t*/,
+                           const uint16_t /*index*/[3]) {
+  return 0;
+}
 
 UntexturedTriangle LanesSetup::rest(const uint16_t index[3], ActiveTriangle& t) {
   const ScreenVertex* v[3] = {&vertices_[index[0]], &vertices_[index[1]], &vertices_[index[2]]};

@@ -198,20 +198,17 @@ class LanesSetup {
  public:
   void prepare(const RowWindow& w, const UntexturedInput& in, const ScreenVertex* vertices);
   UntexturedTriangle set_up(const uint16_t index[3], ActiveTriangle& t) {
-    if constexpr (kSmallPlanesByHand) {  // 32-bit addresses
-      frame_[4] = static_cast<uint32_t>(reinterpret_cast<uintptr_t>(&t));
-      frame_[22] = 0;
-      frame_[23] = static_cast<uint32_t>(reinterpret_cast<uintptr_t>(index));
-      block(frame_);
-      if (frame_[22] == 1) [[likely]]  // a lanes triangle, rows and planes made
+    if constexpr (kSmallPlanesByHand) {             // 32-bit addresses
+      if (block(frame_, t, index) == 1) [[likely]]  // a lanes triangle, rows and planes made
         return UntexturedTriangle::made(UntexturedKind::kLanes, false);
     }
     return rest(index, t);
   }
 
  private:
-  // The hand-made block where kSmallPlanesByHand (nothing elsewhere), and what remains after it.
-  static void block(uint32_t* frame);
+  // The hand-made block where kSmallPlanesByHand (nothing elsewhere: 0), and what remains after
+  // it. t and index go in registers; 1 is its usual result (rows and planes made).
+  static uint32_t block(uint32_t* frame, ActiveTriangle& t, const uint16_t index[3]);
   UntexturedTriangle rest(const uint16_t index[3], ActiveTriangle& t);
 
   const RowWindow* w_ = nullptr;
