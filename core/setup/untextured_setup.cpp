@@ -1023,13 +1023,24 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint3
 }
 
 namespace {
-[[gnu::noinline]] UntexturedTriangle finish_after_hand(const LanesFrame& f, const RowWindow& w,
+[[gnu::noinline]] UntexturedTriangle finish_after_hand(LanesFrame& f, const RowWindow& w,
                                                        const UntexturedInput& in,
                                                        ActiveTriangle& t) {
   const ScreenVertex* const v[3] = {reinterpret_cast<const ScreenVertex*>(f.w[0]),
                                     reinterpret_cast<const ScreenVertex*>(f.w[1]),
                                     reinterpret_cast<const ScreenVertex*>(f.w[2])};
-  const SmallRows rows = f.rows();
+  SmallRows rows = f.rows();
+  // A pixel centre on a later row only: when there is one, the block makes the planes and the
+  // affine test from the frame as its rows left it (d, m), as it does after kPixels.
+  if (rows.result == SmallRows::kLaterRows) {
+    if (!later_rows_have_pixels(t, t.first_row, w.width)) return UntexturedTriangle::sliver();
+    const uint32_t steps = f.w[21];
+    f.w[21] = steps & (kPlanesStep | kAffineStep);
+    const uint32_t status = small_lanes_asm(f, &t, nullptr);
+    f.w[21] = steps;
+    if (status == 1) return UntexturedTriangle::made(UntexturedKind::kLanes, false);
+    rows.result = SmallRows::kPixels;
+  }
   return finish_triangle(v, w, in, t, rows, rows.result == SmallRows::kPixels, f.w[22] != 0);
 }
 }  // namespace
@@ -1053,7 +1064,7 @@ uint32_t LanesSetup::block(uint32_t* frame, ActiveTriangle& t, const uint16_t in
 }
 
 UntexturedTriangle LanesSetup::rest(const uint16_t /*index*/[3], ActiveTriangle& t) {
-  return finish_after_hand(*reinterpret_cast<const LanesFrame*>(frame_), *w_, *in_, t);
+  return finish_after_hand(*reinterpret_cast<LanesFrame*>(frame_), *w_, *in_, t);
 }
 #undef LR_SP_FINISH
 #undef LR_SP_PLANE
