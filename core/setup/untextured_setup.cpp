@@ -186,14 +186,16 @@ namespace {
 // The edge columns of rows from..t.last_row: whether one has a pixel centre in [0, width).
 [[gnu::noinline]] bool later_rows_have_pixels(const ActiveTriangle& t, int32_t from,
                                               int32_t width) {
-  const int ss = t.short_side(), ls = 1 - ss;
+  // The long edge stepped row by row; the short side's picked up per row (it changes at mid).
+  const int ss = t.short_side();
   const int32_t first = t.first_row, mid = t.mid_row;
-  for (int32_t r = from; r <= t.last_row; ++r) {
-    int32_t c[2];
-    c[ls] = DivideEdge(t.side_edge(ls), t.col_base, r - first).column();
-    c[ss] = r <= mid ? DivideEdge(t.side_edge(ss), t.col_base, r - first).column()
-                     : DivideEdge(t.bottom, t.col_base, r - mid - 1).column();
-    if (c[0] < width && c[1] > 0 && c[0] < c[1]) return true;
+  DivideEdge long_edge(t.side_edge(1 - ss), t.col_base, from - first);
+  for (int32_t r = from; r <= t.last_row; ++r, long_edge.step()) {
+    const int32_t cl = long_edge.column();
+    const int32_t cs = r <= mid ? DivideEdge(t.side_edge(ss), t.col_base, r - first).column()
+                                : DivideEdge(t.bottom, t.col_base, r - mid - 1).column();
+    const int32_t left = ss != 0 ? cl : cs, right = ss != 0 ? cs : cl;
+    if (left < width && right > 0 && left < right) return true;
   }
   return false;
 }

@@ -394,6 +394,61 @@ TEST(AffineBound, ExactlyAtTheBound) {
   EXPECT_FALSE(affine_within(v, kAffineBound565));
 }
 
+// Small thin triangles in windows that cut their first rows: setup_untextured_triangle finds
+// pixels exactly where setup_rows does (its small path checks one row first, then the later
+// ones: later_rows_have_pixels), with the same rows.
+TEST(UntexturedRows, SliversAsSetupRowsFindsThem) {
+  std::mt19937_64 rng(53);
+  UntexturedInput in;
+  in.colors = ColorPlanes::kAffine;
+  in.depth = true;
+  int slivers = 0, drawn = 0;
+  for (int i = 0; i < 200000; ++i) {
+    ScreenVertex sv[3];
+    const int32_t ox = static_cast<int32_t>(rng() % (40 * 256)) - 4 * 256,
+                  oy = static_cast<int32_t>(rng() % (40 * 256));
+    // A needle from (ox, oy) along a random direction, its third vertex a little off the line.
+    const int32_t dx = static_cast<int32_t>(rng() % (16 * 256)) - 8 * 256,
+                  dy = static_cast<int32_t>(rng() % (16 * 256));
+    const int32_t off = static_cast<int32_t>(rng() % 257) - 128;
+    const int32_t f = static_cast<int32_t>(rng() % 256);
+    sv[0].x = ox;
+    sv[0].y = oy;
+    sv[1].x = ox + dx;
+    sv[1].y = oy + dy;
+    sv[2].x = ox + dx * f / 256 + off;
+    sv[2].y = oy + dy * f / 256 + static_cast<int32_t>(rng() % 65) - 32;
+    for (auto& x : sv) {
+      x.z = 1u << 20;
+      x.w = 1u << 16;
+      x.color = Color15{1000, 2000, 3000};
+    }
+    if (signed_area2(sv[0], sv[1], sv[2]) == 0) continue;
+    const ScreenVertex* v[3] = {&sv[0], &sv[1], &sv[2]};
+    sort_by_y(v);
+    const int32_t first_min = static_cast<int32_t>(rng() % 40);
+    const RowWindow w{first_min, first_min + static_cast<int32_t>(rng() % 16),
+                      1 + static_cast<int32_t>(rng() % 32)};
+    ActiveTriangle t, r;
+    const UntexturedTriangle got = setup_untextured_triangle(v, w, in, t);
+    const int32_t first = std::max(first_row_below(v[0]->y), w.first_min);
+    const int32_t last = std::min(last_row_at_or_above(v[2]->y), w.last_max);
+    const bool want = first <= last && setup_rows(v, first, last, w.width, r);
+    ASSERT_EQ(got.pixels(), want) << "triangle " << i;
+    if (!want) {
+      ++slivers;
+      continue;
+    }
+    ++drawn;
+    EXPECT_EQ(t.first_row, r.first_row);
+    EXPECT_EQ(t.mid_row, r.mid_row);
+    EXPECT_EQ(t.last_row, r.last_row);
+  }
+  std::printf("[ rows ] %d slivers, %d with pixels\n", slivers, drawn);
+  EXPECT_GT(slivers, 100000);
+  EXPECT_GT(drawn, 5000);
+}
+
 // The active store is zero-initialised storage (.bss on the targets, no flash image of it):
 // a default ActiveTriangle is all zero bytes.
 TEST(ActiveRecord, DefaultIsAllZeroBytes) {
