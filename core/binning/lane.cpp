@@ -134,7 +134,8 @@ uint32_t FrontEnd::lane_run_triangles(MeshDraw& d, uint32_t t) {
 // The vertices bin_lane_asm() found waiting for their colour (their flags cleared), lit as
 // light_corners() lights them (a copy of its code: through one function the C lane, which
 // Armv6-M runs, took 2 % longer on S1 and S1x): the common case here (diffuse directional lights in
-// model space, a unit normal, one colour), the others through VertexStage::light (out of line).
+// model space, a unit normal, one colour), the others through light_other() (out of line). One
+// light, the usual draw, by a loop of its own that holds it in registers (OneDiffuseLight).
 void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
   const ObjectLights* const ol = d.diffuse_lights;
   ScreenVertex* const base = store_.vertices_at(d.base);
@@ -142,23 +143,42 @@ void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
   // A vertex's normal from its byte offset in the store, without the division by 24 that its
   // index takes: 24 bytes a vertex, 6 a normal.
   static_assert(sizeof(ScreenVertex) == 4 * sizeof(Normal16));
+  auto normal_of = [base, normals](const ScreenVertex* v) -> const Normal16& {
+    const auto offset =
+        static_cast<size_t>(reinterpret_cast<const char*>(v) - reinterpret_cast<const char*>(base));
+    return *reinterpret_cast<const Normal16*>(reinterpret_cast<const char*>(normals) + offset / 4);
+  };
+  if (ol != nullptr && ol->count == 1) {
+    const OneDiffuseLight one(*d.colors.lighting, *ol);
+    for (ScreenVertex* const v : list) {
+      const Normal16& n = normal_of(v);
+      const uint32_t len2 = normal_len2(n);
+      if (unit_len2(len2)) [[likely]]
+        v->color = one(n, len2);
+      else
+        light_other(d, static_cast<uint32_t>(v - base));
+    }
+    return;
+  }
   for (ScreenVertex* const v : list) {
     if (ol != nullptr) {
-      const auto offset = static_cast<size_t>(reinterpret_cast<const char*>(v) -
-                                              reinterpret_cast<const char*>(base));
-      const Normal16& n =
-          *reinterpret_cast<const Normal16*>(reinterpret_cast<const char*>(normals) + offset / 4);
+      const Normal16& n = normal_of(v);
       const uint32_t len2 = normal_len2(n);
       if (unit_len2(len2)) [[likely]] {
         v->color = light_object_diffuse(*d.colors.lighting, *ol, n, len2);
         continue;
       }
     }
-    const auto i = static_cast<uint32_t>(v - base);
-    const LitColor lc = d.stage.light(d.mesh, d.colors, i, false);
-    v->color = lc.primary;
-    if (d.colors.split) store_.tex(d.base + i).spec = lc.secondary;
+    light_other(d, static_cast<uint32_t>(v - base));
   }
+}
+
+// Vertex i of draw d lit through VertexStage::light: the cases light_list() and light_corners()
+// do not take inline.
+void FrontEnd::light_other(MeshDraw& d, uint32_t i) {
+  const LitColor lc = d.stage.light(d.mesh, d.colors, i, false);
+  store_.vertices_at(d.base)[i].color = lc.primary;
+  if (d.colors.split) store_.tex(d.base + i).spec = lc.secondary;
 }
 
 // A drawn triangle's vertices whose colour waits for their first use, lit (lit Gouraud). The
