@@ -31,7 +31,7 @@ struct ObjectLights {
 void prepare_object_lights(const PreparedLighting& pl, const NormalRotation& r, ObjectLights& out);
 
 // |n|^2 of a Normal16, Q2.28 (each square below 2^30: no wrap).
-constexpr uint32_t normal_len2(const Normal16& n) {
+[[gnu::always_inline]] constexpr uint32_t normal_len2(const Normal16& n) {
   return static_cast<uint32_t>(n.x * n.x) + static_cast<uint32_t>(n.y * n.y) +
          static_cast<uint32_t>(n.z * n.z);
 }
