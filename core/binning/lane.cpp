@@ -143,7 +143,9 @@ void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
   // A vertex's normal from its byte offset in the store, without the division by 24 that its
   // index takes: 24 bytes a vertex, 6 a normal.
   static_assert(sizeof(ScreenVertex) == 4 * sizeof(Normal16));
-  // v's address / 4 plus one constant (the addresses are multiples of 4): one register less.
+  // As v's address / 4 plus one constant (base's address a multiple of 4, v's offset of 24):
+  // one register less in the loops.
+  static_assert(alignof(ScreenVertex) % 4 == 0);
   const uintptr_t bias =
       reinterpret_cast<uintptr_t>(normals) - reinterpret_cast<uintptr_t>(base) / 4;
   auto normal_of = [bias](const ScreenVertex* v) -> const Normal16& {
@@ -174,8 +176,8 @@ void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
   }
 }
 
-// Vertex i of draw d lit through VertexStage::light: the cases light_list() and light_corners()
-// do not take inline.
+// Vertex i of draw d lit through VertexStage::light: the cases light_list() does not take
+// inline (out of line, off its loops' registers).
 void FrontEnd::light_other(MeshDraw& d, uint32_t i) {
   const LitColor lc = d.stage.light(d.mesh, d.colors, i, false);
   store_.vertices_at(d.base)[i].color = lc.primary;
