@@ -184,6 +184,14 @@ void FrontEnd::light_other(MeshDraw& d, uint32_t i) {
   if (d.colors.split) store_.tex(d.base + i).spec = lc.secondary;
 }
 
+// light_corners() with one light through OneDiffuseLight (on Armv6-M 6 instructions a vertex
+// less), but not where the code is built for size (150 bytes more).
+#if defined(__OPTIMIZE_SIZE__)
+constexpr bool kOneLightCorners = false;
+#else
+constexpr bool kOneLightCorners = true;
+#endif
+
 // A drawn triangle's vertices whose colour waits for their first use, lit (lit Gouraud). The
 // common case here: diffuse directional lights in model space, a unit normal, one colour; the
 // others through VertexStage::light (out of line).
@@ -200,7 +208,9 @@ void FrontEnd::light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
       const Normal16& n = normals[i];
       const uint32_t len2 = normal_len2(n);
       if (unit_len2(len2)) [[likely]] {
-        v.color = light_object_diffuse(*d.colors.lighting, *ol, n, len2);
+        v.color = kOneLightCorners && ol->count == 1
+                      ? OneDiffuseLight(*d.colors.lighting, *ol)(n, len2)
+                      : light_object_diffuse(*d.colors.lighting, *ol, n, len2);
         continue;
       }
     }
