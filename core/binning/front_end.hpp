@@ -260,6 +260,7 @@ class FrontEnd {
   // The lane's vertices to light (lane.cpp), at most kLightList at a time.
   static constexpr size_t kLightList = 48;
   [[gnu::noinline]] void light_list(MeshDraw& d, std::span<ScreenVertex* const> list);
+  [[gnu::noinline]] void light_other(MeshDraw& d, uint32_t i);
   template <bool kTwoSided, bool kCache>
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],

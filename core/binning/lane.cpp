@@ -134,7 +134,8 @@ uint32_t FrontEnd::lane_run_triangles(MeshDraw& d, uint32_t t) {
 // The vertices bin_lane_asm() found waiting for their colour (their flags cleared), lit as
 // light_corners() lights them (a copy of its code: through one function the C lane, which
 // Armv6-M runs, took 2 % longer on S1 and S1x): the common case here (diffuse directional lights in
-// model space, a unit normal, one colour), the others through VertexStage::light (out of line).
+// model space, a unit normal, one colour), the others through light_other() (out of line). One
+// light, the usual draw, by a loop of its own that holds it in registers (OneDiffuseLight).
 void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
   const ObjectLights* const ol = d.diffuse_lights;
   ScreenVertex* const base = store_.vertices_at(d.base);
@@ -142,24 +143,54 @@ void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
   // A vertex's normal from its byte offset in the store, without the division by 24 that its
   // index takes: 24 bytes a vertex, 6 a normal.
   static_assert(sizeof(ScreenVertex) == 4 * sizeof(Normal16));
+  // As v's address / 4 plus one constant (base's address a multiple of 4, v's offset of 24):
+  // one register less in the loops.
+  static_assert(alignof(ScreenVertex) % 4 == 0);
+  const uintptr_t bias =
+      reinterpret_cast<uintptr_t>(normals) - reinterpret_cast<uintptr_t>(base) / 4;
+  auto normal_of = [bias](const ScreenVertex* v) -> const Normal16& {
+    return *reinterpret_cast<const Normal16*>(reinterpret_cast<uintptr_t>(v) / 4 + bias);
+  };
+  if (ol != nullptr && ol->count == 1) {
+    const OneDiffuseLight one(*d.colors.lighting, *ol);
+    for (ScreenVertex* const v : list) {
+      const Normal16& n = normal_of(v);
+      const uint32_t len2 = normal_len2(n);
+      if (unit_len2(len2)) [[likely]]
+        v->color = one(n, len2);
+      else
+        light_other(d, static_cast<uint32_t>(v - base));
+    }
+    return;
+  }
   for (ScreenVertex* const v : list) {
     if (ol != nullptr) {
-      const auto offset = static_cast<size_t>(reinterpret_cast<const char*>(v) -
-                                              reinterpret_cast<const char*>(base));
-      const Normal16& n =
-          *reinterpret_cast<const Normal16*>(reinterpret_cast<const char*>(normals) + offset / 4);
+      const Normal16& n = normal_of(v);
       const uint32_t len2 = normal_len2(n);
       if (unit_len2(len2)) [[likely]] {
         v->color = light_object_diffuse(*d.colors.lighting, *ol, n, len2);
         continue;
       }
     }
-    const auto i = static_cast<uint32_t>(v - base);
-    const LitColor lc = d.stage.light(d.mesh, d.colors, i, false);
-    v->color = lc.primary;
-    if (d.colors.split) store_.tex(d.base + i).spec = lc.secondary;
+    light_other(d, static_cast<uint32_t>(v - base));
   }
 }
+
+// Vertex i of draw d lit through VertexStage::light: the cases light_list() does not take
+// inline (out of line, off its loops' registers).
+void FrontEnd::light_other(MeshDraw& d, uint32_t i) {
+  const LitColor lc = d.stage.light(d.mesh, d.colors, i, false);
+  store_.vertices_at(d.base)[i].color = lc.primary;
+  if (d.colors.split) store_.tex(d.base + i).spec = lc.secondary;
+}
+
+// light_corners() with one light through OneDiffuseLight (on Armv6-M 6 instructions a vertex
+// less), but not where the code is built for size (150 bytes more).
+#if defined(__OPTIMIZE_SIZE__)
+constexpr bool kOneLightCorners = false;
+#else
+constexpr bool kOneLightCorners = true;
+#endif
 
 // A drawn triangle's vertices whose colour waits for their first use, lit (lit Gouraud). The
 // common case here: diffuse directional lights in model space, a unit normal, one colour; the
@@ -177,7 +208,9 @@ void FrontEnd::light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
       const Normal16& n = normals[i];
       const uint32_t len2 = normal_len2(n);
       if (unit_len2(len2)) [[likely]] {
-        v.color = light_object_diffuse(*d.colors.lighting, *ol, n, len2);
+        v.color = kOneLightCorners && ol->count == 1
+                      ? OneDiffuseLight(*d.colors.lighting, *ol)(n, len2)
+                      : light_object_diffuse(*d.colors.lighting, *ol, n, len2);
         continue;
       }
     }

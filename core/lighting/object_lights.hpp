@@ -31,7 +31,7 @@ struct ObjectLights {
 void prepare_object_lights(const PreparedLighting& pl, const NormalRotation& r, ObjectLights& out);
 
 // |n|^2 of a Normal16, Q2.28 (each square below 2^30: no wrap).
-constexpr uint32_t normal_len2(const Normal16& n) {
+[[gnu::always_inline]] constexpr uint32_t normal_len2(const Normal16& n) {
   return static_cast<uint32_t>(n.x * n.x) + static_cast<uint32_t>(n.y * n.y) +
          static_cast<uint32_t>(n.z * n.z);
 }
@@ -50,11 +50,24 @@ constexpr int32_t inverse_length(uint32_t len2) {
   return static_cast<int32_t>(((3u << 28) - len2) << 1);
 }
 
-// The diffuse sums of normal (nx, ny, nz) (Q1.14, negated for a back face) with 1 / |n| = k:
-// prim[c] = pl.base[c] + sum over lights of max(N.L, 0) Ld Kd. N.L = (n . l) k, where n . l is a
-// sum of three products below 2^30 (|n| |l| <= 1 + 2^-11 in Q2.30); N.L / 2^14 (Q1.16, at most 2^16
-// + 64) times Kd (<= 2^15) is below 2^31 + 2^22. Returns the lights' N.L in ndl (Q2.30; 0 where not
-// positive), for the specular term.
+// One light's diffuse term for normal (nx, ny, nz) (Q1.14, negated for a back face) with
+// 1 / |n| = k: max(N.L, 0) Ld Kd added to prim (Q1.15 sums). N.L = (n . l) k, where n . l is a sum
+// of three products below 2^30 (|n| |l| <= 1 + 2^-11 in Q2.30); N.L / 2^14 (Q1.16, at most 2^16
+// + 64) times Kd (<= 2^15) is below 2^31 + 2^22. Returns N.L (Q2.30; 0 where not positive), for
+// the specular term. The one home of the formula: object_diffuse() and OneDiffuseLight use it.
+[[gnu::always_inline]] inline int32_t add_diffuse(const int32_t (&l)[3], const uint16_t (&kd)[3],
+                                                  int32_t nx, int32_t ny, int32_t nz, int32_t k,
+                                                  uint32_t (&prim)[3]) {
+  int32_t d = nx * l[0] + ny * l[1] + nz * l[2];  // Q2.30
+  if (d <= 0) return 0;  // no diffuse, and GL gives no specular where N.L <= 0
+  d = mul_hi(d, k) * 4;  // Q2.30 again, below 2^30 + 2^20
+  const auto d16 = static_cast<uint32_t>(d) >> 14;
+  for (int c = 0; c < 3; ++c) prim[c] += (d16 * kd[c] + (1u << 15)) >> 16;
+  return d;
+}
+
+// The diffuse sums of normal (nx, ny, nz) with 1 / |n| = k: prim[c] = pl.base[c] + sum over
+// lights of add_diffuse(). The lights' N.L in ndl (Q2.30; 0 where not positive).
 [[gnu::always_inline]] inline void object_diffuse(const PreparedLighting& pl,
                                                   const ObjectLights& ol, int32_t nx, int32_t ny,
                                                   int32_t nz, int32_t k, uint32_t (&prim)[3],
@@ -62,17 +75,8 @@ constexpr int32_t inverse_length(uint32_t len2) {
   prim[0] = static_cast<uint32_t>(pl.base[0]);
   prim[1] = static_cast<uint32_t>(pl.base[1]);
   prim[2] = static_cast<uint32_t>(pl.base[2]);
-  for (int i = 0; i < ol.count; ++i) {
-    const int32_t* l = ol.l[i];
-    int32_t d = nx * l[0] + ny * l[1] + nz * l[2];  // Q2.30
-    ndl[i] = 0;
-    if (d <= 0) continue;  // no diffuse, and GL gives no specular where N.L <= 0
-    d = mul_hi(d, k) * 4;  // Q2.30 again, below 2^30 + 2^20
-    ndl[i] = d;
-    const auto d16 = static_cast<uint32_t>(d) >> 14;
-    const uint16_t* const kd = pl.lights[static_cast<size_t>(i)].kd;
-    for (int c = 0; c < 3; ++c) prim[c] += (d16 * kd[c] + (1u << 15)) >> 16;
-  }
+  for (int i = 0; i < ol.count; ++i)
+    ndl[i] = add_diffuse(ol.l[i], pl.lights[static_cast<size_t>(i)].kd, nx, ny, nz, k, prim);
 }
 
 constexpr uint16_t clamp_one(uint32_t x) {
@@ -118,5 +122,28 @@ inline LitColor light_object(const PreparedLighting& pl, const ObjectLights& ol,
   object_diffuse(pl, ol, n.x, n.y, n.z, inverse_length(len2), prim, ndl);
   return {clamp_one(prim[0]), clamp_one(prim[1]), clamp_one(prim[2])};
 }
+
+// The common draw's one diffuse directional light (ol.count == 1, !ol.specular), copied out of
+// its PreparedLighting and ObjectLights so that a loop over many vertices holds it in registers
+// (light_object_diffuse() reloads the light and walks the light count per vertex): the same
+// integers as light_object_diffuse().
+struct OneDiffuseLight {
+  int32_t l[3];
+  uint16_t kd[3];
+  int32_t base[3];
+
+  [[gnu::always_inline]] OneDiffuseLight(const PreparedLighting& pl, const ObjectLights& ol)
+      : l{ol.l[0][0], ol.l[0][1], ol.l[0][2]},
+        kd{pl.lights[0].kd[0], pl.lights[0].kd[1], pl.lights[0].kd[2]},
+        base{pl.base[0], pl.base[1], pl.base[2]} {}
+
+  // A unit normal's colour (unit_len2(len2)), front side.
+  [[gnu::always_inline]] Color15 operator()(const Normal16& n, uint32_t len2) const {
+    uint32_t prim[3] = {static_cast<uint32_t>(base[0]), static_cast<uint32_t>(base[1]),
+                        static_cast<uint32_t>(base[2])};
+    add_diffuse(l, kd, n.x, n.y, n.z, inverse_length(len2), prim);
+    return {clamp_one(prim[0]), clamp_one(prim[1]), clamp_one(prim[2])};
+  }
+};
 
 }  // namespace lr

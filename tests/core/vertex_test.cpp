@@ -12,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "lineraster/core/lighting/object_lights.hpp"
 #include "lineraster/core/math/mat4.hpp"
 #include "lineraster/core/math/rigid.hpp"
 #include "lineraster/core/math/trig.hpp"
@@ -447,6 +448,60 @@ TEST(ObjectLights, MatchGlLightingAsCloselyAsWorldSpaceLighting) {
   ObjectLights ol;
   EXPECT_FALSE(VertexStage(cam, squash, GuardBand{1, 1}, 64, 64)
                    .object_lights(prepare_lighting(set, m, {{}, {}, Fixed::from_int(1)}, {}), ol));
+}
+
+// The one-light loop's copy of the light (OneDiffuseLight, FrontEnd::light_list) against the
+// general diffuse path (light_object_diffuse), exactly: random directions, light and material
+// colours (sums past 1, clamped, included) and unit normals, lit and unlit sides.
+TEST(ObjectLights, OneDiffuseLightEqualsTheGeneralPath) {
+  std::mt19937 rng(36);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_int_distribution<int> c15(0, Color15::kOne);
+  auto fx = [](double v) { return Fixed::from_raw(static_cast<int32_t>(std::lround(v * 65536))); };
+  auto color = [&] {
+    return Color15{static_cast<uint16_t>(c15(rng)), static_cast<uint16_t>(c15(rng)),
+                   static_cast<uint16_t>(c15(rng))};
+  };
+  int lit = 0, unlit = 0, clamped = 0;
+  for (int set_i = 0; set_i < 200; ++set_i) {
+    LightSet set;
+    set.count = 1;
+    set.lights[0] = Light::directional({fx(u(rng)), fx(u(rng)), fx(u(rng) + 1e-3)}, color());
+    set.global_ambient = color();
+    Material m;
+    m.ambient = color();
+    m.diffuse = color();
+    m.emission = set_i % 4 == 0 ? color() : Color15{0, 0, 0};
+    const PreparedLighting pl = prepare_lighting(set, m, {{}, {}, Fixed::from_int(1)}, {});
+    const Mat4 model = rotate_z(fx(180 * u(rng))) * rotate_y(fx(180 * u(rng))) *
+                       rotate_x(fx(180 * u(rng))) * scale(fx(0.5 + std::abs(u(rng)) * 2));
+    const VertexStage stage(Camera{}, model, GuardBand{1, 1}, 64, 64);
+    ObjectLights ol;
+    ASSERT_TRUE(stage.object_lights(pl, ol));
+    ASSERT_EQ(ol.count, 1);
+    ASSERT_FALSE(ol.specular);
+    const OneDiffuseLight one(pl, ol);
+    for (int i = 0; i < 200; ++i) {
+      const double off = (i % 3 == 0 ? 0.0 : i % 3 == 1 ? 0.9 : -0.9) / 8192;
+      const Normal16 n = unit_normal16(u(rng), u(rng), u(rng) + 1e-3, 1.0 + off);
+      const uint32_t len2 = normal_len2(n);
+      if (!unit_len2(len2)) continue;
+      const Color15 general = light_object_diffuse(pl, ol, n, len2);
+      const Color15 fast = one(n, len2);
+      ASSERT_EQ(fast.r, general.r) << set_i << " " << i;
+      ASSERT_EQ(fast.g, general.g) << set_i << " " << i;
+      ASSERT_EQ(fast.b, general.b) << set_i << " " << i;
+      uint32_t prim[3];
+      int32_t ndl[kMaxLights];
+      object_diffuse(pl, ol, n.x, n.y, n.z, inverse_length(len2), prim, ndl);
+      (ndl[0] > 0 ? lit : unlit) += 1;
+      clamped += (prim[0] > Color15::kOne || prim[1] > Color15::kOne || prim[2] > Color15::kOne);
+    }
+  }
+  // Every case taken: lit and unlit sides, sums past 1.
+  EXPECT_GT(lit, 1000);
+  EXPECT_GT(unlit, 1000);
+  EXPECT_GT(clamped, 1000);
 }
 
 }  // namespace
