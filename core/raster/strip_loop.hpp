@@ -92,6 +92,14 @@ class StripLoop {
   void invalidate_strips() { inputs_known_ = false; }
 
  private:
+  // The hand-made lanes setup only in renderers that can draw a lanes triangle (their lanes row
+  // loop linked): its 112-byte frame would otherwise sit in the strip loop's stack for nothing
+  // (the textured images' worst-case stack, docs/measurements/footprint.md).
+  static constexpr bool kHandLanes =
+      kSmallPlanesByHand &&
+      kUntexturedRowTable<PF, kSpans>[untextured_row_index(true, UntexturedKind::kLanes)] !=
+          nullptr;
+  using SetupLanes = std::conditional_t<kHandLanes, LanesSetup, NoLanesSetup>;
   // What set_up shares between the triangles of one strip: the rows they may take, and what it
   // needs of the last draw found (consecutive triangles mostly share their draw).
   struct SetupContext {
@@ -107,11 +115,18 @@ class StripLoop {
     const RowFn* rows = nullptr;  // the untextured row loops of the draw's depth test, by kind
     RowFn lanes_rows = nullptr;   // rows' kLanes entry (what the setup block mostly makes)
     UntexturedInput in;           // the untextured setup's input for the draw
-    bool lanes = false;           // in.lanes_first where kSmallPlanesByHand: lanes_setup's
-    [[no_unique_address]] StripLanesSetup lanes_setup;  // prepared for the draw when lanes
+    bool lanes = false;           // in.lanes_first where kHandLanes: lanes_setup's
+    [[no_unique_address]] SetupLanes lanes_setup;  // prepared for the draw when lanes
   };
   RowWindow strip_window(int strip) const {
     return RowWindow{std::max(0, strip * K), frame_.height - 1, frame_.width};
+  }
+  // The context as setup_context(strip) makes it, for what set_up reads before a draw is found
+  // (the rest is set when one is).
+  void renew(SetupContext& c, int strip) const {
+    c.window = strip_window(strip);
+    c.vertex_count = 0;
+    c.lanes_count = 0;
   }
   SetupContext setup_context(int strip) const {
     SetupContext c;
@@ -124,7 +139,7 @@ class StripLoop {
   bool set_up_lanes(uint16_t node, const BinnedTriangle& bt, SetupContext& c, ActiveTriangle& t);
   SetupInput setup_input(uint16_t node, const BinnedTriangle& bt, const DrawRecord& dr) const;
   uint8_t draw_of(const BinnedTriangle& bt) const;
-  void crowded_strip(int strip, Pixel* pixels, int y0, int rows);
+  void crowded_strip(int strip, Pixel* pixels, int y0, int rows, SetupContext& context);
   void skip_strip(int strip, int y0, int rows);
   void carry_into(int strip, uint16_t carried);
   void resolve_fetchers();
@@ -220,7 +235,7 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
     std::span<uint16_t> depth = storage_.depth.first(count);
     if (!fits) {
       fill_pixels(depth.data(), count, uint16_t{0xFFFF});
-      crowded_strip(s, px.data(), y0, rows);
+      crowded_strip(s, px.data(), y0, rows, context);
     } else if (active_count_ == 0) {
       ++stats.empty_strips;
       if (depth_sink) fill_pixels(depth.data(), count, uint16_t{0xFFFF});
@@ -292,7 +307,8 @@ void StripLoop<PF, K, kSpans>::carry_into(int strip, uint16_t carried) {
 // fragments in the same order as in one pass. Those that go on are handed to the next strip's
 // bucket, like skip_strip's.
 template <class PF, int K, SpanSet kSpans>
-void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, int rows) {
+void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, int rows,
+                                             SetupContext& context) {
   const std::span<BinnedTriangle> tris = frame_.triangles;
   uint16_t* order = storage_.active_index.data();
   uint16_t* free_slots = order + storage_.active.size();
@@ -322,7 +338,7 @@ void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, i
 
   const int next_row = y0 + rows;
   uint16_t carried = kNoTriangle;  // from the latest submission to the earliest
-  SetupContext context = setup_context(strip);
+  renew(context, strip);  // strips()'s: one context on the stack (the worst-case stack's path)
   for (uint16_t node = all; node != kNoTriangle;) {
     size_t batch = 0;
     while (node != kNoTriangle && free_count_ > 0) {
@@ -395,11 +411,7 @@ bool StripLoop<PF, K, kSpans>::activate(int strip, SetupContext& context) {
   ActiveTriangle* const active = storage_.active.data();
   uint16_t* top_slot = free_slots + free_before;  // one past the top of the free list
   size_t room = free_before;
-  // The context as setup_context(strip) makes it, for what set_up reads before a draw is found
-  // (the rest is set when one is).
-  context.window = strip_window(strip);
-  context.vertex_count = 0;
-  context.lanes_count = 0;
+  renew(context, strip);
   for (uint16_t node = head; node != kNoTriangle;) {
     if (room == 0) [[unlikely]] {
       stats.triangles_without_pixels = without_pixels;
@@ -451,7 +463,7 @@ template <class PF, int K, SpanSet kSpans>
   constexpr bool kPhong = kSpans.has(SpanFamily::kPhong);
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
   // The common case first: a triangle of the lanes draw found last.
-  if (kSmallPlanesByHand && uint32_t{bt.v[0]} - c.vertex_lo < c.lanes_count) [[likely]]
+  if (kHandLanes && uint32_t{bt.v[0]} - c.vertex_lo < c.lanes_count) [[likely]]
     return set_up_lanes(node, bt, c, t);
   // Consecutive triangles mostly share their draw: its vertex range before the search, and what
   // setup needs of the draw only when it changes.
@@ -479,11 +491,11 @@ template <class PF, int K, SpanSet kSpans>
     if (dr.colors == ColorPlanes::kNone && !dr.triangle_colors)
       in.flat_pixel = pixel_bits<PF>(PF::encode(dr.color));
     in.lanes_first = lanes_first_of(in);
-    c.lanes = kSmallPlanesByHand && in.lanes_first && !c.legacy;
-    if (kSmallPlanesByHand && c.lanes) c.lanes_setup.prepare(c.window, in, frame_.vertices.data());
+    c.lanes = kHandLanes && in.lanes_first && !c.legacy;
+    if (kHandLanes && c.lanes) c.lanes_setup.prepare(c.window, in, frame_.vertices.data());
     c.lanes_count = c.lanes ? c.vertex_count : 0;
   }
-  if (kSmallPlanesByHand && c.lanes) return set_up_lanes(node, bt, c, t);
+  if (kHandLanes && c.lanes) return set_up_lanes(node, bt, c, t);
   const uint8_t draw = c.draw;
   const RowWindow& window = c.window;
   const ScreenVertex* v[3];

@@ -23,7 +23,6 @@
 #pragma once
 
 #include <cstdint>
-#include <type_traits>
 
 #include "lineraster/core/output/color.hpp"
 #include "lineraster/core/scene/draw_state.hpp"
@@ -217,8 +216,8 @@ class LanesSetup {
   uint32_t frame_[28] = {};  // the hand-made block's frame (untextured_setup.cpp)
 };
 
-// What the strip loop keeps of LanesSetup: nothing where it is not by hand (its setup context
-// stays small on cores with few registers).
+// What the strip loop keeps of LanesSetup where it is not by hand, or where the renderer draws
+// no lanes triangle: nothing (its setup context stays small).
 struct NoLanesSetup {
   static void prepare(const RowWindow& /*w*/, const UntexturedInput& /*in*/,
                       const ScreenVertex* /*vertices*/) {}
@@ -226,7 +225,6 @@ struct NoLanesSetup {
     return UntexturedTriangle::sliver();
   }
 };
-using StripLanesSetup = std::conditional_t<kSmallPlanesByHand, LanesSetup, NoLanesSetup>;
 
 // The short path's limits (docs/numerics.md#untextured-planes): the largest edge component, the
 // spread of affine and flat triangles and of perspective ones, and the depth plane's spread plus
