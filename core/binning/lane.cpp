@@ -143,13 +143,10 @@ void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
   // A vertex's normal from its byte offset in the store, without the division by 24 that its
   // index takes: 24 bytes a vertex, 6 a normal.
   static_assert(sizeof(ScreenVertex) == 4 * sizeof(Normal16));
-  // As v's address / 4 plus one constant (base's address a multiple of 4, v's offset of 24):
-  // one register less in the loops.
-  static_assert(alignof(ScreenVertex) % 4 == 0);
-  const uintptr_t bias =
-      reinterpret_cast<uintptr_t>(normals) - reinterpret_cast<uintptr_t>(base) / 4;
-  auto normal_of = [bias](const ScreenVertex* v) -> const Normal16& {
-    return *reinterpret_cast<const Normal16*>(reinterpret_cast<uintptr_t>(v) / 4 + bias);
+  auto normal_of = [base, normals](const ScreenVertex* v) -> const Normal16& {
+    const auto offset =
+        static_cast<size_t>(reinterpret_cast<const char*>(v) - reinterpret_cast<const char*>(base));
+    return *reinterpret_cast<const Normal16*>(reinterpret_cast<const char*>(normals) + offset / 4);
   };
   if (ol != nullptr && ol->count == 1) {
     const OneDiffuseLight one(*d.colors.lighting, *ol);
