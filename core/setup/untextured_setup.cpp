@@ -822,6 +822,120 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "19:\n\t" \
   "str    r0, [%[f], #88]\n\t"
 
+// The block's text. STEP_SORT: the test of kSortStep at its start; STEP_PLANES: the test of
+// kPlanesStep after the rows found pixels on their first rows. LanesSetup::block() takes every
+// step but the affine test always, so its copy has neither test (6 instructions a triangle).
+#define LR_LANES_STEP(BIT, LABEL) \
+  "ldr    r0, [%[f], #84]\n\t"    \
+  "tst    r0, #" BIT              \
+  "\n\t"                          \
+  "beq    " LABEL "\n\t"
+#define LR_LANES_BLOCK_ASM(STEP_SORT, STEP_PLANES) \
+  "str    r1, [%[f], #16]\n\t" STEP_SORT /* the vertices: r0-r2 (binned top first:              \
+                                            store_top_first), the y of the other two r5, r6 */  \
+  "ldr    r3, [%[f], #96]\n\t"                                                                  \
+  "ldrh   r4, [r2]\n\t"                                                                         \
+  "ldrh   r5, [r2, #2]\n\t"                                                                     \
+  "ldrh   r6, [r2, #4]\n\t"                                                                     \
+  "add    r4, r4, r4, lsl #1\n\t"                                                               \
+  "add    r0, r3, r4, lsl #3\n\t"                                                               \
+  "add    r5, r5, r5, lsl #1\n\t"                                                               \
+  "add    r1, r3, r5, lsl #3\n\t"                                                               \
+  "add    r6, r6, r6, lsl #1\n\t"                                                               \
+  "add    r2, r3, r6, lsl #3\n\t"                                                               \
+  "ldr    r5, [r1, #4]\n\t"                                                                     \
+  "ldr    r6, [r2, #4]\n\t" /* sort_below_top: the later swapped when it lies strictly above */ \
+  "cmp    r6, r5\n\t"                                                                           \
+  "ittt   lt\n\t"                                                                               \
+  "movlt  r3, r1\n\t"                                                                           \
+  "movlt  r1, r2\n\t"                                                                           \
+  "movlt  r2, r3\n\t"                                                                           \
+  "stm    %[f], {r0, r1, r2}\n\t"                                                               \
+  "b      12f\n\t" /* kSortStep comes with kRowsStep */ \
+      "11:\n\t" \
+      "tst    r0, #1\n\t" \
+      "beq    10f\n\t" \
+      "12:\n\t" LR_SMALL_ROWS_ASM \
+      "cmp    r0, #1\n\t" \
+      "bne    20f\n\t" \
+      STEP_PLANES \
+      "10:\n\t" LR_SMALL_PLANES_ASM \
+      /* the affine colour test (affine_within): w_max - w_min <= w_min >> shift, or */ \
+      /* (w_max - w_min) D <= bound w_min with D the largest channel range (green's times its */ \
+      /* weight); else the result 3. w_min r8, w_max - w_min r9. */ \
+      "cmp    r0, #0\n\t" \
+      "beq    20f\n\t" \
+      "ldr    r1, [%[f], #84]\n\t" \
+      "tst    r1, #8\n\t" \
+      "beq    20f\n\t" \
+      "ldm    %[f], {r2, r3, r4}\n\t" \
+      "ldr    r5, [r2, #12]\n\t" \
+      "ldr    r6, [r3, #12]\n\t" \
+      "ldr    r1, [r4, #12]\n\t" \
+      "cmp    r5, r6\n\t" \
+      "ite    lo\n\t" \
+      "movlo  r8, r5\n\t" \
+      "movhs  r8, r6\n\t" \
+      "ite    lo\n\t" \
+      "movlo  r9, r6\n\t" \
+      "movhs  r9, r5\n\t" \
+      "cmp    r1, r8\n\t" \
+      "it     lo\n\t" \
+      "movlo  r8, r1\n\t" \
+      "cmp    r1, r9\n\t" \
+      "it     hi\n\t" \
+      "movhi  r9, r1\n\t" \
+      "sub    r9, r9, r8\n\t" \
+      "ldr    r1, [%[f], #100]\n\t" \
+      "lsr    r1, r8, r1\n\t" \
+      "cmp    r9, r1\n\t" \
+      "bls    21f\n\t" \
+      /* the ranges of (g, r) as 16-bit lanes: maximum r10, minimum r11, then r10 - r11 */ \
+      "ldr    r5, [r2, #16]\n\t" \
+      "ldr    r6, [r3, #16]\n\t" \
+      "ldr    r1, [r4, #16]\n\t" \
+      "usub16 r10, r5, r6\n\t" \
+      "sel    r10, r5, r6\n\t" \
+      "sel    r11, r6, r5\n\t" \
+      "usub16 r12, r10, r1\n\t" \
+      "sel    r10, r10, r1\n\t" \
+      "usub16 r12, r11, r1\n\t" \
+      "sel    r11, r1, r11\n\t" \
+      "usub16 r10, r10, r11\n\t" \
+      /* blue's: the low lanes of the words at 20 */ \
+      "ldr    r5, [r2, #20]\n\t" \
+      "ldr    r6, [r3, #20]\n\t" \
+      "ldr    r1, [r4, #20]\n\t" \
+      "usub16 r11, r5, r6\n\t" \
+      "sel    r11, r5, r6\n\t" \
+      "sel    r12, r6, r5\n\t" \
+      "usub16 r5, r11, r1\n\t" \
+      "sel    r11, r11, r1\n\t" \
+      "usub16 r5, r12, r1\n\t" \
+      "sel    r12, r1, r12\n\t" \
+      "usub16 r11, r11, r12\n\t" \
+      /* D r11: the largest of blue's, red's and green's times its weight */ \
+      "uxth   r11, r11\n\t" \
+      "uxth   r12, r10\n\t" \
+      "lsr    r10, r10, #16\n\t" \
+      "ldrd   r5, r6, [%[f], #104]\n\t" \
+      "mul    r10, r10, r6\n\t" \
+      "cmp    r11, r12\n\t" \
+      "it     lo\n\t" \
+      "movlo  r11, r12\n\t" \
+      "cmp    r11, r10\n\t" \
+      "it     lo\n\t" \
+      "movlo  r11, r10\n\t" \
+      "umull  r1, r2, r9, r11\n\t" \
+      "umull  r3, r4, r5, r8\n\t" \
+      "subs   r3, r3, r1\n\t" \
+      "sbcs   r4, r4, r2\n\t" \
+      "it     lo\n\t" \
+      "movlo  r0, #3\n\t" \
+      "21:\n\t" \
+      "str    r0, [%[f], #88]\n\t" \
+      "20:\n\t"
+
 namespace {
 // The frame of the small lanes setup by hand (the words above), with the steps to take in word 21:
 // kRowsStep, kPlanesStep or both (the planes then only when the rows' result is kPixels), and
@@ -855,6 +969,7 @@ struct LanesFrame {
 // t goes to word 4 from the block; index (LanesSetup's, for kSortStep: else unused) is read
 // from its register. Returns 1 exactly when the rows and planes were made and the affine test
 // (when a step) held: LanesSetup's usual result, read from no frame word.
+template <bool kBlock>
 [[gnu::noinline]] uint32_t small_lanes_asm(LanesFrame& frame, ActiveTriangle* t,
                                            const uint16_t* index) {
   static_assert(offsetof(RowWindow, first_min) == 0 && offsetof(RowWindow, last_max) == 4 &&
@@ -880,120 +995,16 @@ struct LanesFrame {
   register uint32_t status asm("r0");
   register ActiveTriangle* t_reg asm("r1") = t;
   register const uint16_t* index_reg asm("r2") = index;
-  asm volatile(
-      "str    r1, [%[f], #16]\n\t"
-      "ldr    r0, [%[f], #84]\n\t"
-      "tst    r0, #4\n\t"
-      "beq    11f\n\t"
-      // the vertices: r0-r2 (binned top first: store_top_first), the y of the other two r5, r6
-      "ldr    r3, [%[f], #96]\n\t"
-      "ldrh   r4, [r2]\n\t"
-      "ldrh   r5, [r2, #2]\n\t"
-      "ldrh   r6, [r2, #4]\n\t"
-      "add    r4, r4, r4, lsl #1\n\t"
-      "add    r0, r3, r4, lsl #3\n\t"
-      "add    r5, r5, r5, lsl #1\n\t"
-      "add    r1, r3, r5, lsl #3\n\t"
-      "add    r6, r6, r6, lsl #1\n\t"
-      "add    r2, r3, r6, lsl #3\n\t"
-      "ldr    r5, [r1, #4]\n\t"
-      "ldr    r6, [r2, #4]\n\t"
-      // sort_below_top: the later swapped when it lies strictly above
-      "cmp    r6, r5\n\t"
-      "ittt   lt\n\t"
-      "movlt  r3, r1\n\t"
-      "movlt  r1, r2\n\t"
-      "movlt  r2, r3\n\t"
-      "stm    %[f], {r0, r1, r2}\n\t"
-      "b      12f\n\t"  // kSortStep comes with kRowsStep
-      "11:\n\t"
-      "tst    r0, #1\n\t"
-      "beq    10f\n\t"
-      "12:\n\t" LR_SMALL_ROWS_ASM
-      "cmp    r0, #1\n\t"
-      "bne    20f\n\t"
-      "ldr    r0, [%[f], #84]\n\t"
-      "tst    r0, #2\n\t"
-      "beq    20f\n\t"
-      "10:\n\t" LR_SMALL_PLANES_ASM
-      // the affine colour test (affine_within): w_max - w_min <= w_min >> shift, or
-      // (w_max - w_min) D <= bound w_min with D the largest channel range (green's times its
-      // weight); else the result 3. w_min r8, w_max - w_min r9.
-      "cmp    r0, #0\n\t"
-      "beq    20f\n\t"
-      "ldr    r1, [%[f], #84]\n\t"
-      "tst    r1, #8\n\t"
-      "beq    20f\n\t"
-      "ldm    %[f], {r2, r3, r4}\n\t"
-      "ldr    r5, [r2, #12]\n\t"
-      "ldr    r6, [r3, #12]\n\t"
-      "ldr    r1, [r4, #12]\n\t"
-      "cmp    r5, r6\n\t"
-      "ite    lo\n\t"
-      "movlo  r8, r5\n\t"
-      "movhs  r8, r6\n\t"
-      "ite    lo\n\t"
-      "movlo  r9, r6\n\t"
-      "movhs  r9, r5\n\t"
-      "cmp    r1, r8\n\t"
-      "it     lo\n\t"
-      "movlo  r8, r1\n\t"
-      "cmp    r1, r9\n\t"
-      "it     hi\n\t"
-      "movhi  r9, r1\n\t"
-      "sub    r9, r9, r8\n\t"
-      "ldr    r1, [%[f], #100]\n\t"
-      "lsr    r1, r8, r1\n\t"
-      "cmp    r9, r1\n\t"
-      "bls    21f\n\t"
-      // the ranges of (g, r) as 16-bit lanes: maximum r10, minimum r11, then r10 - r11
-      "ldr    r5, [r2, #16]\n\t"
-      "ldr    r6, [r3, #16]\n\t"
-      "ldr    r1, [r4, #16]\n\t"
-      "usub16 r10, r5, r6\n\t"
-      "sel    r10, r5, r6\n\t"
-      "sel    r11, r6, r5\n\t"
-      "usub16 r12, r10, r1\n\t"
-      "sel    r10, r10, r1\n\t"
-      "usub16 r12, r11, r1\n\t"
-      "sel    r11, r1, r11\n\t"
-      "usub16 r10, r10, r11\n\t"
-      // blue's: the low lanes of the words at 20
-      "ldr    r5, [r2, #20]\n\t"
-      "ldr    r6, [r3, #20]\n\t"
-      "ldr    r1, [r4, #20]\n\t"
-      "usub16 r11, r5, r6\n\t"
-      "sel    r11, r5, r6\n\t"
-      "sel    r12, r6, r5\n\t"
-      "usub16 r5, r11, r1\n\t"
-      "sel    r11, r11, r1\n\t"
-      "usub16 r5, r12, r1\n\t"
-      "sel    r12, r1, r12\n\t"
-      "usub16 r11, r11, r12\n\t"
-      // D r11: the largest of blue's, red's and green's times its weight
-      "uxth   r11, r11\n\t"
-      "uxth   r12, r10\n\t"
-      "lsr    r10, r10, #16\n\t"
-      "ldrd   r5, r6, [%[f], #104]\n\t"
-      "mul    r10, r10, r6\n\t"
-      "cmp    r11, r12\n\t"
-      "it     lo\n\t"
-      "movlo  r11, r12\n\t"
-      "cmp    r11, r10\n\t"
-      "it     lo\n\t"
-      "movlo  r11, r10\n\t"
-      "umull  r1, r2, r9, r11\n\t"
-      "umull  r3, r4, r5, r8\n\t"
-      "subs   r3, r3, r1\n\t"
-      "sbcs   r4, r4, r2\n\t"
-      "it     lo\n\t"
-      "movlo  r0, #3\n\t"
-      "21:\n\t"
-      "str    r0, [%[f], #88]\n\t"
-      "20:\n\t"
-      : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
-      : [f] "r"(f)
-      : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
+  if constexpr (kBlock)
+    asm volatile(LR_LANES_BLOCK_ASM("", "")
+                 : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
+                 : [f] "r"(f)
+                 : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
+  else
+    asm volatile(LR_LANES_BLOCK_ASM(LR_LANES_STEP("4", "11f"), LR_LANES_STEP("2", "20f"))
+                 : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
+                 : [f] "r"(f)
+                 : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   return status;
 }
 }  // namespace
@@ -1002,7 +1013,7 @@ SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
                              ActiveTriangle& t) {
   LanesFrame frame(v, kRowsStep);
   frame.w[3] = reinterpret_cast<uintptr_t>(&w);
-  small_lanes_asm(frame, &t, nullptr);
+  small_lanes_asm<false>(frame, &t, nullptr);
   return frame.rows();
 }
 
@@ -1010,7 +1021,7 @@ bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindo
                                   ActiveTriangle& t, SmallRows& rows) {
   LanesFrame frame(v, kRowsStep | kPlanesStep);
   frame.w[3] = reinterpret_cast<uintptr_t>(&w);
-  small_lanes_asm(frame, &t, nullptr);
+  small_lanes_asm<false>(frame, &t, nullptr);
   rows = frame.rows();
   return frame.planes();
 }
@@ -1020,7 +1031,7 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint3
   LanesFrame frame(v, kPlanesStep);
   frame.w[5] = static_cast<uint32_t>(d);
   frame.w[6] = m;
-  small_lanes_asm(frame, &t, nullptr);
+  small_lanes_asm<false>(frame, &t, nullptr);
   return frame.planes();
 }
 
@@ -1038,7 +1049,7 @@ namespace {
     if (!later_rows_have_pixels(t, t.first_row, w.width)) return UntexturedTriangle::sliver();
     const uint32_t steps = f.w[21];
     f.w[21] = steps & (kPlanesStep | kAffineStep);
-    const uint32_t status = small_lanes_asm(f, &t, nullptr);
+    const uint32_t status = small_lanes_asm<false>(f, &t, nullptr);
     f.w[21] = steps;
     if (status == 1) return UntexturedTriangle::made(UntexturedKind::kLanes, false);
     rows.result = SmallRows::kPixels;
@@ -1062,7 +1073,7 @@ void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
 }
 
 uint32_t LanesSetup::block(uint32_t* frame, ActiveTriangle& t, const uint16_t index[3]) {
-  return small_lanes_asm(*reinterpret_cast<LanesFrame*>(frame), &t, index);
+  return small_lanes_asm<true>(*reinterpret_cast<LanesFrame*>(frame), &t, index);
 }
 
 UntexturedTriangle LanesSetup::rest(const uint16_t /*index*/[3], ActiveTriangle& t) {
