@@ -445,8 +445,9 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 // (left to the compiler) points to the frame of small_lanes_asm below: the vertices (0, 4, 8),
 // the window (12), the triangle (16), then d (20), m (24), the result (28), the column base (32)
 // and the width (36). Ends with the result in r0.
-#define LR_SMALL_ROWS_ASM                                                                        \
-  "ldm    %[f], {r0, r1, r2}\n\t"                                                                \
+#define LR_SMALL_ROWS_ASM "ldm    %[f], {r0, r1, r2}\n\t" LR_SMALL_ROWS_BODY
+// LR_SMALL_ROWS_ASM with the vertices already in r0-r2.
+#define LR_SMALL_ROWS_BODY                                                                       \
   "ldrd   r3, r4, [r0]\n\t"                                                                      \
   "ldrd   r5, r6, [r1]\n\t"                                                                      \
   "ldrd   r8, r9, [r2]\n\t"                                                                      \
@@ -822,15 +823,23 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "19:\n\t" \
   "str    r0, [%[f], #88]\n\t"
 
-// The block's text. STEP_SORT: the test of kSortStep at its start; STEP_PLANES: the test of
-// kPlanesStep after the rows found pixels on their first rows. LanesSetup::block() takes every
-// step but the affine test always, so its copy has neither test (6 instructions a triangle).
+// The block's text. STEP_SORT: the test of kSortStep at its start; AFTER_SORT: what follows the
+// sort (the path without it, into the rows with the vertices from the frame); STEP_PLANES: the
+// test of kPlanesStep after the rows found pixels on their first rows. LanesSetup::block() takes
+// every step but the affine test always, so its copy has none of them (8 instructions a triangle).
 #define LR_LANES_STEP(BIT, LABEL) \
   "ldr    r0, [%[f], #84]\n\t"    \
   "tst    r0, #" BIT              \
   "\n\t"                          \
   "beq    " LABEL "\n\t"
-#define LR_LANES_BLOCK_ASM(STEP_SORT, STEP_PLANES) \
+#define LR_LANES_NO_SORT          \
+  "b      12f\n\t"                \
+  "11:\n\t"                       \
+  "tst    r0, #1\n\t"             \
+  "beq    10f\n\t"                \
+  "ldm    %[f], {r0, r1, r2}\n\t" \
+  "12:\n\t"
+#define LR_LANES_BLOCK_ASM(STEP_SORT, AFTER_SORT, STEP_PLANES) \
   "str    r1, [%[f], #16]\n\t" STEP_SORT /* the vertices: r0-r2 (binned top first:              \
                                             store_top_first), the y of the other two r5, r6 */  \
   "ldr    r3, [%[f], #96]\n\t"                                                                  \
@@ -851,11 +860,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "movlt  r1, r2\n\t"                                                                           \
   "movlt  r2, r3\n\t"                                                                           \
   "stm    %[f], {r0, r1, r2}\n\t"                                                               \
-  "b      12f\n\t" /* kSortStep comes with kRowsStep */ \
-      "11:\n\t" \
-      "tst    r0, #1\n\t" \
-      "beq    10f\n\t" \
-      "12:\n\t" LR_SMALL_ROWS_ASM \
+  AFTER_SORT LR_SMALL_ROWS_BODY \
       "cmp    r0, #1\n\t" \
       "bne    20f\n\t" \
       STEP_PLANES \
@@ -996,15 +1001,16 @@ template <bool kBlock>
   register ActiveTriangle* t_reg asm("r1") = t;
   register const uint16_t* index_reg asm("r2") = index;
   if constexpr (kBlock)
-    asm volatile(LR_LANES_BLOCK_ASM("", "")
+    asm volatile(LR_LANES_BLOCK_ASM("", "", "")
                  : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
                  : [f] "r"(f)
                  : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   else
-    asm volatile(LR_LANES_BLOCK_ASM(LR_LANES_STEP("4", "11f"), LR_LANES_STEP("2", "20f"))
-                 : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
-                 : [f] "r"(f)
-                 : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
+    asm volatile(
+        LR_LANES_BLOCK_ASM(LR_LANES_STEP("4", "11f"), LR_LANES_NO_SORT, LR_LANES_STEP("2", "20f"))
+        : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
+        : [f] "r"(f)
+        : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   return status;
 }
 }  // namespace
@@ -1083,6 +1089,9 @@ UntexturedTriangle LanesSetup::rest(const uint16_t /*index*/[3], ActiveTriangle&
 #undef LR_SP_PLANE
 #undef LR_SP_SCALE
 #undef LR_SMALL_PLANES_ASM
+#undef LR_LANES_STEP
+#undef LR_LANES_NO_SORT
+#undef LR_LANES_BLOCK_ASM
 #else
 bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*/, uint32_t /*m*/,
                                 ActiveTriangle& /*t*/) {
@@ -1141,6 +1150,7 @@ UntexturedTriangle LanesSetup::rest(const uint16_t index[3], ActiveTriangle& t) 
 #endif
 #ifdef LR_SMALL_ROWS_ASM
 #undef LR_SMALL_ROWS_ASM
+#undef LR_SMALL_ROWS_BODY
 #endif
 
 UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
