@@ -131,6 +131,14 @@ uint32_t FrontEnd::lane_run_triangles(MeshDraw& d, uint32_t t) {
   return done;
 }
 
+// light_list() with a loop without the clamps for lights that cannot pass 1 (OneDiffuseLight::
+// never_clamps), but not where the code is built for size.
+#if defined(__OPTIMIZE_SIZE__)
+constexpr bool kOneLightUnclamped = false;
+#else
+constexpr bool kOneLightUnclamped = true;
+#endif
+
 // The vertices bin_lane_asm() found waiting for their colour (their flags cleared), lit as
 // light_corners() lights them (a copy of its code: through one function the C lane, which
 // Armv6-M runs, took 2 % longer on S1 and S1x): the common case here (diffuse directional lights in
@@ -150,14 +158,22 @@ void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
   };
   if (ol != nullptr && ol->count == 1) {
     const OneDiffuseLight one(*d.colors.lighting, *ol);
-    for (ScreenVertex* const v : list) {
-      const Normal16& n = normal_of(v);
-      const uint32_t len2 = normal_len2(n);
-      if (unit_len2(len2)) [[likely]]
-        v->color = one(n, len2);
-      else
-        light_other(d, static_cast<uint32_t>(v - base));
-    }
+    auto run = [&]<bool kClamp>() {
+      for (ScreenVertex* const v : list) {
+        const Normal16& n = normal_of(v);
+        const uint32_t len2 = normal_len2(n);
+        if (unit_len2(len2)) [[likely]]
+          v->color = one.template operator()<kClamp>(n, len2);
+        else
+          light_other(d, static_cast<uint32_t>(v - base));
+      }
+    };
+    // Without the clamps where no sum can pass 1 (9 instructions a vertex on Armv7-M), but not
+    // where the code is built for size (a second loop).
+    if (kOneLightUnclamped && one.never_clamps)
+      run.template operator()<false>();
+    else
+      run.template operator()<true>();
     return;
   }
   for (ScreenVertex* const v : list) {

@@ -462,7 +462,7 @@ TEST(ObjectLights, OneDiffuseLightEqualsTheGeneralPath) {
     return Color15{static_cast<uint16_t>(c15(rng)), static_cast<uint16_t>(c15(rng)),
                    static_cast<uint16_t>(c15(rng))};
   };
-  int lit = 0, unlit = 0, clamped = 0;
+  int lit = 0, unlit = 0, clamped = 0, never_clamps = 0;
   for (int set_i = 0; set_i < 200; ++set_i) {
     LightSet set;
     set.count = 1;
@@ -491,6 +491,11 @@ TEST(ObjectLights, OneDiffuseLightEqualsTheGeneralPath) {
       ASSERT_EQ(fast.r, general.r) << set_i << " " << i;
       ASSERT_EQ(fast.g, general.g) << set_i << " " << i;
       ASSERT_EQ(fast.b, general.b) << set_i << " " << i;
+      if (one.never_clamps) {
+        const Color15 unclamped = one.operator()<false>(n, len2);
+        ASSERT_EQ(unclamped, general) << set_i << " " << i;
+        ++never_clamps;
+      }
       uint32_t prim[3];
       int32_t ndl[kMaxLights];
       object_diffuse(pl, ol, n.x, n.y, n.z, inverse_length(len2), prim, ndl);
@@ -498,10 +503,66 @@ TEST(ObjectLights, OneDiffuseLightEqualsTheGeneralPath) {
       clamped += (prim[0] > Color15::kOne || prim[1] > Color15::kOne || prim[2] > Color15::kOne);
     }
   }
-  // Every case taken: lit and unlit sides, sums past 1.
+  // Every case taken: lit and unlit sides, sums past 1, lights that never clamp.
   EXPECT_GT(lit, 1000);
   EXPECT_GT(unlit, 1000);
   EXPECT_GT(clamped, 1000);
+  EXPECT_GT(never_clamps, 1000);
+}
+
+// OneDiffuseLight::never_clamps at its edge: materials whose ambient plus diffuse lies within a
+// few hundred units of 1 either side, normals along the light rounded every way to Q1.14 at
+// lengths across the unit range (the largest N.L). Where never_clamps holds, the loop without the
+// clamps gives the general path's colour; it holds for most materials below 1, none past it.
+TEST(ObjectLights, OneDiffuseLightLeavesOutTheClampsOnlyWhereNoSumPassesOne) {
+  std::mt19937 rng(3601);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto fx = [](double v) { return Fixed::from_raw(static_cast<int32_t>(std::lround(v * 65536))); };
+  const auto gray = [](int v) {
+    const auto c = static_cast<uint16_t>(v);
+    return Color15{c, c, c};
+  };
+  int unclamped_cases = 0, refused_cases = 0, max_excess = -1;
+  for (const int ambient : {0, 1000, 8000})
+    for (int delta = -8; delta <= 200; ++delta) {
+      const int diffuse = std::clamp(Color15::kOne - ambient - delta, 0, int{Color15::kOne});
+      const double lx = 0.3 * u(rng), ly = 0.3 * u(rng), lz = 1.0;
+      LightSet set;
+      set.count = 1;
+      set.lights[0] = Light::directional({fx(lx), fx(ly), fx(lz)}, gray(Color15::kOne));
+      set.global_ambient = gray(Color15::kOne);
+      Material m;
+      m.ambient = gray(ambient);
+      m.diffuse = gray(diffuse);
+      const PreparedLighting pl = prepare_lighting(set, m, {{}, {}, Fixed::from_int(1)}, {});
+      const VertexStage stage(Camera{}, Mat4::identity(), GuardBand{1, 1}, 64, 64);
+      ObjectLights ol;
+      ASSERT_TRUE(stage.object_lights(pl, ol));
+      const OneDiffuseLight one(pl, ol);
+      if (!one.never_clamps) {
+        ++refused_cases;
+        continue;
+      }
+      ++unclamped_cases;
+      const double norm = std::sqrt(lx * lx + ly * ly + lz * lz);
+      for (int i = 0; i < 8 * 9; ++i) {
+        const double s = 16384.0 / norm * (1.0 + (i / 8 - 4) * 0.25 / 8192);
+        auto q = [&](double v, int bit) {
+          return static_cast<int16_t>(i >> bit & 1 ? std::ceil(v * s) : std::floor(v * s));
+        };
+        const Normal16 n{q(lx, 0), q(ly, 1), q(lz, 2)};
+        const uint32_t len2 = normal_len2(n);
+        if (!unit_len2(len2)) continue;
+        const Color15 general = light_object_diffuse(pl, ol, n, len2);
+        const Color15 unclamped = one.operator()<false>(n, len2);
+        ASSERT_EQ(unclamped, general) << ambient << " " << delta << " " << i;
+        max_excess = std::max(max_excess, unclamped.r - (one.base[0] + one.kd[0]));
+      }
+    }
+  EXPECT_GT(unclamped_cases, 100);
+  EXPECT_GT(refused_cases, 30);
+  // The sums reach base + kd (N.L times 1 / |n| reaches 1 here, not the bound's 1 + 2^-10).
+  EXPECT_GE(max_excess, 0);
 }
 
 }  // namespace
