@@ -220,8 +220,8 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   "ldrb    r0, [r4, #23]\n\t" /* a vertex waiting for its colour */                \
   "ldrb    r1, [r5, #23]\n\t"                                                      \
   "ldrb    r8, [r6, #23]\n\t"                                                      \
-  "orr     r0, r0, r1\n\t"                                                         \
-  "orrs    r0, r0, r8\n\t"                                                         \
+  "orr     r9, r0, r1\n\t" /* (the three flags kept for 5N) */                     \
+  "orrs    r9, r9, r8\n\t"                                                         \
   "bne     5" N                                                                    \
   "f\n\t"                                                                          \
   "6" N                                                                            \
@@ -246,45 +246,66 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   "pkhbt   r6, r6, r11, lsl #16\n\t" /* v2 next */                                 \
   "strd    r4, r6, [r9]\n\t"                                                       \
   "cmp     %[tp], %[e]\n\t" /* the next (3b's, without a branch there) */          \
-  "bne     1b\n\t"                                                                 \
+  "blo     1b\n\t"                                                                 \
+  "beq     2b\n\t"                                                                 \
   "mov     %[a], #0\n\t" /* kBinLaneEnd */                                         \
   "b       9f\n"                                                                   \
   "5" N                                                                            \
-  ":\n\t" /* pending vertices onto the list, their flags cleared */                \
-  "ldrd    r8, r9, [%[k], #36]\n\t"                                                \
-  "cmp     r8, r9\n\t"                                                             \
+  ":\n\t" /* pending vertices onto the list, their flags (r0, r1, r8) cleared */   \
+  "ldrd    r9, r10, [%[k], #36]\n\t"                                               \
+  "cmp     r9, r10\n\t"                                                            \
   "bhi     84f\n\t"                                                                \
   "mov     r10, #0\n\t"                                                            \
-  "ldrb    r0, [r4, #23]\n\t"                                                      \
   "cbz     r0, 5" N                                                                \
   "1f\n\t"                                                                         \
   "strb    r10, [r4, #23]\n\t"                                                     \
-  "str     r4, [r8], #4\n"                                                         \
+  "str     r4, [r9], #4\n"                                                         \
   "5" N                                                                            \
   "1:\n\t"                                                                         \
-  "ldrb    r0, [r5, #23]\n\t"                                                      \
-  "cbz     r0, 5" N                                                                \
+  "cbz     r1, 5" N                                                                \
   "2f\n\t"                                                                         \
   "strb    r10, [r5, #23]\n\t"                                                     \
-  "str     r5, [r8], #4\n"                                                         \
+  "str     r5, [r9], #4\n"                                                         \
   "5" N                                                                            \
   "2:\n\t"                                                                         \
-  "ldrb    r0, [r6, #23]\n\t"                                                      \
-  "cbz     r0, 5" N                                                                \
+  "cmp     r8, #0\n\t"                                                             \
+  "beq     5" N                                                                    \
   "3f\n\t"                                                                         \
   "strb    r10, [r6, #23]\n\t"                                                     \
-  "str     r6, [r8], #4\n"                                                         \
+  "str     r6, [r9], #4\n"                                                         \
   "5" N                                                                            \
   "3:\n\t"                                                                         \
-  "str     r8, [%[k], #36]\n\t"                                                    \
+  "str     r9, [%[k], #36]\n\t"                                                    \
   "b       6" N "b\n"
+// The first part of bin_lane_asm() for one triangle (two copies): the indices read with
+// post-increment (tp on the next triangle from there on), the vertices' addresses, the deltas
+// (dx1 r8, dy1 r9, dx2 r10, -dy2 r11) and minus twice the signed area in r1:r0, its sign in the
+// flags.
+#define LR_BIN_LANE_FRONT                                                \
+  "ldrh    r4, [%[tp]], #2\n\t"                                          \
+  "ldrh    r5, [%[tp]], #2\n\t"                                          \
+  "ldrh    r6, [%[tp]], #2\n\t"                                          \
+  "mla     r4, r4, lr, r12\n\t"                                          \
+  "mla     r5, r5, lr, r12\n\t"                                          \
+  "mla     r6, r6, lr, r12\n\t"                                          \
+  "ldrd    r0, r1, [r4]\n\t" /* x0 y0 */                                 \
+  "ldrd    r8, r9, [r5]\n\t"                                             \
+  "ldrd    r10, r11, [r6]\n\t"                                           \
+  "sub     r8, r8, r0\n\t"   /* dx1 */                                   \
+  "sub     r9, r9, r1\n\t"   /* dy1 */                                   \
+  "sub     r10, r10, r0\n\t" /* dx2 */                                   \
+  "sub     r11, r1, r11\n\t" /* -dy2 */                                  \
+  "smull   r0, r1, r10, r9\n\t"                                          \
+  "smlal   r0, r1, r8, r11\n\t" /* minus twice the signed area, exact */ \
+  "cmp     r1, #0\n\t"
 #endif
 
-// bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): 19 instructions a back
-// face and 69 to 71 a binned front face without pending vertices. The vertices' base and stride
-// in registers for the whole run (an index to an address is one MLA); minus twice the signed
-// area, so that its high word's sign alone tells a back face, and x0 and y0 read again for the
-// faces that stay (their registers take the area); rows as (y + 128 + min(0, dy1, dy2)) >> 8
+// bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): 17 or 19 instructions a
+// back face and 69 to 71 a binned front face without pending vertices. The vertices' base and
+// stride in registers for the whole run (an index to an address is one MLA); minus twice the
+// signed area, so that its high word's sign alone tells a back face, and x0 and y0 read again for
+// the faces that stay (their registers take the area); two copies of that first part, so that a
+// back face in the first needs no test of the end; rows as (y + 128 + min(0, dy1, dy2)) >> 8
 // with USAT for the clamp at 0, in one of four tails picked by the vertex on top
 // (store_top_first), which also stores the indices in its order; the four tests of the bounds
 // in one chain of conditional compares; the constants of a binned face read with one LDM; the
@@ -295,28 +316,19 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
   register uint32_t a asm("r0");
   register uint32_t b asm("r1");
   asm volatile(
-      "ldrd    r12, lr, [%[k], #20]\n"  // the vertices, 24 bytes each
-      "1:\n\t"
-      "ldrh    r4, [%[tp]], #2\n\t"  // tp on the next triangle
-      "ldrh    r5, [%[tp]], #2\n\t"
-      "ldrh    r6, [%[tp]], #2\n\t"
-      "mla     r4, r4, lr, r12\n\t"
-      "mla     r5, r5, lr, r12\n\t"
-      "mla     r6, r6, lr, r12\n\t"
-      "ldrd    r0, r1, [r4]\n\t"  // x0 y0
-      "ldrd    r8, r9, [r5]\n\t"
-      "ldrd    r10, r11, [r6]\n\t"
-      "sub     r8, r8, r0\n\t"    // dx1
-      "sub     r9, r9, r1\n\t"    // dy1
-      "sub     r10, r10, r0\n\t"  // dx2
-      "sub     r11, r1, r11\n\t"  // -dy2
-      "smull   r0, r1, r10, r9\n\t"
-      "smlal   r0, r1, r8, r11\n\t"  // minus twice the signed area, exact
-      "cmp     r1, #0\n\t"
-      "bpl     4f\n"  // no back face: area <= 0
-      "3:\n\t"        // the next
+      "ldrd    r12, lr, [%[k], #20]\n\t"  // the vertices, 24 bytes each
       "cmp     %[tp], %[e]\n\t"
-      "bne     1b\n\t"
+      "beq     2f\n"  // one triangle
+      // Two copies of the first part: a back face in the first goes on to the second without a
+      // test of the end (at least two triangles are left when the first starts).
+      "1:\n\t" LR_BIN_LANE_FRONT
+      "bpl     4f\n"  // no back face: area <= 0
+      "2:\n\t" LR_BIN_LANE_FRONT
+      "bpl     4f\n"
+      "3:\n\t"  // the next: two or more left, one, none
+      "cmp     %[tp], %[e]\n\t"
+      "blo     1b\n\t"
+      "beq     2b\n\t"
       "mov     %[a], #0\n\t"  // kBinLaneEnd
       "b       9f\n"
       "4:\n\t"
@@ -354,7 +366,7 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "mov     %[a], #1\n"             // kBinLaneFlush
       "9:\n"
       : [tp] "+r"(tp), [a] "=&r"(a), [b] "=&r"(b)
-      : [k] "r"(&k), [e] "r"(k.end)
+      : [k] "r"(&k), [e] "r"(k.end - 1)  // the last triangle
       : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   return static_cast<BinLaneStop>(a);
 #else
@@ -364,6 +376,7 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
 
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
 #undef LR_BIN_LANE_TAIL
+#undef LR_BIN_LANE_FRONT
 #undef LR_BIN_LANE_ROWS_A_DY2
 #undef LR_BIN_LANE_ROWS_A_DY1
 #undef LR_BIN_LANE_ROWS_B
