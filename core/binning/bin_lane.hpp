@@ -245,11 +245,9 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   "add     r6, r6, r10\n\t"                                                        \
   "pkhbt   r6, r6, r11, lsl #16\n\t" /* v2 next */                                 \
   "strd    r4, r6, [r9]\n\t"                                                       \
-  "cmp     %[tp], %[e]\n\t" /* the next (3b's, without a branch there) */          \
-  "blo     1b\n\t"                                                                 \
-  "beq     2b\n\t"                                                                 \
-  "mov     %[a], #0\n\t" /* kBinLaneEnd */                                         \
-  "b       9f\n"                                                                   \
+  "cmp     %[tp], %[e]\n\t" /* the next (3b's, its branch back here) */            \
+  "bls     21b\n\t"                                                                \
+  "b       30b\n"                                                                  \
   "5" N                                                                            \
   ":\n\t" /* pending vertices onto the list, their flags (r0, r1, r8) cleared */   \
   "ldrd    r9, r10, [%[k], #36]\n\t"                                               \
@@ -277,7 +275,7 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   "3:\n\t"                                                                         \
   "str     r9, [%[k], #36]\n\t"                                                    \
   "b       6" N "b\n"
-// The first part of bin_lane_asm() for one triangle (two copies): the indices read with
+// The first part of bin_lane_asm() for one triangle (four copies): the indices read with
 // post-increment (tp on the next triangle from there on), the vertices' addresses, the deltas
 // (dx1 r8, dy1 r9, dx2 r10, -dy2 r11) and minus twice the signed area in r1:r0, its sign in the
 // flags.
@@ -304,31 +302,45 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 // back face and 69 to 71 a binned front face without pending vertices. The vertices' base and
 // stride in registers for the whole run (an index to an address is one MLA); minus twice the
 // signed area, so that its high word's sign alone tells a back face, and x0 and y0 read again for
-// the faces that stay (their registers take the area); two copies of that first part, so that a
-// back face in the first needs no test of the end; rows as (y + 128 + min(0, dy1, dy2)) >> 8
-// with USAT for the clamp at 0, in one of four tails picked by the vertex on top
-// (store_top_first), which also stores the indices in its order; the four tests of the bounds
-// in one chain of conditional compares; the constants of a binned face read with one LDM; the
-// record's halves built with one ORR and PKHBT.
+// the faces that stay (their registers take the area); four copies of that first part, so that
+// a back face in the first three needs no test of the end; rows as
+// (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for the clamp at 0, in one of four tails picked by
+// the vertex on top (store_top_first), which also stores the indices in its order; the four
+// tests of the bounds in one chain of conditional compares; the constants of a binned face read
+// with one LDM; the record's halves built with one ORR and PKHBT.
 inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) {
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
   // Low registers: CBZ tests them.
   register uint32_t a asm("r0");
   register uint32_t b asm("r1");
+  const std::array<uint16_t, 3>* last = k.end - 1;
   asm volatile(
       "ldrd    r12, lr, [%[k], #20]\n\t"  // the vertices, 24 bytes each
+      // e: from the last triangle to the fourth from the end (not below the address 24:
+      // the vector table is there).
+      "sub     %[e], %[e], #18\n\t"
       "cmp     %[tp], %[e]\n\t"
-      "beq     2f\n"  // one triangle
-      // Two copies of the first part: a back face in the first goes on to the second without a
-      // test of the end (at least two triangles are left when the first starts).
-      "1:\n\t" LR_BIN_LANE_FRONT
+      "bhi     30f\n"  // fewer than four
+      // Four copies of the first part: a back face in the first three goes on to the next
+      // without a test of the end (at least four triangles are left when the first starts).
+      "21:\n\t" LR_BIN_LANE_FRONT
       "bpl     4f\n"  // no back face: area <= 0
-      "2:\n\t" LR_BIN_LANE_FRONT
+      "22:\n\t" LR_BIN_LANE_FRONT
       "bpl     4f\n"
-      "3:\n\t"  // the next: two or more left, one, none
+      "23:\n\t" LR_BIN_LANE_FRONT
+      "bpl     4f\n"
+      "24:\n\t" LR_BIN_LANE_FRONT
+      "bpl     4f\n"
+      "3:\n\t"  // the next: four or more left, three, two, one, none
       "cmp     %[tp], %[e]\n\t"
-      "blo     1b\n\t"
-      "beq     2b\n\t"
+      "bls     21b\n"
+      "30:\n\t"
+      "sub     r0, %[tp], %[e]\n\t"  // 6, 12, 18, 24: three, two, one, none left
+      "cmp     r0, #12\n\t"
+      "blo     22b\n\t"
+      "beq     23b\n\t"
+      "cmp     r0, #18\n\t"
+      "beq     24b\n\t"
       "mov     %[a], #0\n\t"  // kBinLaneEnd
       "b       9f\n"
       "4:\n\t"
@@ -365,8 +377,8 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "sub     %[tp], %[tp], #6\n\t"  // the triangle not done
       "mov     %[a], #1\n"             // kBinLaneFlush
       "9:\n"
-      : [tp] "+r"(tp), [a] "=&r"(a), [b] "=&r"(b)
-      : [k] "r"(&k), [e] "r"(k.end - 1)  // the last triangle
+      : [tp] "+r"(tp), [a] "=&r"(a), [b] "=&r"(b), [e] "+r"(last)
+      : [k] "r"(&k)
       : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   return static_cast<BinLaneStop>(a);
 #else

@@ -139,8 +139,10 @@ void run_lane(const Mesh& m, Run& out, Lane&& lane, uint32_t strip_reciprocal, u
   const std::array<uint16_t, 3>* tp = m.t;
   const std::array<uint16_t, 3>* const end = m.t + kTriangles;
   // As FrontEnd::lane_run_triangles() runs the lane: up to the next index out of range (that
-  // triangle skipped here), in runs that cannot fill the table, until it is full.
-  while (tp != end && k.count < k.capacity) {
+  // triangle skipped here), in runs that cannot fill the table, until it is full (and a lane
+  // that stops short without progress ends at the room of the stops: a difference, not a hang).
+  constexpr uint32_t kStops = sizeof(out.stops) / sizeof(out.stops[0]);
+  while (tp != end && k.count < k.capacity && out.stop_count < kStops) {
     const std::array<uint16_t, 3>* const stop = first_out_of_range(tp, end, kVertices);
     if (tp == stop) {
       out.stops[out.stop_count++] = 3u << 16 | static_cast<uint32_t>(tp - m.t);
