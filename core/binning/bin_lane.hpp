@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "lineraster/core/binning/binned_triangle.hpp"
@@ -22,25 +23,31 @@ inline constexpr bool kBinLaneAsm = false;
 #endif
 
 // What the lane reads and updates, in the order bin_lane_asm() addresses it (byte offsets in
-// its code: do not reorder).
+// its code, asserted below: do not reorder).
 struct alignas(8) BinLane {
   uint32_t count;             // 0: the edge table's triangles
-  uint32_t capacity;          // 4: its room
-  uint32_t strip_reciprocal;  // 8: EdgeTable::strip_of_row's: strip = (row m) >> 17
-  uint16_t* buckets;          // 12
-  BinnedTriangle* triangles;  // 16
-  uint32_t first2;            // 20: the draw's first store index in both halves (x 0x10001)
-  ScreenVertex* vertices;     // 24: the draw's first vertex
-  uint32_t n;                 // 28: its vertex count (first_out_of_range())
-  const std::array<uint16_t, 3>* end;  // 32: the end of its triangles (the asm: in a register)
-  int32_t height, width;               // 36, 40: the viewport
-  ScreenVertex** list;                 // 44: the next free entry of the list of vertices to light
-  ScreenVertex** list_limit;           // 48: the last entry at which three more still fit
-  uint32_t zero;                       // 52: triangles without area, counted
-  uint32_t offscreen;                  // 56: triangles whose bounds hold no pixel centre, counted
-  uint32_t pad;
+  uint32_t strip_reciprocal;  // 4: EdgeTable::strip_of_row's: strip = (row m) >> 17
+  uint16_t* buckets;          // 8
+  BinnedTriangle* triangles;  // 12
+  uint32_t first2;            // 16: the draw's first store index in both halves (x 0x10001)
+  ScreenVertex* vertices;     // 20: the draw's first vertex
+  uint32_t stride;            // 24: sizeof(ScreenVertex) (the asm's multiplier, kept in a register)
+  int32_t height, width;      // 28, 32: the viewport
+  ScreenVertex** list;        // 36: the next free entry of the list of vertices to light
+  ScreenVertex** list_limit;  // 40: the last entry at which three more still fit
+  uint32_t zero;              // 44: triangles without area, counted
+  uint32_t offscreen;         // 48: triangles whose bounds hold no pixel centre, counted
+  uint32_t capacity;          // 52: the edge table's room (the lane's driver reads it)
+  uint32_t n;                 // 56: the draw's vertex count (first_out_of_range())
+  const std::array<uint16_t, 3>* end;  // 60: the end of its triangles (the asm: in a register)
 };
 static_assert(sizeof(void*) != 4 || sizeof(BinLane) == 64);
+static_assert(sizeof(void*) != 4 ||
+              (offsetof(BinLane, strip_reciprocal) == 4 && offsetof(BinLane, first2) == 16 &&
+               offsetof(BinLane, vertices) == 20 && offsetof(BinLane, stride) == 24 &&
+               offsetof(BinLane, height) == 28 && offsetof(BinLane, width) == 32 &&
+               offsetof(BinLane, list) == 36 && offsetof(BinLane, list_limit) == 40 &&
+               offsetof(BinLane, zero) == 44 && offsetof(BinLane, offscreen) == 48));
 
 // Why the lane stopped: at the end; at a triangle whose pending vertices do not fit on the list
 // (nothing of it done).
@@ -156,186 +163,222 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 }
 
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
-// bin_lane_asm()'s rows from the registers MIN and MAX holding min(dy1, dy2) and max(dy1, dy2)
-// (r9: y0): the vertex a on top (min(0, ..) = 0, max(0, ..) the max), or another (min(0, ..) the
-// min).
-#define LR_BIN_LANE_ROWS_TOP(MAX) \
-  "add     %[a], r9, #128\n\t"    \
-  "add     %[b], " MAX ", %[a]\n\t"
-#define LR_BIN_LANE_ROWS_BELOW(MIN, MAX) \
-  "bic     %[b], " MAX ", " MAX          \
-  ", asr #31\n\t"                        \
-  "add     r9, r9, #128\n\t"             \
-  "add     %[a], " MIN                   \
-  ", r9\n\t"                             \
-  "add     %[b], %[b], r9\n\t"
-// The rest of bin_lane_asm() for one vertex on top (N: the labels' digit): the rows, the columns,
-// the pending vertices and the record, its indices read from the triangle at byte offsets O0, O1
-// and O2 (store_top_first's order; tp is on the next triangle already).
-#define LR_BIN_LANE_TAIL(N, ROWS, O0, O1, O2)                                                     \
-  "7" N ":\n\t" ROWS                                                                              \
-  "ldrd    r9, r11, [%[k], #36]\n\t" /* height, width */                                          \
-  "usat    %[a], #16, %[a], asr #8\n\t"                                                           \
-  "asr     %[b], %[b], #8\n\t"                                                                    \
-  "cmp     %[a], %[b]\n\t"                                                                        \
-  "bge     83f\n\t"                                                                               \
-  "cmp     %[a], r9\n\t"                                                                          \
-  "bge     83f\n\t" /* Columns: c0 = max(0, (x0 + 127 + min(0, dx1, dx2)) >> 8), c1 likewise with \
-                       the max. */                                                                \
-  "rsb     r12, r12, #0\n\t" /* dx2 */                                                            \
-  "cmp     r10, r12\n\t"                                                                          \
-  "itete   lt\n\t"                                                                                \
-  "movlt   r9, r10\n\t"                                                                           \
-  "movge   r9, r12\n\t"                                                                           \
-  "movlt   lr, r12\n\t"                                                                           \
-  "movge   lr, r10\n\t"                                                                           \
-  "and     r9, r9, r9, asr #31\n\t"                                                               \
-  "bic     lr, lr, lr, asr #31\n\t"                                                               \
-  "add     r8, r8, #127\n\t"                                                                      \
-  "add     r9, r9, r8\n\t"                                                                        \
-  "add     lr, lr, r8\n\t"                                                                        \
-  "usat    r9, #16, r9, asr #8\n\t"                                                               \
-  "asr     lr, lr, #8\n\t"                                                                        \
-  "cmp     r9, lr\n\t"                                                                            \
-  "bge     83f\n\t"                                                                               \
-  "cmp     r9, r11\n\t"                                                                           \
-  "bge     83f\n\t"                                                                               \
-  "ldrb    r8, [r4, #23]\n\t" /* a vertex waiting for its colour */                               \
-  "ldrb    r9, [r5, #23]\n\t"                                                                     \
-  "ldrb    r10, [r6, #23]\n\t"                                                                    \
-  "orr     r8, r8, r9\n\t"                                                                        \
-  "orrs    r8, r8, r10\n\t"                                                                       \
-  "bne     5" N                                                                                   \
-  "f\n\t"                                                                                         \
-  "6" N                                                                                           \
-  ":\n\t"                                                                                         \
-  "ldm     %[k], {r8, r9, r10, r11, r12, lr}\n\t" /* count capacity m buckets triangles first2 */ \
-  "mul     r9, %[a], r10\n\t"                                                                     \
-  "lsr     r9, r9, #17\n\t"            /* the strip */                                            \
-  "ldrh    r10, [r11, r9, lsl #1]\n\t" /* its head: the record's next */                          \
-  "strh    r8, [r11, r9, lsl #1]\n\t"                                                             \
-  "add     r12, r12, r8, lsl #3\n\t"                                                              \
-  "add     r8, r8, #1\n\t"                                                                        \
-  "str     r8, [%[k]]\n\t"                                                                        \
-  "ldrh    r4, [%[tp], " O0                                                                       \
-  "]\n\t"                                                                                         \
-  "ldrh    r5, [%[tp], " O1                                                                       \
-  "]\n\t"                                                                                         \
-  "ldrh    r6, [%[tp], " O2                                                                       \
-  "]\n\t"                                                                                         \
-  "orr     r4, r4, r5, lsl #16\n\t"                                                               \
-  "add     r4, r4, lr\n\t" /* v0 v1 */                                                            \
-  "add     r6, r6, lr\n\t"                                                                        \
-  "pkhbt   r6, r6, r10, lsl #16\n\t" /* v2 next */                                                \
-  "strd    r4, r6, [r12]\n\t"                                                                     \
-  "cmp     %[tp], %[e]\n\t" /* the next (3b's, without a branch there) */                         \
-  "bne     1b\n\t"                                                                                \
-  "mov     %[a], #0\n\t" /* kBinLaneEnd */                                                        \
-  "b       9f\n"                                                                                  \
-  "5" N                                                                                           \
-  ":\n\t" /* pending vertices onto the list, their flags cleared */                               \
-  "ldrd    r8, r9, [%[k], #44]\n\t"                                                               \
-  "cmp     r8, r9\n\t"                                                                            \
-  "bhi     84f\n\t"                                                                               \
-  "mov     r10, #0\n\t"                                                                           \
-  "ldrb    %[b], [r4, #23]\n\t"                                                                   \
-  "cbz     %[b], 5" N                                                                             \
-  "1f\n\t"                                                                                        \
-  "strb    r10, [r4, #23]\n\t"                                                                    \
-  "str     r4, [r8], #4\n"                                                                        \
-  "5" N                                                                                           \
-  "1:\n\t"                                                                                        \
-  "ldrb    %[b], [r5, #23]\n\t"                                                                   \
-  "cbz     %[b], 5" N                                                                             \
-  "2f\n\t"                                                                                        \
-  "strb    r10, [r5, #23]\n\t"                                                                    \
-  "str     r5, [r8], #4\n"                                                                        \
-  "5" N                                                                                           \
-  "2:\n\t"                                                                                        \
-  "ldrb    %[b], [r6, #23]\n\t"                                                                   \
-  "cbz     %[b], 5" N                                                                             \
-  "3f\n\t"                                                                                        \
-  "strb    r10, [r6, #23]\n\t"                                                                    \
-  "str     r6, [r8], #4\n"                                                                        \
-  "5" N                                                                                           \
-  "3:\n\t"                                                                                        \
-  "str     r8, [%[k], #44]\n\t"                                                                   \
+// bin_lane_asm()'s rows [a, b) into r11 and r9 from r1 = y0, r9 = dy1 and r11 = -dy2, one macro
+// per vertex on top (store_top_first): a on top with dy2 or dy1 the larger (min(0, ..) = 0, so
+// a = y0's row, b from the larger); b on top (a from dy1 < 0, b from max(0, dy2)); c on top (a
+// from dy2 < 0, b from max(0, dy1)). a = max(0, (y0 + 128 + min(0, dy1, dy2)) >> 8) (USAT),
+// b = (y0 + 128 + max(0, dy1, dy2)) >> 8.
+#define LR_BIN_LANE_ROWS_A_DY2       \
+  "add     r1, r1, #128\n\t"         \
+  "sub     r9, r1, r11\n\t"          \
+  "usat    r11, #16, r1, asr #8\n\t" \
+  "asr     r9, r9, #8\n\t"
+#define LR_BIN_LANE_ROWS_A_DY1       \
+  "add     r1, r1, #128\n\t"         \
+  "add     r9, r1, r9\n\t"           \
+  "usat    r11, #16, r1, asr #8\n\t" \
+  "asr     r9, r9, #8\n\t"
+#define LR_BIN_LANE_ROWS_B                                \
+  "add     r1, r1, #128\n\t"                              \
+  "add     r9, r1, r9\n\t"                                \
+  "and     r11, r11, r11, asr #31\n\t" /* min(0, -dy2) */ \
+  "sub     r1, r1, r11\n\t"                               \
+  "usat    r11, #16, r9, asr #8\n\t"                      \
+  "asr     r9, r1, #8\n\t"
+#define LR_BIN_LANE_ROWS_C                            \
+  "add     r1, r1, #128\n\t"                          \
+  "bic     r9, r9, r9, asr #31\n\t" /* max(0, dy1) */ \
+  "add     r9, r1, r9\n\t"                            \
+  "sub     r1, r1, r11\n\t"                           \
+  "usat    r11, #16, r1, asr #8\n\t"                  \
+  "asr     r9, r9, #8\n\t"
+// The rest of bin_lane_asm() for one vertex on top (N: the labels' digit): the rows (ROWS), the
+// columns [c0, c1) into r1 and r8 from r0 = x0, r8 = dx1 and r10 = dx2 (min and max with 0 by
+// conditional AND and BIC), the four tests in one chain of conditional compares, the pending
+// vertices and the record, its indices read from the triangle at byte offsets O0, O1 and O2
+// (store_top_first's order; tp is on the next triangle already).
+#define LR_BIN_LANE_TAIL(N, ROWS, O0, O1, O2)                                      \
+  "7" N ":\n\t" ROWS                                                               \
+  "add     r0, r0, #127\n\t"                                                       \
+  "cmp     r8, r10\n\t"                                                            \
+  "itete   lt\n\t"                                                                 \
+  "andlt   r1, r8, r8, asr #31\n\t"                                                \
+  "andge   r1, r10, r10, asr #31\n\t"                                              \
+  "biclt   r8, r10, r10, asr #31\n\t"                                              \
+  "bicge   r8, r8, r8, asr #31\n\t"                                                \
+  "add     r1, r1, r0\n\t"                                                         \
+  "add     r8, r8, r0\n\t"                                                         \
+  "usat    r1, #16, r1, asr #8\n\t"                                                \
+  "asr     r8, r8, #8\n\t"                                                         \
+  "ldrd    r0, r10, [%[k], #28]\n\t" /* height, width */                           \
+  "cmp     r11, r9\n\t"              /* a < b, a < height, c0 < c1, c0 < width */  \
+  "ittt    lt\n\t"                                                                 \
+  "cmplt   r11, r0\n\t"                                                            \
+  "cmplt   r1, r8\n\t"                                                             \
+  "cmplt   r1, r10\n\t"                                                            \
+  "bge     83f\n\t"                                                                \
+  "ldrb    r0, [r4, #23]\n\t" /* a vertex waiting for its colour */                \
+  "ldrb    r1, [r5, #23]\n\t"                                                      \
+  "ldrb    r8, [r6, #23]\n\t"                                                      \
+  "orr     r9, r0, r1\n\t" /* (the three flags kept for 5N) */                     \
+  "orrs    r9, r9, r8\n\t"                                                         \
+  "bne     5" N                                                                    \
+  "f\n\t"                                                                          \
+  "6" N                                                                            \
+  ":\n\t"                                                                          \
+  "ldm     %[k], {r0, r1, r8, r9, r10}\n\t" /* count m buckets triangles first2 */ \
+  "mul     r1, r11, r1\n\t"                                                        \
+  "lsr     r1, r1, #17\n\t"           /* the strip */                              \
+  "ldrh    r11, [r8, r1, lsl #1]\n\t" /* its head: the record's next */            \
+  "strh    r0, [r8, r1, lsl #1]\n\t"                                               \
+  "add     r9, r9, r0, lsl #3\n\t"                                                 \
+  "add     r0, r0, #1\n\t"                                                         \
+  "str     r0, [%[k]]\n\t"                                                         \
+  "ldrh    r4, [%[tp], " O0                                                        \
+  "]\n\t"                                                                          \
+  "ldrh    r5, [%[tp], " O1                                                        \
+  "]\n\t"                                                                          \
+  "ldrh    r6, [%[tp], " O2                                                        \
+  "]\n\t"                                                                          \
+  "orr     r4, r4, r5, lsl #16\n\t"                                                \
+  "add     r4, r4, r10\n\t" /* v0 v1 */                                            \
+  "add     r6, r6, r10\n\t"                                                        \
+  "pkhbt   r6, r6, r11, lsl #16\n\t" /* v2 next */                                 \
+  "strd    r4, r6, [r9]\n\t"                                                       \
+  "cmp     %[tp], %[e]\n\t" /* the next (3b's, its branch back here) */            \
+  "bls     21b\n\t"                                                                \
+  "b       30b\n"                                                                  \
+  "5" N                                                                            \
+  ":\n\t" /* pending vertices onto the list, their flags (r0, r1, r8) cleared */   \
+  "ldrd    r9, r10, [%[k], #36]\n\t"                                               \
+  "cmp     r9, r10\n\t"                                                            \
+  "bhi     84f\n\t"                                                                \
+  "mov     r10, #0\n\t"                                                            \
+  "cbz     r0, 5" N                                                                \
+  "1f\n\t"                                                                         \
+  "strb    r10, [r4, #23]\n\t"                                                     \
+  "str     r4, [r9], #4\n"                                                         \
+  "5" N                                                                            \
+  "1:\n\t"                                                                         \
+  "cbz     r1, 5" N                                                                \
+  "2f\n\t"                                                                         \
+  "strb    r10, [r5, #23]\n\t"                                                     \
+  "str     r5, [r9], #4\n"                                                         \
+  "5" N                                                                            \
+  "2:\n\t"                                                                         \
+  "cmp     r8, #0\n\t"                                                             \
+  "beq     5" N                                                                    \
+  "3f\n\t"                                                                         \
+  "strb    r10, [r6, #23]\n\t"                                                     \
+  "str     r6, [r9], #4\n"                                                         \
+  "5" N                                                                            \
+  "3:\n\t"                                                                         \
+  "str     r9, [%[k], #36]\n\t"                                                    \
   "b       6" N "b\n"
+// The first part of bin_lane_asm() for one triangle (four copies): the indices read with
+// post-increment (tp on the next triangle from there on), the vertices' addresses, the deltas
+// (dx1 r8, dy1 r9, dx2 r10, -dy2 r11) and minus twice the signed area in r1:r0, its sign in the
+// flags.
+#define LR_BIN_LANE_FRONT                                                \
+  "ldrh    r4, [%[tp]], #2\n\t"                                          \
+  "ldrh    r5, [%[tp]], #2\n\t"                                          \
+  "ldrh    r6, [%[tp]], #2\n\t"                                          \
+  "mla     r4, r4, lr, r12\n\t"                                          \
+  "mla     r5, r5, lr, r12\n\t"                                          \
+  "mla     r6, r6, lr, r12\n\t"                                          \
+  "ldrd    r0, r1, [r4]\n\t" /* x0 y0 */                                 \
+  "ldrd    r8, r9, [r5]\n\t"                                             \
+  "ldrd    r10, r11, [r6]\n\t"                                           \
+  "sub     r8, r8, r0\n\t"   /* dx1 */                                   \
+  "sub     r9, r9, r1\n\t"   /* dy1 */                                   \
+  "sub     r10, r10, r0\n\t" /* dx2 */                                   \
+  "sub     r11, r1, r11\n\t" /* -dy2 */                                  \
+  "smull   r0, r1, r10, r9\n\t"                                          \
+  "smlal   r0, r1, r8, r11\n\t" /* minus twice the signed area, exact */ \
+  "cmp     r1, #0\n\t"
 #endif
 
-// bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): 24 instructions a back
-// face and 78 to 80 a binned front face without pending vertices. The indices read with
-// post-increment (tp on the next triangle from there on), the end in a register; rows as
+// bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): 17 or 19 instructions a
+// back face and 69 to 71 a binned front face without pending vertices. The vertices' base and
+// stride in registers for the whole run (an index to an address is one MLA); minus twice the
+// signed area, so that its high word's sign alone tells a back face, and x0 and y0 read again for
+// the faces that stay (their registers take the area); four copies of that first part, so that
+// a back face in the first three needs no test of the end; rows as
 // (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for the clamp at 0, in one of four tails picked by
-// the vertex on top (store_top_first), which also stores the indices in its order; the constants
-// of a binned face read with one LDM; the record's halves built with one ORR and PKHBT.
+// the vertex on top (store_top_first), which also stores the indices in its order; the four
+// tests of the bounds in one chain of conditional compares; the constants of a binned face read
+// with one LDM; the record's halves built with one ORR and PKHBT.
 inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) {
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
-  // Low registers: CBZ and CBNZ test them.
+  // Low registers: CBZ tests them.
   register uint32_t a asm("r0");
   register uint32_t b asm("r1");
+  const std::array<uint16_t, 3>* last = k.end - 1;
   asm volatile(
-      "1:\n\t"
-      "ldr     %[a], [%[k], #24]\n\t"  // the vertices (24 bytes each)
-      "ldrh    r4, [%[tp]], #2\n\t"  // tp on the next triangle
-      "ldrh    r5, [%[tp]], #2\n\t"
-      "ldrh    r6, [%[tp]], #2\n\t"
-      "add     r4, r4, r4, lsl #1\n\t"
-      "add     r4, %[a], r4, lsl #3\n\t"
-      "add     r5, r5, r5, lsl #1\n\t"
-      "add     r5, %[a], r5, lsl #3\n\t"
-      "add     r6, r6, r6, lsl #1\n\t"
-      "add     r6, %[a], r6, lsl #3\n\t"
-      "ldrd    r8, r9, [r4]\n\t"  // x0 y0
-      "ldrd    r10, r11, [r5]\n\t"
-      "ldrd    r12, lr, [r6]\n\t"
-      "sub     r10, r10, r8\n\t"  // dx1
-      "sub     r11, r11, r9\n\t"  // dy1
-      "sub     r12, r8, r12\n\t"  // -dx2
-      "sub     lr, lr, r9\n\t"    // dy2
-      "smull   %[a], %[b], r10, lr\n\t"
-      "smlal   %[a], %[b], r12, r11\n\t"  // twice the signed area, exact
-      "cmp     %[a], #1\n\t"
-      "sbcs    %[a], %[b], #0\n\t"
-      "blt     4f\n\t"  // no back face: area <= 0
-      "3:\n\t"  // the next
+      "ldrd    r12, lr, [%[k], #20]\n\t"  // the vertices, 24 bytes each
+      // e: from the last triangle to the fourth from the end (not below the address 24:
+      // the vector table is there).
+      "sub     %[e], %[e], #18\n\t"
       "cmp     %[tp], %[e]\n\t"
-      "bne     1b\n\t"
+      "bhi     30f\n"  // fewer than four
+      // Four copies of the first part: a back face in the first three goes on to the next
+      // without a test of the end (at least four triangles are left when the first starts).
+      "21:\n\t" LR_BIN_LANE_FRONT
+      "bpl     4f\n"  // no back face: area <= 0
+      "22:\n\t" LR_BIN_LANE_FRONT
+      "bpl     4f\n"
+      "23:\n\t" LR_BIN_LANE_FRONT
+      "bpl     4f\n"
+      "24:\n\t" LR_BIN_LANE_FRONT
+      "bpl     4f\n"
+      "3:\n\t"  // the next: four or more left, three, two, one, none
+      "cmp     %[tp], %[e]\n\t"
+      "bls     21b\n"
+      "30:\n\t"
+      "sub     r0, %[tp], %[e]\n\t"  // 6, 12, 18, 24: three, two, one, none left
+      "cmp     r0, #12\n\t"
+      "blo     22b\n\t"
+      "beq     23b\n\t"
+      "cmp     r0, #18\n\t"
+      "beq     24b\n\t"
       "mov     %[a], #0\n\t"  // kBinLaneEnd
       "b       9f\n"
       "4:\n\t"
-      "cbnz    %[b], 41f\n\t"  // the high word is 0 only when the area is
-      "ldr     r8, [%[k], #52]\n\t"
+      "cbnz    r0, 41f\n\t"  // the low word is 0: no area if the high word is 0 too
+      "cmp     r1, #0\n\t"
+      "bne     41f\n\t"
+      "ldr     r8, [%[k], #44]\n\t"
       "add     r8, r8, #1\n\t"
-      "str     r8, [%[k], #52]\n\t"
+      "str     r8, [%[k], #44]\n\t"
       "b       3b\n"
       "41:\n\t"
-      // Rows: a = max(0, (y0 + 128 + min(0, dy1, dy2)) >> 8), b = (y0 + 128 + max(..)) >> 8;
-      // the vertex on top (store_top_first) picks the tail that stores them in its order.
-      "cmp     r11, lr\n\t"
+      // x0 and y0 again; the vertex on top (store_top_first) picks the tail that stores the
+      // vertices in its order.
+      "ldrd    r0, r1, [r4]\n\t"
+      "cmn     r9, r11\n\t"  // dy1 - dy2
       "bgt     42f\n\t"
-      "cmp     r11, #0\n\t"  // dy1 <= dy2
-      "bge     70f\n\t"      // a on top
+      "cmp     r9, #0\n\t"  // dy1 <= dy2
+      "bge     70f\n\t"     // a on top
       // b on top
-      LR_BIN_LANE_TAIL("1", LR_BIN_LANE_ROWS_BELOW("r11", "lr"), "#-4", "#-2", "#-6")
+      LR_BIN_LANE_TAIL("1", LR_BIN_LANE_ROWS_B, "#-4", "#-2", "#-6")
       "42:\n\t"
-      "cmp     lr, #0\n\t"  // dy2 < dy1
-      "bge     74f\n\t"     // a on top
+      "cmp     r11, #0\n\t"  // dy2 < dy1
+      "ble     74f\n\t"      // a on top
       // c on top
-      LR_BIN_LANE_TAIL("2", LR_BIN_LANE_ROWS_BELOW("lr", "r11"), "#-2", "#-6", "#-4")
-      LR_BIN_LANE_TAIL("0", LR_BIN_LANE_ROWS_TOP("lr"), "#-6", "#-4", "#-2")
-      LR_BIN_LANE_TAIL("4", LR_BIN_LANE_ROWS_TOP("r11"), "#-6", "#-4", "#-2")
+      LR_BIN_LANE_TAIL("2", LR_BIN_LANE_ROWS_C, "#-2", "#-6", "#-4")
+      LR_BIN_LANE_TAIL("0", LR_BIN_LANE_ROWS_A_DY2, "#-6", "#-4", "#-2")
+      LR_BIN_LANE_TAIL("4", LR_BIN_LANE_ROWS_A_DY1, "#-6", "#-4", "#-2")
       "83:\n\t"
-      "ldr     r8, [%[k], #56]\n\t"
+      "ldr     r8, [%[k], #48]\n\t"
       "add     r8, r8, #1\n\t"
-      "str     r8, [%[k], #56]\n\t"
+      "str     r8, [%[k], #48]\n\t"
       "b       3b\n"
       "84:\n\t"
       "sub     %[tp], %[tp], #6\n\t"  // the triangle not done
       "mov     %[a], #1\n"             // kBinLaneFlush
       "9:\n"
-      : [tp] "+r"(tp), [a] "=&r"(a), [b] "=&r"(b)
-      : [k] "r"(&k), [e] "r"(k.end)
+      : [tp] "+r"(tp), [a] "=&r"(a), [b] "=&r"(b), [e] "+r"(last)
+      : [k] "r"(&k)
       : "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   return static_cast<BinLaneStop>(a);
 #else
@@ -345,8 +388,11 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
 
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
 #undef LR_BIN_LANE_TAIL
-#undef LR_BIN_LANE_ROWS_BELOW
-#undef LR_BIN_LANE_ROWS_TOP
+#undef LR_BIN_LANE_FRONT
+#undef LR_BIN_LANE_ROWS_A_DY2
+#undef LR_BIN_LANE_ROWS_A_DY1
+#undef LR_BIN_LANE_ROWS_B
+#undef LR_BIN_LANE_ROWS_C
 #endif
 
 }  // namespace lr

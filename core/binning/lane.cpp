@@ -94,21 +94,21 @@ uint32_t FrontEnd::lane_run_triangles(MeshDraw& d, uint32_t t) {
   const EdgeTable::Raw table = edges_.raw();
   ScreenVertex* list[kLightList];
   BinLane k{table.count,
-            table.capacity,
             table.strip_reciprocal,
             table.buckets,
             table.triangles,
             static_cast<uint32_t>(d.base) * 0x10001u,
             store_.vertices_at(d.base),
-            static_cast<uint32_t>(d.mesh.positions.size()),
-            end,
+            sizeof(ScreenVertex),
             height_,
             width_,
             list,
             list + kLightList - 3,
             0,
             0,
-            0};
+            table.capacity,
+            static_cast<uint32_t>(d.mesh.positions.size()),
+            end};
   const uint32_t count_before = table.count;
   // Up to the first triangle with an index out of range (draw_triangle() rejects it), in runs
   // that cannot fill the table (a full one: draw_triangle() bins in bands).

@@ -1,12 +1,14 @@
 // Random meshes for the front end's bin lane (core/binning/bin_lane.hpp): screen vertices
 // on and off the viewport, at the guard band's reach, on and next to pixel centres, degenerate
-// (repeated and collinear corners), some waiting for their colour; triangles of both facings, some
-// with an index out of range (first_out_of_range() ends the lane's run there). run_cases() runs two
-// lanes on equal copies of each mesh (with a small table and list, so that they stop, flush and
-// resume) and counts the meshes on which anything differs: the stop reasons, the triangle each
-// stopped at, the records (order, vertices, next), the buckets, the counts, the list of vertices to
-// light and the vertices' flags. Shared by lr_bin_check (the hand-allocated lane against the C one
-// on the target) and the host test.
+// (repeated and collinear corners), some waiting for their colour, some meshes with a right
+// triangle whose twice signed area is a multiple of 2^32 (its low word 0, which the hand-made lane
+// tests apart from a zero area); triangles of both facings, some with an index out of range
+// (first_out_of_range() ends the lane's run there). run_cases() runs two lanes on equal copies of
+// each mesh (with a small table and list, so that they stop, flush and resume) and counts the
+// meshes on which anything differs: the stop reasons, the triangle each stopped at, the records
+// (order, vertices, next), the buckets, the counts, the list of vertices to light and the vertices'
+// flags. Shared by lr_bin_check (the hand-allocated lane against the C one on the target) and the
+// host test.
 #pragma once
 
 #include <array>
@@ -40,6 +42,7 @@ struct Run {
 
 struct Tally {
   uint32_t meshes = 0, binned = 0, back = 0, zero = 0, offscreen = 0, lit = 0, stops = 0;
+  uint32_t low_word_zero = 0;  // triangles with twice the area a non-zero multiple of 2^32
   uint32_t differing = 0;
   uint32_t scans = 0, scans_differing = 0;  // first_out_of_range() against one index at a time
 };
@@ -83,6 +86,16 @@ inline void make_mesh(Rng& r, Mesh& m) {
     v.color = {static_cast<uint16_t>(i), 0, 0};
     v.color_pending = (kind == 3 || r.next() % 3 == 0) ? 1 : 0;
   }
+  if (r.next() % 4 == 0) {  // vertices 0 to 2: legs of 2^16 and 2^16 << s subpixels
+    const int32_t x = r.range(-300 * 256, kWidth * 256), y = r.range(-300 * 256, kHeight * 256);
+    const int32_t leg = 1 << (16 + r.next() % 3);
+    m.v[0].x = x;
+    m.v[0].y = y;
+    m.v[1].x = x + leg;
+    m.v[1].y = y;
+    m.v[2].x = x;
+    m.v[2].y = y + (1 << 16);
+  }
   for (uint32_t t = 0; t < kTriangles; ++t) {
     const auto a = static_cast<uint16_t>(r.next() % kVertices);
     uint16_t b = static_cast<uint16_t>(r.next() % kVertices);
@@ -91,6 +104,10 @@ inline void make_mesh(Rng& r, Mesh& m) {
     if (shape == 0) b = a;                                         // repeated corner
     if (shape == 1) c = static_cast<uint16_t>(kVertices + shape);  // out of range (slow path)
     m.t[t] = {a, b, c};
+    // Vertices 0 to 2 (the right triangle, when it is there) in each order: each vertex on top.
+    constexpr std::array<uint16_t, 3> kCorners[6] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},
+                                                     {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
+    if (shape >= 2 && shape < 8) m.t[t] = kCorners[shape - 2];
   }
 }
 
@@ -104,26 +121,28 @@ void run_lane(const Mesh& m, Run& out, Lane&& lane, uint32_t strip_reciprocal, u
   for (uint16_t& b : out.buckets) b = kNoTriangle;
   out.lit_count = out.stop_count = 0;
   BinLane k{0,
-            capacity,
             strip_reciprocal,
             out.buckets,
             out.tris,
             first * 0x10001u,
             out.v,
-            kVertices,
-            m.t + kTriangles,
+            sizeof(ScreenVertex),
             kHeight,
             kWidth,
             out.list,
             out.list + kList - 3,
             0,
             0,
-            0};
+            capacity,
+            kVertices,
+            m.t + kTriangles};
   const std::array<uint16_t, 3>* tp = m.t;
   const std::array<uint16_t, 3>* const end = m.t + kTriangles;
   // As FrontEnd::lane_run_triangles() runs the lane: up to the next index out of range (that
-  // triangle skipped here), in runs that cannot fill the table, until it is full.
-  while (tp != end && k.count < k.capacity) {
+  // triangle skipped here), in runs that cannot fill the table, until it is full (and a lane
+  // that stops short without progress ends at the room of the stops: a difference, not a hang).
+  constexpr uint32_t kStops = sizeof(out.stops) / sizeof(out.stops[0]);
+  while (tp != end && k.count < k.capacity && out.stop_count < kStops) {
     const std::array<uint16_t, 3>* const stop = first_out_of_range(tp, end, kVertices);
     if (tp == stop) {
       out.stops[out.stop_count++] = 3u << 16 | static_cast<uint32_t>(tp - m.t);
@@ -177,6 +196,13 @@ Tally run_cases(uint32_t meshes, Mesh& m, Run& a, Run& b, P&& p, Q&& q, uint32_t
     run_lane(m, a, p, kReciprocal, first, capacity);
     run_lane(m, b, q, kReciprocal, first, capacity);
     ++t.meshes;
+    for (const std::array<uint16_t, 3>& tri : m.t) {
+      if (tri[0] >= kVertices || tri[1] >= kVertices || tri[2] >= kVertices) continue;
+      const ScreenVertex &v0 = m.v[tri[0]], &v1 = m.v[tri[1]], &v2 = m.v[tri[2]];
+      const int64_t area =
+          int64_t{v1.x - v0.x} * (v2.y - v0.y) - int64_t{v2.x - v0.x} * (v1.y - v0.y);
+      if (area != 0 && (area & 0xFFFFFFFF) == 0) ++t.low_word_zero;
+    }
     t.binned += a.count;
     t.zero += a.zero;
     t.offscreen += a.offscreen;

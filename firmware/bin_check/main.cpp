@@ -41,6 +41,8 @@ int main() {
   sh::write(" vertices to light, ");
   sh::write_dec(t.stops);
   sh::write(" stops, ");
+  sh::write_dec(t.low_word_zero);
+  sh::write(" with twice the area a multiple of 2^32, ");
   sh::write_dec(t.differing);
   sh::write(" meshes differ; ");
   sh::write_dec(t.scans);
@@ -49,7 +51,8 @@ int main() {
   sh::write(" differ\n");
   // A run that compared (almost) nothing proves nothing.
   const bool ok = t.differing == 0 && t.scans_differing == 0 && t.scans > 100000 &&
-                  t.binned > 20000 && t.zero > 1000 && t.offscreen > 500 && t.lit > 20000;
+                  t.binned > 20000 && t.zero > 1000 && t.offscreen > 500 && t.lit > 20000 &&
+                  t.low_word_zero > 1000;
   sh::write(ok ? "lr_bin_check: PASS\n" : "lr_bin_check: FAIL\n");
   sh::exit(ok);
 }

@@ -77,15 +77,17 @@ TEST(BinLane, CLaneBinsWhatTheEdgeTableBins) {
   const bins::Tally t = bins::run_cases(3000, m, a, b, portable, reference);
   std::printf(
       "[ bins ] %u meshes, %u binned, %u without area, %u without a pixel centre, %u to "
-      "light, %u stops: %u differ; %u index scans, %u differ\n",
-      t.meshes, t.binned, t.zero, t.offscreen, t.lit, t.stops, t.differing, t.scans,
-      t.scans_differing);
+      "light, %u stops, %u with twice the area a multiple of 2^32: %u differ; %u index scans, "
+      "%u differ\n",
+      t.meshes, t.binned, t.zero, t.offscreen, t.lit, t.stops, t.low_word_zero, t.differing,
+      t.scans, t.scans_differing);
   EXPECT_EQ(t.differing, 0u);
   EXPECT_EQ(t.scans_differing, 0u);
   EXPECT_GT(t.binned, 20000u);
   EXPECT_GT(t.zero, 1000u);
   EXPECT_GT(t.offscreen, 500u);
   EXPECT_GT(t.lit, 20000u);
+  EXPECT_GT(t.low_word_zero, 1000u);
 }
 
 // Every triangle with corners on rows 0..3 (ties of every kind): stored as the rotation that
