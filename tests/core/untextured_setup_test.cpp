@@ -127,19 +127,12 @@ TEST(UntexturedPlanes, ShortPathWithinTheDocumentedBound) {
 // dropped low bits of the depth differences (2^zsh times the barycentric weights) and a unit.
 void check_small(const ScreenVertex* const v[3], const uint32_t a[3], const Plane& p, int left,
                  int rshift, int zsh, std::mt19937_64& rng, Errors& e) {
-  const int32_t xl = std::min({v[0]->x, v[1]->x, v[2]->x}),
-                xh = std::max({v[0]->x, v[1]->x, v[2]->x});
-  const int32_t yl = std::min({v[0]->y, v[1]->y, v[2]->y}),
-                yh = std::max({v[0]->y, v[1]->y, v[2]->y});
-  const int32_t c0 = first_row_below(xl - 1), c1 = last_row_at_or_above(xh);
-  const int32_t r0 = first_row_below(yl - 1), r1 = last_row_at_or_above(yh);
-  if (c0 > c1 || r0 > r1) return;
   const double x0 = v[0]->x, y0 = v[0]->y;
   const double ex1 = v[1]->x - x0, ey1 = v[1]->y - y0, ex2 = v[2]->x - x0, ey2 = v[2]->y - y0;
   const double d = ex1 * ey2 - ex2 * ey1;
   const double rel = std::ldexp(1.0, -27) + std::ldexp(1.0, rshift - 30);
   const double da1 = static_cast<double>(a[1]) - a[0], da2 = static_cast<double>(a[2]) - a[0];
-  auto sample = [&](int32_t c, int32_t r) {
+  sample_bounding_box(v, rng, [&](int32_t c, int32_t r, double /*distance*/) {
     const double err = std::fabs(plane_error(v, a, p, c, r));
     const double px = c * 256.0 + 128 - x0, py = r * 256.0 + 128 - y0;
     const double l1 = (px * ey2 - py * ex2) / d, l2 = (py * ex1 - px * ey1) / d;
@@ -153,14 +146,7 @@ void check_small(const ScreenVertex* const v[3], const uint32_t a[3], const Plan
     if (err > bound && e.over++ < 5)
       ADD_FAILURE() << "error " << err << " > bound " << bound << " at (" << c << "," << r
                     << "), left " << left << " rshift " << rshift << " zsh " << zsh;
-  };
-  sample(c0, r0);
-  sample(c1, r0);
-  sample(c0, r1);
-  sample(c1, r1);
-  for (int k = 0; k < 4; ++k)
-    sample(c0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(c1 - c0 + 1)),
-           r0 + static_cast<int32_t>(rng() % static_cast<uint64_t>(r1 - r0 + 1)));
+  });
 }
 
 // Small triangles (edge components below 2^14 subpixels) are set up in int32 throughout, from
