@@ -141,30 +141,18 @@ namespace detail {
 // z r4 (step r5), br r9 (r10), g r3 (r8); the pixels' end r1, the depths' end r2; per pixel the
 // depth and the pixel in r0, green in r11. A rejected pixel is taken off the strip's written
 // count at once (the visit adds every pixel in its spans at the end). Instructions: per written
-// pixel 16, per rejected one 8 (plus the count); per row with a span 28 (kInside; clamped 35),
-// without one 12 (19); per visit about 50 (the retire, the next triangle's test with the run's
+// pixel 16, per rejected one 8 (plus the count); per row with a span 27 (kInside; clamped 34),
+// without one 13 (20); per visit about 50 (the retire, the next triangle's test with the run's
 // words and the strip's (stride, y0, y_last, pix0: then in r6, r9-r11) in one LDM: label 10;
 // then the pick-up into the row loop's registers, which enters past its LDM). The counts of a
 // run stay in r12 and go to the strip at the run's end or once it has 32 rows or more (its
 // fields then hold the next visit: at most 63 rows, spans and 63 x kMaxViewport pixels). The
 // row loop, its labels numbered from N, with CLAMP between the columns and the span; TO the
-// label of a row past stop, SWITCH its code when it is the loop's own (LR_LANE_SWITCH).
-#define LR_LANE_ROWS(N1, N8, N2, N3, N4, TO, CLAMP, SWAP, SWITCH)                \
-  N1 ":\n\t"                                                                     \
-     "ldm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"           \
-     "cmp    r3, r11\n\t"                                                        \
-     "bgt    " TO "\n\t" N8                                                      \
-     ":\n\t"                                                                     \
-     "add    r4, r0, r4\n\t"                                                     \
-     "add    r5, r1, r5\n\t"                                                     \
-     "udiv   r0, r0, r8\n\t"                                                     \
-     "udiv   r1, r1, r9\n\t"                                                     \
-     "add    r6, r2, r6\n\t"                                                     \
-     "add    r8, r3, #1\n\t"                                                     \
-     "stm    %[a], {r4, r5, r6, r8}\n\t" CLAMP                                   \
-     "subs   r6, r0, r1\n\t"                                                     \
-     "bge    " N1                                                                \
-     "b\n\t"                                                                     \
+// label of a row past stop, SWITCH its code when it is the loop's own (LR_LANE_SWITCH). The
+// span's set-up (N5) and pixel loop come before the row's part (N1), into which the pixel loop
+// falls: a row with a span takes no branch back.
+#define LR_LANE_ROWS(N1, N8, N5, N2, N3, N4, TO, CLAMP, SWAP, SWITCH)            \
+  N5 ":\n\t"                                                                     \
      "sub    r12, r12, r6\n\t"                                                   \
      "add    r12, r12, #0x100000\n\t"                                            \
      "add    r1, r2, r1, lsl #1\n\t"                                             \
@@ -196,7 +184,21 @@ namespace detail {
      "add    r9, r10\n\t"                                                        \
      "add    r3, r8\n\t"                                                         \
      "adds   r6, #1\n\t"                                                         \
-     "bne    " N2                                                                \
+     "bne    " N2 "b\n\t" N1                                                     \
+     ":\n\t"                                                                     \
+     "ldm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"           \
+     "cmp    r3, r11\n\t"                                                        \
+     "bgt    " TO "\n\t" N8                                                      \
+     ":\n\t"                                                                     \
+     "add    r4, r0, r4\n\t"                                                     \
+     "add    r5, r1, r5\n\t"                                                     \
+     "udiv   r0, r0, r8\n\t"                                                     \
+     "udiv   r1, r1, r9\n\t"                                                     \
+     "add    r6, r2, r6\n\t"                                                     \
+     "add    r8, r3, #1\n\t"                                                     \
+     "stm    %[a], {r4, r5, r6, r8}\n\t" CLAMP                                   \
+     "subs   r6, r0, r1\n\t"                                                     \
+     "blt    " N5                                                                \
      "b\n\t"                                                                     \
      "b      " N1 "b\n\t" SWITCH N3                                              \
      ":\n\t"                                                                     \
@@ -279,7 +281,8 @@ namespace detail {
       "ldr    lr, [%[a], #60]\n\t"                                         \
       "mov    r12, #0\n\t"                                                 \
       "b      0f\n\t"                                                      \
-      LR_LANE_ROWS("11", "18", "12", "13", "14", "17f", "", SWAP, LR_LANE_SWITCH_INSIDE) \
+      LR_LANE_ROWS("11", "18", "16", "12", "13", "14", "17f", "", SWAP,   \
+                   LR_LANE_SWITCH_INSIDE)                                 \
       "9:\n\t"                                                             \
       "adds   r12, r12, r3, lsl #26\n\t"                                   \
       "bpl    10f\n\t" LR_LANE_FLUSH "mov    r12, #0\n\t"                  \
@@ -353,7 +356,8 @@ namespace detail {
       "str    r5, [r0, #28]\n\t"                                           \
       "tst    r2, #4\n\t"                                                  \
       "bne    11b\n\t"                                                     \
-      LR_LANE_ROWS("1", "8", "2", "3", "4", LR_LANE_TO_CLAMPED, LR_LANE_CLAMP, SWAP,   \
+      "b      1f\n\t"                                                      \
+      LR_LANE_ROWS("1", "8", "6", "2", "3", "4", LR_LANE_TO_CLAMPED, LR_LANE_CLAMP, SWAP, \
                    LR_LANE_SWITCH_CLAMPED)                                \
       "19:\n\t" LR_LANE_FLUSH                                               \
       :                                                                    \
