@@ -142,9 +142,11 @@ namespace detail {
 // depth and the pixel in r0, green in r11. A rejected pixel is taken off the strip's written
 // count at once (the visit adds every pixel in its spans at the end). Instructions: per written
 // pixel 16, per rejected one 8 (plus the count); per row with a span 27 (kInside; clamped 34),
-// without one 13 (20); per visit about 50 (the retire, the next triangle's test with the run's
-// words and the strip's (stride, y0, y_last, pix0: then in r6, r9-r11) in one LDM: label 10;
-// then the pick-up into the row loop's registers, which enters past its LDM). The counts of a
+// without one 13 (20); per visit about 47 (the next triangle's test with the run's words and
+// the strip's (stride, y0, y_last, pix0: then in r6, r9-r11) in one LDM: label 10; then the
+// pick-up (label 0), which retires the triangle at once (its slot to the free or the kept list,
+// and the run's next, kept and free stored) and fills the row loop's registers, entering past
+// its LDM). The counts of a
 // run stay in r12 and go to the strip at the run's end or once it has 32 rows or more (its
 // fields then hold the next visit: at most 63 rows, spans and 63 x kMaxViewport pixels). The
 // row loop, its labels numbered from N, with CLAMP between the columns and the span; TO the
@@ -260,9 +262,10 @@ namespace detail {
   "stm    r5, {r1, r2, r3, r6}\n\t"
 // The run: the strip's words (pixels, depth, y0, y_last, width) in one LDM, the run's from
 // stride on filled and the frame's width and depth offset stored once, the first triangle's
-// address in lr; then the row loop of kInside, the end of a visit (the counts, the retire, the
-// next triangle's test) and the pick-up (label 0): the rows, then the edges straight into the
-// row loop's registers (q, dx, dy: the record's first six words), stored as the frame. Below the
+// address in lr and its slot in r4; then the row loop of kInside, the end of a visit (the
+// counts, the next triangle's test) and the pick-up (label 0): the retire, the rows, then the
+// edges straight into the row loop's registers (q, dx, dy: the record's first six words),
+// stored as the frame. Below the
 // middle vertex from the start, the short side's edge is the bottom one. Then the row loop with
 // the clamp and at the run's end the counts.
 #define LR_LANE_VISIT(SWAP) \
@@ -276,8 +279,10 @@ namespace detail {
       "mls    r11, r6, r9, r0\n\t"                                         \
       "ldr    r0, [%[a], #56]\n\t"                                         \
       "str    r6, [r0, #20]\n\t"                                           \
-      "add    r0, #28\n\t"                                                 \
-      "stm    r0, {r9, r10, r11}\n\t"                                      \
+      "add    r1, r0, #28\n\t"                                             \
+      "stm    r1, {r9, r10, r11}\n\t"                                      \
+      "ldm    r0, {r1, r2, r3}\n\t"                                        \
+      "ldrh   r4, [r1], #2\n\t"                                            \
       "ldr    lr, [%[a], #60]\n\t"                                         \
       "mov    r12, #0\n\t"                                                 \
       "b      0f\n\t"                                                      \
@@ -287,29 +292,26 @@ namespace detail {
       "adds   r12, r12, r3, lsl #26\n\t"                                   \
       "bpl    10f\n\t" LR_LANE_FLUSH "mov    r12, #0\n\t"                  \
       "10:\n\t"                                                            \
-      "ldrsh  lr, [lr, #40]\n\t"                                           \
       "ldr    r0, [%[a], #56]\n\t"                                         \
       "ldm    r0, {r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"          \
-      "cmp    lr, r10\n\t"                                                 \
-      "ldrh   lr, [r1], #2\n\t"                                            \
-      "ite    le\n\t"                                                      \
-      "strhle lr, [r3], #2\n\t"                                            \
-      "strhgt lr, [r2], #2\n\t"                                            \
-      "stm    r0, {r1, r2, r3}\n\t"                                        \
       "cmp    r1, r4\n\t"                                                  \
       "beq    19f\n\t"                                                     \
-      "ldrh   r2, [r1]\n\t"                                                \
-      "mov    r3, %[size]\n\t"                                             \
-      "mla    lr, r2, r3, r5\n\t"                                          \
-      "ldr    r2, [lr, %[rows]]\n\t"                                       \
-      "cmp    r2, r8\n\t"                                                  \
+      "ldrh   r4, [r1], #2\n\t"                                            \
+      "mov    lr, %[size]\n\t"                                             \
+      "mla    lr, r4, lr, r5\n\t"                                          \
+      "ldr    r5, [lr, %[rows]]\n\t"                                       \
+      "cmp    r5, r8\n\t"                                                  \
       "bne    19f\n\t"                                                     \
       "0:\n\t"                                                             \
-      "ldrsh  r4, [lr, #36]\n\t"                                           \
       "ldrsh  r5, [lr, #40]\n\t"                                           \
       "cmp    r5, r10\n\t"                                                 \
+      "ite    le\n\t"                                                      \
+      "strhle r4, [r3], #2\n\t"                                            \
+      "strhgt r4, [r2], #2\n\t"                                            \
+      "stm    r0, {r1, r2, r3}\n\t"                                        \
       "it     gt\n\t"                                                      \
       "movgt  r5, r10\n\t"                                                 \
+      "ldrsh  r4, [lr, #36]\n\t"                                           \
       "cmp    r4, r9\n\t"                                                  \
       "ite    ge\n\t"                                                      \
       "movge  r3, r4\n\t"                                                  \
