@@ -134,29 +134,27 @@ namespace detail {
 //   24 stride (bytes per row)  28 dy[0]  32 dy[1]  36 col_base  40 stop (the last row of the
 //   edges in the frame)  44 width  48 last  52 depth offset (bytes from a pixel to its depth;
 //   it and width stored once per run)
-// and r12 counts the pixels in spans (bits 0..19), the spans (20..25) and the rows (26..31: minus
-// the first row, plus the row after the last at the end). Per row: the first eleven words in
-// r0-r6, r8-r11, the row tested against stop at once; left r0 and right r1 (clamped unless
+// and r12 counts the pixels in spans (bits 0..19), the rows without a span (20..25) and the rows
+// (26..31: minus the first row, plus the row after the last at the end). Per row: the first eleven
+// words in r0-r6, r8-r11, the row tested against stop at once; left r0 and right r1 (clamped unless
 // kInside: width read then); the index r6 from left - right up to 0; the planes at (left, row):
 // z r4 (step r5), br r9 (r10), g r3 (r8); the pixels' end r1, the depths' end r2; per pixel the
 // depth and the pixel in r0, green in r11. A rejected pixel is taken off the strip's written
 // count at once (the visit adds every pixel in its spans at the end). Instructions: per written
-// pixel 16, per rejected one 8 (plus the count); per row with a span 27 (kInside; clamped 34),
-// without one 13 (20); per visit about 47 (the next triangle's test with the run's words and
+// pixel 16, per rejected one 8 (plus the count); per row with a span 26 (kInside; clamped 33),
+// without one 14 (21); per visit about 47 (the next triangle's test with the run's words and
 // the strip's (stride, y0, y_last, pix0: then in r6, r9-r11) in one LDM: label 10; then the
 // pick-up (label 0), which retires the triangle at once (its slot to the free or the kept list,
 // and the run's next, kept and free stored) and fills the row loop's registers, entering past
-// its LDM). The counts of a
-// run stay in r12 and go to the strip at the run's end or once it has 32 rows or more (its
-// fields then hold the next visit: at most 63 rows, spans and 63 x kMaxViewport pixels). The
-// row loop, its labels numbered from N, with CLAMP between the columns and the span; TO the
-// label of a row past stop, SWITCH its code when it is the loop's own (LR_LANE_SWITCH). The
-// span's set-up (N5) and pixel loop come before the row's part (N1), into which the pixel loop
-// falls: a row with a span takes no branch back.
+// its LDM). The counts of a run stay in r12 and go to the strip at the run's end or once it has
+// 32 rows or more (its fields then hold the next visit: at most 63 rows and 63 x kMaxViewport
+// pixels). The row loop, its labels numbered from N, with CLAMP between the columns and the
+// span; TO the label of a row past stop, SWITCH its code when it is the loop's own
+// (LR_LANE_SWITCH). The span's set-up (N5) and pixel loop come before the row's part (N1), into
+// which the pixel loop falls: a row with a span takes no branch back.
 #define LR_LANE_ROWS(N1, N8, N5, N2, N3, N4, TO, CLAMP, SWAP, SWITCH)            \
   N5 ":\n\t"                                                                     \
      "sub    r12, r12, r6\n\t"                                                   \
-     "add    r12, r12, #0x100000\n\t"                                            \
      "add    r1, r2, r1, lsl #1\n\t"                                             \
      "add    r8, lr, #52\n\t"                                                    \
      "ldm    r8!, {r4, r5, r9}\n\t"                                              \
@@ -202,6 +200,7 @@ namespace detail {
      "subs   r6, r0, r1\n\t"                                                     \
      "blt    " N5                                                                \
      "b\n\t"                                                                     \
+     "add    r12, r12, #0x100000\n\t"                                            \
      "b      " N1 "b\n\t" SWITCH N3                                              \
      ":\n\t"                                                                     \
      "ldr    r0, [%[a], #64]\n\t"                                                \
@@ -234,10 +233,23 @@ namespace detail {
   LR_LANE_SWITCH("17", "f", "tst    r2, #4\n\tbne    11b\n\tb      1f\n\t")
 #define LR_LANE_SWITCH_CLAMPED ""
 #define LR_LANE_TO_CLAMPED "17b"
+// And one copy of the flush: r0 says whether the run goes on (label 10) after it.
+#define LR_LANE_FLUSH_RUN \
+  "movs   r0, #1\n\t"     \
+  "b      20f\n\t"
+#define LR_LANE_FLUSH_END \
+  "movs   r0, #0\n\t"     \
+  "20:\n\t" LR_LANE_FLUSH \
+  "cbz    r0, 21f\n\t"    \
+  "mov    r12, #0\n\t"    \
+  "b      10b\n\t"        \
+  "21:\n\t"
 #else
 #define LR_LANE_SWITCH_INSIDE LR_LANE_SWITCH("17", "f", "b      11b\n\t")
 #define LR_LANE_SWITCH_CLAMPED LR_LANE_SWITCH("7", "b", "b      1b\n\t")
 #define LR_LANE_TO_CLAMPED "7f"
+#define LR_LANE_FLUSH_RUN LR_LANE_FLUSH "mov    r12, #0\n\t"
+#define LR_LANE_FLUSH_END LR_LANE_FLUSH
 #endif
 // The columns relative to col_base, clamped to [0, width).
 #define LR_LANE_CLAMP              \
@@ -248,13 +260,15 @@ namespace detail {
   "cmp    r1, r4\n\t"              \
   "it     gt\n\t"                  \
   "movgt  r1, r4\n\t"
-// The counts of r12 added to the strip's (StripRows::spans, tested, written, rows).
+// The counts of r12 added to the strip's (StripRows::spans, tested, written, rows; the spans
+// are the rows less those without one).
 #define LR_LANE_FLUSH               \
   "ldr    r5, [%[a], #64]\n\t"      \
   "add    r5, #32\n\t"              \
   "ldm    r5, {r1, r2, r3, r6}\n\t" \
   "ubfx   r4, r12, #20, #6\n\t"     \
-  "add    r1, r4\n\t"               \
+  "sub    r1, r4\n\t"               \
+  "add    r1, r1, r12, lsr #26\n\t" \
   "ubfx   r4, r12, #0, #20\n\t"     \
   "add    r2, r4\n\t"               \
   "add    r3, r4\n\t"               \
@@ -290,7 +304,7 @@ namespace detail {
                    LR_LANE_SWITCH_INSIDE)                                 \
       "9:\n\t"                                                             \
       "adds   r12, r12, r3, lsl #26\n\t"                                   \
-      "bpl    10f\n\t" LR_LANE_FLUSH "mov    r12, #0\n\t"                  \
+      "bpl    10f\n\t" LR_LANE_FLUSH_RUN                                   \
       "10:\n\t"                                                            \
       "ldr    r0, [%[a], #56]\n\t"                                         \
       "ldm    r0, {r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"          \
@@ -361,7 +375,7 @@ namespace detail {
       "b      1f\n\t"                                                      \
       LR_LANE_ROWS("1", "8", "6", "2", "3", "4", LR_LANE_TO_CLAMPED, LR_LANE_CLAMP, SWAP, \
                    LR_LANE_SWITCH_CLAMPED)                                \
-      "19:\n\t" LR_LANE_FLUSH                                               \
+      "19:\n\t" LR_LANE_FLUSH_END                                           \
       :                                                                    \
       : [a] "r"(ts), [size] "i"(sizeof(ActiveTriangle)),                   \
         [rows] "i"(offsetof(ActiveTriangle, rows))                         \
@@ -416,6 +430,8 @@ template <bool kSwap>
 #undef LR_LANE_SWITCH_INSIDE
 #undef LR_LANE_SWITCH_CLAMPED
 #undef LR_LANE_TO_CLAMPED
+#undef LR_LANE_FLUSH_RUN
+#undef LR_LANE_FLUSH_END
 }  // namespace detail
 
 // The run: by hand on Armv7E-M for the RGB565 formats (whose from_value is the value or its
