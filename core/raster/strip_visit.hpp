@@ -42,7 +42,7 @@ template <class Run>
     const uint16_t slot = order[i];
     const ActiveTriangle& t = active[slot];
     if (lanes != nullptr && t.rows == lanes) {
-      r = LaneRun{order + i, order + kept, free_slots + free, order + count, active, lanes, last};
+      r.start(order + i, order + kept, free_slots + free, order + count, active, lanes, last);
       run(t, r, sr);
       i = static_cast<size_t>(r.next - order);
       kept = static_cast<size_t>(r.kept - order);

@@ -61,7 +61,8 @@ template <class PF>
 template <class PF>
 void lanes_rows(const ActiveTriangle& t, StripRows& s) {
   uint16_t slot = 0, list = 0;
-  LaneRun run{&slot, &list, &list, &slot + 1, &t, nullptr, s.y_last};
+  LaneRun run;
+  run.start(&slot, &list, &list, &slot + 1, &t, nullptr, s.y_last);
   lanes_run<PF>(t, run, s);
 }
 

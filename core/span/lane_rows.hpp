@@ -84,8 +84,25 @@ struct LaneRun {
   uint16_t* free;                // where the next free slot goes
   const uint16_t* end;           // one past the active list's last entry
   const ActiveTriangle* active;  // the active slots
-  RowFn lanes;                   // the rows of the triangles the run takes
-  int32_t y_last;                // the strip's last row
+  // The strip's words the Armv7E-M form reads with the run's between two triangles, in one LDM
+  // (it fills them; unused elsewhere): the bytes per row, the first row, and the address of row
+  // 0's first pixel (modulo 2^32: the strip's first pixel less y0 rows).
+  uint32_t stride;
+  RowFn lanes;  // the rows of the triangles the run takes
+  int32_t y0;
+  int32_t y_last;  // the strip's last row
+  uintptr_t pix0;
+  // A run from `next` on (field by field: the words the Armv7E-M form fills stay as they are).
+  void start(const uint16_t* n, uint16_t* k, uint16_t* f, const uint16_t* e,
+             const ActiveTriangle* a, RowFn l, int32_t last) {
+    next = n;
+    kept = k;
+    free = f;
+    end = e;
+    active = a;
+    lanes = l;
+    y_last = last;
+  }
 };
 
 // The run in C: lane_visit_portable per triangle.
@@ -111,41 +128,33 @@ inline constexpr bool kLaneVisitAsm = false;
 namespace detail {
 // The visit by hand (Armv7E-M: LDM/STM, UDIV, MLA, REV16). The one operand (in r7, the register
 // the loop leaves to the compiler: Thumb's frame pointer) points to the visit's frame, a local
-// array of 18 words: the run's address at 56 (LaneRun), the counts between the run's triangles
-// at 60, the first triangle's address at 64 (then in lr) and the strip's at 68, and the visit's
-// state:
+// array of 17 words: the run's address at 56 (LaneRun), the first triangle's address at 60
+// (then in lr) and the strip's at 64, and the visit's state:
 //   0 q[0]  4 q[1]  8 px (the row's pixel in column 0)  12 row  16 dx[0]  20 dx[1]
-//   24 stride (bytes per row)  28 dy[0]  32 dy[1]  36 col_base  40 width  44 stop  48 last
-//   52 depth offset (bytes from a pixel to its depth)
-// and r12 counts the pixels in spans (bits 0..19), the spans (20..25) and the rows (26..31: minus
-// the first row, plus the row after the last at the end). Per row: the first eleven words in
-// r0-r6, r8-r11; left r0 and right r1 (clamped unless kInside); the index r6 from left - right up
-// to 0; the planes at (left, row): z r4 (step r5), br r9 (r10), g r3 (r8); the pixels' end r1, the
-// depths' end r2; per pixel the depth and the pixel in r0, green in r11. A rejected pixel is
-// taken off the strip's written count at once (the visit adds every pixel in its spans at the
-// end). Instructions: per written pixel 16, per rejected one 8 (plus the count); per row with a
-// span 35 (kInside 29), without one 20 (14); per visit about 48 (pick-up into the row loop's
-// registers, which enters past its LDM, the retire and the next triangle's test: label 10). The
-// counts of a run stay in r12 (saved at 60 over a pick-up) and go to the strip at the run's end
-// or once it has 32 rows or more (its fields then hold the next visit: at most 63 rows, spans
-// and 63 x kMaxViewport pixels). The row loop, its labels numbered from
-// N, with CLAMP between the columns and the span.
-#define LR_LANE_ROWS(N1, N8, N2, N3, N4, N7, CLAMP, SWAP)                        \
-  N1 ":\n\t"                                                                     \
-     "ldm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t" N8        \
-     ":\n\t"                                                                     \
-     "add    r4, r0, r4\n\t"                                                     \
-     "add    r5, r1, r5\n\t"                                                     \
-     "udiv   r0, r0, r8\n\t"                                                     \
-     "udiv   r1, r1, r9\n\t"                                                     \
-     "add    r6, r2, r6\n\t"                                                     \
-     "add    r8, r3, #1\n\t"                                                     \
-     "stm    %[a], {r4, r5, r6, r8}\n\t" CLAMP                                   \
-     "subs   r6, r0, r1\n\t"                                                     \
-     "bge    " N7                                                                \
-     "f\n\t"                                                                     \
+//   24 stride (bytes per row)  28 dy[0]  32 dy[1]  36 col_base  40 stop (the last row of the
+//   edges in the frame)  44 width  48 last  52 depth offset (bytes from a pixel to its depth;
+//   it and width stored once per run)
+// and r12 counts the pixels in spans (bits 0..19), the rows without a span (20..25) and the rows
+// (26..31: minus the first row, plus the row after the last at the end). Per row: the first eleven
+// words in r0-r6, r8-r11, the row tested against stop at once; left r0 and right r1 (clamped unless
+// kInside: width read then); the index r6 from left - right up to 0; the planes at (left, row):
+// z r4 (step r5), br r9 (r10), g r3 (r8); the pixels' end r1, the depths' end r2; per pixel the
+// depth and the pixel in r0, green in r11. A rejected pixel is taken off the strip's written
+// count at once (the visit adds every pixel in its spans at the end). Instructions: per written
+// pixel 16, per rejected one 8 (plus the count); per row with a span 26 (kInside; clamped 33),
+// without one 14 (21); per visit about 47 (the next triangle's test with the run's words and
+// the strip's (stride, y0, y_last, pix0: then in r6, r9-r11) in one LDM: label 10; then the
+// pick-up (label 0), which retires the triangle at once (its slot to the free or the kept list,
+// and the run's next, kept and free stored) and fills the row loop's registers, entering past
+// its LDM). The counts of a run stay in r12 and go to the strip at the run's end or once it has
+// 32 rows or more (its fields then hold the next visit: at most 63 rows and 63 x kMaxViewport
+// pixels). The row loop, its labels numbered from N, with CLAMP between the columns and the
+// span; TO the label of a row past stop, SWITCH its code when it is the loop's own
+// (LR_LANE_SWITCH). The span's set-up (N5) and pixel loop come before the row's part (N1), into
+// which the pixel loop falls: a row with a span takes no branch back.
+#define LR_LANE_ROWS(N1, N8, N5, N2, N3, N4, TO, CLAMP, SWAP, SWITCH)            \
+  N5 ":\n\t"                                                                     \
      "sub    r12, r12, r6\n\t"                                                   \
-     "add    r12, r12, #0x100000\n\t"                                            \
      "add    r1, r2, r1, lsl #1\n\t"                                             \
      "add    r8, lr, #52\n\t"                                                    \
      "ldm    r8!, {r4, r5, r9}\n\t"                                              \
@@ -175,147 +184,198 @@ namespace detail {
      "add    r9, r10\n\t"                                                        \
      "add    r3, r8\n\t"                                                         \
      "adds   r6, #1\n\t"                                                         \
-     "bne    " N2 "b\n\t" N7                                                     \
+     "bne    " N2 "b\n\t" N1                                                     \
      ":\n\t"                                                                     \
-     "ldr    r0, [%[a], #12]\n\t"                                                \
-     "ldr    r1, [%[a], #44]\n\t"                                                \
-     "cmp    r0, r1\n\t"                                                         \
-     "ble    " N1                                                                \
+     "ldm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"           \
+     "cmp    r3, r11\n\t"                                                        \
+     "bgt    " TO "\n\t" N8                                                      \
+     ":\n\t"                                                                     \
+     "add    r4, r0, r4\n\t"                                                     \
+     "add    r5, r1, r5\n\t"                                                     \
+     "udiv   r0, r0, r8\n\t"                                                     \
+     "udiv   r1, r1, r9\n\t"                                                     \
+     "add    r6, r2, r6\n\t"                                                     \
+     "add    r8, r3, #1\n\t"                                                     \
+     "stm    %[a], {r4, r5, r6, r8}\n\t" CLAMP                                   \
+     "subs   r6, r0, r1\n\t"                                                     \
+     "blt    " N5                                                                \
      "b\n\t"                                                                     \
-     "ldr    r1, [%[a], #48]\n\t"                                                \
-     "cmp    r0, r1\n\t"                                                         \
-     "bgt    9f\n\t"                                                             \
-     "ldrb   r2, [lr, #47]\n\t"                                                  \
-     "and    r2, r2, #1\n\t"                                                     \
-     "add    r2, %[a], r2, lsl #2\n\t"                                           \
-     "add    r3, lr, #24\n\t"                                                    \
-     "ldm    r3, {r3, r4, r5}\n\t"                                               \
-     "str    r3, [r2]\n\t"                                                       \
-     "str    r4, [r2, #16]\n\t"                                                  \
-     "str    r5, [r2, #28]\n\t"                                                  \
-     "str    r1, [%[a], #44]\n\t"                                                \
-     "b      " N1 "b\n\t" N3                                                     \
+     "add    r12, r12, #0x100000\n\t"                                            \
+     "b      " N1 "b\n\t" SWITCH N3                                              \
      ":\n\t"                                                                     \
-     "ldr    r0, [%[a], #68]\n\t"                                                \
+     "ldr    r0, [%[a], #64]\n\t"                                                \
      "ldr    r11, [r0, #40]\n\t"                                                 \
      "subs   r11, #1\n\t"                                                        \
      "str    r11, [r0, #40]\n\t"                                                 \
      "b      " N4 "b\n\t"
+// The end of the edges in the frame (label N7, the row past stop in r3): the end of the visit
+// (label 9 in direction E) past the last row, else the bottom edge in place of the short side's
+// and stop = last, then BACK (to the row loop).
+#define LR_LANE_SWITCH(N7, E, BACK)    \
+  N7 ":\n\t"                           \
+     "ldr    r1, [%[a], #48]\n\t"      \
+     "cmp    r3, r1\n\t"               \
+     "bgt    9" E                      \
+     "\n\t"                            \
+     "ldrb   r2, [lr, #47]\n\t"        \
+     "and    r0, r2, #1\n\t"           \
+     "add    r0, %[a], r0, lsl #2\n\t" \
+     "add    r4, lr, #24\n\t"          \
+     "ldm    r4, {r4, r5, r6}\n\t"     \
+     "str    r4, [r0]\n\t"             \
+     "str    r5, [r0, #16]\n\t"        \
+     "str    r6, [r0, #28]\n\t"        \
+     "str    r1, [%[a], #40]\n\t" BACK
+// Where code size comes first (-Os), one copy of it for both row loops (one instruction more
+// per switch: the loop chosen again by kInside).
+#if defined(__OPTIMIZE_SIZE__)
+#define LR_LANE_SWITCH_INSIDE \
+  LR_LANE_SWITCH("17", "f", "tst    r2, #4\n\tbne    11b\n\tb      1f\n\t")
+#define LR_LANE_SWITCH_CLAMPED ""
+#define LR_LANE_TO_CLAMPED "17b"
+// And one copy of the flush: r0 says whether the run goes on (label 10) after it.
+#define LR_LANE_FLUSH_RUN \
+  "movs   r0, #1\n\t"     \
+  "b      20f\n\t"
+#define LR_LANE_FLUSH_END \
+  "movs   r0, #0\n\t"     \
+  "20:\n\t" LR_LANE_FLUSH \
+  "cbz    r0, 21f\n\t"    \
+  "mov    r12, #0\n\t"    \
+  "b      10b\n\t"        \
+  "21:\n\t"
+#else
+#define LR_LANE_SWITCH_INSIDE LR_LANE_SWITCH("17", "f", "b      11b\n\t")
+#define LR_LANE_SWITCH_CLAMPED LR_LANE_SWITCH("7", "b", "b      1b\n\t")
+#define LR_LANE_TO_CLAMPED "7f"
+#define LR_LANE_FLUSH_RUN LR_LANE_FLUSH "mov    r12, #0\n\t"
+#define LR_LANE_FLUSH_END LR_LANE_FLUSH
+#endif
 // The columns relative to col_base, clamped to [0, width).
 #define LR_LANE_CLAMP              \
   "add    r0, r10\n\t"             \
   "add    r1, r10\n\t"             \
   "bic    r0, r0, r0, asr #31\n\t" \
-  "cmp    r1, r11\n\t"             \
+  "ldr    r4, [%[a], #44]\n\t"     \
+  "cmp    r1, r4\n\t"              \
   "it     gt\n\t"                  \
-  "movgt  r1, r11\n\t"
-// The counts of r12 added to the strip's (StripRows::spans, tested, written, rows).
+  "movgt  r1, r4\n\t"
+// The counts of r12 added to the strip's (StripRows::spans, tested, written, rows; the spans
+// are the rows less those without one).
 #define LR_LANE_FLUSH               \
-  "ldr    r5, [%[a], #68]\n\t"      \
+  "ldr    r5, [%[a], #64]\n\t"      \
   "add    r5, #32\n\t"              \
   "ldm    r5, {r1, r2, r3, r6}\n\t" \
   "ubfx   r4, r12, #20, #6\n\t"     \
-  "add    r1, r4\n\t"               \
+  "sub    r1, r4\n\t"               \
+  "add    r1, r1, r12, lsr #26\n\t" \
   "ubfx   r4, r12, #0, #20\n\t"     \
   "add    r2, r4\n\t"               \
   "add    r3, r4\n\t"               \
   "add    r6, r6, r12, lsr #26\n\t" \
   "stm    r5, {r1, r2, r3, r6}\n\t"
-// The pick-up: the strip's words (pixels, depth, y0, y_last, width) in one LDM (the depth
-// offset stored once per run: the next triangle enters at label 0), the rows, then
-// the edges straight into the row loop's registers (q, dx, dy: the record's first six words),
-// stored as the frame. Below the middle vertex from the start, the short side's edge is the
-// bottom one. Then the two loops (kInside without the clamp) and the counts.
+// The run: the strip's words (pixels, depth, y0, y_last, width) in one LDM, the run's from
+// stride on filled and the frame's width and depth offset stored once, the first triangle's
+// address in lr and its slot in r4; then the row loop of kInside, the end of a visit (the
+// counts, the next triangle's test) and the pick-up (label 0): the retire, the rows, then the
+// edges straight into the row loop's registers (q, dx, dy: the record's first six words),
+// stored as the frame. Below the
+// middle vertex from the start, the short side's edge is the bottom one. Then the row loop with
+// the clamp and at the run's end the counts.
 #define LR_LANE_VISIT(SWAP) \
   asm volatile(                                                            \
-      "ldr    lr, [%[a], #64]\n\t"                                         \
-      "ldr    r0, [%[a], #68]\n\t"                                         \
-      "ldm    r0, {r0, r1, r2, r3, r11}\n\t"                               \
+      "ldr    r0, [%[a], #64]\n\t"                                         \
+      "ldm    r0, {r0, r1, r9, r10, r11}\n\t"                              \
       "subs   r1, r1, r0\n\t"                                              \
       "str    r1, [%[a], #52]\n\t"                                         \
-      "0:\n\t"                                                              \
-      "ldrsh  r4, [lr, #36]\n\t"                                           \
+      "str    r11, [%[a], #44]\n\t"                                        \
+      "lsl    r6, r11, #1\n\t"                                             \
+      "mls    r11, r6, r9, r0\n\t"                                         \
+      "ldr    r0, [%[a], #56]\n\t"                                         \
+      "str    r6, [r0, #20]\n\t"                                           \
+      "add    r1, r0, #28\n\t"                                             \
+      "stm    r1, {r9, r10, r11}\n\t"                                      \
+      "ldm    r0, {r1, r2, r3}\n\t"                                        \
+      "ldrh   r4, [r1], #2\n\t"                                            \
+      "ldr    lr, [%[a], #60]\n\t"                                         \
+      "mov    r12, #0\n\t"                                                 \
+      "b      0f\n\t"                                                      \
+      LR_LANE_ROWS("11", "18", "16", "12", "13", "14", "17f", "", SWAP,   \
+                   LR_LANE_SWITCH_INSIDE)                                 \
+      "9:\n\t"                                                             \
+      "adds   r12, r12, r3, lsl #26\n\t"                                   \
+      "bpl    10f\n\t" LR_LANE_FLUSH_RUN                                   \
+      "10:\n\t"                                                            \
+      "ldr    r0, [%[a], #56]\n\t"                                         \
+      "ldm    r0, {r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"          \
+      "cmp    r1, r4\n\t"                                                  \
+      "beq    19f\n\t"                                                     \
+      "ldrh   r4, [r1], #2\n\t"                                            \
+      "mov    lr, %[size]\n\t"                                             \
+      "mla    lr, r4, lr, r5\n\t"                                          \
+      "ldr    r5, [lr, %[rows]]\n\t"                                       \
+      "cmp    r5, r8\n\t"                                                  \
+      "bne    19f\n\t"                                                     \
+      "0:\n\t"                                                             \
       "ldrsh  r5, [lr, #40]\n\t"                                           \
-      "ldrsh  r8, [lr, #38]\n\t"                                           \
-      "ldrsh  r10, [lr, #42]\n\t"                                          \
-      "cmp    r5, r3\n\t"                                                  \
+      "cmp    r5, r10\n\t"                                                 \
+      "ite    le\n\t"                                                      \
+      "strhle r4, [r3], #2\n\t"                                            \
+      "strhgt r4, [r2], #2\n\t"                                            \
+      "stm    r0, {r1, r2, r3}\n\t"                                        \
       "it     gt\n\t"                                                      \
-      "movgt  r5, r3\n\t"                                                  \
-      "cmp    r4, r2\n\t"                                                  \
+      "movgt  r5, r10\n\t"                                                 \
+      "ldrsh  r4, [lr, #36]\n\t"                                           \
+      "cmp    r4, r9\n\t"                                                  \
       "ite    ge\n\t"                                                      \
       "movge  r3, r4\n\t"                                                  \
-      "movlt  r3, r2\n\t"                                                  \
-      "subs   r2, r3, r2\n\t"                                              \
-      "lsls   r6, r11, #1\n\t"                                             \
-      "mla    r2, r2, r6, r0\n\t"                                          \
-      "subs   r12, r3, r4\n\t"                                             \
-      "cmp    r3, r8\n\t"                                                  \
+      "movlt  r3, r9\n\t"                                                  \
+      "mla    r2, r3, r6, r11\n\t"                                         \
+      "ldrsh  r11, [lr, #38]\n\t"                                          \
+      "ldrsh  r10, [lr, #42]\n\t"                                          \
+      "subs   r9, r3, r4\n\t"                                              \
+      "str    r5, [%[a], #48]\n\t"                                         \
+      "cmp    r3, r11\n\t"                                                 \
       "bgt    5f\n\t"                                                      \
-      "cmp    r8, r5\n\t"                                                  \
+      "cmp    r11, r5\n\t"                                                 \
       "it     gt\n\t"                                                      \
-      "movgt  r8, r5\n\t"                                                  \
-      "strd   r8, r5, [%[a], #44]\n\t"                                     \
-      "ldm    lr, {r0, r1, r4, r5, r8, r9}\n\t"                            \
-      "mla    r0, r4, r12, r0\n\t"                                         \
-      "mla    r1, r5, r12, r1\n\t"                                         \
+      "movgt  r11, r5\n\t"                                                 \
+      "ldrb   r0, [lr, #47]\n\t"                                           \
+      "tst    r0, #4\n\t"                                                  \
+      "ldm    lr, {r0, r1, r4, r5}\n\t"                                    \
+      "mla    r0, r4, r9, r0\n\t"                                          \
+      "mla    r1, r5, r9, r1\n\t"                                          \
+      "ldrd   r8, r9, [lr, #16]\n\t"                                       \
       "stm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"    \
-      "ldrb   r12, [lr, #47]\n\t"                                          \
-      "tst    r12, #4\n\t"                                                 \
-      "ldr    r12, [%[a], #60]\n\t"                                        \
       "sub    r12, r12, r3, lsl #26\n\t"                                   \
-      "bne    18f\n\t"                                                     \
+      "bne    18b\n\t"                                                     \
       "b      8f\n\t"                                                      \
       "5:\n\t"                                                             \
-      "str    r5, [%[a], #44]\n\t"                                         \
-      "str    r5, [%[a], #48]\n\t"                                         \
-      "ldm    lr, {r0, r1, r4, r5, r8, r9}\n\t"                            \
-      "mla    r0, r4, r12, r0\n\t"                                         \
-      "mla    r1, r5, r12, r1\n\t"                                         \
+      "mov    r11, r5\n\t"                                                 \
+      "ldm    lr, {r0, r1, r4, r5}\n\t"                                    \
+      "mla    r0, r4, r9, r0\n\t"                                          \
+      "mla    r1, r5, r9, r1\n\t"                                          \
+      "ldrd   r8, r9, [lr, #16]\n\t"                                       \
       "stm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"    \
-      "ldrsh  r12, [lr, #38]\n\t"                                          \
-      "subs   r0, r3, r12\n\t"                                             \
+      "sub    r12, r12, r3, lsl #26\n\t"                                   \
+      "ldrsh  r0, [lr, #38]\n\t"                                           \
+      "subs   r0, r3, r0\n\t"                                              \
       "subs   r0, #1\n\t"                                                  \
       "add    r1, lr, #24\n\t"                                             \
       "ldm    r1, {r1, r4, r5}\n\t"                                        \
       "mla    r1, r4, r0, r1\n\t"                                          \
-      "ldrb   r12, [lr, #47]\n\t"                                          \
-      "and    r0, r12, #1\n\t"                                             \
+      "ldrb   r2, [lr, #47]\n\t"                                           \
+      "and    r0, r2, #1\n\t"                                              \
       "add    r0, %[a], r0, lsl #2\n\t"                                    \
       "str    r1, [r0]\n\t"                                                \
       "str    r4, [r0, #16]\n\t"                                           \
       "str    r5, [r0, #28]\n\t"                                           \
-      "tst    r12, #4\n\t"                                                 \
-      "ldr    r12, [%[a], #60]\n\t"                                        \
-      "sub    r12, r12, r3, lsl #26\n\t"                                   \
-      "bne    11f\n\t"                                                     \
-      LR_LANE_ROWS("1", "8", "2", "3", "4", "7", LR_LANE_CLAMP, SWAP)      \
-      LR_LANE_ROWS("11", "18", "12", "13", "14", "17", "", SWAP)           \
-      "9:\n\t"                                                             \
-      "adds   r12, r12, r0, lsl #26\n\t"                                   \
-      "bpl    10f\n\t" LR_LANE_FLUSH "mov    r12, #0\n\t"                  \
-      "10:\n\t"                                                            \
-      "ldr    r0, [%[a], #56]\n\t"                                         \
-      "ldm    r0, {r1, r2, r3, r4, r5, r6, r8}\n\t"                        \
-      "ldrh   r10, [r1], #2\n\t"                                           \
-      "ldrsh  r9, [lr, #40]\n\t"                                           \
-      "cmp    r9, r8\n\t"                                                  \
-      "ite    le\n\t"                                                      \
-      "strhle r10, [r3], #2\n\t"                                           \
-      "strhgt r10, [r2], #2\n\t"                                           \
-      "stm    r0, {r1, r2, r3}\n\t"                                        \
-      "cmp    r1, r4\n\t"                                                  \
-      "beq    19f\n\t"                                                     \
-      "ldrh   r10, [r1]\n\t"                                               \
-      "mov    r9, %[size]\n\t"                                             \
-      "mla    lr, r10, r9, r5\n\t"                                         \
-      "ldr    r9, [lr, %[rows]]\n\t"                                       \
-      "cmp    r9, r6\n\t"                                                  \
-      "bne    19f\n\t"                                                     \
-      "str    r12, [%[a], #60]\n\t"                                        \
-      "ldr    r0, [%[a], #68]\n\t"                                         \
-      "ldm    r0, {r0, r1, r2, r3, r11}\n\t"                               \
-      "b      0b\n\t"                                                      \
-      "19:\n\t" LR_LANE_FLUSH                                               \
+      "tst    r2, #4\n\t"                                                  \
+      "bne    11b\n\t"                                                     \
+      "b      1f\n\t"                                                      \
+      LR_LANE_ROWS("1", "8", "6", "2", "3", "4", LR_LANE_TO_CLAMPED, LR_LANE_CLAMP, SWAP, \
+                   LR_LANE_SWITCH_CLAMPED)                                \
+      "19:\n\t" LR_LANE_FLUSH_END                                           \
       :                                                                    \
       : [a] "r"(ts), [size] "i"(sizeof(ActiveTriangle)),                   \
         [rows] "i"(offsetof(ActiveTriangle, rows))                         \
@@ -337,22 +397,21 @@ template <bool kSwap>
   static_assert(sizeof(ActiveTriangle) < 256 && offsetof(ActiveTriangle, rows) < 4096);
   static_assert(offsetof(LaneRun, next) == 0 && offsetof(LaneRun, kept) == 4 &&
                 offsetof(LaneRun, free) == 8 && offsetof(LaneRun, end) == 12 &&
-                offsetof(LaneRun, active) == 16 && offsetof(LaneRun, lanes) == 20 &&
-                offsetof(LaneRun, y_last) == 24);
-  // The visit's frame, then the run's address, the counts (r12 between triangles), the
-  // triangle's and the strip's addresses (a local array, so that the compiler's stack figures,
-  // and scripts/stack_usage.py's, include it).
-  uint32_t frame[18];
-  frame[14] = reinterpret_cast<uintptr_t>(&run);
-  frame[15] = 0;
-  frame[16] = reinterpret_cast<uintptr_t>(&t);
-  frame[17] = reinterpret_cast<uintptr_t>(&s);
-  uint32_t* const ts = frame;
+                offsetof(LaneRun, active) == 16 && offsetof(LaneRun, stride) == 20 &&
+                offsetof(LaneRun, lanes) == 24 && offsetof(LaneRun, y0) == 28 &&
+                offsetof(LaneRun, y_last) == 32 && offsetof(LaneRun, pix0) == 36);
   static_assert(offsetof(StripRows, pixels) == 0 && offsetof(StripRows, depth) == 4 &&
                 offsetof(StripRows, y0) == 8 && offsetof(StripRows, y_last) == 12 &&
                 offsetof(StripRows, width) == 16 && offsetof(StripRows, spans) == 32 &&
                 offsetof(StripRows, tested) == 36 && offsetof(StripRows, written) == 40 &&
                 offsetof(StripRows, rows) == 44);
+  // The visit's frame, then the run's, the triangle's and the strip's addresses (a local array,
+  // so that the compiler's stack figures, and scripts/stack_usage.py's, include it).
+  uint32_t frame[17];
+  frame[14] = reinterpret_cast<uintptr_t>(&run);
+  frame[15] = reinterpret_cast<uintptr_t>(&t);
+  frame[16] = reinterpret_cast<uintptr_t>(&s);
+  uint32_t* const ts = frame;
   if constexpr (kSwap)
     LR_LANE_VISIT("rev16  r0, r0\n\t");
   else
@@ -367,6 +426,12 @@ template <bool kSwap>
 #undef LR_LANE_FLUSH
 #undef LR_LANE_CLAMP
 #undef LR_LANE_ROWS
+#undef LR_LANE_SWITCH
+#undef LR_LANE_SWITCH_INSIDE
+#undef LR_LANE_SWITCH_CLAMPED
+#undef LR_LANE_TO_CLAMPED
+#undef LR_LANE_FLUSH_RUN
+#undef LR_LANE_FLUSH_END
 }  // namespace detail
 
 // The run: by hand on Armv7E-M for the RGB565 formats (whose from_value is the value or its
@@ -384,7 +449,8 @@ template <class PF>
 template <class PF>
 [[gnu::always_inline]] inline void lane_visit(const ActiveTriangle& t, StripRows& s) {
   uint16_t slot = 0, list = 0;
-  LaneRun run{&slot, &list, &list, &slot + 1, &t, nullptr, s.y_last};
+  LaneRun run;
+  run.start(&slot, &list, &list, &slot + 1, &t, nullptr, s.y_last);
   lane_run<PF>(t, run, s);
 }
 
