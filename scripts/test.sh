@@ -71,6 +71,15 @@ step "bare metal: footprint (flash, RAM, worst-case and measured stack) for M0+ 
 # -O3 images' (footprint.sh compares the checksums across every tree it is given).
 cmake --preset cortex-m4f-size -DLR_HOST_TOOLS_DIR="$LR_HOST_TOOLS_DIR" >/dev/null
 bash scripts/footprint.sh build/cortex-m0plus build/cortex-m4f build/cortex-m4f-size
+# The hand-written lanes row loop and bin lane have code of their own at -Os (one shared copy of
+# their rarer parts): their checks against the C twins, as that build compiles them.
+cmake --build build/cortex-m4f-size -j"$jobs" --target lr_span_check lr_bin_check
+for image in lr_span_check lr_bin_check; do
+  out="$(timeout 900 qemu-system-arm -M mps2-an386 -nographic -monitor none -semihosting \
+    -kernel "build/cortex-m4f-size/firmware/${image#lr_}/$image.elf" 2>&1)" || true
+  echo "$out" | tail -n 3
+  grep -q "^$image: PASS" <<<"$out" || { echo "test: $image failed in the -Os build" >&2; exit 1; }
+done
 
 step "consumers: add_subdirectory, FetchContent; find_package of lr::core, lr::hal, lr::host and a header from the installed lineraster-asset (host tools on); a Cortex-M4F package under QEMU; each checked"
 bash scripts/consumers.sh build/consumers
