@@ -19,7 +19,8 @@ camera and model matrix: they and what only they reach are the program's). The r
 everything reached from its entries: core/, hal/, and the libgcc helpers and unattributed
 tables they use, never a firmware/ symbol (the program's sink, startup and C library shims); an
 API function is the renderer's only when the renderer reaches it. A core/ or hal/ symbol that
-nothing references counts as the renderer's.
+nothing references counts as the renderer's; renderer code inlined into a program function
+(Renderer::render() into main at -O3) counts as the program's.
 
   python3 scripts/flash_by_folder.py ELF [--exclude PREFIX ...] [--tool-prefix arm-none-eabi-]
                                          [--renderer [--program-api NAME ...]]
@@ -172,8 +173,10 @@ def main():
             mine, theirs = renderer_split(args.elf, args.tool_prefix, args.exclude,
                                           args.program_api)
             print(f"renderer {sum(s.size for s in mine)}")
+            # The project's symbols among them (not the program's own, nor compiler tables).
             core = sorted({re.sub(r"(?<=\w)\(.*", "", s.name) for s in theirs
-                           if not s.folder.startswith("firmware/")})
+                           if not s.folder.startswith("firmware/") and
+                           s.name.startswith("lr::") and not s.name.startswith("lr::fw::")})
             print(f"program {sum(s.size for s in theirs)} " + "; ".join(core))
             return 0
         symbols = read_symbols(args.elf, args.tool_prefix)

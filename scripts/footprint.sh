@@ -256,7 +256,7 @@ print(sum(int(f[1], 16) for f in (l.split(None, 3) for l in sys.stdin)
     fi
   done <"$manifest"
   echo
-  echo "Flash: every byte loaded into flash (vector table, code, .rodata, unwind index, and the .data load image); renderer flash: that minus the empty image's ($(group "$empty_flash") B: startup, C library shims, semihosting; firmware/footprint/empty.cpp) minus the scene's mesh and texture arrays; renderer alone: the renderer's code and tables only (the core/ and hal/ symbols the program's calls reach, with the libgcc helpers and tables they use; without the program's main, sink, startup and C library shims, and without the API functions only the program calls: its camera and model matrix, ${program_api_names}; scripts/flash_by_folder.py --renderer); RAM: .data + .bss, without the reserved .stack section; worst-case stack: the reset path (Reset_Handler -> main -> ...) plus every exception handler with its exception frame, nested (scripts/stack_usage.py); measured: the stack high-water mark of the run (a lower bound, checked <= the reset path's bound); main alone: the static bound of main's calls, without startup and handlers."
+  echo "Flash: every byte loaded into flash (vector table, code, .rodata, unwind index, and the .data load image); renderer flash: that minus the empty image's ($(group "$empty_flash") B: startup, C library shims, semihosting; firmware/footprint/empty.cpp) minus the scene's mesh and texture arrays; renderer alone: the renderer's code and tables only (the core/ and hal/ symbols the program's calls reach, with the libgcc helpers and tables they use; without the program's main, sink, startup and C library shims, and without the API functions only the program calls: its camera and model matrix, ${program_api_names}; what the compiler inlines into the program's functions counts as the program's, as Renderer::render() in main at -O3; scripts/flash_by_folder.py --renderer); RAM: .data + .bss, without the reserved .stack section; worst-case stack: the reset path (Reset_Handler -> main -> ...) plus every exception handler with its exception frame, nested (scripts/stack_usage.py); measured: the stack high-water mark of the run (a lower bound, checked <= the reset path's bound); main alone: the static bound of main's calls, without startup and handlers."
   echo
   [[ -n $breakdown ]] && echo "RAM at 320x240 with 1,000 triangles ($core, phong image): $breakdown." && echo
   # Where one family's renderer flash is (the Gouraud image), by source folder.
@@ -269,7 +269,7 @@ print(sum(int(f[1], 16) for f in (l.split(None, 3) for l in sys.stdin)
     echo
     if [[ -n $gouraud_split ]]; then
       read -r _ program_bytes program_core <<<"$(awk '$1 == "program"' <<<"$gouraud_split")"
-      echo "Of these, the renderer alone: $(group "$(awk '$1 == "renderer" {print $2}' <<<"$gouraud_split")") B; the program: $(group "$program_bytes") B (firmware/, and what only it calls: ${program_core:-nothing else})."
+      echo "Of these, the renderer alone: $(group "$(awk '$1 == "renderer" {print $2}' <<<"$gouraud_split")") B; the program: $(group "$program_bytes") B (firmware/, its constants, and of the project's code what only it reaches: ${program_core:-nothing})."
       echo
     fi
   fi
