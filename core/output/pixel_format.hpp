@@ -37,9 +37,10 @@ consteval std::array<uint8_t, 512> make_565_table() {
 inline constexpr std::array<uint8_t, 512> kTo565 = make_565_table();
 inline constexpr size_t kTo6Offset = 256;
 
-// Whether RGB565 conversion reads kTo565 (a load a channel) or divides (a multiply, an add and
-// a division by the constant 255 a channel): the division where the code is built for size,
-// which leaves the 512-byte table out of the image. The same values (checked below).
+// Whether RGB565 conversion reads kTo565 (a load a channel) or computes its entry (a multiply
+// and four additions and shifts a channel, no division: x / 255 is (x + (x >> 8) + 1) >> 8 for
+// x below 2^16): the arithmetic where the code is built for size, which leaves the 512-byte table
+// out of the image. The same values (checked below).
 #if defined(__OPTIMIZE_SIZE__)
 inline constexpr bool kReduceByTable = false;
 #else
@@ -50,10 +51,15 @@ template <unsigned kMax>
 constexpr unsigned reduce8(unsigned v) {
   if constexpr (kReduceByTable)
     return kTo565[(kMax == 63 ? kTo6Offset : 0) + v];
-  else
-    return (kMax * v + 127u) / 255u;
+  else {
+    const unsigned x = kMax * v + 127u;  // below 2^14
+    return (x + (x >> 8) + 1u) >> 8;     // x / 255
+  }
 }
 consteval bool reduce_matches_table() {
+  for (unsigned v = 0; v < 256; ++v)
+    for (const unsigned x : {31 * v + 127u, 63 * v + 127u})
+      if ((x + (x >> 8) + 1u) >> 8 != x / 255u) return false;
   for (unsigned v = 0; v < 256; ++v)
     if ((31 * v + 127u) / 255u != kTo565[v] || (63 * v + 127u) / 255u != kTo565[kTo6Offset + v])
       return false;
