@@ -22,7 +22,9 @@
 #      exceed the static bound of the reset path — a static analysis that underestimates fails
 #      here. Frames of the same configuration must be identical on every core (integer code);
 #   5. prints a markdown table per core (with the renderer's own flash: the image minus the
-#      empty image lr_fp_empty minus the scene's mesh and texture arrays), the RAM breakdown by
+#      empty image lr_fp_empty minus the scene's mesh and texture arrays; and the renderer
+#      alone: the core/ and hal/ code and tables the program's calls reach, without the
+#      program's own camera, sink and main: scripts/flash_by_folder.py --renderer), the RAM breakdown by
 #      store (the sizes the phong image prints), the gouraud image's flash by source folder
 #      (scripts/flash_by_folder.py), and, for Cortex-M0+ trees, which configurations fit the
 #      micro:bit (flash <= its FLASH, RAM + worst-case stack <= its RAM;
@@ -81,7 +83,12 @@ else
 fi
 
 # Symbols (nm -C, from the start of the name) no untextured image may hold (see below).
-lr_fp_untextured_unlinked='^(lr::light_point_split|lr::light_point|lr::VertexStage::light_face|lr::VertexStage::attributes|lr::transform_tangent|lr::DrawRecords::phong_record|lr::FrontEnd::run_screen|lr::detail::kMaterialTable|lr::find_material|lr::to_material|(lr::ColorPlanes )?lr::setup_planes|(void )?lr::legacy_rows|lr::FrontEnd::bin_band|lr::FrontEndParts::(shrink_band|compact_vertices|polygon_outside_band|sign_)|(unsigned long )?lr::FrontEnd::general_triangles<(true|false, true)>|lr::EdgeTable::shrink_window|lr::VertexStore::(begin_cache|cache_corners|persist)|lr::front_facing_clip|lr::StripLoop<.*>::skip_strip|lr::InputHash::)\b'
+lr_fp_untextured_unlinked='^(lr::light_point_split|lr::light_point|lr::VertexStage::light_face|lr::VertexStage::attributes|lr::transform_tangent|lr::DrawRecords::phong_record|lr::FrontEnd::run_screen|lr::detail::kMaterialTable|lr::find_material|lr::to_material|(lr::ColorPlanes )?lr::setup_planes|(void )?lr::legacy_rows|lr::FrontEnd::bin_band|lr::FrontEndParts::(shrink_band|compact_vertices|polygon_outside_band|sign_)|(unsigned long )?lr::FrontEnd::general_triangles<(true|false, true)>|lr::EdgeTable::shrink_window|lr::VertexStore::(begin_cache|cache_corners|persist)|lr::front_facing_clip|lr::StripLoop<.*>::(skip_strip|crowded_strip)|lr::InputHash::)\b'
+# The project's API the footprint program calls for itself, not the renderer (its camera and
+# model matrix, firmware/footprint/main.cpp): the program's bytes, unless the renderer calls them.
+program_api_names="lr::perspective, lr::look_at, lr::rotate_y"
+program_api=()
+for n in ${program_api_names//,/}; do program_api+=(--program-api "$n"); done
 declare -A checksum_of  # config -> "core checksum" of the first core that ran it
 write_docs=0
 trees=()
@@ -144,8 +151,9 @@ for tree in "${trees[@]}"; do
   echo
   echo "Link guard ($lr_fw_guard_what): $clean of $elfs ELFs clean."
   echo
-  echo "| configuration | flash | renderer flash | RAM | worst-case stack | measured stack (QEMU) | main alone (static) |"
-  echo "|---|---:|---:|---:|---:|---:|---:|"
+  echo "| configuration | flash | renderer flash | renderer alone | RAM | worst-case stack | measured stack (QEMU) | main alone (static) |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+  gouraud_split=""
   fits=() misfits=()
   breakdown=""
   while read -r cfg elf machine board; do
@@ -205,14 +213,25 @@ import sys
 print(sum(int(f[1], 16) for f in (l.split(None, 3) for l in sys.stdin)
           if len(f) == 4 and f[3].startswith("lr::fw::footprint::k")))')
     renderer=$((flash - empty_flash - assets))
-    echo "| $cfg | $(group "$flash") B | $(group "$renderer") B | $(group "$ram") B | $(group "$total") B | $measured | $(group "$main_bound") B |"
+    # The renderer alone: the symbols the program's references reach in core/ and hal/, and
+    # the libgcc helpers and tables they use (scripts/flash_by_folder.py --renderer); not the
+    # program's camera and model matrix (its calls of the API below), sink, main and startup.
+    if split=$(python3 scripts/flash_by_folder.py "$elf" --exclude 'lr::fw::footprint::k' \
+                 --tool-prefix "$prefix" --renderer "${program_api[@]}"); then
+      alone="$(group "$(awk '$1 == "renderer" {print $2}' <<<"$split")") B"
+      [[ $cfg == gouraud ]] && gouraud_split=$split
+    else
+      fail "$core $cfg: scripts/flash_by_folder.py --renderer failed"
+      alone="—"
+    fi
+    echo "| $cfg | $(group "$flash") B | $(group "$renderer") B | $alone | $(group "$ram") B | $(group "$total") B | $measured | $(group "$main_bound") B |"
     # What the untextured images must not link: the routines of draws their span set refuses
     # (renderer.hpp's FrontEndRoutines: flat shading's face lighting, point lighting, textured
     # and Phong vertex attributes, Phong records; the textured and Phong setup and row loop),
     # draw_screen's binning (the images never call it), the material table (they name their
     # materials at compile time), and the features their renderer leaves out (kNoFeatures,
     # core/raster/renderer_features.hpp: bands, the vertex cache, two-sided lighting's clipped
-    # back-face test, strip signatures).
+    # back-face test, strip signatures, the crowded strips' passes).
     if [[ $cfg == unlit || $cfg == gouraud ]]; then
       linked=$("${prefix}nm" -C "$elf" | awk '{ $1 = ""; $2 = ""; print substr($0, 3) }' |
                grep -E "${lr_fp_untextured_unlinked}" | sed 's/(.*//' | sort -u)
@@ -237,7 +256,7 @@ print(sum(int(f[1], 16) for f in (l.split(None, 3) for l in sys.stdin)
     fi
   done <"$manifest"
   echo
-  echo "Flash: every byte loaded into flash (vector table, code, .rodata, unwind index, and the .data load image); renderer flash: that minus the empty image's ($(group "$empty_flash") B: startup, C library shims, semihosting; firmware/footprint/empty.cpp) minus the scene's mesh and texture arrays; RAM: .data + .bss, without the reserved .stack section; worst-case stack: the reset path (Reset_Handler -> main -> ...) plus every exception handler with its exception frame, nested (scripts/stack_usage.py); measured: the stack high-water mark of the run (a lower bound, checked <= the reset path's bound); main alone: the static bound of main's calls, without startup and handlers."
+  echo "Flash: every byte loaded into flash (vector table, code, .rodata, unwind index, and the .data load image); renderer flash: that minus the empty image's ($(group "$empty_flash") B: startup, C library shims, semihosting; firmware/footprint/empty.cpp) minus the scene's mesh and texture arrays; renderer alone: the renderer's code and tables only (the core/ and hal/ symbols the program's calls reach, with the libgcc helpers and tables they use; without the program's main, sink, startup and C library shims, and without the API functions only the program calls: its camera and model matrix, ${program_api_names}; what the compiler inlines into the program's functions counts as the program's, as Renderer::render() in main at -O3; scripts/flash_by_folder.py --renderer); RAM: .data + .bss, without the reserved .stack section; worst-case stack: the reset path (Reset_Handler -> main -> ...) plus every exception handler with its exception frame, nested (scripts/stack_usage.py); measured: the stack high-water mark of the run (a lower bound, checked <= the reset path's bound); main alone: the static bound of main's calls, without startup and handlers."
   echo
   [[ -n $breakdown ]] && echo "RAM at 320x240 with 1,000 triangles ($core, phong image): $breakdown." && echo
   # Where one family's renderer flash is (the Gouraud image), by source folder.
@@ -248,6 +267,11 @@ print(sum(int(f[1], 16) for f in (l.split(None, 3) for l in sys.stdin)
     echo
     echo "$by_folder"
     echo
+    if [[ -n $gouraud_split ]]; then
+      read -r _ program_bytes program_core <<<"$(awk '$1 == "program"' <<<"$gouraud_split")"
+      echo "Of these, the renderer alone: $(group "$(awk '$1 == "renderer" {print $2}' <<<"$gouraud_split")") B; the program: $(group "$program_bytes") B (firmware/, its constants, and of the project's code what only it reaches: ${program_core:-nothing})."
+      echo
+    fi
   fi
   if [[ $core == *m0plus* ]]; then
     echo "Fit the micro:bit ($(group "$mb_flash") B flash, $(group "$mb_ram") B RAM for data, bss and stack): ${fits[*]:-none}."

@@ -4,11 +4,11 @@
 // Rgb565Be, Rgb565, Xrgb8888, Rgb888), K the strip height in rows (1..32, compile time), kSpans
 // the span states it links routines for (span_state.hpp: kAllSpans by default; draws outside the
 // set are refused), kFeatures the front end's features it links (renderer_features.hpp: bands,
-// the vertex cache, two-sided lighting, strip skipping; kAllFeatures by default). draw() and
-// draw_screen() go to the front end (core/binning/front_end.hpp), which bins the frame; render()
-// hands the binned frame to the strip loop (core/raster/strip_loop.hpp), which rasterizes it strip
-// by strip into the sink. RAM: the caller's FrameStorage; nothing is allocated, nothing holds a
-// frame.
+// the vertex cache, two-sided lighting, strip skipping, crowded strips; kAllFeatures by default).
+// draw() and draw_screen() go to the front end (core/binning/front_end.hpp), which bins the frame;
+// render() hands the binned frame to the strip loop (core/raster/strip_loop.hpp), which rasterizes
+// it strip by strip into the sink. RAM: the caller's FrameStorage; nothing is allocated, nothing
+// holds a frame.
 #pragma once
 
 #include <algorithm>
@@ -99,7 +99,9 @@ class Renderer {
   // is drawn without it and the first refused draw's status returned (kInvalidArgument,
   // kNotLinked, kMissingStore or kCapacity; FrameStats::draws_refused_* count them). Else
   // kCapacity when a single strip needed more binned triangles or vertices than the stores
-  // hold: that strip is drawn with what fit and the rest counted as dropped. On a sink error
+  // hold: that strip is drawn with what fit and the rest counted as dropped; without
+  // kFeatures.crowded_strips also when a strip's triangles outnumbered the active list (the
+  // ones starting in it dropped and counted). On a sink error
   // the frame is abandoned and the sink's status returned.
   // With FrameStorage::strip_inputs, a sink that retains_frame() and no depth sink, strips whose
   // inputs equal the last rendered frame's are not rendered: the sink is told to keep() them.
@@ -174,13 +176,14 @@ Status Renderer<PF, K, kSpans, kFeatures>::render(StripSink<PF>& sink, DepthSink
   if constexpr (!kFeatures.bands) {
     // Without bands: what the stores hold, in one pass; what did not fit was dropped (the
     // front end stopped binning when a store was full), and counted.
-    const bool fit = !front_.needs_bands() && !front_.band_dropped();
+    bool fit = !front_.needs_bands() && !front_.band_dropped();
     // (One BinnedFrame: each frame() is a copy on this frame, which is on the deepest path.)
     const BinnedFrame frame = front_.frame();
     Status st = strip_.begin(frame, stats, sink, depth_sink);
     if (st == Status::kOk)
-      st = strip_.template strips<kFeatures.strip_skipping>(frame, 0, frame.strips, sink,
-                                                            depth_sink);
+      st = strip_.template strips<kFeatures.strip_skipping, kFeatures.crowded_strips>(
+          frame, 0, frame.strips, sink, depth_sink);
+    fit = fit && !strip_.dropped();
     if (st == Status::kOk) st = strip_.end(sink, fit);
     if (st != Status::kOk) return st;
     if (front_.refused() != Status::kOk) return front_.refused();
@@ -217,10 +220,12 @@ Status Renderer<PF, K, kSpans, kFeatures>::render_bands(FrameStats& stats, Strip
       if (front_.band_dropped()) complete = false;
       s1 = front_.band_end();
     }
-    st = strip_.template strips<kFeatures.strip_skipping>(front_.frame(), s0, s1, sink, depth_sink);
+    st = strip_.template strips<kFeatures.strip_skipping, kFeatures.crowded_strips>(
+        front_.frame(), s0, s1, sink, depth_sink);
     if (st != Status::kOk) return st;
     s0 = s1;
   }
+  complete = complete && !strip_.dropped();
   st = strip_.end(sink, complete);
   if (st != Status::kOk) return st;
   if (front_.refused() != Status::kOk) return front_.refused();

@@ -9,7 +9,10 @@
 //    store) is refused by draw() with kNotLinked; one larger than the store's free part is
 //    dropped as if the store were full (kCapacity, or the next band with bands);
 //  - two_sided: a lit Gouraud or flat draw under LightSet::two_sided is refused with kNotLinked;
-//  - strip_skipping: configure() with a FrameStorage::strip_inputs store returns kNotLinked.
+//  - strip_skipping: configure() with a FrameStorage::strip_inputs store returns kNotLinked;
+//  - crowded_strips: in a strip whose triangles (those active and those starting in it)
+//    outnumber the active list, the triangles starting in it are dropped (dropped_triangle_-
+//    capacity counts them), the others drawn, and render() returns kCapacity.
 // A draw that needs none of them gives the same frame in every configuration.
 #pragma once
 
@@ -20,14 +23,16 @@ struct RendererFeatures {
   bool vertex_cache = true;    // meshes larger than the vertex store, through the cache
   bool two_sided = true;       // two-sided lighting (LightSet::two_sided)
   bool strip_skipping = true;  // strips whose inputs did not change not rendered again
+  bool crowded_strips = true;  // strips with more triangles than the active list, in passes
 
   constexpr bool operator==(const RendererFeatures&) const = default;
 };
 
 // Every feature: the default, what every renderer had before the features were chosen.
 inline constexpr RendererFeatures kAllFeatures{};
-// None of them: the smallest renderer, for a scene whose frame fits its stores, one-sided
-// lighting, every strip rendered each frame (the footprint images: docs/measurements/footprint.md).
-inline constexpr RendererFeatures kNoFeatures{false, false, false, false};
+// None of them: the smallest renderer, for a scene whose frame fits its stores (its active list
+// too, in every strip), one-sided lighting, every strip rendered each frame (the footprint
+// images: docs/measurements/footprint.md).
+inline constexpr RendererFeatures kNoFeatures{false, false, false, false, false};
 
 }  // namespace lr

@@ -76,10 +76,13 @@ class StripLoop {
   // per band, with that band's binned frame. end(complete = false): the frame dropped work, so
   // its strip signatures describe nothing to keep. kSkip: strips whose inputs did not change
   // may be left out (RendererFeatures::strip_skipping; false: skip_strip() is not linked, and
-  // the frame's strip_inputs are not read).
+  // the frame's strip_inputs are not read). kCrowded: a strip whose triangles outnumber the
+  // active list is drawn in passes (RendererFeatures::crowded_strips; false: crowded_strip() is
+  // not linked, the triangles starting in such a strip are dropped and counted, and dropped()
+  // says so until the next begin()).
   [[gnu::always_inline]] Status begin(const BinnedFrame& frame, FrameStats& stats,
                                       StripSink<PF>& sink, DepthSink* depth_sink);
-  template <bool kSkip = true>
+  template <bool kSkip = true, bool kCrowded = true>
   [[gnu::noinline]] Status strips(const BinnedFrame& frame, int s0, int s1, StripSink<PF>& sink,
                                   DepthSink* depth_sink);
   Status end(StripSink<PF>& sink, bool complete) {
@@ -87,6 +90,9 @@ class StripLoop {
     inputs_known_ = st == Status::kOk && !frame_.strip_inputs.empty() && complete;
     return st;
   }
+
+  // Whether strips<kSkip, false>() dropped triangles of a crowded strip since begin().
+  bool dropped() const { return dropped_; }
 
   // Forgets the strip signatures of the last frame (see Renderer::invalidate_strips).
   void invalidate_strips() { inputs_known_ = false; }
@@ -140,6 +146,7 @@ class StripLoop {
   SetupInput setup_input(uint16_t node, const BinnedTriangle& bt, const DrawRecord& dr) const;
   uint8_t draw_of(const BinnedTriangle& bt) const;
   void crowded_strip(int strip, Pixel* pixels, int y0, int rows, SetupContext& context);
+  void drop_bucket(int strip);
   void skip_strip(int strip, int y0, int rows);
   void carry_into(int strip, uint16_t carried);
   void resolve_fetchers();
@@ -167,6 +174,7 @@ class StripLoop {
   size_t free_count_ = 0;
   bool inputs_known_ = false;  // strip_inputs' second half describes the last frame rendered
   bool may_skip_ = false;      // this frame may leave out strips whose inputs did not change
+  bool dropped_ = false;       // a crowded strip's triangles were dropped (strips<kSkip, false>)
 };
 
 template <class PF, int K, SpanSet kSpans>
@@ -174,6 +182,7 @@ inline Status StripLoop<PF, K, kSpans>::begin(const BinnedFrame& frame, FrameSta
                                               StripSink<PF>& sink, DepthSink* depth_sink) {
   frame_ = frame;
   stats_ = &stats;
+  dropped_ = false;
   resolve_fetchers();
   const auto w = static_cast<size_t>(frame_.width);
   stats.bytes_per_strip = static_cast<uint32_t>(w * K * (sizeof(Pixel) + sizeof(uint16_t)));
@@ -189,7 +198,7 @@ inline Status StripLoop<PF, K, kSpans>::begin(const BinnedFrame& frame, FrameSta
 // Strips [s0, s1) of `frame` (the whole frame, or a band's binned frame: every triangle that
 // touches the band is in it, those from above in its first strip's bucket).
 template <class PF, int K, SpanSet kSpans>
-template <bool kSkip>
+template <bool kSkip, bool kCrowded>
 Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1,
                                         StripSink<PF>& sink, DepthSink* depth_sink) {
   frame_ = frame;
@@ -231,7 +240,13 @@ Status StripLoop<PF, K, kSpans>::strips(const BinnedFrame& frame, int s0, int s1
     std::span<Pixel> px = lease.pixels();
     if (px.size() < count) return Status::kInvalidArgument;
     fill_pixels(px.data(), count, bg);
-    const bool fits = activate(s, context);
+    bool fits = activate(s, context);
+    if constexpr (!kCrowded) {
+      if (!fits) {
+        drop_bucket(s);
+        fits = true;
+      }
+    }
     std::span<uint16_t> depth = storage_.depth.first(count);
     if (!fits) {
       fill_pixels(depth.data(), count, uint16_t{0xFFFF});
@@ -370,6 +385,18 @@ void StripLoop<PF, K, kSpans>::crowded_strip(int strip, Pixel* pixels, int y0, i
   --stats_->strip_passes;  // the first pass is the strip's own
   stats_->max_active = static_cast<uint32_t>(storage_.active.size());
   if (strip + 1 < frame_.strips) carry_into(strip + 1, carried);
+}
+
+// A crowded strip in a renderer without crowded_strips: the triangles starting in it are
+// dropped (counted as the front end counts what a full store drops), those already active
+// are drawn as in any strip.
+template <class PF, int K, SpanSet kSpans>
+void StripLoop<PF, K, kSpans>::drop_bucket(int strip) {
+  uint16_t& head = frame_.buckets[static_cast<size_t>(strip)];
+  for (uint16_t i = head; i != kNoTriangle; i = frame_.triangles[i].next)
+    ++stats_->dropped_triangle_capacity;
+  head = kNoTriangle;
+  dropped_ = true;
 }
 
 // The texel fetchers of this frame's draws (DrawRecord): here, in the template, from the tables

@@ -25,9 +25,22 @@
 
 namespace lr {
 
-// The rows of one visit through for_each_span and a span routine per row.
-template <class PF, bool kDepth, UntexturedKind kKind>
-[[gnu::noinline]] void untextured_rows_per_span(const ActiveTriangle& t, StripRows& s) {
+// Whether the per-span row loops of every kind share one walk of the rows, their spans called
+// through a pointer (one call per span): at -Os, where the walk is most of a row loop's code
+// (0.7 KB a kind on Cortex-M4F) and GCC calls the span out of line anyway. Elsewhere each
+// (depth test, kind) has its walk with its span inlined. The same pixels either way.
+#if defined(__OPTIMIZE_SIZE__)
+inline constexpr bool kSharedRowWalk = true;
+#else
+inline constexpr bool kSharedRowWalk = false;
+#endif
+
+namespace detail {
+// The rows of one visit through for_each_span, span(t, px, depth, col, row, n) per span (it
+// returns the pixels the depth test rejected).
+template <class PF, class Span>
+[[gnu::always_inline]] inline void untextured_walk(const ActiveTriangle& t, StripRows& s,
+                                                   Span&& span) {
   using Pixel = typename PF::Storage;
   Pixel* const pixels = static_cast<Pixel*>(s.pixels);
   uint16_t* const depth = s.depth;
@@ -36,7 +49,7 @@ template <class PF, bool kDepth, UntexturedKind kKind>
   uint32_t spans = 0, tested = 0, rejected = 0;
   const int32_t rows = for_each_span(t, s, [&](int32_t r, int32_t left, int32_t n) {
     const size_t off = static_cast<size_t>(r - y0) * width + static_cast<size_t>(left);
-    rejected += untextured_span<PF, kDepth, kKind>(t, pixels + off, depth + off, left, r, n);
+    rejected += span(t, pixels + off, depth + off, left, r, n);
     tested += static_cast<uint32_t>(n);
     ++spans;
   });
@@ -44,6 +57,38 @@ template <class PF, bool kDepth, UntexturedKind kKind>
   s.tested += tested;
   s.written += tested - rejected;
   s.rows += static_cast<uint32_t>(rows);
+}
+}  // namespace detail
+
+// A span of a (depth test, kind) out of line, for the shared walk (kSharedRowWalk).
+template <class PF>
+using UntexturedSpanFn = uint32_t (*)(const ActiveTriangle& t, typename PF::Storage* px,
+                                      uint16_t* depth, int32_t col, int32_t row, int32_t count);
+template <class PF, bool kDepth, UntexturedKind kKind>
+[[gnu::noinline]] uint32_t untextured_span_call(const ActiveTriangle& t, typename PF::Storage* px,
+                                                uint16_t* depth, int32_t col, int32_t row,
+                                                int32_t count) {
+  return untextured_span<PF, kDepth, kKind>(t, px, depth, col, row, count);
+}
+// The shared walk (kSharedRowWalk): one per pixel format.
+template <class PF>
+[[gnu::noinline]] void untextured_rows_walk(const ActiveTriangle& t, StripRows& s,
+                                            UntexturedSpanFn<PF> span) {
+  detail::untextured_walk<PF>(t, s, span);
+}
+
+// The rows of one visit through for_each_span and a span routine per row.
+template <class PF, bool kDepth, UntexturedKind kKind>
+[[gnu::noinline]] void untextured_rows_per_span(const ActiveTriangle& t, StripRows& s) {
+  if constexpr (kSharedRowWalk) {
+    untextured_rows_walk<PF>(t, s, &untextured_span_call<PF, kDepth, kKind>);
+  } else {
+    detail::untextured_walk<PF>(
+        t, s,
+        [](const ActiveTriangle& tt, typename PF::Storage* px, uint16_t* depth, int32_t col,
+           int32_t row,
+           int32_t n) { return untextured_span<PF, kDepth, kKind>(tt, px, depth, col, row, n); });
+  }
 }
 
 // The lanes kind with the depth test where lane_visit has its hand-allocated form: one loop for

@@ -106,6 +106,7 @@ lr_fw_stack_rules=(
   --indirect-from 'lr::(Renderer|StripLoop)<.*>::(render|render_bands|strips(<[^>]*>)?|crowded_strip)\('
   'OrderedStripSink<.*>::|lr::PanelSink::|lr::StripSink<.*>::(retains_frame|keep)\(|lr::(lanes_rows|untextured_rows_per_span|legacy_rows)<'
   --indirect-from 'lr::legacy_rows<' 'lr::fill_tex_span<|lr::fill_phong_span<'
+  --indirect-from 'lr::untextured_rows_walk<' 'lr::untextured_span_call<'
   --indirect-from 'lr::(detail::)?fill_(tex_span_body|tex_span|phong_span)<' 'lr::fetch_batch<'
   --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'
   --indirect-from 'lr::FrontEnd::(draw(_screen)?|admitted)\(' 'lr::admits<|lr::DrawRecords::phong_record\('

@@ -83,7 +83,8 @@ DrawState lit_gouraud() {
   return s;
 }
 
-FrameCapacities caps(size_t vertices = 512, size_t triangles = 512, bool strip_skipping = false) {
+FrameCapacities caps(size_t vertices = 512, size_t triangles = 512, bool strip_skipping = false,
+                     size_t active = 256) {
   FrameCapacities c;
   c.width = kW;
   c.height = kH;
@@ -91,7 +92,7 @@ FrameCapacities caps(size_t vertices = 512, size_t triangles = 512, bool strip_s
   c.vertices = vertices;
   c.triangles = triangles;
   c.draws = 4;
-  c.active = 256;
+  c.active = active;
   c.strip_skipping = strip_skipping;
   return c;
 }
@@ -124,6 +125,9 @@ struct Rig {
 
 using Full = Rig<kAllFeatures>;
 using Lean = Rig<kNoFeatures>;
+// Every feature but the crowded strips' passes.
+constexpr RendererFeatures kUncrowded{.crowded_strips = false};
+using Uncrowded = Rig<kUncrowded>;
 
 TEST(RendererFeatures, WithoutFeaturesAFrameThatNeedsNoneIsTheSame) {
   const Grid g(6);
@@ -196,6 +200,50 @@ TEST(RendererFeatures, WithoutStripSkippingAStripInputsStoreIsNotLinked) {
   Lean lean(caps(512, 512, true));
   EXPECT_EQ(lean.configure(), Status::kNotLinked);
   EXPECT_EQ(lean.r->begin_frame(camera(), lights(), kBackground), Status::kNotConfigured);
+}
+
+TEST(RendererFeatures, WithoutCrowdedStripsAStripBeyondTheActiveListIsCapacity) {
+  const Grid g(8);  // 8 rows of 16 triangles, up to 48 of them active in a strip
+  Full whole;       // an active list that holds every strip's triangles
+  ASSERT_EQ(whole.frame(g), Status::kOk);
+  ASSERT_EQ(whole.status, Status::kOk);
+  EXPECT_EQ(whole.r->stats().strip_passes, 0u);
+  // Where the active list holds them, the same frame without the passes.
+  Uncrowded roomy;
+  ASSERT_EQ(roomy.frame(g), Status::kOk);
+  EXPECT_EQ(roomy.status, Status::kOk);
+  EXPECT_EQ(roomy.sink.frame(), whole.sink.frame());
+  EXPECT_EQ(whole.r->stats().max_active, 48u);
+  // 32 slots: the full renderer draws the crowded strips in passes, the same frame.
+  Full passes(caps(512, 512, false, 32));
+  ASSERT_EQ(passes.frame(g), Status::kOk);
+  EXPECT_EQ(passes.status, Status::kOk);
+  EXPECT_GT(passes.r->stats().strip_passes, 0u);
+  EXPECT_EQ(passes.sink.frame(), whole.sink.frame());
+  // Without the passes: kCapacity, the triangles starting in a crowded strip dropped and
+  // counted, every other pixel as in the whole frame (the grid's triangles do not overlap).
+  Uncrowded crowded(caps(512, 512, false, 32));
+  ASSERT_EQ(crowded.frame(g), Status::kOk);
+  EXPECT_EQ(crowded.status, Status::kCapacity);
+  EXPECT_EQ(crowded.r->stats().strip_passes, 0u);
+  const uint32_t dropped = crowded.r->stats().dropped_triangle_capacity;
+  EXPECT_GT(dropped, 0u);
+  EXPECT_LT(dropped, crowded.r->stats().triangles_binned);
+  EXPECT_EQ(dropped % 16, 0u);  // whole rows of the grid: those starting in crowded strips
+  EXPECT_EQ(crowded.r->stats().triangles_set_up + dropped, whole.r->stats().triangles_set_up);
+  size_t same = 0, background = 0;
+  const auto bg = PF::encode(kBackground);
+  for (size_t i = 0; i < whole.sink.frame().size(); ++i) {
+    same += crowded.sink.frame()[i] == whole.sink.frame()[i];
+    background += crowded.sink.frame()[i] != whole.sink.frame()[i] && crowded.sink.frame()[i] == bg;
+  }
+  EXPECT_LT(same, whole.sink.frame().size());
+  EXPECT_EQ(same + background, whole.sink.frame().size());
+  Lean lean(caps(512, 512, false, 32));
+  ASSERT_EQ(lean.frame(g), Status::kOk);
+  EXPECT_EQ(lean.status, Status::kCapacity);
+  EXPECT_EQ(lean.r->stats().dropped_triangle_capacity, dropped);
+  EXPECT_EQ(lean.sink.frame(), crowded.sink.frame());
 }
 
 }  // namespace
