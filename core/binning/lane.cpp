@@ -132,7 +132,7 @@ uint32_t FrontEnd::lane_run_triangles(MeshDraw& d, uint32_t t) {
 }
 
 // light_list() with a loop without the clamps for lights that cannot pass 1 (OneDiffuseLight::
-// never_clamps), but not where the code is built for size.
+// never_clamps()), but not where the code is built for size.
 #if defined(__OPTIMIZE_SIZE__)
 constexpr bool kOneLightUnclamped = false;
 #else
@@ -170,7 +170,7 @@ void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
     };
     // Without the clamps where no sum can pass 1 (9 instructions a vertex on Armv7-M), but not
     // where the code is built for size (a second loop).
-    if (kOneLightUnclamped && one.never_clamps)
+    if (kOneLightUnclamped && one.never_clamps())
       run.template operator()<false>();
     else
       run.template operator()<true>();

@@ -131,19 +131,20 @@ struct OneDiffuseLight {
   int32_t l[3];
   uint16_t kd[3];
   int32_t base[3];
+  [[gnu::always_inline]] OneDiffuseLight(const PreparedLighting& pl, const ObjectLights& ol)
+      : l{ol.l[0][0], ol.l[0][1], ol.l[0][2]},
+        kd{pl.lights[0].kd[0], pl.lights[0].kd[1], pl.lights[0].kd[2]},
+        base{pl.base[0], pl.base[1], pl.base[2]} {}
+
   // No channel's sum can pass 1, so the clamps change nothing and a loop may leave them out
   // (operator()<false>). add_diffuse adds at most kd + (kd >> 10) + 1 to the base: its N.L times
   // 1 / |n| is below 2^30 + 2^20, so d16 < 2^16 + 2^6 and (d16 kd + 2^15) >> 16 stays below
   // kd + kd / 2^10 + 1/2. The usual material (ambient plus diffuse below 1) never clamps.
-  bool never_clamps;
+  // (A function, not a member: light_corners() makes one of these per vertex.)
+  bool never_clamps() const { return sum_within(0) && sum_within(1) && sum_within(2); }
 
-  [[gnu::always_inline]] OneDiffuseLight(const PreparedLighting& pl, const ObjectLights& ol)
-      : l{ol.l[0][0], ol.l[0][1], ol.l[0][2]},
-        kd{pl.lights[0].kd[0], pl.lights[0].kd[1], pl.lights[0].kd[2]},
-        base{pl.base[0], pl.base[1], pl.base[2]},
-        never_clamps(sum_within(0) && sum_within(1) && sum_within(2)) {}
-
-  // A unit normal's colour (unit_len2(len2)), front side. kClamp false: only where never_clamps.
+  // A unit normal's colour (unit_len2(len2)), front side. kClamp false: only where
+  // never_clamps().
   template <bool kClamp = true>
   [[gnu::always_inline]] Color15 operator()(const Normal16& n, uint32_t len2) const {
     uint32_t prim[3] = {static_cast<uint32_t>(base[0]), static_cast<uint32_t>(base[1]),

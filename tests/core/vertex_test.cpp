@@ -491,7 +491,7 @@ TEST(ObjectLights, OneDiffuseLightEqualsTheGeneralPath) {
       ASSERT_EQ(fast.r, general.r) << set_i << " " << i;
       ASSERT_EQ(fast.g, general.g) << set_i << " " << i;
       ASSERT_EQ(fast.b, general.b) << set_i << " " << i;
-      if (one.never_clamps) {
+      if (one.never_clamps()) {
         const Color15 unclamped = one.operator()<false>(n, len2);
         ASSERT_EQ(unclamped, general) << set_i << " " << i;
         ++never_clamps;
@@ -539,7 +539,7 @@ TEST(ObjectLights, OneDiffuseLightLeavesOutTheClampsOnlyWhereNoSumPassesOne) {
       ObjectLights ol;
       ASSERT_TRUE(stage.object_lights(pl, ol));
       const OneDiffuseLight one(pl, ol);
-      if (!one.never_clamps) {
+      if (!one.never_clamps()) {
         ++refused_cases;
         continue;
       }
