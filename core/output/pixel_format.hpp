@@ -38,31 +38,32 @@ inline constexpr std::array<uint8_t, 512> kTo565 = make_565_table();
 inline constexpr size_t kTo6Offset = 256;
 
 // Whether RGB565 conversion reads kTo565 (a load a channel) or computes its entry (a multiply
-// and four additions and shifts a channel, no division: x / 255 is (x + (x >> 8) + 1) >> 8 for
-// x below 2^16): the arithmetic where the code is built for size, which leaves the 512-byte table
-// out of the image. The same values (checked below).
+// and four additions and shifts a channel, no division: div255): the arithmetic where the code
+// is built for size, which leaves the 512-byte table out of the image. The same values (checked
+// below).
 #if defined(__OPTIMIZE_SIZE__)
 inline constexpr bool kReduceByTable = false;
 #else
 inline constexpr bool kReduceByTable = true;
 #endif
+// x / 255 for x below 2^16 - 1 (checked below), without a division (a library call on
+// Armv6-M).
+constexpr unsigned div255(unsigned x) {
+  return (x + (x >> 8) + 1u) >> 8;
+}
 // An 8-bit channel v (0..255) to kMax (31 or 63) levels, rounded to nearest: kTo565's entry.
 template <unsigned kMax>
 constexpr unsigned reduce8(unsigned v) {
   if constexpr (kReduceByTable)
     return kTo565[(kMax == 63 ? kTo6Offset : 0) + v];
-  else {
-    const unsigned x = kMax * v + 127u;  // below 2^14
-    return (x + (x >> 8) + 1u) >> 8;     // x / 255
-  }
+  else
+    return div255(kMax * v + 127u);  // kMax v + 127 below 2^14
 }
 consteval bool reduce_matches_table() {
+  for (unsigned x = 0; x < (1u << 16) - 1; ++x)
+    if (div255(x) != x / 255u) return false;
   for (unsigned v = 0; v < 256; ++v)
-    for (const unsigned x : {31 * v + 127u, 63 * v + 127u})
-      if ((x + (x >> 8) + 1u) >> 8 != x / 255u) return false;
-  for (unsigned v = 0; v < 256; ++v)
-    if ((31 * v + 127u) / 255u != kTo565[v] || (63 * v + 127u) / 255u != kTo565[kTo6Offset + v])
-      return false;
+    if (reduce8<31>(v) != kTo565[v] || reduce8<63>(v) != kTo565[kTo6Offset + v]) return false;
   return true;
 }
 static_assert(reduce_matches_table());
@@ -85,22 +86,21 @@ struct Rgb565Format {
   static constexpr Storage encode(Rgb8 c) {
     return from_value((reduce8<31>(c.r) << 11) | (reduce8<63>(c.g) << 5) | reduce8<31>(c.b));
   }
-  // encode(Rgb8{to_byte(r15), to_byte(g15), to_byte(b15)}) for Q1.15 channels in [0, 1]: the
-  // 6-bit table's offset folded into to_byte's rounding constant, one table address.
+  // encode(Rgb8{to_byte(r15), to_byte(g15), to_byte(b15)}) for Q1.15 channels in [0, 1].
   static constexpr Storage encode15(uint32_t r15, uint32_t g15, uint32_t b15) {
+    return from_value((level15<31>(r15) << 11) | (level15<63>(g15) << 5) | level15<31>(b15));
+  }
+  // A Q1.15 channel c (0..1) to kMax levels: reduce8<kMax>(to_byte(c)). From the table, the
+  // 6-bit part's offset is folded into to_byte's rounding constant: one table address for all
+  // three channels, no addition.
+  template <unsigned kMax>
+  static constexpr unsigned level15(uint32_t c) {
     constexpr uint32_t kRound = Color15::kOne / 2;
     if constexpr (kReduceByTable) {
-      constexpr uint32_t kGreen = kRound + (kTo6Offset << Color15::kFracBits);
-      const uint8_t* t = kTo565.data();
-      const unsigned r5 = t[(r15 * 255u + kRound) >> Color15::kFracBits];
-      const unsigned g6 = t[(g15 * 255u + kGreen) >> Color15::kFracBits];
-      const unsigned b5 = t[(b15 * 255u + kRound) >> Color15::kFracBits];
-      return from_value((r5 << 11) | (g6 << 5) | b5);
+      constexpr uint32_t kOffset = (kMax == 63 ? kTo6Offset : 0) << Color15::kFracBits;
+      return kTo565.data()[(c * 255u + kRound + kOffset) >> Color15::kFracBits];
     } else {
-      const unsigned r5 = reduce8<31>((r15 * 255u + kRound) >> Color15::kFracBits);
-      const unsigned g6 = reduce8<63>((g15 * 255u + kRound) >> Color15::kFracBits);
-      const unsigned b5 = reduce8<31>((b15 * 255u + kRound) >> Color15::kFracBits);
-      return from_value((r5 << 11) | (g6 << 5) | b5);
+      return reduce8<kMax>((c * 255u + kRound) >> Color15::kFracBits);
     }
   }
   // The 8-bit colour a stored pixel stands for (bit replication, as controllers expand 565).
