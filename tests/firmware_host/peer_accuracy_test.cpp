@@ -19,7 +19,8 @@
 //     half and one subpixel from their exact rounding), and against the reference given the
 //     core's input the frame has no pixel more than one step off (InputOfTheCore below). The
 //     bound allows that one pixel (kOverOneStepFromInput) until the core's input is finer than
-//     Q16.16 (positions and matrices); then it goes to 0, the figure.
+//     Q16.16 (positions and matrices: the reference given any one of the roundings alone moves
+//     it too, docs/measurements/core_redesign.md); then it goes to 0, the figure.
 //   - against the reference given the core's input (the flash's positions and the core's Q16.16
 //     model-view-projection): 0 pixels covered by one only, 0 pixels more than one step off; and
 //     the counts of vertices the core snaps apart from each reference (printed).
