@@ -98,7 +98,7 @@ struct Rgb565Format {
     constexpr uint32_t kRound = Color15::kOne / 2;
     if constexpr (kReduceByTable) {
       constexpr uint32_t kOffset = (kMax == 63 ? kTo6Offset : 0) << Color15::kFracBits;
-      return kTo565.data()[(c * 255u + kRound + kOffset) >> Color15::kFracBits];
+      return kTo565[(c * 255u + kRound + kOffset) >> Color15::kFracBits];
     } else {
       return reduce8<kMax>((c * 255u + kRound) >> Color15::kFracBits);
     }
