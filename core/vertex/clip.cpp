@@ -1,5 +1,7 @@
 #include "lineraster/core/vertex/clip.hpp"
 
+#include "lineraster/core/math/wide_divide.hpp"
+
 namespace lr {
 namespace {
 
@@ -46,7 +48,8 @@ ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, int64_t d_in, 
   while ((den >> s) >= (uint64_t{1} << 31)) ++s;
   num >>= s;
   den >>= s;
-  uint32_t t = static_cast<uint32_t>((num << 30) / den);  // num < den < 2^31: t in [0, 2^30)
+  // num < den < 2^31: t in [0, 2^30), num 2^30 < den 2^32 (one 64-by-32 division).
+  const uint32_t t = divide_64by32(num << 30, static_cast<uint32_t>(den)).q;
   ClipVertex r;
   r.p.x = in.p.x + mul_frac30(out.p.x - in.p.x, t);
   r.p.y = in.p.y + mul_frac30(out.p.y - in.p.y, t);

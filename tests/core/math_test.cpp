@@ -13,6 +13,7 @@
 #include "lineraster/core/math/saturate.hpp"
 #include "lineraster/core/math/trig.hpp"
 #include "lineraster/core/math/vec.hpp"
+#include "lineraster/core/math/wide_divide.hpp"
 #include "lineraster/core/math/wide_mul.hpp"
 #include "lineraster/core/output/color.hpp"
 #include "lineraster/core/output/pixel_format.hpp"
@@ -296,6 +297,58 @@ TEST(Reciprocal, Recip32AndTheTwoByOneDivisionEqualTheDivisions) {
     check(0xFFFFFFFFu - k);  // the largest
     check(static_cast<uint32_t>(next()) | (1u << 31));
     check(((0x8000u + (k % 0x8000u)) << 16) | (k & 1 ? 0xFFFFu : 0u));  // top-half boundaries
+  }
+}
+
+// The 64-bit divisions in 32-bit pieces (core/math/wide_divide.hpp) equal C's: the 64-by-32
+// division on the path 32-bit Arm takes (normalised 2-by-1 division, recip32_newton) for
+// divisors of every bit length with numerators at the ends of its range (0, d - 1, d, d 2^32 - 1)
+// and random below d 2^32; the 64-bit reciprocal for divisors of every bit length, both sides of
+// 2^32 (its two ways) and the extremes.
+TEST(WideDivide, SixtyFourBy32EqualsTheDivisionOnTheArmPath) {
+  XorShift64 next{0x6A09E667F3BCC909u};
+  uint64_t checked = 0;
+  for (int bits = 1; bits <= 32; ++bits) {
+    for (int k = 0; k < 3000; ++k) {
+      auto d = static_cast<uint32_t>(next() >> (64 - bits));
+      if (d == 0) d = 1;
+      const uint64_t top = (uint64_t{d} << 32) - 1;  // the largest numerator allowed
+      const uint64_t n[] = {0,
+                            d - 1u,
+                            d,
+                            top,
+                            next() % top,
+                            (next() % top) / d * d,
+                            next() >> (64 - bits - 1 - static_cast<int>(next() % 32))};
+      for (uint64_t x : n) {
+        if (x > top) continue;
+        const Quotient32 arm = detail::divide_64by32_2by1(x, d), here = divide_64by32(x, d);
+        ASSERT_EQ(arm.q, x / d) << x << " / " << d;
+        ASSERT_EQ(arm.r, x % d) << x << " % " << d;
+        ASSERT_EQ(here.q, arm.q) << x << " / " << d;
+        ASSERT_EQ(here.r, arm.r) << x << " % " << d;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 600000u);
+}
+
+TEST(WideDivide, Reciprocal64EqualsTheDivision) {
+  XorShift64 next{0xBB67AE8584CAA73Bu};
+  auto check = [](uint64_t d) { ASSERT_EQ(reciprocal64(d), ~uint64_t{0} / d) << d; };
+  for (uint64_t d :
+       {uint64_t{1}, uint64_t{2}, uint64_t{3}, (uint64_t{1} << 31) - 1, uint64_t{1} << 31,
+        (uint64_t{1} << 32) - 1, uint64_t{1} << 32, (uint64_t{1} << 32) + 1,
+        (uint64_t{1} << 47) - 1, uint64_t{1} << 63, ~uint64_t{0} - 1, ~uint64_t{0}})
+    check(d);
+  for (int bits = 1; bits <= 64; ++bits) {
+    for (int k = 0; k < 20000; ++k) {
+      const uint64_t d = next() >> (64 - bits);
+      if (d != 0) check(d);
+      // Exactly `bits` long.
+      check((uint64_t{1} << (bits - 1)) | (bits > 1 ? next() >> (65 - bits) : 0));
+    }
   }
 }
 
