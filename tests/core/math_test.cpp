@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <vector>
 
@@ -68,6 +69,107 @@ TEST(Vec, NormalizeIsUnitWithinTwoQ30Units) {
   }
   Unit30 u;
   EXPECT_FALSE(normalize_unit30(0, 0, 0, u));
+}
+
+// The previous sin_deg and perspective, with C's 64-bit divisions: the references of the
+// current ones (64-by-32 divisions, no C library 64-bit division), which give the same integers.
+int32_t reference_sin_deg(int32_t raw) {
+  constexpr int64_t kQuarter = int64_t{90} << Fixed::kFracBits;
+  int64_t a = raw % (4 * kQuarter);
+  if (a < 0) a += 4 * kQuarter;
+  int32_t sign = 1;
+  if (a >= 2 * kQuarter) {
+    a -= 2 * kQuarter;
+    sign = -1;
+  }
+  if (a > kQuarter) a = 2 * kQuarter - a;
+  const int64_t pos = a * detail::kTrigSteps * Fixed::kOne / kQuarter;
+  const auto i = static_cast<size_t>(pos >> Fixed::kFracBits);
+  const int64_t frac = pos & (Fixed::kOne - 1);
+  const int64_t s0 = detail::kSinTable[i];
+  const int64_t s1 =
+      i + 1 <= static_cast<size_t>(detail::kTrigSteps) ? detail::kSinTable[i + 1] : s0;
+  const int64_t v = s0 + (((s1 - s0) * frac) >> Fixed::kFracBits);
+  return sign * static_cast<int32_t>(round_shift(v, 30 - Fixed::kFracBits));
+}
+
+bool reference_perspective(Fixed fovy, Fixed aspect, Fixed near, Fixed far, Mat4& out) {
+  if (fovy.raw <= 0 || fovy >= Fixed::from_int(180)) return false;
+  if (aspect.raw <= 0 || near.raw <= 0 || far <= near) return false;
+  const Fixed half{fovy.raw / 2};
+  const int64_t s = sin_deg(half).raw, c = cos_deg(half).raw;
+  if (s <= 0) return false;
+  const int64_t f = round_div(c * Fixed::kOne, s);
+  Mat4 m{};
+  m.m[0][0] = Fixed::from_raw(saturate32(round_div(f * Fixed::kOne, aspect.raw)));
+  m.m[1][1] = Fixed::from_raw(saturate32(f));
+  const int64_t n = near.raw, fa = far.raw, dd = n - fa;
+  m.m[2][2] = Fixed::from_raw(saturate32(round_div(-(fa + n) * Fixed::kOne, -dd)));
+  m.m[2][3] = Fixed::from_raw(saturate32(round_div(-2 * fa * n, -dd)));
+  m.m[3][2] = Fixed::from_int(-1);
+  out = m;
+  return true;
+}
+
+TEST(Trig, SinEqualsTheSixtyFourBitDivisionForm) {
+  // Every raw angle in [-2^20, 2^20] (16 degrees each way), random ones and the extremes.
+  for (int32_t raw = -(1 << 20); raw <= (1 << 20); ++raw)
+    ASSERT_EQ(sin_deg(Fixed::from_raw(raw)).raw, reference_sin_deg(raw)) << raw;
+  uint64_t x = 0x3C6EF372FE94F82Bu;
+  for (int i = 0; i < 1000000; ++i) {
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    const auto raw = static_cast<int32_t>(static_cast<uint32_t>(x));
+    ASSERT_EQ(sin_deg(Fixed::from_raw(raw)).raw, reference_sin_deg(raw)) << raw;
+  }
+  for (int32_t raw : {INT32_MIN, INT32_MIN + 1, INT32_MAX, INT32_MAX - 1})
+    EXPECT_EQ(sin_deg(Fixed::from_raw(raw)).raw, reference_sin_deg(raw)) << raw;
+}
+
+// Every matrix entry of the previous form, for every combination of arguments at the ends of
+// their ranges (fields of view down to a few units, which saturate f and the x scale; near and
+// far close together or 2^31 apart, which saturate the depth terms) and for random ones.
+TEST(Camera, PerspectiveEqualsTheSixtyFourBitDivisionForm) {
+  const int32_t fovs[] = {
+      1, 2, 3, 4, 7, 64, 100, 114, 120, 200, 1000, 65536, 30 << 16, 45 << 16, (180 << 16) - 1};
+  const int32_t aspects[] = {1, 2, 3, 255, 65536, 87381, 1 << 24, INT32_MAX};
+  const int32_t depths[] = {1, 2, 3, 6554, 65536, 1 << 20, 1 << 30, INT32_MAX - 1, INT32_MAX};
+  int compared = 0;
+  auto check = [&compared](int32_t fov_raw, int32_t aspect_raw, int32_t a, int32_t b) {
+    const Fixed fov = Fixed::from_raw(fov_raw), asp = Fixed::from_raw(aspect_raw);
+    const Fixed nr = Fixed::from_raw(std::min(a, b)), fr = Fixed::from_raw(std::max(a, b));
+    Mat4 got{}, want{};
+    const bool ok = perspective(fov, asp, nr, fr, got);
+    ASSERT_EQ(ok, reference_perspective(fov, asp, nr, fr, want));
+    if (!ok) return;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        ASSERT_EQ(got.m[r][c].raw, want.m[r][c].raw)
+            << fov_raw << " " << aspect_raw << " " << nr.raw << " " << fr.raw << " [" << r << "]["
+            << c << "]";
+    ++compared;
+  };
+  for (int32_t fov : fovs)
+    for (int32_t aspect : aspects)
+      for (int32_t a : depths)
+        for (int32_t b : depths)
+          if (a < b) check(fov, aspect, a, b);
+  uint64_t x = 0xA54FF53A5F1D36F1u;
+  auto next = [&x] {
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    return x;
+  };
+  for (int i = 0; i < 100000; ++i) {
+    const auto fov = static_cast<int32_t>(next() % (180u << 16));
+    const auto aspect = static_cast<int32_t>(next() >> (33 + next() % 31));
+    const auto a = static_cast<int32_t>(next() >> (33 + next() % 31));
+    const auto b = static_cast<int32_t>(next() >> (33 + next() % 31));
+    if (a != b) check(fov, aspect, a, b);
+  }
+  EXPECT_GT(compared, 90000);
 }
 
 // gluPerspective, written out.
