@@ -1,6 +1,7 @@
 #include "lineraster/core/vertex/vertex_stage.hpp"
 
 #include "lineraster/core/math/reciprocal.hpp"
+#include "lineraster/core/math/wide_divide.hpp"
 
 namespace lr {
 // A model-space tangent (Q1.14) to world space (the model's upper 3x3), unit Q1.14.
@@ -109,10 +110,15 @@ LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, cons
   if (colors.need_position) {
     const Vec3 w0 = transform_affine(model_, p0), w1 = transform_affine(model_, p1),
                w2 = transform_affine(model_, p2);
-    centroid = {
-        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.x.raw} + w1.x.raw + w2.x.raw) / 3)),
-        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.y.raw} + w1.y.raw + w2.y.raw) / 3)),
-        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.z.raw} + w1.z.raw + w2.z.raw) / 3))};
+    // The mean of three int32, truncated (C's division): |sum| < 3 2^31, a 64-by-32 division of
+    // its magnitude.
+    auto mean = [](int32_t a, int32_t b, int32_t c) {
+      const int64_t sum = int64_t{a} + b + c;
+      const auto q = static_cast<int64_t>(divide_64by32(abs64(sum), 3).q);
+      return Fixed::from_raw(static_cast<int32_t>(sum < 0 ? -q : q));
+    };
+    centroid = {mean(w0.x.raw, w1.x.raw, w2.x.raw), mean(w0.y.raw, w1.y.raw, w2.y.raw),
+                mean(w0.z.raw, w1.z.raw, w2.z.raw)};
   }
   // Directional lights and the infinite viewer: the inline path (bit for bit the same).
   const LitColor c = colors.need_position ? colors.point(*colors.lighting, fw, centroid)
