@@ -145,6 +145,7 @@ class Renderer {
       kFlat ? &VertexStage::light_face : nullptr,
       detail::has(kSpans.position, true) ? &light_point_split : nullptr,
       kAttributes ? &VertexStage::attributes : nullptr,
+      kAttributes ? &clip_polygon<true> : &clip_polygon<false>,
       kFeatures.bands ? &kBandRoutines : nullptr,
       kFeatures.vertex_cache ? &kCacheRoutines : nullptr,
       kFeatures.two_sided ? &front_facing_clip : nullptr,
