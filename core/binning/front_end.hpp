@@ -135,7 +135,7 @@ struct FrontEndRoutines {
   FaceLightFn face_light = &VertexStage::light_face;  // lit flat draws' face colours
   // Lit Gouraud, flat and textured draws whose lighting reads the position (point lights, the
   // local viewer): per vertex and per face.
-  PointLightFn point_light = &light_point_split;
+  PointLightFn point_light = &light_point_at;
   AttributesFn attributes = &VertexStage::attributes;  // textured and Phong draws' vertices
   // The clipper: clip_polygon<true> (texture coordinates, specular colour and surface carried)
   // wherever attributes is set; clip_polygon<false> only where it is not (no draw then has them).

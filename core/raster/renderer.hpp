@@ -143,7 +143,7 @@ class Renderer {
       &admits<kSpans>,
       kSpans.has(SpanFamily::kPhong) ? &DrawRecords::phong_record : nullptr,
       kFlat ? &VertexStage::light_face : nullptr,
-      detail::has(kSpans.position, true) ? &light_point_split : nullptr,
+      detail::has(kSpans.position, true) ? &light_point_at : nullptr,
       kAttributes ? &VertexStage::attributes : nullptr,
       kAttributes ? &clip_polygon<true> : &clip_polygon<false>,
       kFeatures.bands ? &kBandRoutines : nullptr,

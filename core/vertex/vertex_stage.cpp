@@ -17,6 +17,10 @@ void transform_tangent(const Mat4& model, const Tangent16& t, int16_t out[3]) {
   out[2] = static_cast<int16_t>(round_shift(u.z, 16));
 }
 
+LitColor light_point_at(const PreparedLighting& pl, const Unit30& n, const Mat4* model, Vec3 p) {
+  return light_point_split(pl, n, model != nullptr ? transform_affine(*model, p) : p);
+}
+
 Unit30 transform_normal_call(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
   return transform_normal(nm, x, y, z);
 }
@@ -95,8 +99,7 @@ LitColor VertexStage::light(const Mesh& mesh, const VertexColors colors, size_t 
     if (colors.split) return light_directional_split(*colors.lighting, nw);
     return {light_directional(*colors.lighting, nw), Color15{}};
   }
-  const Vec3 pw = transform_affine(model_, mesh.positions[i]);
-  const LitColor c = colors.point(*colors.lighting, nw, pw);
+  const LitColor c = colors.point(*colors.lighting, nw, &model_, mesh.positions[i]);
   if (colors.split) return c;
   return {sum_clamped(c.primary, c.secondary), Color15{}};
 }
@@ -121,7 +124,7 @@ LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, cons
                 mean(w0.z.raw, w1.z.raw, w2.z.raw)};
   }
   // Directional lights and the infinite viewer: the inline path (bit for bit the same).
-  const LitColor c = colors.need_position ? colors.point(*colors.lighting, fw, centroid)
+  const LitColor c = colors.need_position ? colors.point(*colors.lighting, fw, nullptr, centroid)
                                           : light_directional_split(*colors.lighting, fw);
   if (colors.split) return c;
   return {sum_clamped(c.primary, c.secondary), Color15{}};

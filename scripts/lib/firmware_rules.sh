@@ -111,7 +111,7 @@ lr_fw_stack_rules=(
   --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'
   --indirect-from 'lr::FrontEnd::(draw(_screen)?|admitted)\(' 'lr::admits<|lr::DrawRecords::phong_record\('
   --indirect-from 'lr::FrontEnd::(general_triangles<[^>]*>|triangle_loop|run_mesh)\(' 'lr::VertexStage::light_face\('
-  --indirect-from 'lr::VertexStage::(light|light_face)\(' 'lr::light_point_split\('
+  --indirect-from 'lr::VertexStage::(light|light_face)\(' 'lr::light_point_at\('
   --indirect-from 'lr::VertexStage::transform_range\(' 'lr::VertexStage::attributes\('
   --indirect-from 'lr::FrontEnd::replay\(' 'lr::FrontEnd::(replay_screen|run_screen)\('
   --indirect-from 'lr::FrontEnd::bin\(' 'lr::FrontEndParts::(shrink_band|sign_triangle)\(|lr::VertexStore::persist\('
