@@ -316,8 +316,8 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
     poly[k].corner = static_cast<uint8_t>(k + 1);
     poly[k].outcode = sv[k]->outcode;
   }
-  const int m = clip_polygon(poly, ClipPolygon(clip_.scratch.data(), kMaxClipVertices), 3, oc_or,
-                             d.stage.guard());
+  const int m = routines_->clip(poly, ClipPolygon(clip_.scratch.data(), kMaxClipVertices), 3, oc_or,
+                                d.stage.guard());
   if (m < 3) {
     ++stats_.clipped_away;
     return;

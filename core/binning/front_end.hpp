@@ -135,8 +135,11 @@ struct FrontEndRoutines {
   FaceLightFn face_light = &VertexStage::light_face;  // lit flat draws' face colours
   // Lit Gouraud, flat and textured draws whose lighting reads the position (point lights, the
   // local viewer): per vertex and per face.
-  PointLightFn point_light = &light_point_split;
+  PointLightFn point_light = &light_point_at;
   AttributesFn attributes = &VertexStage::attributes;  // textured and Phong draws' vertices
+  // The clipper: clip_polygon<true> (texture coordinates, specular colour and surface carried)
+  // wherever attributes is set; clip_polygon<false> only where it is not (no draw then has them).
+  int (*clip)(ClipPolygon, ClipPolygon, int, uint8_t, GuardBand) = &clip_polygon<true>;
   // The features of RendererFeatures (renderer_features.hpp), nullptr when left out: bands (a
   // frame larger than the stores is then drawn as far as it fits: kCapacity), the vertex cache
   // (a mesh larger than the vertex store: kNotLinked; one larger than its free part: as if the

@@ -1,5 +1,7 @@
 #include "lineraster/core/lighting/lighting.hpp"
 
+#include "lineraster/core/math/wide_divide.hpp"
+
 namespace lr {
 namespace {
 
@@ -90,8 +92,13 @@ uint32_t attenuation(const PreparedLighting::Light& li, int64_t d) {
   int64_t den = li.kc + (mul_sat(li.kl, d) >> 16) + (mul_sat(li.kq, d2) >> 16);
   constexpr uint32_t kMax = 16u << 15;
   if (den <= 0) return kMax;
-  const int64_t a = ((int64_t{1} << 31) + den / 2) / den;
-  return a > kMax ? kMax : static_cast<uint32_t>(a);
+  // round(2^31 / den): 0 for den above 2^32, 1 at 2^32 (2^31 + 2^31 over 2^32); below, a 64-by-32
+  // division whose quotient is at most 2^31.
+  if (den >= (int64_t{1} << 32)) return den == (int64_t{1} << 32) ? 1u : 0u;
+  const uint32_t a = divide_64by32((uint64_t{1} << 31) + static_cast<uint64_t>(den / 2),
+                                   static_cast<uint32_t>(den))
+                         .q;
+  return a > kMax ? kMax : a;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "lineraster/core/lighting/lighting_table.hpp"
 
 #include "lineraster/core/math/inv_sqrt.hpp"
+#include "lineraster/core/math/wide_divide.hpp"
 
 namespace lr {
 
@@ -10,9 +11,10 @@ void fill_lighting_table(const PreparedLighting& pl, uint16_t size, bool split,
   const Vec3 nowhere{};
   for (size_t j = 0; j < n; ++j) {
     for (size_t i = 0; i < n; ++i) {
-      // Lattice point p in Q1.30, then the direction it stands for.
-      const int64_t px = static_cast<int64_t>((uint64_t{i} << 31) / size) - (int64_t{1} << 30);
-      const int64_t py = static_cast<int64_t>((uint64_t{j} << 31) / size) - (int64_t{1} << 30);
+      // Lattice point p in Q1.30, then the direction it stands for. i, j <= size: each quotient
+      // is at most 2^31, one 64-by-32 division.
+      const int64_t px = int64_t{divide_64by32(uint64_t{i} << 31, size).q} - (int64_t{1} << 30);
+      const int64_t py = int64_t{divide_64by32(uint64_t{j} << 31, size).q} - (int64_t{1} << 30);
       const int64_t ax = px < 0 ? -px : px, ay = py < 0 ? -py : py;
       int64_t x = px, y = py;
       const int64_t z = (int64_t{1} << 30) - ax - ay;

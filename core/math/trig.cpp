@@ -1,5 +1,7 @@
 #include "lineraster/core/math/trig.hpp"
 
+#include "lineraster/core/math/wide_divide.hpp"
+
 namespace lr {
 namespace {
 
@@ -7,8 +9,11 @@ constexpr int64_t kQuarterTurn = int64_t{90} << Fixed::kFracBits;  // 90 degrees
 
 // sin of an angle in [0, 90] degrees given in Q16.16 (as int64), returned in Q16.16.
 int32_t sin_quadrant(int64_t a) {
-  // Position in table steps with 16 fractional bits: a * kTrigSteps / 90deg.
-  int64_t pos = a * detail::kTrigSteps * Fixed::kOne / kQuarterTurn;
+  // Position in table steps with 16 fractional bits: a * kTrigSteps / 90deg. a in [0, 90deg]:
+  // the numerator is below 2^47 and the quotient at most kTrigSteps 2^16, one 64-by-32 division.
+  const int64_t pos = divide_64by32(static_cast<uint64_t>(a) * detail::kTrigSteps * Fixed::kOne,
+                                    static_cast<uint32_t>(kQuarterTurn))
+                          .q;
   auto i = static_cast<size_t>(pos >> Fixed::kFracBits);
   int64_t frac = pos & (Fixed::kOne - 1);
   int64_t s0 = detail::kSinTable[i];
@@ -21,7 +26,7 @@ int32_t sin_quadrant(int64_t a) {
 
 Fixed sin_deg(Fixed degrees) {
   constexpr int64_t kFullTurn = 4 * kQuarterTurn;
-  int64_t a = degrees.raw % kFullTurn;
+  int64_t a = degrees.raw % static_cast<int32_t>(kFullTurn);  // 360deg < 2^31: in 32 bits
   if (a < 0) a += kFullTurn;
   int32_t sign = 1;
   if (a >= 2 * kQuarterTurn) {  // sin(a) = -sin(a - 180)

@@ -12,6 +12,7 @@
 
 #include "lineraster/core/math/fixed.hpp"
 #include "lineraster/core/math/sqrt.hpp"
+#include "lineraster/core/math/wide_divide.hpp"
 
 namespace lr {
 
@@ -73,11 +74,18 @@ constexpr bool normalize_unit30_body(int64_t x, int64_t y, int64_t z, Unit30& ou
   uint64_t len2 =
       static_cast<uint64_t>(x * x) + static_cast<uint64_t>(y * y) + static_cast<uint64_t>(z * z);
   // len in [2^28, 2^31): 30 fractional bits of each quotient need x * 2^30 < 2^60.
-  int64_t len = isqrt64(len2);
+  const uint32_t len = isqrt64(len2);
   if (len == 0) return false;
-  out.x = static_cast<int32_t>(round_div(x * (int64_t{1} << 30), len));
-  out.y = static_cast<int32_t>(round_div(y * (int64_t{1} << 30), len));
-  out.z = static_cast<int32_t>(round_div(z * (int64_t{1} << 30), len));
+  // round_div(c 2^30, len) (half away from zero) as |c| 2^30 + floor(len / 2) over len with c's
+  // sign, in one 64-by-32 division: |c| <= len (len = floor(sqrt(x^2 + y^2 + z^2))), so the
+  // numerator is below len 2^32 and the quotient at most 2^30.
+  auto unit = [len](int64_t c) {
+    const uint32_t q = divide_64by32((abs64(c) << 30) + (len >> 1), len).q;
+    return c < 0 ? -static_cast<int32_t>(q) : static_cast<int32_t>(q);
+  };
+  out.x = unit(x);
+  out.y = unit(y);
+  out.z = unit(z);
   return true;
 }
 }  // namespace detail

@@ -1,23 +1,45 @@
 #include "lineraster/core/scene/camera.hpp"
 
 #include "lineraster/core/math/trig.hpp"
+#include "lineraster/core/math/wide_divide.hpp"
 
 namespace lr {
+namespace {
+
+// round_div(n, d) for n >= 0 (n < 2^63) and d in (0, 2^32), but 2^32 for any quotient from 2^32
+// on: the callers saturate it to 32 bits (or its negation), so the value they get is the same.
+// One 64-by-32 division, no C library 64-bit division.
+uint64_t rounded_quotient(uint64_t n, uint32_t d) {
+  const uint64_t m = n + d / 2;
+  if ((m >> 32) >= d) return uint64_t{1} << 32;  // m >= d 2^32
+  return divide_64by32(m, d).q;
+}
+
+}  // namespace
 
 bool perspective(Fixed fovy_degrees, Fixed aspect, Fixed near, Fixed far, Mat4& out) {
   if (fovy_degrees.raw <= 0 || fovy_degrees >= Fixed::from_int(180)) return false;
   if (aspect.raw <= 0 || near.raw <= 0 || far <= near) return false;
   Fixed half{fovy_degrees.raw / 2};
   // f = cot(fovy / 2) = cos / sin, computed in 64 bits for the full Q16.16 precision.
-  int64_t s = sin_deg(half).raw, c = cos_deg(half).raw;
+  // half in (0, 90) degrees: s in (0, 1], c in [0, 1] (Q16.16), so f <= 2^32, and exact: the
+  // quotient reaches 2^32 only for s = 1 unit, c = 1, where it is 2^32.
+  const int32_t s = sin_deg(half).raw, c = cos_deg(half).raw;
   if (s <= 0) return false;
-  int64_t f = round_div(c * Fixed::kOne, s);
+  const auto f = static_cast<int64_t>(
+      rounded_quotient(static_cast<uint64_t>(c) * Fixed::kOne, static_cast<uint32_t>(s)));
   Mat4 m{};
-  m.m[0][0] = Fixed::from_raw(saturate32(round_div(f * Fixed::kOne, aspect.raw)));
+  m.m[0][0] = Fixed::from_raw(saturate32(static_cast<int64_t>(rounded_quotient(
+      static_cast<uint64_t>(f) * Fixed::kOne, static_cast<uint32_t>(aspect.raw)))));
   m.m[1][1] = Fixed::from_raw(saturate32(f));
-  int64_t n = near.raw, fa = far.raw, d = n - fa;  // d < 0
-  m.m[2][2] = Fixed::from_raw(saturate32(round_div(-(fa + n) * Fixed::kOne, -d)));
-  m.m[2][3] = Fixed::from_raw(saturate32(round_div(-2 * fa * n, -d)));
+  // 0 < near < far < 2^31: the numerators are negative (round_div rounds their magnitudes),
+  // (far + near) 2^16 < 2^48 and 2 far near < 2^63.
+  const uint64_t n = static_cast<uint32_t>(near.raw), fa = static_cast<uint32_t>(far.raw);
+  const auto depth = static_cast<uint32_t>(fa - n);
+  m.m[2][2] = Fixed::from_raw(
+      saturate32(-static_cast<int64_t>(rounded_quotient((fa + n) * Fixed::kOne, depth))));
+  m.m[2][3] =
+      Fixed::from_raw(saturate32(-static_cast<int64_t>(rounded_quotient(2 * fa * n, depth))));
   m.m[3][2] = Fixed::from_int(-1);
   out = m;
   return true;

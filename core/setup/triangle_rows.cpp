@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "lineraster/core/math/wide_divide.hpp"
+
 namespace lr {
 
 namespace {
@@ -14,11 +16,20 @@ const ScreenVertex& edge_end(const ScreenVertex* const v[3], int which) {
   return *v[which == ActiveTriangle::kTop ? 1 : 2];
 }
 
+// floor(q / dy), q = Q(r) of an edge (relative to column 0) on one of the edge's own rows (the
+// row centre within the edge's y range, as every caller's rows are): there the edge lies in the
+// guard band, |column| <= 2^14 + 1 (screen_vertex.hpp), so |q| < dy 2^32 and the division is one
+// 64-by-32 (no C library 64-bit division); below zero the floor is one under the truncated
+// quotient when a remainder is left, as floor_div's.
+int32_t edge_column(int64_t q, int64_t dy) {
+  const Quotient32 d = divide_64by32(abs64(q), static_cast<uint32_t>(dy));  // dy in (0, 2^23)
+  return static_cast<int32_t>(q >= 0 ? int64_t{d.q} : -int64_t{d.q} - (d.r != 0 ? 1 : 0));
+}
+
 // The column of edge `which` on row r, exact in int64 (wide triangles).
 int32_t wide_column(const ScreenVertex* const v[3], int which, int32_t r) {
   const ScreenVertex &a = edge_start(v, which), &b = edge_end(v, which);
-  return static_cast<int32_t>(
-      floor_div(edge_numerator(a.x, a.y, b.x, b.y, 0, r), int64_t{b.y} - a.y));
+  return edge_column(edge_numerator(a.x, a.y, b.x, b.y, 0, r), int64_t{b.y} - a.y);
 }
 
 }  // namespace
@@ -91,9 +102,8 @@ PickedEdge wide_edge(const ScreenVertex* const v[3], int which, int32_t r, int32
   const int64_t q = edge_numerator(a.x, a.y, b.x, b.y, 0, r);
   // The columns at both ends of the rows bound every column between (an edge is straight):
   // relative to the smaller, Q stays below (31 |dx| / dy + 2) dy < 2^29.
-  const auto c1 = static_cast<int32_t>(floor_div(q, dy));
-  const auto c2 =
-      static_cast<int32_t>(floor_div(edge_numerator(a.x, a.y, b.x, b.y, 0, r_last), dy));
+  const int32_t c1 = edge_column(q, dy);
+  const int32_t c2 = edge_column(edge_numerator(a.x, a.y, b.x, b.y, 0, r_last), dy);
   const int32_t cb = std::min(c1, c2);
   PickedEdge p;
   p.cb = cb;

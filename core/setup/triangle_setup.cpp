@@ -2,6 +2,7 @@
 
 #include "lineraster/core/math/divide.hpp"
 #include "lineraster/core/math/reciprocal.hpp"
+#include "lineraster/core/math/wide_divide.hpp"
 
 #include <utility>
 
@@ -36,9 +37,23 @@ bool gradient(int64_t n, const PlaneBasis& pb, int64_t& g) {
     g = n < 0 ? -m : m;
     return true;
   }
-  // 256 n is not formed here (n may be near 2^57).
-  const int64_t q = n / pb.area, r = n % pb.area;
-  g = q * kSubpixel + round_div(r * kSubpixel, pb.area);
+  // 256 n is not formed here (n may be near 2^57). q 256 + round(256 r / area) with q, r the
+  // quotient and remainder of |n| (< 2^63) by area and n's sign (C's truncating division and
+  // round_div, which rounds half away from zero), each quotient from the reciprocal as above:
+  // |n| < 2^63, and 256 r + area / 2 < 2^63 for any area below 2^54 (2^47 in the budget).
+  auto divide = [&pb, d](uint64_t x, uint64_t& rem) {
+    uint64_t q = mul_hi(x, pb.inv);
+    rem = x - q * d;
+    while (rem >= d) {  // at most twice
+      ++q;
+      rem -= d;
+    }
+    return q;
+  };
+  uint64_t r = 0, unused = 0;
+  const uint64_t q = divide(a, r);
+  const auto m = static_cast<int64_t>(q * kSubpixel + divide(r * kSubpixel + d / 2, unused));
+  g = n < 0 ? -m : m;
   return true;
 }
 
@@ -141,7 +156,7 @@ PlaneBasis::PlaneBasis(const ScreenVertex* const v[3]) {
   ey2 = e2y;
   flip = signed_area < 0;
   area = static_cast<int64_t>(d);
-  inv = d > 0 ? ~uint64_t{0} / d : 0;
+  inv = d > 0 ? reciprocal64(d) : 0;
 }
 
 Plane make_plane(const PlaneBasis& pb, const uint32_t a[3]) {
@@ -173,7 +188,8 @@ Plane make_plane(const PlaneBasis& pb, const uint32_t a[3]) {
   }
   int64_t gx = 0, gy = 0;
   if (pb.area == 0 || !gradient(nx, pb, gx) || !gradient(ny, pb, gy)) {
-    p.base = static_cast<uint32_t>((int64_t{a[0]} + a[1] + a[2]) / 3);
+    // The sum of three uint32 is below 3 2^32: a 64-by-32 division.
+    p.base = divide_64by32(uint64_t{a[0]} + a[1] + a[2], 3).q;
     return p;
   }
   // Value at the centre of pixel (0, 0): |g| < 2^38 and |128 - x0| < 2^22, so each product is

@@ -126,9 +126,9 @@ uint32_t fill_phong_span(const ActiveTriangle& tri, const DrawRecord& d, typenam
   if constexpr (kNormalMap && kTexture) {
     const TextureLevel& b = d.texture->levels[0];
     const TextureLevel& m = d.normal_map->levels[0];
-    if (b.width != m.width) nm_ratio_s = static_cast<uint32_t>((uint64_t{m.width} << 16) / b.width);
-    if (b.height != m.height)
-      nm_ratio_t = static_cast<uint32_t>((uint64_t{m.height} << 16) / b.height);
+    // uint16 sizes (TextureLevel): size 2^16 fits 32 bits, a 32-bit division.
+    if (b.width != m.width) nm_ratio_s = (uint32_t{m.width} << 16) / b.width;
+    if (b.height != m.height) nm_ratio_t = (uint32_t{m.height} << 16) / b.height;
   }
   [[maybe_unused]] const int last_level = kTexture ? d.texture->level_count - 1 : 0;
 

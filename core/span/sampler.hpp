@@ -65,7 +65,8 @@ struct LevelScale {
     if ((size0 & (size0 - 1)) == 0 && (size_l & (size_l - 1)) == 0) {
       shift = __builtin_ctz(size0) - __builtin_ctz(size_l);
     } else {
-      ratio = static_cast<uint32_t>((uint64_t{size_l} << 16) / size0);
+      // Level widths and heights are uint16 (TextureLevel): size_l 2^16 fits 32 bits.
+      ratio = (size_l << 16) / size0;
     }
   }
   int32_t operator()(int32_t c) const {

@@ -1,5 +1,7 @@
 #include "lineraster/core/vertex/clip.hpp"
 
+#include "lineraster/core/math/wide_divide.hpp"
+
 namespace lr {
 namespace {
 
@@ -37,7 +39,9 @@ int64_t mul_frac30(int64_t a, uint32_t t) {
 
 // The point where the segment from `in` (inside) to `out` (outside) meets the plane. A corner's
 // side is its outcode's: its distance may have the other sign by a rounding step, read as 0
-// (inside) or -1 (outside), so that t stays in [0, 1).
+// (inside) or -1 (outside), so that t stays in [0, 1). Without kAttributes only the position and
+// the colour (the other members keep their defaults: zeros).
+template <bool kAttributes>
 ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, int64_t d_in, int64_t d_out) {
   if (d_in < 0) d_in = 0;
   if (d_out >= 0) d_out = -1;
@@ -46,7 +50,8 @@ ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, int64_t d_in, 
   while ((den >> s) >= (uint64_t{1} << 31)) ++s;
   num >>= s;
   den >>= s;
-  uint32_t t = static_cast<uint32_t>((num << 30) / den);  // num < den < 2^31: t in [0, 2^30)
+  // num < den < 2^31: t in [0, 2^30), num 2^30 < den 2^32 (one 64-by-32 division).
+  const uint32_t t = divide_64by32(num << 30, static_cast<uint32_t>(den)).q;
   ClipVertex r;
   r.p.x = in.p.x + mul_frac30(out.p.x - in.p.x, t);
   r.p.y = in.p.y + mul_frac30(out.p.y - in.p.y, t);
@@ -58,6 +63,9 @@ ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, int64_t d_in, 
     c[k] = static_cast<uint16_t>(a + (((b - a) * t) >> 30));
   }
   r.color = make_color15(c);
+  r.corner = 0;
+  r.outcode = 0;
+  if constexpr (!kAttributes) return r;
   for (int k = 0; k < 3; ++k) {
     int64_t a = channel(in.spec, k), b = channel(out.spec, k);
     c[k] = static_cast<uint16_t>(a + (((b - a) * t) >> 30));
@@ -81,8 +89,6 @@ ClipVertex intersect(const ClipVertex& in, const ClipVertex& out, int64_t d_in, 
   for (int k = 0; k < 3; ++k)
     r.surface.tangent[k] = static_cast<int16_t>(lerp32(sa.tangent[k], sb.tangent[k]));
   r.surface.handedness = sa.handedness;
-  r.corner = 0;
-  r.outcode = 0;
   return r;
 }
 
@@ -98,6 +104,7 @@ uint8_t outcode(const ClipCoord& c, GuardBand g) {
   return code;
 }
 
+template <bool kAttributes>
 int clip_polygon(ClipPolygon poly, ClipPolygon scratch, int n, uint8_t planes, GuardBand g) {
   for (int i = 0; i < kClipPlanes && n > 0; ++i) {
     if (!(planes & (1u << i))) continue;
@@ -112,12 +119,16 @@ int clip_polygon(ClipPolygon poly, ClipPolygon scratch, int n, uint8_t planes, G
       // rounding making a sliver non-convex.
       if (ina && m < kMaxClipVertices) scratch[static_cast<size_t>(m++)] = a;
       if (ina != inb && m < kMaxClipVertices)
-        scratch[static_cast<size_t>(m++)] = ina ? intersect(a, b, da, db) : intersect(b, a, db, da);
+        scratch[static_cast<size_t>(m++)] =
+            ina ? intersect<kAttributes>(a, b, da, db) : intersect<kAttributes>(b, a, db, da);
     }
     for (int k = 0; k < m; ++k) poly[static_cast<size_t>(k)] = scratch[static_cast<size_t>(k)];
     n = m;
   }
   return n;
 }
+
+template int clip_polygon<true>(ClipPolygon, ClipPolygon, int, uint8_t, GuardBand);
+template int clip_polygon<false>(ClipPolygon, ClipPolygon, int, uint8_t, GuardBand);
 
 }  // namespace lr

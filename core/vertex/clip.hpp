@@ -57,9 +57,15 @@ uint8_t outcode(const ClipCoord& c, GuardBand g);
 // `scratch` holds each plane's output (the caller owns both: the front end keeps them in its
 // object, not on the stack). Intersections are always computed from the inside vertex towards the
 // outside one, so an edge shared by two triangles is cut at the same point in both (no cracks after
-// clipping).
+// clipping). kAttributes: the points it makes carry the texture coordinates, the specular colour
+// and the surface too (textured and Phong draws); without, only the position and the colour, the
+// rest zero (a renderer without textured or Phong spans links no code for them:
+// FrontEndRoutines::clip).
 using ClipPolygon = std::span<ClipVertex, kMaxClipVertices>;
+template <bool kAttributes = true>
 int clip_polygon(ClipPolygon poly, ClipPolygon scratch, int n, uint8_t planes, GuardBand g);
+extern template int clip_polygon<true>(ClipPolygon, ClipPolygon, int, uint8_t, GuardBand);
+extern template int clip_polygon<false>(ClipPolygon, ClipPolygon, int, uint8_t, GuardBand);
 
 // The clipper's memory: a polygon and its scratch (the caller keeps them off the stack).
 struct ClipBuffers {

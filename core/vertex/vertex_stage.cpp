@@ -1,6 +1,7 @@
 #include "lineraster/core/vertex/vertex_stage.hpp"
 
 #include "lineraster/core/math/reciprocal.hpp"
+#include "lineraster/core/math/wide_divide.hpp"
 
 namespace lr {
 // A model-space tangent (Q1.14) to world space (the model's upper 3x3), unit Q1.14.
@@ -14,6 +15,10 @@ void transform_tangent(const Mat4& model, const Tangent16& t, int16_t out[3]) {
   out[0] = static_cast<int16_t>(round_shift(u.x, 16));
   out[1] = static_cast<int16_t>(round_shift(u.y, 16));
   out[2] = static_cast<int16_t>(round_shift(u.z, 16));
+}
+
+LitColor light_point_at(const PreparedLighting& pl, const Unit30& n, const Mat4* model, Vec3 p) {
+  return light_point_split(pl, n, model != nullptr ? transform_affine(*model, p) : p);
 }
 
 Unit30 transform_normal_call(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
@@ -94,8 +99,7 @@ LitColor VertexStage::light(const Mesh& mesh, const VertexColors colors, size_t 
     if (colors.split) return light_directional_split(*colors.lighting, nw);
     return {light_directional(*colors.lighting, nw), Color15{}};
   }
-  const Vec3 pw = transform_affine(model_, mesh.positions[i]);
-  const LitColor c = colors.point(*colors.lighting, nw, pw);
+  const LitColor c = colors.point(*colors.lighting, nw, &model_, mesh.positions[i]);
   if (colors.split) return c;
   return {sum_clamped(c.primary, c.secondary), Color15{}};
 }
@@ -109,13 +113,18 @@ LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, cons
   if (colors.need_position) {
     const Vec3 w0 = transform_affine(model_, p0), w1 = transform_affine(model_, p1),
                w2 = transform_affine(model_, p2);
-    centroid = {
-        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.x.raw} + w1.x.raw + w2.x.raw) / 3)),
-        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.y.raw} + w1.y.raw + w2.y.raw) / 3)),
-        Fixed::from_raw(static_cast<int32_t>((int64_t{w0.z.raw} + w1.z.raw + w2.z.raw) / 3))};
+    // The mean of three int32, truncated (C's division): |sum| < 3 2^31, a 64-by-32 division of
+    // its magnitude.
+    auto mean = [](int32_t a, int32_t b, int32_t c) {
+      const int64_t sum = int64_t{a} + b + c;
+      const auto q = static_cast<int64_t>(divide_64by32(abs64(sum), 3).q);
+      return Fixed::from_raw(static_cast<int32_t>(sum < 0 ? -q : q));
+    };
+    centroid = {mean(w0.x.raw, w1.x.raw, w2.x.raw), mean(w0.y.raw, w1.y.raw, w2.y.raw),
+                mean(w0.z.raw, w1.z.raw, w2.z.raw)};
   }
   // Directional lights and the infinite viewer: the inline path (bit for bit the same).
-  const LitColor c = colors.need_position ? colors.point(*colors.lighting, fw, centroid)
+  const LitColor c = colors.need_position ? colors.point(*colors.lighting, fw, nullptr, centroid)
                                           : light_directional_split(*colors.lighting, fw);
   if (colors.split) return c;
   return {sum_clamped(c.primary, c.secondary), Color15{}};

@@ -65,10 +65,15 @@ constexpr Unit30 negate(Unit30 u) {
   return {-u.x, -u.y, -u.z};
 }
 
-// Lighting that reads the surface position (point lights, the local viewer): light_point_split.
+// Lighting that reads the surface position (point lights, the local viewer): light_point_at.
 // The front end hands it to the vertex stage through this pointer, which a renderer whose span
 // set admits no such draw leaves nullptr (it then links no point lighting; renderer.hpp).
-using PointLightFn = LitColor (*)(const PreparedLighting& pl, const Unit30& n, Vec3 p);
+using PointLightFn = LitColor (*)(const PreparedLighting& pl, const Unit30& n, const Mat4* model,
+                                  Vec3 p);
+// light_point_split at p (world), or at model * p where model is given (a vertex's model-space
+// position): the transform is the routine's, so that a renderer that leaves it out (nullptr)
+// links neither.
+LitColor light_point_at(const PreparedLighting& pl, const Unit30& n, const Mat4* model, Vec3 p);
 
 class VertexStage;
 struct VertexColors;

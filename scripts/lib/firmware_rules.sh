@@ -97,8 +97,8 @@ lr_fw_guard() {
 # sink's virtual methods and each triangle's row loop; the textured and Phong row loop calls
 # the span routines of its families; textured and Phong spans call texel fetchers; the front
 # end calls the renderer's admission test and the routines of its FrontEndRoutines (Phong
-# records, flat shading's face lighting, point lighting, vertex attributes: those of the
-# renderer's span set; bands, the vertex cache, two-sided lighting's clipped back-face test
+# records, flat shading's face lighting, point lighting, vertex attributes, the clipper with or
+# without them: those of the renderer's span set; bands, the vertex cache, two-sided lighting's clipped back-face test
 # and strip signatures: those of its RendererFeatures), and draw_screen's binning when it
 # replays a band; the panel path (the Cortex-M7 demo) calls its bus; Reset_Handler calls the
 # static constructors (none: the images constant-initialise).
@@ -111,7 +111,7 @@ lr_fw_stack_rules=(
   --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'
   --indirect-from 'lr::FrontEnd::(draw(_screen)?|admitted)\(' 'lr::admits<|lr::DrawRecords::phong_record\('
   --indirect-from 'lr::FrontEnd::(general_triangles<[^>]*>|triangle_loop|run_mesh)\(' 'lr::VertexStage::light_face\('
-  --indirect-from 'lr::VertexStage::(light|light_face)\(' 'lr::light_point_split\('
+  --indirect-from 'lr::VertexStage::(light|light_face)\(' 'lr::light_point_at\('
   --indirect-from 'lr::VertexStage::transform_range\(' 'lr::VertexStage::attributes\('
   --indirect-from 'lr::FrontEnd::replay\(' 'lr::FrontEnd::(replay_screen|run_screen)\('
   --indirect-from 'lr::FrontEnd::bin\(' 'lr::FrontEndParts::(shrink_band|sign_triangle)\(|lr::VertexStore::persist\('
@@ -119,6 +119,7 @@ lr_fw_stack_rules=(
   --indirect-from 'lr::FrontEnd::draw(_screen)?\(' 'lr::FrontEndParts::sign_draw\('
   --indirect-from 'lr::FrontEnd::general_triangles<[^>]*>\(' 'lr::VertexStore::cache_corners\(|lr::front_facing_clip\(|lr::FrontEndParts::polygon_outside_band\('
   --indirect-from 'lr::FrontEnd::triangle_loop\(' 'lr::FrontEndParts::triangles<'
+  --indirect-from 'lr::FrontEnd::(general_triangles<[^>]*>|clip_and_bin)\(' 'lr::clip_polygon<'
   --indirect-from 'lr::FrontEnd::run_(mesh|screen)\(' 'lr::VertexStore::begin_cache\(|lr::FrontEndParts::compact_vertices\('
   --indirect-from 'lr::(PanelSink|Panel|fw::demo::PanelOutput<.*>)::|lr::(send_commands?|write_window)\(' 'lr::fw::PpmPanelBus<.*>::|lr::PanelBus::'
 )

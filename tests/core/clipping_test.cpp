@@ -2,6 +2,15 @@
 // band) render as the reference does: no gaps, no spikes.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "lineraster/core/raster/frame_storage.hpp"
+#include "lineraster/core/raster/renderer.hpp"
+#include "lineraster/core/scene/camera.hpp"
+#include "tests/support/recording_sink.hpp"
 #include "tests/support/scene_compare.hpp"
 
 namespace lr {
@@ -108,6 +117,84 @@ TEST(Clipping, SidePlanesOnlyCutFarOutsideTheViewport) {
   EXPECT_EQ(c.core.stats.clipped, 1u);
   EXPECT_EQ(c.both, size_t(o.width) * size_t(o.height));
   EXPECT_GE(c.fraction_within1(), 0.999);
+}
+
+// A renderer without textured or Phong spans clips with the clipper that carries only position
+// and colour (clip_polygon<false>: FrontEndRoutines::clip): lit Gouraud ground planes through the
+// near plane and out past the guard band give the full renderer's frame, byte for byte.
+TEST(Clipping, AGouraudOnlyRendererClipsAsTheFullOne) {
+  using PF = Rgb565Be;
+  constexpr int kW = 96, kH = 64, kK = 8;
+  auto fx = [](double v) { return Fixed::from_raw(static_cast<int32_t>(std::lround(v * 65536))); };
+  // Ground quads y = -1 from behind the eye to far ahead and wide beyond the guard band, their
+  // normals leaning so that the lit colour varies along every clipped edge.
+  std::vector<Vec3> positions;
+  std::vector<Normal16> normals;
+  std::vector<std::array<uint16_t, 3>> triangles;
+  for (int j = 0; j <= 4; ++j)
+    for (int i = 0; i <= 4; ++i) {
+      positions.push_back({fx(-300.0 + 150.0 * i), fx(-1.0), fx(40.0 - 60.0 * j)});
+      normals.push_back(
+          {static_cast<int16_t>(-7000 + 3500 * i), 14000, static_cast<int16_t>(-6000 + 3000 * j)});
+    }
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const auto a = static_cast<uint16_t>(j * 5 + i);
+      triangles.push_back({a, static_cast<uint16_t>(a + 5), static_cast<uint16_t>(a + 6)});
+      triangles.push_back({a, static_cast<uint16_t>(a + 6), static_cast<uint16_t>(a + 1)});
+    }
+  const Mesh mesh{positions, normals, {}, {}, triangles, {}};
+  Camera camera;
+  ASSERT_TRUE(perspective(fx(60), Fixed::ratio(kW, kH), fx(0.5), fx(400), camera.projection));
+  LightSet lights;
+  lights.lights[0].position = {fx(0.4), fx(1.0), fx(0.3)};
+  lights.count = 1;
+  lights.global_ambient = {6554, 6554, 6554};
+  Material material;
+  material.diffuse = {26000, 20000, 9000};
+  material.specular = {16000, 16000, 16000};
+  material.shininess_q8 = 20 * 256;
+  DrawState state;
+  state.lighting = true;
+  state.shading = Shading::kGouraud;
+  state.depth_test = true;
+  state.cull = Cull::kNone;
+  SpanState span;
+  span.colors = ColorPlanes::kPerspective;
+  constexpr SpanSet kGouraudOnly = [] {
+    SpanState s;
+    s.colors = ColorPlanes::kPerspective;
+    return span_set_of(s);
+  }();
+  ASSERT_TRUE(kGouraudOnly.admits(span));
+  ASSERT_FALSE(kGouraudOnly.has(SpanFamily::kTextured));
+  FrameCapacities caps;
+  caps.width = kW;
+  caps.height = kH;
+  caps.strip_height = kK;
+  caps.vertices = 256;
+  caps.triangles = 256;
+  caps.draws = 2;
+  caps.active = 128;
+  auto frame = [&](auto& renderer, FrameStats& stats) {
+    BasicFrameStorage<std::vector> store(caps);
+    test::RecordingSink<PF> sink{size_t{kW} * kK};
+    EXPECT_EQ(renderer.configure(store.storage(), kW, kH), Status::kOk);
+    EXPECT_EQ(renderer.begin_frame(camera, lights, Rgb8{10, 20, 30}), Status::kOk);
+    EXPECT_EQ(renderer.draw(mesh, Mat4::identity(), material, state), Status::kOk);
+    EXPECT_EQ(renderer.render(sink), Status::kOk);
+    stats = renderer.stats();
+    return sink.frame();
+  };
+  FrameStats full_stats, lean_stats;
+  auto full = std::make_unique<Renderer<PF, kK>>();
+  auto lean = std::make_unique<Renderer<PF, kK, kGouraudOnly>>();
+  const auto want = frame(*full, full_stats);
+  const auto got = frame(*lean, lean_stats);
+  EXPECT_GE(full_stats.clipped, 8u);  // the near row and the sides past the guard band
+  EXPECT_GT(full_stats.pixels_written, uint32_t{kW * kH / 3});
+  EXPECT_EQ(lean_stats.clipped, full_stats.clipped);
+  EXPECT_EQ(got, want);
 }
 
 }  // namespace

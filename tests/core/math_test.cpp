@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "lineraster/core/math/saturate.hpp"
 #include "lineraster/core/math/trig.hpp"
 #include "lineraster/core/math/vec.hpp"
+#include "lineraster/core/math/wide_divide.hpp"
 #include "lineraster/core/math/wide_mul.hpp"
 #include "lineraster/core/output/color.hpp"
 #include "lineraster/core/output/pixel_format.hpp"
@@ -67,6 +69,107 @@ TEST(Vec, NormalizeIsUnitWithinTwoQ30Units) {
   }
   Unit30 u;
   EXPECT_FALSE(normalize_unit30(0, 0, 0, u));
+}
+
+// The previous sin_deg and perspective, with C's 64-bit divisions: the references of the
+// current ones (64-by-32 divisions, no C library 64-bit division), which give the same integers.
+int32_t reference_sin_deg(int32_t raw) {
+  constexpr int64_t kQuarter = int64_t{90} << Fixed::kFracBits;
+  int64_t a = raw % (4 * kQuarter);
+  if (a < 0) a += 4 * kQuarter;
+  int32_t sign = 1;
+  if (a >= 2 * kQuarter) {
+    a -= 2 * kQuarter;
+    sign = -1;
+  }
+  if (a > kQuarter) a = 2 * kQuarter - a;
+  const int64_t pos = a * detail::kTrigSteps * Fixed::kOne / kQuarter;
+  const auto i = static_cast<size_t>(pos >> Fixed::kFracBits);
+  const int64_t frac = pos & (Fixed::kOne - 1);
+  const int64_t s0 = detail::kSinTable[i];
+  const int64_t s1 =
+      i + 1 <= static_cast<size_t>(detail::kTrigSteps) ? detail::kSinTable[i + 1] : s0;
+  const int64_t v = s0 + (((s1 - s0) * frac) >> Fixed::kFracBits);
+  return sign * static_cast<int32_t>(round_shift(v, 30 - Fixed::kFracBits));
+}
+
+bool reference_perspective(Fixed fovy, Fixed aspect, Fixed near, Fixed far, Mat4& out) {
+  if (fovy.raw <= 0 || fovy >= Fixed::from_int(180)) return false;
+  if (aspect.raw <= 0 || near.raw <= 0 || far <= near) return false;
+  const Fixed half{fovy.raw / 2};
+  const int64_t s = sin_deg(half).raw, c = cos_deg(half).raw;
+  if (s <= 0) return false;
+  const int64_t f = round_div(c * Fixed::kOne, s);
+  Mat4 m{};
+  m.m[0][0] = Fixed::from_raw(saturate32(round_div(f * Fixed::kOne, aspect.raw)));
+  m.m[1][1] = Fixed::from_raw(saturate32(f));
+  const int64_t n = near.raw, fa = far.raw, dd = n - fa;
+  m.m[2][2] = Fixed::from_raw(saturate32(round_div(-(fa + n) * Fixed::kOne, -dd)));
+  m.m[2][3] = Fixed::from_raw(saturate32(round_div(-2 * fa * n, -dd)));
+  m.m[3][2] = Fixed::from_int(-1);
+  out = m;
+  return true;
+}
+
+TEST(Trig, SinEqualsTheSixtyFourBitDivisionForm) {
+  // Every raw angle in [-2^20, 2^20] (16 degrees each way), random ones and the extremes.
+  for (int32_t raw = -(1 << 20); raw <= (1 << 20); ++raw)
+    ASSERT_EQ(sin_deg(Fixed::from_raw(raw)).raw, reference_sin_deg(raw)) << raw;
+  uint64_t x = 0x3C6EF372FE94F82Bu;
+  for (int i = 0; i < 1000000; ++i) {
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    const auto raw = static_cast<int32_t>(static_cast<uint32_t>(x));
+    ASSERT_EQ(sin_deg(Fixed::from_raw(raw)).raw, reference_sin_deg(raw)) << raw;
+  }
+  for (int32_t raw : {INT32_MIN, INT32_MIN + 1, INT32_MAX, INT32_MAX - 1})
+    EXPECT_EQ(sin_deg(Fixed::from_raw(raw)).raw, reference_sin_deg(raw)) << raw;
+}
+
+// Every matrix entry of the previous form, for every combination of arguments at the ends of
+// their ranges (fields of view down to a few units, which saturate f and the x scale; near and
+// far close together or 2^31 apart, which saturate the depth terms) and for random ones.
+TEST(Camera, PerspectiveEqualsTheSixtyFourBitDivisionForm) {
+  const int32_t fovs[] = {
+      1, 2, 3, 4, 7, 64, 100, 114, 120, 200, 1000, 65536, 30 << 16, 45 << 16, (180 << 16) - 1};
+  const int32_t aspects[] = {1, 2, 3, 255, 65536, 87381, 1 << 24, INT32_MAX};
+  const int32_t depths[] = {1, 2, 3, 6554, 65536, 1 << 20, 1 << 30, INT32_MAX - 1, INT32_MAX};
+  int compared = 0;
+  auto check = [&compared](int32_t fov_raw, int32_t aspect_raw, int32_t a, int32_t b) {
+    const Fixed fov = Fixed::from_raw(fov_raw), asp = Fixed::from_raw(aspect_raw);
+    const Fixed nr = Fixed::from_raw(std::min(a, b)), fr = Fixed::from_raw(std::max(a, b));
+    Mat4 got{}, want{};
+    const bool ok = perspective(fov, asp, nr, fr, got);
+    ASSERT_EQ(ok, reference_perspective(fov, asp, nr, fr, want));
+    if (!ok) return;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        ASSERT_EQ(got.m[r][c].raw, want.m[r][c].raw)
+            << fov_raw << " " << aspect_raw << " " << nr.raw << " " << fr.raw << " [" << r << "]["
+            << c << "]";
+    ++compared;
+  };
+  for (int32_t fov : fovs)
+    for (int32_t aspect : aspects)
+      for (int32_t a : depths)
+        for (int32_t b : depths)
+          if (a < b) check(fov, aspect, a, b);
+  uint64_t x = 0xA54FF53A5F1D36F1u;
+  auto next = [&x] {
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    return x;
+  };
+  for (int i = 0; i < 100000; ++i) {
+    const auto fov = static_cast<int32_t>(next() % (180u << 16));
+    const auto aspect = static_cast<int32_t>(next() >> (33 + next() % 31));
+    const auto a = static_cast<int32_t>(next() >> (33 + next() % 31));
+    const auto b = static_cast<int32_t>(next() >> (33 + next() % 31));
+    if (a != b) check(fov, aspect, a, b);
+  }
+  EXPECT_GT(compared, 90000);
 }
 
 // gluPerspective, written out.
@@ -296,6 +399,58 @@ TEST(Reciprocal, Recip32AndTheTwoByOneDivisionEqualTheDivisions) {
     check(0xFFFFFFFFu - k);  // the largest
     check(static_cast<uint32_t>(next()) | (1u << 31));
     check(((0x8000u + (k % 0x8000u)) << 16) | (k & 1 ? 0xFFFFu : 0u));  // top-half boundaries
+  }
+}
+
+// The 64-bit divisions in 32-bit pieces (core/math/wide_divide.hpp) equal C's: the 64-by-32
+// division on the path 32-bit Arm takes (normalised 2-by-1 division, recip32_newton) for
+// divisors of every bit length with numerators at the ends of its range (0, d - 1, d, d 2^32 - 1)
+// and random below d 2^32; the 64-bit reciprocal for divisors of every bit length, both sides of
+// 2^32 (its two ways) and the extremes.
+TEST(WideDivide, SixtyFourBy32EqualsTheDivisionOnTheArmPath) {
+  XorShift64 next{0x6A09E667F3BCC909u};
+  uint64_t checked = 0;
+  for (int bits = 1; bits <= 32; ++bits) {
+    for (int k = 0; k < 3000; ++k) {
+      auto d = static_cast<uint32_t>(next() >> (64 - bits));
+      if (d == 0) d = 1;
+      const uint64_t top = (uint64_t{d} << 32) - 1;  // the largest numerator allowed
+      const uint64_t n[] = {0,
+                            d - 1u,
+                            d,
+                            top,
+                            next() % top,
+                            (next() % top) / d * d,
+                            next() >> (64 - bits - 1 - static_cast<int>(next() % 32))};
+      for (uint64_t x : n) {
+        if (x > top) continue;
+        const Quotient32 arm = detail::divide_64by32_2by1(x, d), here = divide_64by32(x, d);
+        ASSERT_EQ(arm.q, x / d) << x << " / " << d;
+        ASSERT_EQ(arm.r, x % d) << x << " % " << d;
+        ASSERT_EQ(here.q, arm.q) << x << " / " << d;
+        ASSERT_EQ(here.r, arm.r) << x << " % " << d;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 600000u);
+}
+
+TEST(WideDivide, Reciprocal64EqualsTheDivision) {
+  XorShift64 next{0xBB67AE8584CAA73Bu};
+  auto check = [](uint64_t d) { ASSERT_EQ(reciprocal64(d), ~uint64_t{0} / d) << d; };
+  for (uint64_t d :
+       {uint64_t{1}, uint64_t{2}, uint64_t{3}, (uint64_t{1} << 31) - 1, uint64_t{1} << 31,
+        (uint64_t{1} << 32) - 1, uint64_t{1} << 32, (uint64_t{1} << 32) + 1,
+        (uint64_t{1} << 47) - 1, uint64_t{1} << 63, ~uint64_t{0} - 1, ~uint64_t{0}})
+    check(d);
+  for (int bits = 1; bits <= 64; ++bits) {
+    for (int k = 0; k < 20000; ++k) {
+      const uint64_t d = next() >> (64 - bits);
+      if (d != 0) check(d);
+      // Exactly `bits` long.
+      check((uint64_t{1} << (bits - 1)) | (bits > 1 ? next() >> (65 - bits) : 0));
+    }
   }
 }
 

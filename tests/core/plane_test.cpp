@@ -144,6 +144,41 @@ TEST(PlaneGradient, WithinTheDocumentedBoundOnBothPathsAndExactOnTheExactPath) {
   EXPECT_GT(ef.max_ratio, 0.1);
 }
 
+// The exact path's numerators at 2^55 and above (gradient()'s second way: quotient and remainder
+// from the reciprocal, no 64-bit division), which only coordinates beyond the budget reach
+// (edges up to 2^25 subpixels): bit for bit the two-division formula.
+TEST(PlaneGradient, LargeNumeratorsEqualTheTwoDivisions) {
+  std::mt19937_64 rng(20261206);
+  int large = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const int32_t span = int32_t{1} << (21 + static_cast<int>(rng() % 4));  // 2^21 .. 2^24
+    auto coord = [&] {
+      return static_cast<int32_t>(rng() % static_cast<uint64_t>(2 * span)) - span;
+    };
+    ScreenVertex s[3];
+    for (auto& sv : s) {
+      sv.x = coord();
+      sv.y = coord();
+    }
+    uint32_t a[3];
+    for (auto& x : a) x = static_cast<uint32_t>(rng());
+    const ScreenVertex* v[3] = {&s[0], &s[1], &s[2]};
+    const PlaneBasis pb(v);
+    if (pb.fast || signed_area2(s[0], s[1], s[2]) == 0) continue;
+    const int64_t da1 = int64_t{a[1]} - a[0], da2 = int64_t{a[2]} - a[0];
+    const uint64_t nx = abs64(da1 * pb.ey2 - da2 * pb.ey1), ny = abs64(da2 * pb.ex1 - da1 * pb.ex2);
+    const auto area = static_cast<uint64_t>(pb.area);
+    if ((nx >= (uint64_t{1} << 55) && (nx >> 30) < area) ||
+        (ny >= (uint64_t{1} << 55) && (ny >> 30) < area))
+      ++large;
+    const Plane want = reference_plane(v, a), got = make_plane(pb, a);
+    ASSERT_EQ(got.base, want.base) << i;
+    ASSERT_EQ(got.gx, want.gx) << i;
+    ASSERT_EQ(got.gy, want.gy) << i;
+  }
+  EXPECT_GT(large, 10000);
+}
+
 // Typical mesh triangles (a few pixels, aspect below 16) all take the short path, and depth
 // differs from the exact plane by far less than one 16-bit depth step (2^16 units).
 TEST(PlaneGradient, SmallWellShapedTrianglesTakeTheShortPath) {

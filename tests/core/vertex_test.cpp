@@ -565,5 +565,48 @@ TEST(ObjectLights, OneDiffuseLightLeavesOutTheClampsOnlyWhereNoSumPassesOne) {
   EXPECT_GE(max_excess, 0);
 }
 
+// A vertex lit by a point light reads its world position: the point routine (light_point_at)
+// lights model * p, so a moved model changes the colour as moving the mesh would; a face (its
+// world centroid given) is lit where it is.
+TEST(VertexLighting, PointLitVertexIsLitAtItsWorldPosition) {
+  Camera camera;
+  ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::from_int(1), Fixed::from_double(0.5),
+                          Fixed::from_int(50), camera.projection));
+  const Mat4 model = translate({Fixed::from_int(3), Fixed::from_int(-1), Fixed::from_int(-6)});
+  const std::vector<Vec3> positions = {{Fixed::from_double(0.5), Fixed{}, Fixed{}}};
+  const std::vector<Normal16> normals = {{0, 0, 16384}};
+  Mesh mesh{};
+  mesh.positions = positions;
+  mesh.normals = normals;
+  LightSet set;
+  set.lights[0] = Light::point({Fixed::from_int(2), Fixed::from_int(0), Fixed::from_int(-4)},
+                               {30000, 26000, 20000}, Fixed::from_int(1), Fixed::from_double(0.5));
+  set.count = 1;
+  Material m;
+  m.diffuse = {26000, 24000, 22000};
+  m.specular = {12000, 12000, 12000};
+  m.shininess_q8 = 16 * 256;
+  const PreparedLighting pl = prepare_lighting(set, m, {Fixed{}, Fixed{}, Fixed::from_int(1)}, {});
+  ASSERT_TRUE(pl.needs_position());
+  const VertexStage stage(camera, model, GuardBand{}, 64, 64);
+  VertexColors colors;
+  colors.lit = true;
+  colors.pending = true;
+  colors.split = true;
+  colors.need_position = true;
+  colors.lighting = &pl;
+  colors.point = &light_point_at;
+  const Unit30 n = stage.world_normal(normals[0]);
+  const Vec3 world = transform_affine(model, positions[0]);
+  const LitColor want = light_point_split(pl, n, world);
+  const LitColor got = stage.light(mesh, colors, 0, false);
+  EXPECT_EQ(got.primary, want.primary);
+  EXPECT_EQ(got.secondary, want.secondary);
+  // Not the colour at the model-space position: the test tells the two apart.
+  EXPECT_NE(light_point_split(pl, n, positions[0]).primary, want.primary);
+  EXPECT_EQ(light_point_at(pl, n, nullptr, world).primary, want.primary);
+  EXPECT_EQ(light_point_at(pl, n, &model, positions[0]).secondary, want.secondary);
+}
+
 }  // namespace
 }  // namespace lr
