@@ -22,7 +22,7 @@ else
   secs=${1:-60}
 fi
 shift || true
-declare -A ci_runs=([obj]=300000 [png]=400000 [pipeline]=40000)
+declare -A ci_runs=([obj]=150000 [png]=200000 [pipeline]=20000)
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=(pipeline obj png)
 jobs=$(nproc)
