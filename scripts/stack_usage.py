@@ -608,6 +608,12 @@ class Analysis:
                             f"{self.display(f)}: calls {name}, which the image defines more "
                             f"than once (cannot tell which)")
                         continue
+                    if name.startswith("__aeabi_"):
+                        # A run-time helper GCC's call graph names from before its later passes
+                        # (a signed 64-bit division that became an unsigned one, or went): an
+                        # image that does not define it cannot call it (the link would fail), and
+                        # every call that is there the disassembly adds (_attach_code).
+                        continue
                     node.error = node.error or (f"{self.display(f)}: calls {name}, a function "
                                                 f"the image does not define (unknown function)")
                     continue

@@ -148,6 +148,15 @@ class StackUsageTest(unittest.TestCase):
         self.assertIn("main: calls missing", err)
         self.assertIn("unknown function", err)
 
+    def test_run_time_helper_the_image_does_not_define_is_no_call(self):
+        # GCC's call graph keeps a libcall its later passes removed (a signed 64-bit division
+        # that became unsigned): not in the image, so not called.
+        ci = {"a.ci": graph("/src/a.cpp", node("main", 8), external("__aeabi_ldivmod"),
+                            edge("main", "__aeabi_ldivmod"))}
+        rc, out, err = self.run_tool(ci, "100 10 T main\n", args=["--entry", "main"])
+        self.assertEqual(rc, 0, err)
+        self.assertIn("main: 8 B", out)
+
     def test_function_without_ci_or_code_is_an_error(self):
         ci = {"a.ci": graph("/src/a.cpp", node("main", 8), external("helper"),
                             edge("main", "helper"))}
