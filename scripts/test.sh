@@ -37,7 +37,8 @@ python3 scripts/check_doc_links.py || source_failures+=("documentation links and
 # One GCC build of every target, at -O3 (GCC warns there where -O0 does not: a plain Release
 # build of everything must pass), tests run in it, and its programs serve the later steps. (A
 # GCC -O0 build besides it took 3.5 minutes of CI and found nothing the others do not: the core
-# has no assert, no NDEBUG path; Clang builds at -O0 below, the cross builds at -O1 and -O3.)
+# has no assert, no NDEBUG path; Clang builds at -O0 below, the cross builds at -O1 and -O3.) The
+# test programs' own code is compiled at -O0 here (tests/CMakeLists.txt: LR_TEST_RELEASE_OPTIONS).
 step "Release build of every target (GCC -O3, warnings are errors) + tests"
 cmake --preset release >/dev/null
 cmake --build --preset release -j"$jobs"
