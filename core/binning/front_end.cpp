@@ -217,7 +217,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
     }
     for (int k = 0; k < 3; ++k) {
       if (sv[k]->color_pending) {
-        const LitColor lc = d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], false);
+        const LitColor lc = d.light_vertex(tri[static_cast<size_t>(k)], false);
         sv[k]->color = lc.primary;
         if (d.colors.split) store_.tex(vi[k]).spec = lc.secondary;
         sv[k]->color_pending = 0;
@@ -235,7 +235,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
                       : !routines_->front_facing(clip);
   if (back && d.plan.gouraud)
     for (int k = 0; k < 3; ++k)
-      d.back_colors[k] = d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], true);
+      d.back_colors[k] = d.light_vertex(tri[static_cast<size_t>(k)], true);
   Rgb8 flat{}, flat_spec{};
   d.flat_colors(tri, *sv[2], back, flat, flat_spec);
   if (oc_or == 0) {
@@ -387,6 +387,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
       (plan.lit && !plan.kind.phong && plan.kind.position && routines_->point_light == nullptr) ||
       ((plan.uv || plan.kind.phong) && routines_->attributes == nullptr) ||
       (plan.two_sided && routines_->front_facing == nullptr) ||
+      (plan.lit && !routines_->specular && has_specular(material)) ||
       (routines_->cache == nullptr && needs_cache(mesh.positions.size(), plan)))
     return refuse(Status::kNotLinked);
   if ((plan.uv && !store_.has_tex()) || ((plan.textured || plan.kind.phong) && !active_extra_) ||
@@ -481,6 +482,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
 
   MeshDraw d{mesh, state, stage, plan, colors, base, index, cached};
   d.face_light = routines_->face_light;
+  d.light = routines_->light;
   d.clipping = cached || clip_outcodes != 0;
   if (colors.object != nullptr && !colors.object->specular && !colors.split)
     d.diffuse_lights = colors.object;

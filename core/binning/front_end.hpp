@@ -130,9 +130,9 @@ inline constexpr SignRoutines kSignRoutines{};
 // the front end); the front end refuses a draw that would need a missing one (kNotLinked). The
 // defaults admit every draw and link everything (a front end driven alone, in tests).
 struct FrontEndRoutines {
-  AdmitFn admit = nullptr;                            // the set's test (nullptr: every draw)
-  PhongRecordFn phong = &DrawRecords::phong_record;   // Phong draws' records
-  FaceLightFn face_light = &VertexStage::light_face;  // lit flat draws' face colours
+  AdmitFn admit = nullptr;                                  // the set's test (nullptr: every draw)
+  PhongRecordFn phong = &DrawRecords::phong_record;         // Phong draws' records
+  FaceLightFn face_light = &VertexStage::light_face<true>;  // lit flat draws' face colours
   // Lit Gouraud, flat and textured draws whose lighting reads the position (point lights, the
   // local viewer): per vertex and per face.
   PointLightFn point_light = &light_point_at;
@@ -154,6 +154,11 @@ struct FrontEndRoutines {
   // front_facing, cache are set (a loop without them would draw those draws wrong).
   uint32_t (*triangles)(FrontEnd&, MeshDraw&, uint32_t,
                         uint32_t) = &FrontEndParts::triangles<true, true>;
+  // A lit vertex's colours (VertexStage::light<kSpecular>), and whether its specular term is
+  // linked (RendererFeatures::specular): when not (light<false>, and light_face<false> above),
+  // a lit draw whose material has a specular colour is refused (kNotLinked).
+  LightFn light = &VertexStage::light<true>;
+  bool specular = true;
 };
 inline constexpr FrontEndRoutines kEveryRoutine{};
 

@@ -46,6 +46,9 @@ struct MeshDraw {
   bool clipping = true;  // a vertex may be outside a plane (else no triangle needs the clipper)
   // Flat shading's face lighting (FrontEnd::configure): never nullptr for a lit flat draw.
   FaceLightFn face_light = nullptr;
+  // A lit vertex's colours (FrontEndRoutines::light): never nullptr.
+  LightFn light = nullptr;
+  LitColor light_vertex(size_t i, bool back) const { return light(stage, mesh, colors, i, back); }
   // Lit Gouraud under diffuse directional lights in model space, one colour: the lights
   // (light_corners()'s inline case), else nullptr.
   const ObjectLights* diffuse_lights = nullptr;

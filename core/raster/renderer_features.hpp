@@ -12,7 +12,11 @@
 //  - strip_skipping: configure() with a FrameStorage::strip_inputs store returns kNotLinked;
 //  - crowded_strips: in a strip whose triangles (those active and those starting in it)
 //    outnumber the active list, the triangles starting in it are dropped (dropped_triangle_-
-//    capacity counts them), the others drawn, and render() returns kCapacity.
+//    capacity counts them), the others drawn, and render() returns kCapacity;
+//  - specular: a lit draw whose material has a specular colour (Material::specular not zero)
+//    is refused by draw() with kNotLinked (diffuse materials, as the peer scenes', are drawn
+//    the same: their specular term is zero). Without it the per-vertex lighting links no
+//    specular term and no power tables (2 KB).
 // A draw that needs none of them gives the same frame in every configuration.
 #pragma once
 
@@ -24,6 +28,7 @@ struct RendererFeatures {
   bool two_sided = true;       // two-sided lighting (LightSet::two_sided)
   bool strip_skipping = true;  // strips whose inputs did not change not rendered again
   bool crowded_strips = true;  // strips with more triangles than the active list, in passes
+  bool specular = true;        // materials with a specular colour (highlights)
 
   constexpr bool operator==(const RendererFeatures&) const = default;
 };
@@ -31,8 +36,9 @@ struct RendererFeatures {
 // Every feature: the default, what every renderer had before the features were chosen.
 inline constexpr RendererFeatures kAllFeatures{};
 // None of them: the smallest renderer, for a scene whose frame fits its stores (its active list
-// too, in every strip), one-sided lighting, every strip rendered each frame (the footprint
-// images: docs/measurements/footprint.md).
-inline constexpr RendererFeatures kNoFeatures{false, false, false, false, false};
+// too, in every strip), one-sided lighting, diffuse materials, every strip rendered each frame
+// (the footprint images, which add specular where their material has it:
+// docs/measurements/footprint.md).
+inline constexpr RendererFeatures kNoFeatures{false, false, false, false, false, false};
 
 }  // namespace lr

@@ -66,11 +66,15 @@ LightSet lights(bool two_sided = false) {
   return l;
 }
 
-Material material() {
+// Diffuse (no specular colour: drawn by every renderer), or shiny (specular: refused by a
+// renderer without RendererFeatures::specular).
+Material material(bool shiny = false) {
   Material m;
   m.diffuse = {26000, 20000, 9000};
-  m.specular = {16000, 16000, 16000};
-  m.shininess_q8 = 20 * 256;
+  if (shiny) {
+    m.specular = {16000, 16000, 16000};
+    m.shininess_q8 = 20 * 256;
+  }
   return m;
 }
 
@@ -109,10 +113,11 @@ struct Rig {
 
   Status configure() { return r->configure(store.storage(), kW, kH); }
   // Configures, begins, draws the grid (the draw's status) and renders (status).
-  Status frame(const Grid& g, bool two_sided = false) {
+  Status frame(const Grid& g, bool two_sided = false, const Material& m = material(),
+               const DrawState& state = lit_gouraud()) {
     EXPECT_EQ(configure(), Status::kOk);
     EXPECT_EQ(r->begin_frame(camera(), lights(two_sided), kBackground), Status::kOk);
-    const Status drawn = r->draw(g.mesh(), Mat4::identity(), material(), lit_gouraud());
+    const Status drawn = r->draw(g.mesh(), Mat4::identity(), m, state);
     status = r->render(sink);
     return drawn;
   }
@@ -128,6 +133,9 @@ using Lean = Rig<kNoFeatures>;
 // Every feature but the crowded strips' passes.
 constexpr RendererFeatures kUncrowded{.crowded_strips = false};
 using Uncrowded = Rig<kUncrowded>;
+// Every feature but specular.
+constexpr RendererFeatures kDiffuseOnly{.specular = false};
+using DiffuseOnly = Rig<kDiffuseOnly>;
 
 TEST(RendererFeatures, WithoutFeaturesAFrameThatNeedsNoneIsTheSame) {
   const Grid g(6);
@@ -244,6 +252,45 @@ TEST(RendererFeatures, WithoutCrowdedStripsAStripBeyondTheActiveListIsCapacity) 
   EXPECT_EQ(lean.status, Status::kCapacity);
   EXPECT_EQ(lean.r->stats().dropped_triangle_capacity, dropped);
   EXPECT_EQ(lean.sink.frame(), crowded.sink.frame());
+}
+
+TEST(RendererFeatures, WithoutSpecularALitDrawWithASpecularMaterialIsNotLinked) {
+  const Grid g(6);
+  // With specular: the highlights change the frame.
+  Full diffuse, shiny;
+  ASSERT_EQ(diffuse.frame(g), Status::kOk);
+  ASSERT_EQ(shiny.frame(g, false, material(true)), Status::kOk);
+  EXPECT_EQ(shiny.status, Status::kOk);
+  EXPECT_NE(shiny.sink.frame(), diffuse.sink.frame());
+  // Without it: a diffuse material gives the same frame (the per-vertex lighting without its
+  // specular term: the grid's normals are not unit, the world-space path), a specular one is
+  // refused, counted, and nothing of it drawn.
+  for (const bool lean_rig : {false, true}) {
+    SCOPED_TRACE(lean_rig ? "kNoFeatures" : "every feature but specular");
+    auto check = [&](auto& rig) {
+      ASSERT_EQ(rig.frame(g), Status::kOk);
+      EXPECT_EQ(rig.status, Status::kOk);
+      EXPECT_EQ(rig.sink.frame(), diffuse.sink.frame());
+      EXPECT_EQ(rig.frame(g, false, material(true)), Status::kNotLinked);
+      EXPECT_EQ(rig.status, Status::kNotLinked);
+      EXPECT_EQ(rig.r->stats().draws_refused_not_linked, 1u);
+      EXPECT_EQ(rig.r->stats().triangles_binned, 0u);
+      EXPECT_EQ(rig.covered(), size_t{0});
+      // Unlit, the specular colour does not apply: drawn.
+      DrawState unlit = lit_gouraud();
+      unlit.lighting = false;
+      EXPECT_EQ(rig.frame(g, false, material(true), unlit), Status::kOk);
+      EXPECT_EQ(rig.status, Status::kOk);
+      EXPECT_GT(rig.covered(), size_t{1000});
+    };
+    if (lean_rig) {
+      Lean lean;
+      check(lean);
+    } else {
+      DiffuseOnly only;
+      check(only);
+    }
+  }
 }
 
 }  // namespace
