@@ -85,7 +85,7 @@ else
 fi
 
 # Symbols (nm -C, from the start of the name) no untextured image may hold (see below).
-lr_fp_untextured_unlinked='^(lr::light_point_split|lr::light_point_at|lr::light_point|lr::transform_affine|lr::VertexStage::light_face|lr::VertexStage::attributes|lr::transform_tangent|lr::DrawRecords::phong_record|lr::FrontEnd::run_screen|lr::detail::kMaterialTable|lr::find_material|lr::to_material|(lr::ColorPlanes )?lr::setup_planes|(void )?lr::legacy_rows|lr::FrontEnd::bin_band|lr::FrontEndParts::(shrink_band|compact_vertices|polygon_outside_band|sign_)|(unsigned long )?lr::FrontEnd::general_triangles<(true|false, true)|lr::EdgeTable::shrink_window|lr::VertexStore::(begin_cache|cache_corners|persist)|lr::front_facing_clip|lr::StripLoop<.*>::(skip_strip|crowded_strip)|lr::InputHash::|(int )?lr::clip_polygon<true)\b'
+lr_fp_untextured_unlinked='^(lr::light_point_split|lr::light_point_at|lr::light_point|lr::transform_affine|lr::VertexStage::light_face|lr::VertexStage::attributes|lr::transform_tangent|lr::DrawRecords::phong_record|lr::FrontEnd::run_screen|lr::detail::kMaterialTable|lr::find_material|lr::to_material|(lr::ColorPlanes )?lr::setup_planes|(void )?lr::legacy_rows|lr::FrontEnd::bin_band|lr::FrontEndParts::(shrink_band|compact_vertices|polygon_outside_band|sign_)|(unsigned long )?lr::FrontEnd::general_triangles<(true|false, true)|lr::EdgeTable::shrink_window|lr::VertexStore::(begin_cache|cache_corners|persist)|lr::front_facing_clip|lr::StripLoop<.*>::(skip_strip|crowded_strip)|lr::InputHash::|(int )?lr::clip_polygon<)\b'
 # The project's API the footprint program calls for itself, not the renderer (its camera and
 # model matrix, firmware/footprint/main.cpp): the program's bytes, unless the renderer calls them.
 program_api_names="lr::perspective, lr::look_at, lr::rotate_y"
@@ -234,7 +234,7 @@ print(sum(int(f[1], 16) for f in (l.split(None, 3) for l in sys.stdin)
     # draw_screen's binning (the images never call it), the material table (they name their
     # materials at compile time), and the features their renderer leaves out (kNoFeatures,
     # core/raster/renderer_features.hpp: bands, the vertex cache, two-sided lighting's clipped
-    # back-face test, strip signatures, the crowded strips' passes).
+    # back-face test, strip signatures, the crowded strips' passes, the clipper).
     if [[ $cfg == unlit || $cfg == gouraud || $cfg == gouraud_diffuse ]]; then
       linked=$("${prefix}nm" -C "$elf" | awk '{ $1 = ""; $2 = ""; print substr($0, 3) }' |
                grep -E "${lr_fp_untextured_unlinked}" | sed 's/(.*//' | sort -u)

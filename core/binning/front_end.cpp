@@ -169,7 +169,7 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
 // One triangle of a draw: culled, lit (lit Gouraud: its vertices on first use; flat: its face),
 // clipped when it crosses a plane, and binned. This and the two ends below are always inlined
 // into draw(): one loop body, whose locals share one stack frame.
-template <bool kTwoSided, bool kCache>
+template <bool kTwoSided, bool kCache, bool kClip>
 void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   const size_t n = d.mesh.positions.size();
   if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
@@ -196,6 +196,15 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   if (oc_and != 0) {
     ++stats_.clipped_away;
     return;
+  }
+  if constexpr (!kClip) {
+    // A renderer without the clipper (RendererFeatures::clipping): dropped, counted, and the
+    // frame's status (render()) kNotLinked unless a draw was refused before.
+    if (oc_or != 0) {
+      ++stats_.dropped_unclipped;
+      if (refused_ == Status::kOk) refused_ = Status::kNotLinked;
+      return;
+    }
   }
   int32_t rows[2] = {0, 0};
   bool classified = false;
@@ -508,20 +517,32 @@ void FrontEnd::triangle_loop(MeshDraw& d) {
 }
 
 // Triangles [t, end) through draw_triangle(), inlined here: one stack frame for its locals.
-template <bool kTwoSided, bool kCache>
+template <bool kTwoSided, bool kCache, bool kClip>
 uint32_t FrontEnd::general_triangles(MeshDraw& d, uint32_t t, uint32_t end) {
-  for (; t < end; ++t) draw_triangle<kTwoSided, kCache>(d, d.mesh.triangles[t]);
+  for (; t < end; ++t) draw_triangle<kTwoSided, kCache, kClip>(d, d.mesh.triangles[t]);
   return t;
 }
 
-template <bool kTwoSided, bool kCache>
+template <bool kTwoSided, bool kCache, bool kClip>
 uint32_t FrontEndParts::triangles(FrontEnd& fe, MeshDraw& d, uint32_t t, uint32_t end) {
-  return fe.general_triangles<kTwoSided, kCache>(d, t, end);
+  return fe.general_triangles<kTwoSided, kCache, kClip>(d, t, end);
 }
-template uint32_t FrontEndParts::triangles<false, false>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
-template uint32_t FrontEndParts::triangles<false, true>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
-template uint32_t FrontEndParts::triangles<true, false>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
-template uint32_t FrontEndParts::triangles<true, true>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<false, false, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                uint32_t);
+template uint32_t FrontEndParts::triangles<false, false, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                               uint32_t);
+template uint32_t FrontEndParts::triangles<false, true, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                               uint32_t);
+template uint32_t FrontEndParts::triangles<false, true, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                              uint32_t);
+template uint32_t FrontEndParts::triangles<true, false, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                               uint32_t);
+template uint32_t FrontEndParts::triangles<true, false, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                              uint32_t);
+template uint32_t FrontEndParts::triangles<true, true, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                              uint32_t);
+template uint32_t FrontEndParts::triangles<true, true, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                             uint32_t);
 
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
                              std::span<const std::array<uint16_t, 3>> triangles,

@@ -96,8 +96,9 @@ struct FrontEndParts {
   static void sign_triangle(FrontEnd& fe, uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
                             Rgb8 flat, Rgb8 flat_spec, int32_t r0, int32_t r1);
   // The general triangle loop (FrontEnd::general_triangles) with or without two-sided
-  // lighting's back faces and the vertex cache: the renderer links the one of its features.
-  template <bool kTwoSided, bool kCache>
+  // lighting's back faces, the vertex cache and the clipper: the renderer links the one of its
+  // features.
+  template <bool kTwoSided, bool kCache, bool kClip>
   static uint32_t triangles(FrontEnd& fe, MeshDraw& d, uint32_t t, uint32_t end);
 };
 struct BandRoutines {
@@ -138,7 +139,8 @@ struct FrontEndRoutines {
   PointLightFn point_light = &light_point_at;
   AttributesFn attributes = &VertexStage::attributes;  // textured and Phong draws' vertices
   // The clipper: clip_polygon<true> (texture coordinates, specular colour and surface carried)
-  // wherever attributes is set; clip_polygon<false> only where it is not (no draw then has them).
+  // wherever attributes is set; clip_polygon<false> only where it is not (no draw then has them);
+  // nullptr without RendererFeatures::clipping (triangles then is a loop without the clipper).
   int (*clip)(ClipPolygon, ClipPolygon, int, uint8_t, GuardBand) = &clip_polygon<true>;
   // The features of RendererFeatures (renderer_features.hpp), nullptr when left out: bands (a
   // frame larger than the stores is then drawn as far as it fits: kCapacity), the vertex cache
@@ -150,10 +152,10 @@ struct FrontEndRoutines {
   const CacheRoutines* cache = &kCacheRoutines;
   bool (*front_facing)(const ClipCoord (&)[3]) = &front_facing_clip;
   const SignRoutines* sign = &kSignRoutines;
-  // The general triangle loop: FrontEndParts::triangles<kTwoSided, kCache>, true where
-  // front_facing, cache are set (a loop without them would draw those draws wrong).
+  // The general triangle loop: FrontEndParts::triangles<kTwoSided, kCache, kClip>, true where
+  // front_facing, cache, clip are set (a loop without them would draw those draws wrong).
   uint32_t (*triangles)(FrontEnd&, MeshDraw&, uint32_t,
-                        uint32_t) = &FrontEndParts::triangles<true, true>;
+                        uint32_t) = &FrontEndParts::triangles<true, true, true>;
   // A lit vertex's colours (VertexStage::light<kSpecular>), and whether its specular term is
   // linked (RendererFeatures::specular): when not (light<false>, and light_face<false> above),
   // a lit draw whose material has a specular colour is refused (kNotLinked).
@@ -260,7 +262,7 @@ class FrontEnd {
   // kCache: with two-sided lighting's back faces, with the vertex cache (FrontEndRoutines::
   // triangles: the renderer's features).
   [[gnu::noinline]] void triangle_loop(MeshDraw& d);
-  template <bool kTwoSided, bool kCache>
+  template <bool kTwoSided, bool kCache, bool kClip>
   [[gnu::noinline]] uint32_t general_triangles(MeshDraw& d, uint32_t t, uint32_t end);
   [[gnu::noinline]] uint32_t lane_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] uint32_t lane_run_triangles(MeshDraw& d, uint32_t t);
@@ -269,7 +271,7 @@ class FrontEnd {
   static constexpr size_t kLightList = 48;
   [[gnu::noinline]] void light_list(MeshDraw& d, std::span<ScreenVertex* const> list);
   [[gnu::noinline]] void light_other(MeshDraw& d, uint32_t i);
-  template <bool kTwoSided, bool kCache>
+  template <bool kTwoSided, bool kCache, bool kClip>
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
                                                 ScreenVertex* const (&sv)[3], bool back_copies,
@@ -340,12 +342,13 @@ class FrontEnd {
   enum class Phase : uint8_t { kIdle, kOpen, kRendered };
   Phase phase_ = Phase::kIdle;
   Status refused_ = Status::kOk;
-  // The routines of configure() (nullptr until then: zero bytes).
-  const FrontEndRoutines* routines_ = nullptr;
+  // (The bytes together, before the words: no padding between them.)
   bool active_extra_ = false;  // FrontEndStorage::active_extra
   // Bands: the stores overflowed (the rest of the frame is only recorded), and the refused
   // draws' triangles (counted in every band's statistics).
   bool overflow_ = false;
+  // The routines of configure() (nullptr until then: zero bytes).
+  const FrontEndRoutines* routines_ = nullptr;
   uint32_t refused_triangles_ = 0, refused_vertices_ = 0;
   // The statistics binning changes (nothing else changes while a band is binned), as they were
   // before the band: kept here, not on the stack, and not the whole FrameStats (RAM: the

@@ -148,12 +148,14 @@ class Renderer {
       kFlat ? &VertexStage::light_face<kFeatures.specular> : nullptr,
       detail::has(kSpans.position, true) ? &light_point_at : nullptr,
       kAttributes ? &VertexStage::attributes : nullptr,
-      kAttributes ? &clip_polygon<true> : &clip_polygon<false>,
+      !kFeatures.clipping ? nullptr
+      : kAttributes       ? &clip_polygon<true>
+                          : &clip_polygon<false>,
       kFeatures.bands ? &kBandRoutines : nullptr,
       kFeatures.vertex_cache ? &kCacheRoutines : nullptr,
       kFeatures.two_sided ? &front_facing_clip : nullptr,
       kFeatures.strip_skipping ? &kSignRoutines : nullptr,
-      &FrontEndParts::triangles<kFeatures.two_sided, kFeatures.vertex_cache>,
+      &FrontEndParts::triangles<kFeatures.two_sided, kFeatures.vertex_cache, kFeatures.clipping>,
       &VertexStage::light<kFeatures.specular>,
       kFeatures.specular};
 

@@ -13,6 +13,10 @@
 //  - crowded_strips: in a strip whose triangles (those active and those starting in it)
 //    outnumber the active list, the triangles starting in it are dropped (dropped_triangle_-
 //    capacity counts them), the others drawn, and render() returns kCapacity;
+//  - clipping: a triangle that crosses a clip plane (the near or far plane, or the guard band's
+//    edges: a triangle that only crosses the viewport's edges needs none) is dropped and
+//    counted in FrameStats::dropped_unclipped, the rest of its draw drawn, and render() returns
+//    kNotLinked;
 //  - specular: a lit draw whose material has a specular colour (Material::specular not zero)
 //    is refused by draw() with kNotLinked (diffuse materials, as the peer scenes', are drawn
 //    the same: their specular term is zero). Without it the per-vertex lighting links no
@@ -29,6 +33,7 @@ struct RendererFeatures {
   bool strip_skipping = true;  // strips whose inputs did not change not rendered again
   bool crowded_strips = true;  // strips with more triangles than the active list, in passes
   bool specular = true;        // materials with a specular colour (highlights)
+  bool clipping = true;        // triangles crossing the near or far plane or the guard band
 
   constexpr bool operator==(const RendererFeatures&) const = default;
 };
@@ -36,9 +41,10 @@ struct RendererFeatures {
 // Every feature: the default, what every renderer had before the features were chosen.
 inline constexpr RendererFeatures kAllFeatures{};
 // None of them: the smallest renderer, for a scene whose frame fits its stores (its active list
-// too, in every strip), one-sided lighting, diffuse materials, every strip rendered each frame
+// too, in every strip), one-sided lighting, diffuse materials, no triangle crossing the near or
+// far plane or the guard band, every strip rendered each frame
 // (the footprint images, which add specular where their material has it:
 // docs/measurements/footprint.md).
-inline constexpr RendererFeatures kNoFeatures{false, false, false, false, false, false};
+inline constexpr RendererFeatures kNoFeatures{false, false, false, false, false, false, false};
 
 }  // namespace lr

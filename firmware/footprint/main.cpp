@@ -167,8 +167,8 @@ alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_store_strip_buffers{
 // The front end's features (core/raster/renderer_features.hpp): every_feature all of them, the
 // others none but specular where their lit draws' material has a specular colour ("gold",
 // "silver"; not unlit, not gouraud_diffuse). The frame fits the stores (no bands, no vertex
-// cache), the lights are one-sided and every strip is rendered: the frame is the same as with
-// every feature.
+// cache), the lights are one-sided, no triangle crosses the near plane or the guard band (no
+// clipper) and every strip is rendered: the frame is the same as with every feature.
 constexpr lr::RendererFeatures features_of(int config) {
   if (config == kEveryFeature) return lr::kAllFeatures;
   lr::RendererFeatures f = lr::kNoFeatures;
@@ -313,7 +313,8 @@ int main() {
   sh::write(": 320x240 RGB565, strips of 8 rows, torus of 1,000 triangles\n");
   bool ok = prepare_frame() && draw_frame() && check(g_renderer.render(g_sink), "render");
   const lr::FrameStats& st = g_renderer.stats();
-  const uint32_t dropped = st.dropped_vertex_capacity + st.dropped_triangle_capacity;
+  const uint32_t dropped =
+      st.dropped_vertex_capacity + st.dropped_triangle_capacity + st.dropped_unclipped;
   report("triangles binned", st.triangles_binned);
   report("max active", st.max_active);
   report("pixels written", st.pixels_written);

@@ -51,6 +51,30 @@ struct Grid {
   Mesh mesh() const { return Mesh{positions, normals, {}, {}, triangles, {}}; }
 };
 
+// A floor of n x n quads below the eye, from z = -0.2 (in front of the near plane, 0.5: the
+// nearest row of quads crosses it) to z = -4.2, lit from above.
+struct Floor {
+  std::vector<Vec3> positions;
+  std::vector<Normal16> normals;
+  std::vector<std::array<uint16_t, 3>> triangles;
+  explicit Floor(int n) {
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        positions.push_back({fx(-1.5 + 3.0 * i / n), fx(-0.25), fx(-0.2 - 4.0 * j / n)});
+        normals.push_back({0, 16384, 0});
+      }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const auto a = static_cast<uint16_t>(j * (n + 1) + i);
+        const auto b = static_cast<uint16_t>(a + 1), c = static_cast<uint16_t>(a + n + 1),
+                   d = static_cast<uint16_t>(a + n + 2);
+        triangles.push_back({a, d, b});
+        triangles.push_back({a, c, d});
+      }
+  }
+  Mesh mesh() const { return Mesh{positions, normals, {}, {}, triangles, {}}; }
+};
+
 Camera camera() {
   Camera c;
   EXPECT_TRUE(perspective(fx(60), Fixed::ratio(kW, kH), fx(0.5), fx(20), c.projection));
@@ -115,9 +139,13 @@ struct Rig {
   // Configures, begins, draws the grid (the draw's status) and renders (status).
   Status frame(const Grid& g, bool two_sided = false, const Material& m = material(),
                const DrawState& state = lit_gouraud()) {
+    return frame(g.mesh(), two_sided, m, state);
+  }
+  Status frame(const Mesh& mesh, bool two_sided = false, const Material& m = material(),
+               const DrawState& state = lit_gouraud()) {
     EXPECT_EQ(configure(), Status::kOk);
     EXPECT_EQ(r->begin_frame(camera(), lights(two_sided), kBackground), Status::kOk);
-    const Status drawn = r->draw(g.mesh(), Mat4::identity(), m, state);
+    const Status drawn = r->draw(mesh, Mat4::identity(), m, state);
     status = r->render(sink);
     return drawn;
   }
@@ -291,6 +319,46 @@ TEST(RendererFeatures, WithoutSpecularALitDrawWithASpecularMaterialIsNotLinked) 
       check(only);
     }
   }
+}
+
+TEST(RendererFeatures, WithoutClippingATriangleCrossingAPlaneIsDroppedAndNotLinked) {
+  const Floor f(6);
+  DrawState both = lit_gouraud();
+  both.cull = Cull::kNone;
+  Full full;
+  ASSERT_EQ(full.frame(f.mesh(), false, material(), both), Status::kOk);
+  EXPECT_EQ(full.status, Status::kOk);
+  const FrameStats& fs = full.r->stats();
+  EXPECT_GT(fs.clipped, 0u);  // the nearest row crosses the near plane
+  EXPECT_EQ(fs.dropped_unclipped, 0u);
+  EXPECT_GT(full.covered(), size_t{500});
+  // Without the clipper: the draw is taken, the triangles that cross a plane are dropped and
+  // counted, the others drawn as with it, and render() returns kNotLinked.
+  Lean lean;
+  ASSERT_EQ(lean.frame(f.mesh(), false, material(), both), Status::kOk);
+  EXPECT_EQ(lean.status, Status::kNotLinked);
+  const FrameStats& ls = lean.r->stats();
+  EXPECT_EQ(ls.dropped_unclipped, fs.clipped);
+  EXPECT_EQ(ls.clipped, 0u);
+  EXPECT_EQ(ls.draws_refused_not_linked, 0u);
+  EXPECT_EQ(ls.triangles_in, fs.triangles_in);
+  EXPECT_EQ(ls.binned_inputs + ls.dropped_unclipped + ls.culled_backface + ls.culled_zero_area +
+                ls.culled_offscreen + ls.clipped_away + ls.rejected_invalid,
+            ls.triangles_in);
+  size_t same = 0, background = 0;
+  const auto bg = PF::encode(kBackground);
+  for (size_t i = 0; i < full.sink.frame().size(); ++i) {
+    same += lean.sink.frame()[i] == full.sink.frame()[i];
+    background += lean.sink.frame()[i] != full.sink.frame()[i] && lean.sink.frame()[i] == bg;
+  }
+  EXPECT_LT(same, full.sink.frame().size());
+  EXPECT_EQ(same + background, full.sink.frame().size());
+  EXPECT_GT(lean.covered(), size_t{100});
+  // A frame after it that needs no clipping: kOk again.
+  const Grid g(4);
+  ASSERT_EQ(lean.frame(g), Status::kOk);
+  EXPECT_EQ(lean.status, Status::kOk);
+  EXPECT_EQ(lean.r->stats().dropped_unclipped, 0u);
 }
 
 }  // namespace
