@@ -51,6 +51,19 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
   return Status::kOk;
 }
 
+// Whether a lit Gouraud or textured draw can be lit in model space alone (a renderer without
+// RendererFeatures::world_lighting): directional lights and the infinite viewer (no position), a
+// rigid model matrix (the vertex stage's test, VertexStage::object_lights) and unit normals (its
+// per-vertex test, VertexStage::light).
+bool model_space_lighting(const Mesh& mesh, const Mat4& model, bool position) {
+  if (position) return false;
+  NormalRotation rows;
+  if (!rigid_normal_rows(normal_matrix(model), rows)) return false;
+  for (const Normal16& n : mesh.normals)
+    if (!unit_normal(n)) return false;
+  return true;
+}
+
 }  // namespace
 
 // Whether a mesh of n vertices can be drawn only through the vertex cache: larger than a store
@@ -397,6 +410,8 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
       ((plan.uv || plan.kind.phong) && routines_->attributes == nullptr) ||
       (plan.two_sided && routines_->front_facing == nullptr) ||
       (plan.lit && !routines_->specular && has_specular(material)) ||
+      (plan.lit && plan.gouraud && !routines_->world_lighting &&
+       !model_space_lighting(mesh, model, plan.kind.position)) ||
       (routines_->cache == nullptr && needs_cache(mesh.positions.size(), plan)))
     return refuse(Status::kNotLinked);
   if ((plan.uv && !store_.has_tex()) || ((plan.textured || plan.kind.phong) && !active_extra_) ||

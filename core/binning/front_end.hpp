@@ -156,11 +156,14 @@ struct FrontEndRoutines {
   // front_facing, cache, clip are set (a loop without them would draw those draws wrong).
   uint32_t (*triangles)(FrontEnd&, MeshDraw&, uint32_t,
                         uint32_t) = &FrontEndParts::triangles<true, true, true>;
-  // A lit vertex's colours (VertexStage::light<kSpecular>), and whether its specular term is
-  // linked (RendererFeatures::specular): when not (light<false>, and light_face<false> above),
-  // a lit draw whose material has a specular colour is refused (kNotLinked).
-  LightFn light = &VertexStage::light<true>;
+  // A lit vertex's colours (VertexStage::light<kSpecular, kWorld>), whether its specular term is
+  // linked (RendererFeatures::specular): when not (light<false, ...>, and light_face<false>
+  // above), a lit draw whose material has a specular colour is refused (kNotLinked); and whether
+  // its world-space path is (RendererFeatures::world_lighting): when not, a lit Gouraud or
+  // textured draw that cannot be lit in model space is refused (kNotLinked).
+  LightFn light = &VertexStage::light<true, true>;
   bool specular = true;
+  bool world_lighting = true;
 };
 inline constexpr FrontEndRoutines kEveryRoutine{};
 

@@ -156,8 +156,9 @@ class Renderer {
       kFeatures.two_sided ? &front_facing_clip : nullptr,
       kFeatures.strip_skipping ? &kSignRoutines : nullptr,
       &FrontEndParts::triangles<kFeatures.two_sided, kFeatures.vertex_cache, kFeatures.clipping>,
-      &VertexStage::light<kFeatures.specular>,
-      kFeatures.specular};
+      &VertexStage::light<kFeatures.specular, kFeatures.world_lighting>,
+      kFeatures.specular,
+      kFeatures.world_lighting};
 
   // render() with bands (kFeatures.bands), after its checks. Inlined: one stack frame.
   [[gnu::always_inline]] inline Status render_bands(FrameStats& stats, StripSink<PF>& sink,

@@ -82,9 +82,18 @@ TransformSummary VertexStage::transform_range(const Mesh& mesh, const VertexColo
   return {wide, static_cast<uint8_t>(outcodes)};
 }
 
-template <bool kSpecular>
+template <bool kSpecular, bool kWorld>
 LitColor VertexStage::light(const VertexStage& stage, const Mesh& mesh, const VertexColors colors,
                             size_t i, bool back) {
+  if constexpr (!kWorld) {
+    // Admitted only with the lights in model space and unit normals (FrontEnd::draw): the
+    // model-space path below, without its tests. (Black, never reached, were it not so.)
+    if (colors.object == nullptr) return {};
+    const LitColor c = light_object<kSpecular>(*colors.lighting, *colors.object, mesh.normals[i],
+                                               normal_len2(mesh.normals[i]), back);
+    if (colors.split) return c;
+    return {sum_clamped(c.primary, c.secondary), Color15{}};
+  }
   if (colors.object != nullptr) {
     const uint32_t len2 = normal_len2(mesh.normals[i]);
     if (unit_len2(len2)) {
@@ -104,10 +113,14 @@ LitColor VertexStage::light(const VertexStage& stage, const Mesh& mesh, const Ve
   if (colors.split) return c;
   return {sum_clamped(c.primary, c.secondary), Color15{}};
 }
-template LitColor VertexStage::light<true>(const VertexStage&, const Mesh&, VertexColors, size_t,
-                                           bool);
-template LitColor VertexStage::light<false>(const VertexStage&, const Mesh&, VertexColors, size_t,
-                                            bool);
+template LitColor VertexStage::light<true, true>(const VertexStage&, const Mesh&, VertexColors,
+                                                 size_t, bool);
+template LitColor VertexStage::light<true, false>(const VertexStage&, const Mesh&, VertexColors,
+                                                  size_t, bool);
+template LitColor VertexStage::light<false, true>(const VertexStage&, const Mesh&, VertexColors,
+                                                  size_t, bool);
+template LitColor VertexStage::light<false, false>(const VertexStage&, const Mesh&, VertexColors,
+                                                   size_t, bool);
 
 template <bool kSpecular>
 LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1,

@@ -27,17 +27,19 @@ Fixed fx(double v) {
 }
 
 // An n x n grid of quads (2 n^2 triangles, (n + 1)^2 vertices) facing the camera, lit per
-// vertex, filling most of the viewport.
+// vertex, filling most of the viewport. Its normals are unit, or of length `length`.
 struct Grid {
   std::vector<Vec3> positions;
   std::vector<Normal16> normals;
   std::vector<std::array<uint16_t, 3>> triangles;
-  explicit Grid(int n) {
+  explicit Grid(int n, double length = 1.0) {
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
         positions.push_back({fx(-1.2 + 2.4 * i / n), fx(-0.9 + 1.8 * j / n), fx(-2.0)});
         // Normals leaning with x, so that the lighting varies over the grid.
-        normals.push_back({static_cast<int16_t>(-6000 + 12000 * i / n), 0, 15000});
+        const double a = -0.38 + 0.76 * i / n;
+        normals.push_back({static_cast<int16_t>(std::lround(16384.0 * length * std::sin(a))), 0,
+                           static_cast<int16_t>(std::lround(16384.0 * length * std::cos(a)))});
       }
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
@@ -142,10 +144,13 @@ struct Rig {
     return frame(g.mesh(), two_sided, m, state);
   }
   Status frame(const Mesh& mesh, bool two_sided = false, const Material& m = material(),
-               const DrawState& state = lit_gouraud()) {
+               const DrawState& state = lit_gouraud(), const Mat4& model = Mat4::identity(),
+               const LightSet* light_set = nullptr) {
     EXPECT_EQ(configure(), Status::kOk);
-    EXPECT_EQ(r->begin_frame(camera(), lights(two_sided), kBackground), Status::kOk);
-    const Status drawn = r->draw(mesh, Mat4::identity(), m, state);
+    EXPECT_EQ(r->begin_frame(camera(), light_set != nullptr ? *light_set : lights(two_sided),
+                             kBackground),
+              Status::kOk);
+    const Status drawn = r->draw(mesh, model, m, state);
     status = r->render(sink);
     return drawn;
   }
@@ -164,6 +169,9 @@ using Uncrowded = Rig<kUncrowded>;
 // Every feature but specular.
 constexpr RendererFeatures kDiffuseOnly{.specular = false};
 using DiffuseOnly = Rig<kDiffuseOnly>;
+// Every feature but world-space lighting.
+constexpr RendererFeatures kModelSpaceOnly{.world_lighting = false};
+using ModelSpaceOnly = Rig<kModelSpaceOnly>;
 
 TEST(RendererFeatures, WithoutFeaturesAFrameThatNeedsNoneIsTheSame) {
   const Grid g(6);
@@ -291,8 +299,7 @@ TEST(RendererFeatures, WithoutSpecularALitDrawWithASpecularMaterialIsNotLinked) 
   EXPECT_EQ(shiny.status, Status::kOk);
   EXPECT_NE(shiny.sink.frame(), diffuse.sink.frame());
   // Without it: a diffuse material gives the same frame (the per-vertex lighting without its
-  // specular term: the grid's normals are not unit, the world-space path), a specular one is
-  // refused, counted, and nothing of it drawn.
+  // specular term), a specular one is refused, counted, and nothing of it drawn.
   for (const bool lean_rig : {false, true}) {
     SCOPED_TRACE(lean_rig ? "kNoFeatures" : "every feature but specular");
     auto check = [&](auto& rig) {
@@ -359,6 +366,72 @@ TEST(RendererFeatures, WithoutClippingATriangleCrossingAPlaneIsDroppedAndNotLink
   ASSERT_EQ(lean.frame(g), Status::kOk);
   EXPECT_EQ(lean.status, Status::kOk);
   EXPECT_EQ(lean.r->stats().dropped_unclipped, 0u);
+}
+
+TEST(RendererFeatures, WithoutWorldLightingADrawThatNeedsItIsNotLinked) {
+  // Lit in model space (a rigid model, unit normals, a directional light): the same frame.
+  const Grid unit(6), longer(6, 1.25);
+  const Mat4 turned = rotate_y(fx(20));
+  Full full;
+  ASSERT_EQ(full.frame(unit.mesh(), false, material(), lit_gouraud(), turned), Status::kOk);
+  EXPECT_GT(full.covered(), size_t{1000});
+  ModelSpaceOnly only;
+  ASSERT_EQ(only.frame(unit.mesh(), false, material(), lit_gouraud(), turned), Status::kOk);
+  EXPECT_EQ(only.status, Status::kOk);
+  EXPECT_EQ(only.sink.frame(), full.sink.frame());
+  // Two-sided, with back faces (the general triangle loop lights every vertex through
+  // VertexStage::light), shiny (the split of the specular term) and unculled: the same too.
+  DrawState both = lit_gouraud();
+  both.cull = Cull::kNone;
+  std::vector<std::array<uint16_t, 3>> reversed;  // every other triangle a back face
+  for (size_t t = 0; t < unit.triangles.size(); ++t) {
+    const auto& tri = unit.triangles[t];
+    reversed.push_back(t % 2 == 0 ? tri : std::array<uint16_t, 3>{tri[0], tri[2], tri[1]});
+  }
+  const Mesh mixed{unit.positions, unit.normals, {}, {}, reversed, {}};
+  ASSERT_EQ(full.frame(mixed, true, material(true), both, turned), Status::kOk);
+  EXPECT_GT(full.covered(), size_t{1000});
+  ASSERT_EQ(only.frame(mixed, true, material(true), both, turned), Status::kOk);
+  EXPECT_EQ(only.status, Status::kOk);
+  EXPECT_EQ(only.sink.frame(), full.sink.frame());
+  // What needs the world-space path: normals that are not unit, a model that is not rigid (x
+  // scaled), a point light. Drawn with it, refused without it.
+  Mat4 stretched = Mat4::identity();
+  stretched.m[0][0] = fx(1.5);
+  LightSet point = lights();
+  point.lights[0] = Light::point({fx(0.5), fx(0.5), fx(0.0)}, {32767, 32767, 32767});
+  struct Case {
+    const char* what;
+    const Grid& grid;
+    Mat4 model;
+    const LightSet* lights;
+  };
+  const Case cases[] = {{"normals of length 1.25", longer, Mat4::identity(), nullptr},
+                        {"a model scaled along x", unit, stretched, nullptr},
+                        {"a point light", unit, Mat4::identity(), &point}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    Full with;
+    ASSERT_EQ(with.frame(c.grid.mesh(), false, material(), lit_gouraud(), c.model, c.lights),
+              Status::kOk);
+    EXPECT_EQ(with.status, Status::kOk);
+    EXPECT_GT(with.covered(), size_t{1000});
+    ModelSpaceOnly without;
+    EXPECT_EQ(without.frame(c.grid.mesh(), false, material(), lit_gouraud(), c.model, c.lights),
+              Status::kNotLinked);
+    EXPECT_EQ(without.status, Status::kNotLinked);
+    EXPECT_EQ(without.r->stats().draws_refused_not_linked, 1u);
+    EXPECT_EQ(without.covered(), size_t{0});
+    // Unlit, the normals and lights do not matter: drawn.
+    DrawState unlit = lit_gouraud();
+    unlit.lighting = false;
+    EXPECT_EQ(without.frame(c.grid.mesh(), false, material(), unlit, c.model, c.lights),
+              Status::kOk);
+    EXPECT_EQ(without.status, Status::kOk);
+    EXPECT_GT(without.covered(), size_t{1000});
+  }
+  Lean lean;
+  EXPECT_EQ(lean.frame(longer), Status::kNotLinked);
 }
 
 }  // namespace
