@@ -10,7 +10,13 @@ namespace lr {
 namespace {
 
 // The checks of draw() (kInvalidArgument: nothing is added, nothing counted), and its plan.
-Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& lights, DrawPlan& p) {
+// check_texture: FrontEndRoutines::validate (nullptr: the renderer refuses textured and Phong
+// draws, kNotLinked, and links no test of their textures).
+Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& lights, DrawPlan& p,
+                 Status (*check_texture)(const Texture&)) {
+  auto invalid = [check_texture](const Texture& t) {
+    return check_texture != nullptr && check_texture(t) != Status::kOk;
+  };
   const size_t n = mesh.positions.size();
   if ((!mesh.normals.empty() && mesh.normals.size() != n) ||
       (!mesh.colors.empty() && mesh.colors.size() != n))
@@ -26,7 +32,7 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
   p.kind.color_planes = p.gouraud && (p.lit || !mesh.colors.empty() || p.textured);
   p.kind.position = !lights.normal_only();
   if (p.textured) {
-    if (validate(*state.texture) != Status::kOk) return Status::kInvalidArgument;
+    if (invalid(*state.texture)) return Status::kInvalidArgument;
     if (state.sampler.mip != MipMode::kNone && state.texture->level_count < 2)
       return Status::kInvalidArgument;
   }
@@ -34,9 +40,9 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
       mesh.uvs.size() != n)
     return Status::kInvalidArgument;
   if (p.kind.phong) {
-    if (state.envmap && validate(*state.envmap) != Status::kOk) return Status::kInvalidArgument;
-    if (state.normal_map && (validate(*state.normal_map) != Status::kOk ||
-                             mesh.tangents.size() != n || mesh.uvs.size() != n))
+    if (state.envmap && invalid(*state.envmap)) return Status::kInvalidArgument;
+    if (state.normal_map &&
+        (invalid(*state.normal_map) || mesh.tangents.size() != n || mesh.uvs.size() != n))
       return Status::kInvalidArgument;
     if (state.pixel_lighting == PixelLighting::kTable &&
         (!lights.normal_only() || state.table.size < kMinLightingTable ||
@@ -401,7 +407,8 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   // Refused whole, with nothing added and only the draw counted: arguments that disagree, a
   // state the renderer links no routine for, a store the draw needs that was not given.
   DrawPlan plan;
-  if (plan_draw(mesh, state, lights_, plan) != Status::kOk) return refuse(Status::kInvalidArgument);
+  if (plan_draw(mesh, state, lights_, plan, routines_->validate) != Status::kOk)
+    return refuse(Status::kInvalidArgument);
   const bool triangle_colors = !plan.gouraud && !plan.kind.phong;  // flat: colours per triangle
   // (Phong draws light per pixel: their position is the span set's own dimension.)
   if (!admitted(state, plan.kind) ||
@@ -447,13 +454,9 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   }
   if (edges_.signing())
     routines_->sign->draw(*this, draw_index, plan.kind.phong ? &material : nullptr);
-  DrawCall& call = record.call;
-  call.mesh = mesh;
-  call.screen = {};
-  call.model = model;
-  call.material.set(material);
-  call.state.set(state);
-  call.is_screen = false;
+  // Only bands read the draw's arguments again (replay).
+  if (routines_->bands != nullptr)
+    routines_->bands->record(record.call, mesh, model, material, state);
   if (!overflow_)
     run_mesh(draw_index, mesh, model, material, state, plan, pl);
   else if (routines_->bands == nullptr)  // no band will bin it: dropped, and counted
@@ -703,7 +706,7 @@ void FrontEnd::replay(uint8_t index) {
   }
   const Material material = c.material.get();
   DrawPlan plan;
-  plan_draw(c.mesh, state, lights_, plan);  // passed in draw()
+  plan_draw(c.mesh, state, lights_, plan, routines_->validate);  // passed in draw()
   PreparedLighting& pl = lighting_;
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   if (plan.lit)
@@ -711,6 +714,16 @@ void FrontEnd::replay(uint8_t index) {
   else
     pl = PreparedLighting{};
   run_mesh(index, c.mesh, c.model, material, state, plan, pl);
+}
+
+void FrontEndParts::record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,
+                                const Material& material, const DrawState& state) {
+  call.mesh = mesh;
+  call.screen = {};
+  call.model = model;
+  call.material.set(material);
+  call.state.set(state);
+  call.is_screen = false;
 }
 
 void FrontEnd::replay_screen(FrontEnd& fe, uint8_t index, const DrawState& state) {

@@ -90,6 +90,9 @@ struct FrontEndParts {
   static bool shrink_band(FrontEnd& fe);
   static void compact_vertices(FrontEnd& fe, size_t first_vertex, bool surfaces, bool tex);
   static bool polygon_outside_band(FrontEnd& fe, uint16_t first, int m, Cull cull);
+  // Bands: a draw's arguments kept in its record, for the bands that bin it again (replay).
+  static void record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,
+                          const Material& material, const DrawState& state);
   // Strip signatures (strip_inputs.hpp): the frame's, a draw's, a binned triangle's.
   static uint32_t sign_frame(const FrontEnd& fe);
   static void sign_draw(FrontEnd& fe, uint8_t draw, const Material* per_pixel_material);
@@ -105,6 +108,8 @@ struct BandRoutines {
   bool (*shrink)(FrontEnd&) = &FrontEndParts::shrink_band;
   void (*compact)(FrontEnd&, size_t, bool, bool) = &FrontEndParts::compact_vertices;
   bool (*outside)(FrontEnd&, uint16_t, int, Cull) = &FrontEndParts::polygon_outside_band;
+  void (*record)(DrawCall&, const Mesh&, const Mat4&, const Material&,
+                 const DrawState&) = &FrontEndParts::record_call;
 };
 inline constexpr BandRoutines kBandRoutines{};
 // The vertex cache (vertex_store.hpp): a mesh larger than the free vertex store.
@@ -138,6 +143,9 @@ struct FrontEndRoutines {
   // local viewer): per vertex and per face.
   PointLightFn point_light = &light_point_at;
   AttributesFn attributes = &VertexStage::attributes;  // textured and Phong draws' vertices
+  // The test of a draw's textures (texture, environment and normal maps: validate()), wherever
+  // attributes is set; nullptr where not (the draws that have textures are refused then).
+  Status (*validate)(const Texture&) = &lr::validate;
   // The clipper: clip_polygon<true> (texture coordinates, specular colour and surface carried)
   // wherever attributes is set; clip_polygon<false> only where it is not (no draw then has them);
   // nullptr without RendererFeatures::clipping (triangles then is a loop without the clipper).
