@@ -70,6 +70,12 @@ bool model_space_lighting(const Mesh& mesh, const Mat4& model, bool position) {
   return true;
 }
 
+// Whether the draw's triangles have colours of their own, not planes (MeshDraw::flat_colors):
+// flat shading, or an unlit mesh's one colour.
+bool needs_flat_colors(const DrawPlan& p) {
+  return !p.kind.phong && (!p.gouraud || !p.kind.color_planes);
+}
+
 }  // namespace
 
 // Whether a mesh of n vertices can be drawn only through the vertex cache: larger than a store
@@ -265,7 +271,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
     for (int k = 0; k < 3; ++k)
       d.back_colors[k] = d.light_vertex(tri[static_cast<size_t>(k)], true);
   Rgb8 flat{}, flat_spec{};
-  d.flat_colors(tri, *sv[2], back, flat, flat_spec);
+  if (d.own_colors != nullptr) d.own_colors(d, tri, *sv[2], back, flat, flat_spec);
   if (oc_or == 0) {
     bin_inside(d, vi, sv, back && d.plan.gouraud, flat, flat_spec, classified ? rows : nullptr,
                kCache && d.cached);
@@ -416,6 +422,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
       (plan.lit && !plan.kind.phong && plan.kind.position && routines_->point_light == nullptr) ||
       ((plan.uv || plan.kind.phong) && routines_->attributes == nullptr) ||
       (plan.two_sided && routines_->front_facing == nullptr) ||
+      (needs_flat_colors(plan) && routines_->flat == nullptr) ||
       (plan.lit && !routines_->specular && has_specular(material)) ||
       (plan.lit && plan.gouraud && !routines_->world_lighting &&
        !model_space_lighting(mesh, model, plan.kind.position)) ||
@@ -510,6 +517,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   MeshDraw d{mesh, state, stage, plan, colors, base, index, cached};
   d.face_light = routines_->face_light;
   d.light = routines_->light;
+  if (needs_flat_colors(plan)) d.own_colors = routines_->flat;
   d.clipping = cached || clip_outcodes != 0;
   if (colors.object != nullptr && !colors.object->specular && !colors.split)
     d.diffuse_lights = colors.object;
@@ -714,6 +722,11 @@ void FrontEnd::replay(uint8_t index) {
   else
     pl = PreparedLighting{};
   run_mesh(index, c.mesh, c.model, material, state, plan, pl);
+}
+
+void FrontEndParts::flat_colors(const MeshDraw& d, const std::array<uint16_t, 3>& tri,
+                                const ScreenVertex& last, bool back, Rgb8& flat, Rgb8& flat_spec) {
+  d.flat_colors(tri, last, back, flat, flat_spec);
 }
 
 void FrontEndParts::record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,

@@ -90,6 +90,10 @@ struct FrontEndParts {
   static bool shrink_band(FrontEnd& fe);
   static void compact_vertices(FrontEnd& fe, size_t first_vertex, bool surfaces, bool tex);
   static bool polygon_outside_band(FrontEnd& fe, uint16_t first, int m, Cull cull);
+  // The colours of a triangle without colour planes (MeshDraw::flat_colors): flat shading, an
+  // unlit mesh's one colour.
+  static void flat_colors(const MeshDraw& d, const std::array<uint16_t, 3>& tri,
+                          const ScreenVertex& last, bool back, Rgb8& flat, Rgb8& flat_spec);
   // Bands: a draw's arguments kept in its record, for the bands that bin it again (replay).
   static void record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,
                           const Material& material, const DrawState& state);
@@ -143,6 +147,10 @@ struct FrontEndRoutines {
   // local viewer): per vertex and per face.
   PointLightFn point_light = &light_point_at;
   AttributesFn attributes = &VertexStage::attributes;  // textured and Phong draws' vertices
+  // The colours of triangles without colour planes (flat-shaded or one-coloured draws), where
+  // the set admits such draws (else nullptr: they are refused).
+  void (*flat)(const MeshDraw&, const std::array<uint16_t, 3>&, const ScreenVertex&, bool, Rgb8&,
+               Rgb8&) = &FrontEndParts::flat_colors;
   // The test of a draw's textures (texture, environment and normal maps: validate()), wherever
   // attributes is set; nullptr where not (the draws that have textures are refused then).
   Status (*validate)(const Texture&) = &lr::validate;

@@ -148,6 +148,7 @@ class Renderer {
       kFlat ? &VertexStage::light_face<kFeatures.specular> : nullptr,
       detail::has(kSpans.position, true) ? &light_point_at : nullptr,
       kAttributes ? &VertexStage::attributes : nullptr,
+      kFlat ? &FrontEndParts::flat_colors : nullptr,
       kAttributes ? &validate : nullptr,
       !kFeatures.clipping ? nullptr
       : kAttributes       ? &clip_polygon<true>

@@ -434,5 +434,26 @@ TEST(RendererFeatures, WithoutWorldLightingADrawThatNeedsItIsNotLinked) {
   EXPECT_EQ(lean.frame(longer), Status::kNotLinked);
 }
 
+// A front end given no routine for triangles' own colours (FrontEndRoutines::flat: a renderer
+// whose span set admits no flat-shaded or one-coloured draw) refuses those draws.
+TEST(RendererFeatures, AFrontEndWithoutOwnColoursRefusesFlatAndOneColouredDraws) {
+  BasicFrameStorage<std::vector> store(caps());
+  FrontEndRoutines routines;  // every routine but that one
+  routines.flat = nullptr;
+  const auto fe = std::make_unique<FrontEnd>();
+  ASSERT_EQ(fe->configure(store.storage().front_end(), kW, kH, kK, &routines), Status::kOk);
+  ASSERT_EQ(fe->begin_frame(camera(), lights(), kBackground), Status::kOk);
+  const Grid g(2);
+  DrawState flat = lit_gouraud();
+  flat.shading = Shading::kFlat;
+  DrawState one_colour = lit_gouraud();
+  one_colour.lighting = false;  // unlit, and the grid has no vertex colours
+  EXPECT_EQ(fe->draw(g.mesh(), Mat4::identity(), material(), flat), Status::kNotLinked);
+  EXPECT_EQ(fe->draw(g.mesh(), Mat4::identity(), material(), one_colour), Status::kNotLinked);
+  EXPECT_EQ(fe->draw(g.mesh(), Mat4::identity(), material(), lit_gouraud()), Status::kOk);
+  EXPECT_EQ(fe->stats().draws_refused_not_linked, 2u);
+  EXPECT_GT(fe->stats().triangles_binned, 0u);
+}
+
 }  // namespace
 }  // namespace lr
