@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Footprint report of the firmware configurations: flash, RAM and worst-case stack of each
-# footprint image (firmware/footprint: unlit, gouraud, tex_nearest, tex_bilinear, phong at
+# footprint image (firmware/footprint: unlit, gouraud, tex_nearest, tex_bilinear, phong, ... at
 # 320x240, RGB565, strips of 8 rows, storage for 1,000 triangles), and the link guard.
 #
 #   bash scripts/footprint.sh [--write-docs] [BUILD_DIR ...]
@@ -25,7 +25,8 @@
 #      empty image lr_fp_empty minus the scene's mesh and texture arrays; and the renderer
 #      alone: the core/ and hal/ code and tables the program's calls reach, without the
 #      program's own camera, sink and main: scripts/flash_by_folder.py --renderer), the RAM breakdown by
-#      store (the sizes the phong image prints), the gouraud image's flash by source folder
+#      store (the sizes the phong image prints), the gouraud_diffuse image's flash by source
+#      folder (the Gouraud family without specular, as the peer scenes draw: issue 36's budget)
 #      (scripts/flash_by_folder.py), and, for Cortex-M0+ trees, which configurations fit the
 #      micro:bit (flash <= its FLASH, RAM + worst-case stack <= its RAM;
 #      firmware/common/microbit.ld).
@@ -40,7 +41,8 @@ root=$PWD
 source scripts/lib/firmware_rules.sh
 prefix=arm-none-eabi-
 qemu_timeout=${LR_FOOTPRINT_QEMU_TIMEOUT:-120}
-configs=(unlit gouraud tex_nearest tex_bilinear phong gouraud_tex every_feature tex_nearest_shared)
+configs=(unlit gouraud tex_nearest tex_bilinear phong gouraud_tex every_feature tex_nearest_shared
+         gouraud_diffuse)
 status=0
 
 fail() {
@@ -83,7 +85,7 @@ else
 fi
 
 # Symbols (nm -C, from the start of the name) no untextured image may hold (see below).
-lr_fp_untextured_unlinked='^(lr::light_point_split|lr::light_point_at|lr::light_point|lr::transform_affine|lr::VertexStage::light_face|lr::VertexStage::attributes|lr::transform_tangent|lr::DrawRecords::phong_record|lr::FrontEnd::run_screen|lr::detail::kMaterialTable|lr::find_material|lr::to_material|(lr::ColorPlanes )?lr::setup_planes|(void )?lr::legacy_rows|lr::FrontEnd::bin_band|lr::FrontEndParts::(shrink_band|compact_vertices|polygon_outside_band|sign_)|(unsigned long )?lr::FrontEnd::general_triangles<(true|false, true)|lr::EdgeTable::shrink_window|lr::VertexStore::(begin_cache|cache_corners|persist)|lr::front_facing_clip|lr::StripLoop<.*>::(skip_strip|crowded_strip)|lr::InputHash::|(int )?lr::clip_polygon<true)\b'
+lr_fp_untextured_unlinked='^(lr::light_point_split|lr::light_point_at|lr::light_point|lr::transform_affine|lr::VertexStage::light_face|lr::VertexStage::attributes|lr::transform_tangent|lr::DrawRecords::phong_record|lr::FrontEnd::run_screen|lr::detail::kMaterialTable|lr::find_material|lr::to_material|(lr::ColorPlanes )?lr::setup_planes|(void )?lr::legacy_rows|lr::FrontEnd::bin_band|lr::FrontEndParts::(shrink_band|compact_vertices|polygon_outside_band|sign_)|(unsigned long )?lr::FrontEnd::general_triangles<(true|false, true)|lr::EdgeTable::shrink_window|lr::VertexStore::(begin_cache|cache_corners|persist)|lr::front_facing_clip|lr::StripLoop<.*>::(skip_strip|crowded_strip)|lr::InputHash::|(int )?lr::clip_polygon<)\b'
 # The project's API the footprint program calls for itself, not the renderer (its camera and
 # model matrix, firmware/footprint/main.cpp): the program's bytes, unless the renderer calls them.
 program_api_names="lr::perspective, lr::look_at, lr::rotate_y"
@@ -219,7 +221,7 @@ print(sum(int(f[1], 16) for f in (l.split(None, 3) for l in sys.stdin)
     if split=$(python3 scripts/flash_by_folder.py "$elf" --exclude 'lr::fw::footprint::k' \
                  --tool-prefix "$prefix" --renderer "${program_api[@]}"); then
       alone="$(group "$(awk '$1 == "renderer" {print $2}' <<<"$split")") B"
-      [[ $cfg == gouraud ]] && gouraud_split=$split
+      [[ $cfg == gouraud_diffuse ]] && gouraud_split=$split
     else
       fail "$core $cfg: scripts/flash_by_folder.py --renderer failed"
       alone="—"
@@ -232,11 +234,17 @@ print(sum(int(f[1], 16) for f in (l.split(None, 3) for l in sys.stdin)
     # draw_screen's binning (the images never call it), the material table (they name their
     # materials at compile time), and the features their renderer leaves out (kNoFeatures,
     # core/raster/renderer_features.hpp: bands, the vertex cache, two-sided lighting's clipped
-    # back-face test, strip signatures, the crowded strips' passes).
-    if [[ $cfg == unlit || $cfg == gouraud ]]; then
+    # back-face test, strip signatures, the crowded strips' passes, the clipper).
+    if [[ $cfg == unlit || $cfg == gouraud || $cfg == gouraud_diffuse ]]; then
       linked=$("${prefix}nm" -C "$elf" | awk '{ $1 = ""; $2 = ""; print substr($0, 3) }' |
                grep -E "${lr_fp_untextured_unlinked}" | sed 's/(.*//' | sort -u)
       [[ -z $linked ]] || fail "$core $cfg links what its span set leaves out:"$'\n'"$(sed 's/^/    /' <<<"$linked")"
+    fi
+    # Renderers without specular (unlit, gouraud_diffuse: RendererFeatures::specular left out)
+    # link no specular power tables.
+    if [[ $cfg == unlit || $cfg == gouraud_diffuse ]]; then
+      linked=$("${prefix}nm" -C "$elf" | grep -E ' lr::PowTable<' | sed 's/^.* [A-Za-z] //; s/(.*//' | sort -u)
+      [[ -z $linked ]] || fail "$core $cfg links the specular term without RendererFeatures::specular:"$'\n'"$(sed 's/^/    /' <<<"$linked")"
     fi
     if (( flash <= mb_flash && ram + total <= mb_ram )); then
       fits+=("$cfg")
@@ -260,11 +268,12 @@ print(sum(int(f[1], 16) for f in (l.split(None, 3) for l in sys.stdin)
   echo "Flash: every byte loaded into flash (vector table, code, .rodata, unwind index, and the .data load image); renderer flash: that minus the empty image's ($(group "$empty_flash") B: startup, C library shims, semihosting; firmware/footprint/empty.cpp) minus the scene's mesh and texture arrays; renderer alone: the renderer's code and tables only (the core/ and hal/ symbols the program's calls reach, with the libgcc helpers and tables they use; without the program's main, sink, startup and C library shims, and without the API functions only the program calls: its camera and model matrix, ${program_api_names}; what the compiler inlines into the program's functions counts as the program's, as Renderer::render() in main at -O3; scripts/flash_by_folder.py --renderer); RAM: .data + .bss, without the reserved .stack section; worst-case stack: the reset path (Reset_Handler -> main -> ...) plus every exception handler with its exception frame, nested (scripts/stack_usage.py); measured: the stack high-water mark of the run (a lower bound, checked <= the reset path's bound); main alone: the static bound of main's calls, without startup and handlers."
   echo
   [[ -n $breakdown ]] && echo "RAM at 320x240 with 1,000 triangles ($core, phong image): $breakdown." && echo
-  # Where one family's renderer flash is (the Gouraud image), by source folder.
-  gouraud_elf=$(awk '$1 == "gouraud" {print $2}' "$manifest")
+  # Where one family's renderer flash is (the diffuse Gouraud image: the budget's), by source
+  # folder.
+  gouraud_elf=$(awk '$1 == "gouraud_diffuse" {print $2}' "$manifest")
   if [[ -n $gouraud_elf ]] && by_folder=$(python3 scripts/flash_by_folder.py "$gouraud_elf" \
        --exclude 'lr::fw::footprint::k' --tool-prefix "$prefix"); then
-    echo "Flash of the gouraud image by source folder ($core at $opt; without its mesh arrays; scripts/flash_by_folder.py):"
+    echo "Flash of the gouraud_diffuse image by source folder ($core at $opt; without its mesh arrays; scripts/flash_by_folder.py):"
     echo
     echo "$by_folder"
     echo

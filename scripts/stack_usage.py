@@ -341,6 +341,11 @@ class CodeFacts:
     unknown_sp: list = field(default_factory=list)  # instructions writing sp otherwise
     direct_literals: set = field(default_factory=set)  # literal words used as branch targets
     instructions: int = 0
+    # A `sub sp, #N` as the function's first instruction, before its push: the bytes where it
+    # stores arguments it received in registers (a by-value object split between registers and
+    # the stack: GCC's "pretend args"), which GCC's .ci frame leaves out.
+    first_sub: int = 0
+    pretend: int = 0
 
 
 def reg_count(reglist):
@@ -446,6 +451,10 @@ def parse_disassembly(text, functions):
             cf.unknown_sp.append(f"{addr:x}: {mnemonic} {operands}")
         elif effect:
             cf.frame += effect
+            if cf.instructions == 1 and mnemonic.startswith("sub"):
+                cf.first_sub = effect
+            elif cf.instructions == 2 and cf.first_sub and not mnemonic.startswith("sub"):
+                cf.pretend = cf.first_sub  # then the push of the saved registers
         mm = re.match(r"^(r\d+|ip|lr|sl|fp|sb),\s*#(\d+)", operands)
         if mm and mnemonic.startswith("movw"):
             movw[(fn, mm.group(1))] = int(mm.group(2))
@@ -629,6 +638,10 @@ class Analysis:
                         f"{self.display(node.fn)}: no .ci node and its code moves sp in a way "
                         f"this analysis does not follow: {cf.unknown_sp[0]}")
                 node.frame, node.frame_source = cf.frame, "disassembly"
+            elif cf.pretend:
+                # The .ci frame without the pretend args the code reserves first.
+                node.frame += cf.pretend
+                node.frame_source += f" + {cf.pretend} B of arguments (disassembly)"
             code_calls, code_tails = set(), set()
             for kind, targets in (("call", cf.calls), ("tail", cf.tails)):
                 for t in targets:

@@ -10,7 +10,13 @@ namespace lr {
 namespace {
 
 // The checks of draw() (kInvalidArgument: nothing is added, nothing counted), and its plan.
-Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& lights, DrawPlan& p) {
+// check_texture: FrontEndRoutines::validate (nullptr: the renderer refuses textured and Phong
+// draws, kNotLinked, and links no test of their textures).
+Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& lights, DrawPlan& p,
+                 Status (*check_texture)(const Texture&)) {
+  auto invalid = [check_texture](const Texture& t) {
+    return check_texture != nullptr && check_texture(t) != Status::kOk;
+  };
   const size_t n = mesh.positions.size();
   if ((!mesh.normals.empty() && mesh.normals.size() != n) ||
       (!mesh.colors.empty() && mesh.colors.size() != n))
@@ -26,7 +32,7 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
   p.kind.color_planes = p.gouraud && (p.lit || !mesh.colors.empty() || p.textured);
   p.kind.position = !lights.normal_only();
   if (p.textured) {
-    if (validate(*state.texture) != Status::kOk) return Status::kInvalidArgument;
+    if (invalid(*state.texture)) return Status::kInvalidArgument;
     if (state.sampler.mip != MipMode::kNone && state.texture->level_count < 2)
       return Status::kInvalidArgument;
   }
@@ -34,9 +40,9 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
       mesh.uvs.size() != n)
     return Status::kInvalidArgument;
   if (p.kind.phong) {
-    if (state.envmap && validate(*state.envmap) != Status::kOk) return Status::kInvalidArgument;
-    if (state.normal_map && (validate(*state.normal_map) != Status::kOk ||
-                             mesh.tangents.size() != n || mesh.uvs.size() != n))
+    if (state.envmap && invalid(*state.envmap)) return Status::kInvalidArgument;
+    if (state.normal_map &&
+        (invalid(*state.normal_map) || mesh.tangents.size() != n || mesh.uvs.size() != n))
       return Status::kInvalidArgument;
     if (state.pixel_lighting == PixelLighting::kTable &&
         (!lights.normal_only() || state.table.size < kMinLightingTable ||
@@ -49,6 +55,25 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
   p.uv = p.textured || (p.kind.phong && state.normal_map != nullptr);
   p.two_sided = p.lit && lights.two_sided && !p.kind.phong;  // Phong flips at setup
   return Status::kOk;
+}
+
+// Whether a lit Gouraud or textured draw can be lit in model space alone (a renderer without
+// RendererFeatures::world_lighting): directional lights and the infinite viewer (no position), a
+// rigid model matrix (the vertex stage's test, VertexStage::object_lights) and unit normals (its
+// per-vertex test, VertexStage::light).
+bool model_space_lighting(const Mesh& mesh, const Mat4& model, bool position) {
+  if (position) return false;
+  NormalRotation rows;
+  if (!rigid_normal_rows(normal_matrix(model), rows)) return false;
+  for (const Normal16& n : mesh.normals)
+    if (!unit_normal(n)) return false;
+  return true;
+}
+
+// Whether the draw's triangles have colours of their own, not planes (MeshDraw::flat_colors):
+// flat shading, or an unlit mesh's one colour.
+bool needs_flat_colors(const DrawPlan& p) {
+  return !p.kind.phong && (!p.gouraud || !p.kind.color_planes);
 }
 
 }  // namespace
@@ -169,7 +194,7 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
 // One triangle of a draw: culled, lit (lit Gouraud: its vertices on first use; flat: its face),
 // clipped when it crosses a plane, and binned. This and the two ends below are always inlined
 // into draw(): one loop body, whose locals share one stack frame.
-template <bool kTwoSided, bool kCache>
+template <bool kTwoSided, bool kCache, bool kClip>
 void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   const size_t n = d.mesh.positions.size();
   if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
@@ -197,6 +222,15 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
     ++stats_.clipped_away;
     return;
   }
+  if constexpr (!kClip) {
+    // A renderer without the clipper (RendererFeatures::clipping): dropped, counted, and the
+    // frame's status (render()) kNotLinked unless a draw was refused before.
+    if (oc_or != 0) {
+      ++stats_.dropped_unclipped;
+      if (refused_ == Status::kOk) refused_ = Status::kNotLinked;
+      return;
+    }
+  }
   int32_t rows[2] = {0, 0};
   bool classified = false;
   if (d.plan.lit && d.plan.gouraud) {
@@ -217,7 +251,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
     }
     for (int k = 0; k < 3; ++k) {
       if (sv[k]->color_pending) {
-        const LitColor lc = d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], false);
+        const LitColor lc = d.light_vertex(tri[static_cast<size_t>(k)], false);
         sv[k]->color = lc.primary;
         if (d.colors.split) store_.tex(vi[k]).spec = lc.secondary;
         sv[k]->color_pending = 0;
@@ -235,9 +269,9 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
                       : !routines_->front_facing(clip);
   if (back && d.plan.gouraud)
     for (int k = 0; k < 3; ++k)
-      d.back_colors[k] = d.stage.light(d.mesh, d.colors, tri[static_cast<size_t>(k)], true);
+      d.back_colors[k] = d.light_vertex(tri[static_cast<size_t>(k)], true);
   Rgb8 flat{}, flat_spec{};
-  d.flat_colors(tri, *sv[2], back, flat, flat_spec);
+  if (d.own_colors != nullptr) d.own_colors(d, tri, *sv[2], back, flat, flat_spec);
   if (oc_or == 0) {
     bin_inside(d, vi, sv, back && d.plan.gouraud, flat, flat_spec, classified ? rows : nullptr,
                kCache && d.cached);
@@ -379,7 +413,8 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   // Refused whole, with nothing added and only the draw counted: arguments that disagree, a
   // state the renderer links no routine for, a store the draw needs that was not given.
   DrawPlan plan;
-  if (plan_draw(mesh, state, lights_, plan) != Status::kOk) return refuse(Status::kInvalidArgument);
+  if (plan_draw(mesh, state, lights_, plan, routines_->validate) != Status::kOk)
+    return refuse(Status::kInvalidArgument);
   const bool triangle_colors = !plan.gouraud && !plan.kind.phong;  // flat: colours per triangle
   // (Phong draws light per pixel: their position is the span set's own dimension.)
   if (!admitted(state, plan.kind) ||
@@ -387,6 +422,10 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
       (plan.lit && !plan.kind.phong && plan.kind.position && routines_->point_light == nullptr) ||
       ((plan.uv || plan.kind.phong) && routines_->attributes == nullptr) ||
       (plan.two_sided && routines_->front_facing == nullptr) ||
+      (needs_flat_colors(plan) && routines_->flat == nullptr) ||
+      (plan.lit && !routines_->specular && has_specular(material)) ||
+      (plan.lit && plan.gouraud && !routines_->world_lighting &&
+       !model_space_lighting(mesh, model, plan.kind.position)) ||
       (routines_->cache == nullptr && needs_cache(mesh.positions.size(), plan)))
     return refuse(Status::kNotLinked);
   if ((plan.uv && !store_.has_tex()) || ((plan.textured || plan.kind.phong) && !active_extra_) ||
@@ -422,13 +461,9 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   }
   if (edges_.signing())
     routines_->sign->draw(*this, draw_index, plan.kind.phong ? &material : nullptr);
-  DrawCall& call = record.call;
-  call.mesh = mesh;
-  call.screen = {};
-  call.model = model;
-  call.material.set(material);
-  call.state.set(state);
-  call.is_screen = false;
+  // Only bands read the draw's arguments again (replay).
+  if (routines_->bands != nullptr)
+    routines_->bands->record(record.call, mesh, model, material, state);
   if (!overflow_)
     run_mesh(draw_index, mesh, model, material, state, plan, pl);
   else if (routines_->bands == nullptr)  // no band will bin it: dropped, and counted
@@ -481,6 +516,8 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
 
   MeshDraw d{mesh, state, stage, plan, colors, base, index, cached};
   d.face_light = routines_->face_light;
+  d.light = routines_->light;
+  if (needs_flat_colors(plan)) d.own_colors = routines_->flat;
   d.clipping = cached || clip_outcodes != 0;
   if (colors.object != nullptr && !colors.object->specular && !colors.split)
     d.diffuse_lights = colors.object;
@@ -489,13 +526,22 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   if (edges_.banding()) routines_->bands->compact(*this, base, phong, uv);
 }
 
+// The lane (lane.cpp), but not where the code is built for size: there the general loop takes
+// every triangle, the same frame without the lane's code (1.1 KB at -Os on Cortex-M4F) for about
+// 95 instructions more per input triangle (the footprint's torus: 3.3 % of its frame).
+#if defined(__OPTIMIZE_SIZE__)
+constexpr bool kLane = false;
+#else
+constexpr bool kLane = true;
+#endif
+
 // The triangle loop: the lane (lane.cpp) for a draw's common triangles, general_triangles() for
 // the others and for every triangle of a draw the lane does not take (two-sided, flat-shaded,
 // through the vertex cache, signed). Out of line and small: the lane's frames and the general
 // path's are never on the stack together.
 void FrontEnd::triangle_loop(MeshDraw& d) {
   const auto count = static_cast<uint32_t>(d.mesh.triangles.size());
-  if (d.cached || d.plan.two_sided || draw_colors_ || edges_.signing()) {
+  if (!kLane || d.cached || d.plan.two_sided || draw_colors_ || edges_.signing()) {
     routines_->triangles(*this, d, 0, count);
     return;
   }
@@ -506,20 +552,32 @@ void FrontEnd::triangle_loop(MeshDraw& d) {
 }
 
 // Triangles [t, end) through draw_triangle(), inlined here: one stack frame for its locals.
-template <bool kTwoSided, bool kCache>
+template <bool kTwoSided, bool kCache, bool kClip>
 uint32_t FrontEnd::general_triangles(MeshDraw& d, uint32_t t, uint32_t end) {
-  for (; t < end; ++t) draw_triangle<kTwoSided, kCache>(d, d.mesh.triangles[t]);
+  for (; t < end; ++t) draw_triangle<kTwoSided, kCache, kClip>(d, d.mesh.triangles[t]);
   return t;
 }
 
-template <bool kTwoSided, bool kCache>
+template <bool kTwoSided, bool kCache, bool kClip>
 uint32_t FrontEndParts::triangles(FrontEnd& fe, MeshDraw& d, uint32_t t, uint32_t end) {
-  return fe.general_triangles<kTwoSided, kCache>(d, t, end);
+  return fe.general_triangles<kTwoSided, kCache, kClip>(d, t, end);
 }
-template uint32_t FrontEndParts::triangles<false, false>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
-template uint32_t FrontEndParts::triangles<false, true>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
-template uint32_t FrontEndParts::triangles<true, false>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
-template uint32_t FrontEndParts::triangles<true, true>(FrontEnd&, MeshDraw&, uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<false, false, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                uint32_t);
+template uint32_t FrontEndParts::triangles<false, false, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                               uint32_t);
+template uint32_t FrontEndParts::triangles<false, true, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                               uint32_t);
+template uint32_t FrontEndParts::triangles<false, true, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                              uint32_t);
+template uint32_t FrontEndParts::triangles<true, false, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                               uint32_t);
+template uint32_t FrontEndParts::triangles<true, false, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                              uint32_t);
+template uint32_t FrontEndParts::triangles<true, true, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                              uint32_t);
+template uint32_t FrontEndParts::triangles<true, true, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                             uint32_t);
 
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
                              std::span<const std::array<uint16_t, 3>> triangles,
@@ -656,7 +714,7 @@ void FrontEnd::replay(uint8_t index) {
   }
   const Material material = c.material.get();
   DrawPlan plan;
-  plan_draw(c.mesh, state, lights_, plan);  // passed in draw()
+  plan_draw(c.mesh, state, lights_, plan, routines_->validate);  // passed in draw()
   PreparedLighting& pl = lighting_;
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   if (plan.lit)
@@ -664,6 +722,21 @@ void FrontEnd::replay(uint8_t index) {
   else
     pl = PreparedLighting{};
   run_mesh(index, c.mesh, c.model, material, state, plan, pl);
+}
+
+void FrontEndParts::flat_colors(const MeshDraw& d, const std::array<uint16_t, 3>& tri,
+                                const ScreenVertex& last, bool back, Rgb8& flat, Rgb8& flat_spec) {
+  d.flat_colors(tri, last, back, flat, flat_spec);
+}
+
+void FrontEndParts::record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,
+                                const Material& material, const DrawState& state) {
+  call.mesh = mesh;
+  call.screen = {};
+  call.model = model;
+  call.material.set(material);
+  call.state.set(state);
+  call.is_screen = false;
 }
 
 void FrontEnd::replay_screen(FrontEnd& fe, uint8_t index, const DrawState& state) {

@@ -90,20 +90,30 @@ struct FrontEndParts {
   static bool shrink_band(FrontEnd& fe);
   static void compact_vertices(FrontEnd& fe, size_t first_vertex, bool surfaces, bool tex);
   static bool polygon_outside_band(FrontEnd& fe, uint16_t first, int m, Cull cull);
+  // The colours of a triangle without colour planes (MeshDraw::flat_colors): flat shading, an
+  // unlit mesh's one colour.
+  static void flat_colors(const MeshDraw& d, const std::array<uint16_t, 3>& tri,
+                          const ScreenVertex& last, bool back, Rgb8& flat, Rgb8& flat_spec);
+  // Bands: a draw's arguments kept in its record, for the bands that bin it again (replay).
+  static void record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,
+                          const Material& material, const DrawState& state);
   // Strip signatures (strip_inputs.hpp): the frame's, a draw's, a binned triangle's.
   static uint32_t sign_frame(const FrontEnd& fe);
   static void sign_draw(FrontEnd& fe, uint8_t draw, const Material* per_pixel_material);
   static void sign_triangle(FrontEnd& fe, uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
                             Rgb8 flat, Rgb8 flat_spec, int32_t r0, int32_t r1);
   // The general triangle loop (FrontEnd::general_triangles) with or without two-sided
-  // lighting's back faces and the vertex cache: the renderer links the one of its features.
-  template <bool kTwoSided, bool kCache>
+  // lighting's back faces, the vertex cache and the clipper: the renderer links the one of its
+  // features.
+  template <bool kTwoSided, bool kCache, bool kClip>
   static uint32_t triangles(FrontEnd& fe, MeshDraw& d, uint32_t t, uint32_t end);
 };
 struct BandRoutines {
   bool (*shrink)(FrontEnd&) = &FrontEndParts::shrink_band;
   void (*compact)(FrontEnd&, size_t, bool, bool) = &FrontEndParts::compact_vertices;
   bool (*outside)(FrontEnd&, uint16_t, int, Cull) = &FrontEndParts::polygon_outside_band;
+  void (*record)(DrawCall&, const Mesh&, const Mat4&, const Material&,
+                 const DrawState&) = &FrontEndParts::record_call;
 };
 inline constexpr BandRoutines kBandRoutines{};
 // The vertex cache (vertex_store.hpp): a mesh larger than the free vertex store.
@@ -130,15 +140,23 @@ inline constexpr SignRoutines kSignRoutines{};
 // the front end); the front end refuses a draw that would need a missing one (kNotLinked). The
 // defaults admit every draw and link everything (a front end driven alone, in tests).
 struct FrontEndRoutines {
-  AdmitFn admit = nullptr;                            // the set's test (nullptr: every draw)
-  PhongRecordFn phong = &DrawRecords::phong_record;   // Phong draws' records
-  FaceLightFn face_light = &VertexStage::light_face;  // lit flat draws' face colours
+  AdmitFn admit = nullptr;                                  // the set's test (nullptr: every draw)
+  PhongRecordFn phong = &DrawRecords::phong_record;         // Phong draws' records
+  FaceLightFn face_light = &VertexStage::light_face<true>;  // lit flat draws' face colours
   // Lit Gouraud, flat and textured draws whose lighting reads the position (point lights, the
   // local viewer): per vertex and per face.
   PointLightFn point_light = &light_point_at;
   AttributesFn attributes = &VertexStage::attributes;  // textured and Phong draws' vertices
+  // The colours of triangles without colour planes (flat-shaded or one-coloured draws), where
+  // the set admits such draws (else nullptr: they are refused).
+  void (*flat)(const MeshDraw&, const std::array<uint16_t, 3>&, const ScreenVertex&, bool, Rgb8&,
+               Rgb8&) = &FrontEndParts::flat_colors;
+  // The test of a draw's textures (texture, environment and normal maps: validate()), wherever
+  // attributes is set; nullptr where not (the draws that have textures are refused then).
+  Status (*validate)(const Texture&) = &lr::validate;
   // The clipper: clip_polygon<true> (texture coordinates, specular colour and surface carried)
-  // wherever attributes is set; clip_polygon<false> only where it is not (no draw then has them).
+  // wherever attributes is set; clip_polygon<false> only where it is not (no draw then has them);
+  // nullptr without RendererFeatures::clipping (triangles then is a loop without the clipper).
   int (*clip)(ClipPolygon, ClipPolygon, int, uint8_t, GuardBand) = &clip_polygon<true>;
   // The features of RendererFeatures (renderer_features.hpp), nullptr when left out: bands (a
   // frame larger than the stores is then drawn as far as it fits: kCapacity), the vertex cache
@@ -150,10 +168,18 @@ struct FrontEndRoutines {
   const CacheRoutines* cache = &kCacheRoutines;
   bool (*front_facing)(const ClipCoord (&)[3]) = &front_facing_clip;
   const SignRoutines* sign = &kSignRoutines;
-  // The general triangle loop: FrontEndParts::triangles<kTwoSided, kCache>, true where
-  // front_facing, cache are set (a loop without them would draw those draws wrong).
+  // The general triangle loop: FrontEndParts::triangles<kTwoSided, kCache, kClip>, true where
+  // front_facing, cache, clip are set (a loop without them would draw those draws wrong).
   uint32_t (*triangles)(FrontEnd&, MeshDraw&, uint32_t,
-                        uint32_t) = &FrontEndParts::triangles<true, true>;
+                        uint32_t) = &FrontEndParts::triangles<true, true, true>;
+  // A lit vertex's colours (VertexStage::light<kSpecular, kWorld>), whether its specular term is
+  // linked (RendererFeatures::specular): when not (light<false, ...>, and light_face<false>
+  // above), a lit draw whose material has a specular colour is refused (kNotLinked); and whether
+  // its world-space path is (RendererFeatures::world_lighting): when not, a lit Gouraud or
+  // textured draw that cannot be lit in model space is refused (kNotLinked).
+  LightFn light = &VertexStage::light<true, true>;
+  bool specular = true;
+  bool world_lighting = true;
 };
 inline constexpr FrontEndRoutines kEveryRoutine{};
 
@@ -255,7 +281,7 @@ class FrontEnd {
   // kCache: with two-sided lighting's back faces, with the vertex cache (FrontEndRoutines::
   // triangles: the renderer's features).
   [[gnu::noinline]] void triangle_loop(MeshDraw& d);
-  template <bool kTwoSided, bool kCache>
+  template <bool kTwoSided, bool kCache, bool kClip>
   [[gnu::noinline]] uint32_t general_triangles(MeshDraw& d, uint32_t t, uint32_t end);
   [[gnu::noinline]] uint32_t lane_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] uint32_t lane_run_triangles(MeshDraw& d, uint32_t t);
@@ -264,7 +290,7 @@ class FrontEnd {
   static constexpr size_t kLightList = 48;
   [[gnu::noinline]] void light_list(MeshDraw& d, std::span<ScreenVertex* const> list);
   [[gnu::noinline]] void light_other(MeshDraw& d, uint32_t i);
-  template <bool kTwoSided, bool kCache>
+  template <bool kTwoSided, bool kCache, bool kClip>
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
                                                 ScreenVertex* const (&sv)[3], bool back_copies,
@@ -335,12 +361,13 @@ class FrontEnd {
   enum class Phase : uint8_t { kIdle, kOpen, kRendered };
   Phase phase_ = Phase::kIdle;
   Status refused_ = Status::kOk;
-  // The routines of configure() (nullptr until then: zero bytes).
-  const FrontEndRoutines* routines_ = nullptr;
+  // (The bytes together, before the words: no padding between them.)
   bool active_extra_ = false;  // FrontEndStorage::active_extra
   // Bands: the stores overflowed (the rest of the frame is only recorded), and the refused
   // draws' triangles (counted in every band's statistics).
   bool overflow_ = false;
+  // The routines of configure() (nullptr until then: zero bytes).
+  const FrontEndRoutines* routines_ = nullptr;
   uint32_t refused_triangles_ = 0, refused_vertices_ = 0;
   // The statistics binning changes (nothing else changes while a band is binned), as they were
   // before the band: kept here, not on the stack, and not the whole FrameStats (RAM: the

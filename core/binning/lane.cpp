@@ -192,7 +192,7 @@ void FrontEnd::light_list(MeshDraw& d, std::span<ScreenVertex* const> list) {
 // Vertex i of draw d lit through VertexStage::light: the cases light_list() does not take
 // inline (out of line, off its loops' registers).
 void FrontEnd::light_other(MeshDraw& d, uint32_t i) {
-  const LitColor lc = d.stage.light(d.mesh, d.colors, i, false);
+  const LitColor lc = d.light_vertex(i, false);
   store_.vertices_at(d.base)[i].color = lc.primary;
   if (d.colors.split) store_.tex(d.base + i).spec = lc.secondary;
 }
@@ -227,7 +227,7 @@ void FrontEnd::light_corners(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
         continue;
       }
     }
-    const LitColor lc = d.stage.light(d.mesh, d.colors, i, false);
+    const LitColor lc = d.light_vertex(i, false);
     v.color = lc.primary;
     if (d.colors.split) store_.tex(d.base + i).spec = lc.secondary;
   }

@@ -46,6 +46,13 @@ struct MeshDraw {
   bool clipping = true;  // a vertex may be outside a plane (else no triangle needs the clipper)
   // Flat shading's face lighting (FrontEnd::configure): never nullptr for a lit flat draw.
   FaceLightFn face_light = nullptr;
+  // The colours of its triangles without colour planes (FrontEndRoutines::flat): set only for a
+  // flat-shaded or one-coloured draw, else nullptr (its triangles' colours are planes).
+  void (*own_colors)(const MeshDraw&, const std::array<uint16_t, 3>&, const ScreenVertex&, bool,
+                     Rgb8&, Rgb8&) = nullptr;
+  // A lit vertex's colours (FrontEndRoutines::light): never nullptr.
+  LightFn light = nullptr;
+  LitColor light_vertex(size_t i, bool back) const { return light(stage, mesh, colors, i, back); }
   // Lit Gouraud under diffuse directional lights in model space, one colour: the lights
   // (light_corners()'s inline case), else nullptr.
   const ObjectLights* diffuse_lights = nullptr;

@@ -111,6 +111,9 @@ LitColor light_point_split(const PreparedLighting& pl, const Unit30& n, Vec3 p);
 // light_point_split for directional lights and the infinite viewer only (!pl.needs_position()),
 // bit for bit: the per-vertex path of most lit draws, inline and without the general case's
 // branches. Products as in light_point_split (docs/numerics.md#lighting-arithmetic).
+// kSpecular false: without the specular term, for renderers that refuse materials with one
+// (RendererFeatures::specular): the same colours where every light's Ls Ks is zero.
+template <bool kSpecular = true>
 inline LitColor light_directional_split(const PreparedLighting& pl, const Unit30& n) {
   uint32_t prim[3] = {static_cast<uint32_t>(pl.base[0]), static_cast<uint32_t>(pl.base[1]),
                       static_cast<uint32_t>(pl.base[2])};
@@ -126,6 +129,7 @@ inline LitColor light_directional_split(const PreparedLighting& pl, const Unit30
     const auto ndl_u = static_cast<uint64_t>(ndl);
     for (int c = 0; c < 3; ++c)
       prim[c] += static_cast<uint32_t>((ndl_u * li.kd[c] + (1u << 29)) >> 30);
+    if constexpr (!kSpecular) continue;
     int64_t ndh = dot(li.h);
     if (ndh <= 0) continue;
     if (ndh > (int64_t{1} << 30)) ndh = int64_t{1} << 30;
@@ -150,8 +154,9 @@ constexpr Color15 sum_clamped(Color15 a, Color15 b) {
 }
 
 // The same summed into one colour (light_point for directional lights and the infinite viewer).
+template <bool kSpecular = true>
 inline Color15 light_directional(const PreparedLighting& pl, const Unit30& n) {
-  const LitColor c = light_directional_split(pl, n);
+  const LitColor c = light_directional_split<kSpecular>(pl, n);
   return sum_clamped(c.primary, c.secondary);
 }
 

@@ -85,7 +85,9 @@ constexpr uint16_t clamp_one(uint32_t x) {
 
 // The lit colours of normal n (Normal16, len2 = normal_len2(n) and unit_len2(len2)), negated when
 // back: light_directional_split's model for the model-space directions, n's length corrected by
-// inverse_length() on the dot products rather than on the normal.
+// inverse_length() on the dot products rather than on the normal. kSpecular false: without the
+// specular term (RendererFeatures::specular), the same colours where ol.specular is false.
+template <bool kSpecular = true>
 inline LitColor light_object(const PreparedLighting& pl, const ObjectLights& ol, const Normal16& n,
                              uint32_t len2, bool back) {
   const int32_t nx = back ? -n.x : n.x, ny = back ? -n.y : n.y, nz = back ? -n.z : n.z;
@@ -94,7 +96,7 @@ inline LitColor light_object(const PreparedLighting& pl, const ObjectLights& ol,
   int32_t ndl[kMaxLights];
   object_diffuse(pl, ol, nx, ny, nz, k, prim, ndl);
   uint32_t spec[3] = {0, 0, 0};
-  if (ol.specular) {
+  if (kSpecular && ol.specular) {
     for (int i = 0; i < ol.count; ++i) {
       if (ndl[i] <= 0) continue;
       // n . h in 64 bits (products below 2^45), Q2.44, then Q2.30.

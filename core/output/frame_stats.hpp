@@ -21,6 +21,9 @@ struct FrameStats {
   uint32_t rejected_invalid = 0;  // vertex index out of range
   uint32_t dropped_vertex_capacity = 0;
   uint32_t dropped_triangle_capacity = 0;
+  // Triangles crossing a clip plane in a renderer without the clipper (RendererFeatures::
+  // clipping): render() returns kNotLinked.
+  uint32_t dropped_unclipped = 0;
   // Draws refused whole, one counter per reason: draw() or draw_screen() returned that status
   // and added nothing (docs/api-errors.md). render() then returns the status of the frame's first
   // refused draw. Only a kCapacity refusal counts its triangles (in triangles_in and dropped_*):

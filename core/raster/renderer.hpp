@@ -4,7 +4,8 @@
 // Rgb565Be, Rgb565, Xrgb8888, Rgb888), K the strip height in rows (1..32, compile time), kSpans
 // the span states it links routines for (span_state.hpp: kAllSpans by default; draws outside the
 // set are refused), kFeatures the front end's features it links (renderer_features.hpp: bands,
-// the vertex cache, two-sided lighting, strip skipping, crowded strips; kAllFeatures by default).
+// the vertex cache, two-sided lighting, strip skipping, crowded strips, specular; kAllFeatures by
+// default).
 // draw() and draw_screen() go to the front end (core/binning/front_end.hpp), which bins the frame;
 // render() hands the binned frame to the strip loop (core/raster/strip_loop.hpp), which rasterizes
 // it strip by strip into the sink. RAM: the caller's FrameStorage; nothing is allocated, nothing
@@ -69,7 +70,9 @@ class Renderer {
   // first refusal's): kInvalidArgument when the mesh's arrays disagree in size, Gouraud
   // lighting is asked of a mesh without normals, or a texture or lighting table is invalid;
   // kNotLinked when the renderer's SpanSet does not admit the draw's span state or its textures
-  // (span_state.hpp; Phong in a renderer without Phong spans); kMissingStore when a store the
+  // (span_state.hpp; Phong in a renderer without Phong spans), or a feature it leaves out
+  // (renderer_features.hpp: e.g. a lit draw of a specular material without kFeatures.specular);
+  // kMissingStore when a store the
   // draw needs was not given (FrameStorage: textured draws tex_vertices and active_extra, Phong
   // draws surfaces, pixel_lights, active_extra and for kTable lighting_tables, flat-shaded
   // draws triangle_colors); kCapacity (its triangles counted as dropped too) when no draw
@@ -142,15 +145,22 @@ class Renderer {
   static constexpr FrontEndRoutines kRoutines{
       &admits<kSpans>,
       kSpans.has(SpanFamily::kPhong) ? &DrawRecords::phong_record : nullptr,
-      kFlat ? &VertexStage::light_face : nullptr,
+      kFlat ? &VertexStage::light_face<kFeatures.specular> : nullptr,
       detail::has(kSpans.position, true) ? &light_point_at : nullptr,
       kAttributes ? &VertexStage::attributes : nullptr,
-      kAttributes ? &clip_polygon<true> : &clip_polygon<false>,
+      kFlat ? &FrontEndParts::flat_colors : nullptr,
+      kAttributes ? &validate : nullptr,
+      !kFeatures.clipping ? nullptr
+      : kAttributes       ? &clip_polygon<true>
+                          : &clip_polygon<false>,
       kFeatures.bands ? &kBandRoutines : nullptr,
       kFeatures.vertex_cache ? &kCacheRoutines : nullptr,
       kFeatures.two_sided ? &front_facing_clip : nullptr,
       kFeatures.strip_skipping ? &kSignRoutines : nullptr,
-      &FrontEndParts::triangles<kFeatures.two_sided, kFeatures.vertex_cache>};
+      &FrontEndParts::triangles<kFeatures.two_sided, kFeatures.vertex_cache, kFeatures.clipping>,
+      &VertexStage::light<kFeatures.specular, kFeatures.world_lighting>,
+      kFeatures.specular,
+      kFeatures.world_lighting};
 
   // render() with bands (kFeatures.bands), after its checks. Inlined: one stack frame.
   [[gnu::always_inline]] inline Status render_bands(FrameStats& stats, StripSink<PF>& sink,

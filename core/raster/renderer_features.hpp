@@ -12,7 +12,22 @@
 //  - strip_skipping: configure() with a FrameStorage::strip_inputs store returns kNotLinked;
 //  - crowded_strips: in a strip whose triangles (those active and those starting in it)
 //    outnumber the active list, the triangles starting in it are dropped (dropped_triangle_-
-//    capacity counts them), the others drawn, and render() returns kCapacity.
+//    capacity counts them), the others drawn, and render() returns kCapacity;
+//  - clipping: a triangle that crosses a clip plane (the near or far plane, or the guard band's
+//    edges: a triangle that only crosses the viewport's edges needs none) is dropped and
+//    counted in FrameStats::dropped_unclipped, the rest of its draw drawn, and render() returns
+//    kNotLinked;
+//  - world_lighting: a lit Gouraud or textured draw (per-vertex lighting) is refused by draw()
+//    with kNotLinked unless it can be lit in model space: directional lights and the infinite
+//    viewer, a rigid model matrix (a rotation times a uniform scale, within core/math/rigid.hpp's
+//    tolerance) and normals of unit length (within 2^-12: unit_normal(), object_lights.hpp; the
+//    project's meshes have them). Those draws are lit the same either way; without it the
+//    world-space path (the normal matrix's transform and normalisation of each normal) is left
+//    out. Flat-shaded faces and Phong keep their own world-space lighting;
+//  - specular: a lit draw whose material has a specular colour (Material::specular not zero)
+//    is refused by draw() with kNotLinked (diffuse materials, as the peer scenes', are drawn
+//    the same: their specular term is zero). Without it the per-vertex lighting links no
+//    specular term and no power tables (2 KB).
 // A draw that needs none of them gives the same frame in every configuration.
 #pragma once
 
@@ -24,6 +39,9 @@ struct RendererFeatures {
   bool two_sided = true;       // two-sided lighting (LightSet::two_sided)
   bool strip_skipping = true;  // strips whose inputs did not change not rendered again
   bool crowded_strips = true;  // strips with more triangles than the active list, in passes
+  bool specular = true;        // materials with a specular colour (highlights)
+  bool clipping = true;        // triangles crossing the near or far plane or the guard band
+  bool world_lighting = true;  // per-vertex lighting beyond rigid models, unit normals, far lights
 
   constexpr bool operator==(const RendererFeatures&) const = default;
 };
@@ -31,8 +49,12 @@ struct RendererFeatures {
 // Every feature: the default, what every renderer had before the features were chosen.
 inline constexpr RendererFeatures kAllFeatures{};
 // None of them: the smallest renderer, for a scene whose frame fits its stores (its active list
-// too, in every strip), one-sided lighting, every strip rendered each frame (the footprint
-// images: docs/measurements/footprint.md).
-inline constexpr RendererFeatures kNoFeatures{false, false, false, false, false};
+// too, in every strip), one-sided directional lighting of rigid models with unit normals,
+// diffuse materials, no triangle crossing the near or far plane or the guard band, every strip
+// rendered each frame
+// (the footprint images, which add specular where their material has it:
+// docs/measurements/footprint.md).
+inline constexpr RendererFeatures kNoFeatures{false, false, false, false,
+                                              false, false, false, false};
 
 }  // namespace lr

@@ -22,6 +22,12 @@ struct Material {
   friend constexpr bool operator==(const Material&, const Material&) = default;
 };
 
+// Whether the material has a specular colour (a renderer without RendererFeatures::specular
+// refuses lit draws of such a material).
+constexpr bool has_specular(const Material& m) {
+  return (m.specular.r | m.specular.g | m.specular.b) != 0;
+}
+
 namespace detail {
 // A table value (1e-8 units) in Q1.15, rounded to nearest.
 constexpr uint16_t material_c15(uint32_t e8) {

@@ -43,11 +43,12 @@ namespace lr {
 // centre of the quotients of the draw's clip coordinates (before rounding; tests/core/vertex_test).
 inline constexpr int kShortPathFractionBits = 5;
 
-// Whether ScreenTransform::run() is the hand-written loop (else project() in a loop).
+// Whether ScreenTransform::run() is the hand-written loop (else project() in a loop; so where the
+// code is built for size: the same integers without the loop's 0.3 KB).
 // (A macro as well: the loop's assembly names Arm registers, which other targets' compilers
 // reject even in a discarded branch.)
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__) && defined(__ARM_FEATURE_SAT) && \
-    defined(__ARM_FEATURE_IDIV)
+    defined(__ARM_FEATURE_IDIV) && !defined(__OPTIMIZE_SIZE__)
 #define LR_SHORT_PATH_RUN 1
 inline constexpr bool kShortPathRun = true;
 #else

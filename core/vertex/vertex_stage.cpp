@@ -82,28 +82,47 @@ TransformSummary VertexStage::transform_range(const Mesh& mesh, const VertexColo
   return {wide, static_cast<uint8_t>(outcodes)};
 }
 
-LitColor VertexStage::light(const Mesh& mesh, const VertexColors colors, size_t i,
-                            bool back) const {
+template <bool kSpecular, bool kWorld>
+LitColor VertexStage::light(const VertexStage& stage, const Mesh& mesh, const VertexColors colors,
+                            size_t i, bool back) {
+  if constexpr (!kWorld) {
+    // Admitted only with the lights in model space and unit normals (FrontEnd::draw): the
+    // model-space path below, without its tests. (Black, never reached, were it not so.)
+    if (colors.object == nullptr) return {};
+    const LitColor c = light_object<kSpecular>(*colors.lighting, *colors.object, mesh.normals[i],
+                                               normal_len2(mesh.normals[i]), back);
+    if (colors.split) return c;
+    return {sum_clamped(c.primary, c.secondary), Color15{}};
+  }
   if (colors.object != nullptr) {
     const uint32_t len2 = normal_len2(mesh.normals[i]);
     if (unit_len2(len2)) {
       const LitColor c =
-          light_object(*colors.lighting, *colors.object, mesh.normals[i], len2, back);
+          light_object<kSpecular>(*colors.lighting, *colors.object, mesh.normals[i], len2, back);
       if (colors.split) return c;
       return {sum_clamped(c.primary, c.secondary), Color15{}};
     }
   }
-  Unit30 nw = world_normal(mesh.normals[i]);
+  Unit30 nw = stage.world_normal(mesh.normals[i]);
   if (back) nw = negate(nw);
   if (!colors.need_position) {
-    if (colors.split) return light_directional_split(*colors.lighting, nw);
-    return {light_directional(*colors.lighting, nw), Color15{}};
+    if (colors.split) return light_directional_split<kSpecular>(*colors.lighting, nw);
+    return {light_directional<kSpecular>(*colors.lighting, nw), Color15{}};
   }
-  const LitColor c = colors.point(*colors.lighting, nw, &model_, mesh.positions[i]);
+  const LitColor c = colors.point(*colors.lighting, nw, &stage.model_, mesh.positions[i]);
   if (colors.split) return c;
   return {sum_clamped(c.primary, c.secondary), Color15{}};
 }
+template LitColor VertexStage::light<true, true>(const VertexStage&, const Mesh&, VertexColors,
+                                                 size_t, bool);
+template LitColor VertexStage::light<true, false>(const VertexStage&, const Mesh&, VertexColors,
+                                                  size_t, bool);
+template LitColor VertexStage::light<false, true>(const VertexStage&, const Mesh&, VertexColors,
+                                                  size_t, bool);
+template LitColor VertexStage::light<false, false>(const VertexStage&, const Mesh&, VertexColors,
+                                                   size_t, bool);
 
+template <bool kSpecular>
 LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, const Vec3& p1,
                                  const Vec3& p2, bool back) const {
   const Unit30 fm = face_normal_model(p0, p1, p2);
@@ -124,11 +143,16 @@ LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, cons
                 mean(w0.z.raw, w1.z.raw, w2.z.raw)};
   }
   // Directional lights and the infinite viewer: the inline path (bit for bit the same).
-  const LitColor c = colors.need_position ? colors.point(*colors.lighting, fw, nullptr, centroid)
-                                          : light_directional_split(*colors.lighting, fw);
+  const LitColor c = colors.need_position
+                         ? colors.point(*colors.lighting, fw, nullptr, centroid)
+                         : light_directional_split<kSpecular>(*colors.lighting, fw);
   if (colors.split) return c;
   return {sum_clamped(c.primary, c.secondary), Color15{}};
 }
+template LitColor VertexStage::light_face<true>(VertexColors, const Vec3&, const Vec3&, const Vec3&,
+                                                bool) const;
+template LitColor VertexStage::light_face<false>(VertexColors, const Vec3&, const Vec3&,
+                                                 const Vec3&, bool) const;
 
 void VertexStage::project_exact(const Vec3& p, ScreenVertex& sv) const {
   const ClipCoord c = clip(p);

@@ -119,6 +119,10 @@ void transform_tangent(const Mat4& model, const Tangent16& t, int16_t out[3]);
 using FaceLightFn = LitColor (VertexStage::*)(VertexColors, const Vec3&, const Vec3&, const Vec3&,
                                               bool) const;
 
+// VertexStage::light<kSpecular, kWorld>, as the front end calls it: the renderer picks the one of
+// its features (RendererFeatures::specular, world_lighting; core/raster/renderer.hpp).
+using LightFn = LitColor (*)(const VertexStage&, const Mesh&, VertexColors, size_t, bool);
+
 class VertexStage {
  public:
   // bound: every coordinate of the positions the stage will transform lies in [-bound - 1,
@@ -150,13 +154,22 @@ class VertexStage {
 
   // Lit colour(s) of mesh vertex i, with the normal negated or not (two-sided back faces): the
   // secondary colour apart when colors.split, else 0. Out of line: one copy for its callers (the
-  // front end's lighting on first use, back faces).
-  // (colors by value here and in light_face: the caller's copy stays in registers.)
-  [[gnu::noinline]] LitColor light(const Mesh& mesh, VertexColors colors, size_t i,
-                                   bool back) const;
+  // front end's lighting on first use, back faces), which reach it through LightFn.
+  // kSpecular false: without the specular term (RendererFeatures::specular: the renderer
+  // refuses materials with one), the same colours for diffuse materials; the directional paths
+  // then link no power tables (point lights, through colors.point, keep theirs). kWorld false:
+  // the model-space path alone (RendererFeatures::world_lighting: the renderer admits only
+  // draws with colors.object and unit normals), the same colours for them.
+  // (colors by value here and in light_face: the caller's copy stays in registers.) Static,
+  // the stage its first argument: a plain function pointer (a pointer to a member function
+  // costs code at every call).
+  template <bool kSpecular = true, bool kWorld = true>
+  [[gnu::noinline]] static LitColor light(const VertexStage& stage, const Mesh& mesh,
+                                          VertexColors colors, size_t i, bool back);
 
   // The lit colour of a flat-shaded triangle (face normal, centroid) of model-space corners.
-  // Out of line: its 64-bit locals stay off the triangle loop's frame.
+  // Out of line: its 64-bit locals stay off the triangle loop's frame. kSpecular as light().
+  template <bool kSpecular = true>
   [[gnu::noinline]] LitColor light_face(VertexColors colors, const Vec3& p0, const Vec3& p1,
                                         const Vec3& p2, bool back) const;
 

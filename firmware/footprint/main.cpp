@@ -15,6 +15,9 @@
 //   8 tex_nearest_shared  tex_nearest without the inlined texel fetch (SpanSet::inline_fetch):
 //                    the flash that sharing the span body saves (bench_cortex_m.sh: its cost
 //                    per pixel)
+//   9 gouraud_diffuse  gouraud with a diffuse material ("gold" without its specular colour, the
+//                    kind of draw of the peer scenes): its renderer leaves out specular
+//                    (RendererFeatures::specular), the Gouraud family as S1 needs it
 //
 // Each renderer, Renderer<PF, 8, kSpans>, links only the span routines and texel fetchers of
 // the states its configuration draws with (kSpans: the smallest lr::SpanSet holding them,
@@ -42,7 +45,7 @@
 #include "lineraster/core/scene/material.hpp"
 
 #ifndef LR_FOOTPRINT_CONFIG
-#error "LR_FOOTPRINT_CONFIG (1 unlit .. 8) is set by firmware/footprint/CMakeLists.txt"
+#error "LR_FOOTPRINT_CONFIG (1 unlit .. 9) is set by firmware/footprint/CMakeLists.txt"
 #endif
 
 namespace {
@@ -53,9 +56,9 @@ using lr::Fixed;
 
 // A draw's shading (configurations 1 to 5), and the configuration of the image.
 enum class Part : int { kUnlit = 1, kGouraud, kTexNearest, kTexBilinear, kPhong };
-static_assert(LR_FOOTPRINT_CONFIG >= 1 && LR_FOOTPRINT_CONFIG <= 8, "unknown configuration");
+static_assert(LR_FOOTPRINT_CONFIG >= 1 && LR_FOOTPRINT_CONFIG <= 9, "unknown configuration");
 constexpr int kConfig = LR_FOOTPRINT_CONFIG;
-constexpr int kGouraudTex = 6, kEveryFeature = 7, kTexNearestShared = 8;
+constexpr int kGouraudTex = 6, kEveryFeature = 7, kTexNearestShared = 8, kGouraudDiffuse = 9;
 
 struct Parts {
   std::array<Part, 5> part{};
@@ -66,6 +69,7 @@ constexpr Parts parts_of(int config) {
   if (config == kEveryFeature)
     return {{Part::kUnlit, Part::kGouraud, Part::kTexNearest, Part::kTexBilinear, Part::kPhong}, 5};
   if (config == kTexNearestShared) return {{Part::kTexNearest}, 1};
+  if (config == kGouraudDiffuse) return {{Part::kGouraud}, 1};
   return {{static_cast<Part>(config)}, 1};
 }
 constexpr Parts kParts = parts_of(kConfig);
@@ -160,11 +164,18 @@ lr::StaticFrameStorage<kCapacities> g_store;
 // Word-aligned: the strip loop fills and clears strips with word stores (memset, memcpy).
 alignas(4) std::array<std::array<Pixel, kStripPixels>, 2> g_store_strip_buffers{};
 
-// The front end's features (core/raster/renderer_features.hpp): none but for every_feature.
-// The frame fits the stores (no bands, no vertex cache), the lights are one-sided and every
-// strip is rendered: the frame is the same as with every feature.
-constexpr lr::RendererFeatures kFeatures =
-    kConfig == kEveryFeature ? lr::kAllFeatures : lr::kNoFeatures;
+// The front end's features (core/raster/renderer_features.hpp): every_feature all of them, the
+// others none but specular where their lit draws' material has a specular colour ("gold",
+// "silver"; not unlit, not gouraud_diffuse). The frame fits the stores (no bands, no vertex
+// cache), the lights are one-sided, no triangle crosses the near plane or the guard band (no
+// clipper) and every strip is rendered: the frame is the same as with every feature.
+constexpr lr::RendererFeatures features_of(int config) {
+  if (config == kEveryFeature) return lr::kAllFeatures;
+  lr::RendererFeatures f = lr::kNoFeatures;
+  f.specular = config != kGouraudDiffuse && parts_of(config).part[0] != Part::kUnlit;
+  return f;
+}
+constexpr lr::RendererFeatures kFeatures = features_of(kConfig);
 lr::Renderer<PF, kStripRows, kSpans, kFeatures> g_renderer;
 // The display: every strip folded into FNV-1a (the smoke test's checksum, so that frames compare
 // across cores and with the host), the lease protocol checked (firmware/common/ordered_sink.hpp).
@@ -208,8 +219,9 @@ lr::DrawState make_state(Part p) {
   return s;
 }
 
-constexpr const char* kNames[] = {"unlit", "gouraud",     "tex_nearest",   "tex_bilinear",
-                                  "phong", "gouraud_tex", "every_feature", "tex_nearest_shared"};
+constexpr const char* kNames[] = {
+    "unlit",       "gouraud",       "tex_nearest",        "tex_bilinear",   "phong",
+    "gouraud_tex", "every_feature", "tex_nearest_shared", "gouraud_diffuse"};
 constexpr const char* kName = kNames[kConfig - 1];
 
 bool check(lr::Status st, const char* what) {
@@ -237,6 +249,16 @@ lr::Mat4 g_model;
 // compile time: the image links the two Materials, not the table and its lookup.
 constexpr lr::Material kGold = lr::to_material(*lr::find_material("gold"));
 constexpr lr::Material kSilver = lr::to_material(*lr::find_material("silver"));
+// gouraud_diffuse's: gold's ambient and diffuse colours, no specular colour.
+constexpr lr::Material diffuse_of(lr::Material m) {
+  m.specular = {0, 0, 0};
+  m.shininess_q8 = 0;
+  return m;
+}
+constexpr lr::Material kGoldDiffuse = diffuse_of(kGold);
+constexpr const lr::Material& material_of(Part p) {
+  return textured(p) ? kSilver : kConfig == kGouraudDiffuse ? kGoldDiffuse : kGold;
+}
 
 // Everything before the draws, out of line: its temporaries (the camera's computation, the
 // materials) are off the stack while the frame is drawn and rendered, as an application would
@@ -272,8 +294,7 @@ constexpr lr::Material kSilver = lr::to_material(*lr::find_material("silver"));
 [[gnu::noinline]] bool draw_frame() {
   for (size_t i = 0; i < kParts.count; ++i) {
     const Part p = kParts.part[i];
-    if (!check(g_renderer.draw(kMeshes[i], g_model, textured(p) ? kSilver : kGold, make_state(p)),
-               "draw"))
+    if (!check(g_renderer.draw(kMeshes[i], g_model, material_of(p), make_state(p)), "draw"))
       return false;
   }
   return true;
@@ -292,7 +313,8 @@ int main() {
   sh::write(": 320x240 RGB565, strips of 8 rows, torus of 1,000 triangles\n");
   bool ok = prepare_frame() && draw_frame() && check(g_renderer.render(g_sink), "render");
   const lr::FrameStats& st = g_renderer.stats();
-  const uint32_t dropped = st.dropped_vertex_capacity + st.dropped_triangle_capacity;
+  const uint32_t dropped =
+      st.dropped_vertex_capacity + st.dropped_triangle_capacity + st.dropped_unclipped;
   report("triangles binned", st.triangles_binned);
   report("max active", st.max_active);
   report("pixels written", st.pixels_written);

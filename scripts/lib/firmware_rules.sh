@@ -97,9 +97,11 @@ lr_fw_guard() {
 # sink's virtual methods and each triangle's row loop; the textured and Phong row loop calls
 # the span routines of its families; textured and Phong spans call texel fetchers; the front
 # end calls the renderer's admission test and the routines of its FrontEndRoutines (Phong
-# records, flat shading's face lighting, point lighting, vertex attributes, the clipper with or
-# without them: those of the renderer's span set; bands, the vertex cache, two-sided lighting's clipped back-face test
-# and strip signatures: those of its RendererFeatures), and draw_screen's binning when it
+# records, flat shading's face lighting, triangles' own colours, point lighting, vertex
+# attributes, the texture test, the clipper with or without them: those of the renderer's span
+# set; bands (with the draw's record for them), the vertex cache, two-sided lighting's clipped
+# back-face test, strip signatures and the per-vertex lighting with or without specular and the
+# world-space path: those of its RendererFeatures), and draw_screen's binning when it
 # replays a band; the panel path (the Cortex-M7 demo) calls its bus; Reset_Handler calls the
 # static constructors (none: the images constant-initialise).
 lr_fw_stack_rules=(
@@ -110,8 +112,13 @@ lr_fw_stack_rules=(
   --indirect-from 'lr::(detail::)?fill_(tex_span_body|tex_span|phong_span)<' 'lr::fetch_batch<'
   --indirect-from '^Reset_Handler$' '^_GLOBAL__sub_I_'
   --indirect-from 'lr::FrontEnd::(draw(_screen)?|admitted)\(' 'lr::admits<|lr::DrawRecords::phong_record\('
-  --indirect-from 'lr::FrontEnd::(general_triangles<[^>]*>|triangle_loop|run_mesh)\(' 'lr::VertexStage::light_face\('
-  --indirect-from 'lr::VertexStage::(light|light_face)\(' 'lr::light_point_at\('
+  --indirect-from 'lr::FrontEnd::(general_triangles<[^>]*>|triangle_loop|run_mesh)\(' 'lr::VertexStage::light_face(<[^>]*>)?\('
+  --indirect-from 'lr::FrontEndParts::flat_colors\(|lr::MeshDraw::flat_colors\(' 'lr::VertexStage::light_face(<[^>]*>)?\('
+  --indirect-from 'lr::FrontEnd::(general_triangles<[^>]*>|light_corners|light_other|light_list|triangle_loop|run_mesh)\(|lr::MeshDraw::light_vertex\(' 'lr::VertexStage::light<'
+  --indirect-from 'lr::FrontEnd::general_triangles<[^>]*>\(' 'lr::FrontEndParts::flat_colors\('
+  --indirect-from 'plan_draw\(|lr::FrontEnd::(draw|replay)\(' '^lr::validate\('
+  --indirect-from 'lr::FrontEnd::draw\(' 'lr::FrontEndParts::record_call\('
+  --indirect-from 'lr::VertexStage::(light|light_face)(<[^>]*>)?\(' 'lr::light_point_at\('
   --indirect-from 'lr::VertexStage::transform_range\(' 'lr::VertexStage::attributes\('
   --indirect-from 'lr::FrontEnd::replay\(' 'lr::FrontEnd::(replay_screen|run_screen)\('
   --indirect-from 'lr::FrontEnd::bin\(' 'lr::FrontEndParts::(shrink_band|sign_triangle)\(|lr::VertexStore::persist\('

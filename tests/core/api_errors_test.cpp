@@ -476,8 +476,18 @@ TEST(ApiErrors, DrawOutsideTheSpanSet) {
   ASSERT_EQ(rig.draw_square(square(4, 4, 8, kRed), plain()), Status::kOk);
   EXPECT_EQ(rig.draw_square(square(30, 4, 8, kRed), textured()), Status::kNotLinked);
   EXPECT_EQ(rig.draw_tri(textured()), Status::kNotLinked);
-  EXPECT_EQ(rig.r->stats().draws_refused_not_linked, 2u);
+  // A renderer without textured spans links no test of textures: an invalid one is refused as
+  // outside the set too (one with textured spans finds it invalid).
+  Texture broken = green_texture();
+  broken.level_count = 0;
+  DrawState bad = textured();
+  bad.texture = &broken;
+  EXPECT_EQ(rig.draw_tri(bad), Status::kNotLinked);
+  EXPECT_EQ(rig.r->stats().draws_refused_not_linked, 3u);
   expect_refused_then_rendered(rig, Status::kNotLinked);
+  Rig<kAllSpans> every;
+  ASSERT_TRUE(every.ready());
+  EXPECT_EQ(every.draw_tri(bad), Status::kInvalidArgument);
 }
 
 // A renderer links flat shading's face lighting only when its set admits flat-shaded draws,

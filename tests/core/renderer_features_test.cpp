@@ -27,17 +27,19 @@ Fixed fx(double v) {
 }
 
 // An n x n grid of quads (2 n^2 triangles, (n + 1)^2 vertices) facing the camera, lit per
-// vertex, filling most of the viewport.
+// vertex, filling most of the viewport. Its normals are unit, or of length `length`.
 struct Grid {
   std::vector<Vec3> positions;
   std::vector<Normal16> normals;
   std::vector<std::array<uint16_t, 3>> triangles;
-  explicit Grid(int n) {
+  explicit Grid(int n, double length = 1.0) {
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
         positions.push_back({fx(-1.2 + 2.4 * i / n), fx(-0.9 + 1.8 * j / n), fx(-2.0)});
         // Normals leaning with x, so that the lighting varies over the grid.
-        normals.push_back({static_cast<int16_t>(-6000 + 12000 * i / n), 0, 15000});
+        const double a = -0.38 + 0.76 * i / n;
+        normals.push_back({static_cast<int16_t>(std::lround(16384.0 * length * std::sin(a))), 0,
+                           static_cast<int16_t>(std::lround(16384.0 * length * std::cos(a)))});
       }
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
@@ -46,6 +48,30 @@ struct Grid {
                    d = static_cast<uint16_t>(a + n + 2);
         triangles.push_back({a, b, d});
         triangles.push_back({a, d, c});
+      }
+  }
+  Mesh mesh() const { return Mesh{positions, normals, {}, {}, triangles, {}}; }
+};
+
+// A floor of n x n quads below the eye, from z = -0.2 (in front of the near plane, 0.5: the
+// nearest row of quads crosses it) to z = -4.2, lit from above.
+struct Floor {
+  std::vector<Vec3> positions;
+  std::vector<Normal16> normals;
+  std::vector<std::array<uint16_t, 3>> triangles;
+  explicit Floor(int n) {
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        positions.push_back({fx(-1.5 + 3.0 * i / n), fx(-0.25), fx(-0.2 - 4.0 * j / n)});
+        normals.push_back({0, 16384, 0});
+      }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const auto a = static_cast<uint16_t>(j * (n + 1) + i);
+        const auto b = static_cast<uint16_t>(a + 1), c = static_cast<uint16_t>(a + n + 1),
+                   d = static_cast<uint16_t>(a + n + 2);
+        triangles.push_back({a, d, b});
+        triangles.push_back({a, c, d});
       }
   }
   Mesh mesh() const { return Mesh{positions, normals, {}, {}, triangles, {}}; }
@@ -66,11 +92,15 @@ LightSet lights(bool two_sided = false) {
   return l;
 }
 
-Material material() {
+// Diffuse (no specular colour: drawn by every renderer), or shiny (specular: refused by a
+// renderer without RendererFeatures::specular).
+Material material(bool shiny = false) {
   Material m;
   m.diffuse = {26000, 20000, 9000};
-  m.specular = {16000, 16000, 16000};
-  m.shininess_q8 = 20 * 256;
+  if (shiny) {
+    m.specular = {16000, 16000, 16000};
+    m.shininess_q8 = 20 * 256;
+  }
   return m;
 }
 
@@ -109,10 +139,18 @@ struct Rig {
 
   Status configure() { return r->configure(store.storage(), kW, kH); }
   // Configures, begins, draws the grid (the draw's status) and renders (status).
-  Status frame(const Grid& g, bool two_sided = false) {
+  Status frame(const Grid& g, bool two_sided = false, const Material& m = material(),
+               const DrawState& state = lit_gouraud()) {
+    return frame(g.mesh(), two_sided, m, state);
+  }
+  Status frame(const Mesh& mesh, bool two_sided = false, const Material& m = material(),
+               const DrawState& state = lit_gouraud(), const Mat4& model = Mat4::identity(),
+               const LightSet* light_set = nullptr) {
     EXPECT_EQ(configure(), Status::kOk);
-    EXPECT_EQ(r->begin_frame(camera(), lights(two_sided), kBackground), Status::kOk);
-    const Status drawn = r->draw(g.mesh(), Mat4::identity(), material(), lit_gouraud());
+    EXPECT_EQ(r->begin_frame(camera(), light_set != nullptr ? *light_set : lights(two_sided),
+                             kBackground),
+              Status::kOk);
+    const Status drawn = r->draw(mesh, model, m, state);
     status = r->render(sink);
     return drawn;
   }
@@ -128,6 +166,12 @@ using Lean = Rig<kNoFeatures>;
 // Every feature but the crowded strips' passes.
 constexpr RendererFeatures kUncrowded{.crowded_strips = false};
 using Uncrowded = Rig<kUncrowded>;
+// Every feature but specular.
+constexpr RendererFeatures kDiffuseOnly{.specular = false};
+using DiffuseOnly = Rig<kDiffuseOnly>;
+// Every feature but world-space lighting.
+constexpr RendererFeatures kModelSpaceOnly{.world_lighting = false};
+using ModelSpaceOnly = Rig<kModelSpaceOnly>;
 
 TEST(RendererFeatures, WithoutFeaturesAFrameThatNeedsNoneIsTheSame) {
   const Grid g(6);
@@ -244,6 +288,171 @@ TEST(RendererFeatures, WithoutCrowdedStripsAStripBeyondTheActiveListIsCapacity) 
   EXPECT_EQ(lean.status, Status::kCapacity);
   EXPECT_EQ(lean.r->stats().dropped_triangle_capacity, dropped);
   EXPECT_EQ(lean.sink.frame(), crowded.sink.frame());
+}
+
+TEST(RendererFeatures, WithoutSpecularALitDrawWithASpecularMaterialIsNotLinked) {
+  const Grid g(6);
+  // With specular: the highlights change the frame.
+  Full diffuse, shiny;
+  ASSERT_EQ(diffuse.frame(g), Status::kOk);
+  ASSERT_EQ(shiny.frame(g, false, material(true)), Status::kOk);
+  EXPECT_EQ(shiny.status, Status::kOk);
+  EXPECT_NE(shiny.sink.frame(), diffuse.sink.frame());
+  // Without it: a diffuse material gives the same frame (the per-vertex lighting without its
+  // specular term), a specular one is refused, counted, and nothing of it drawn.
+  for (const bool lean_rig : {false, true}) {
+    SCOPED_TRACE(lean_rig ? "kNoFeatures" : "every feature but specular");
+    auto check = [&](auto& rig) {
+      ASSERT_EQ(rig.frame(g), Status::kOk);
+      EXPECT_EQ(rig.status, Status::kOk);
+      EXPECT_EQ(rig.sink.frame(), diffuse.sink.frame());
+      EXPECT_EQ(rig.frame(g, false, material(true)), Status::kNotLinked);
+      EXPECT_EQ(rig.status, Status::kNotLinked);
+      EXPECT_EQ(rig.r->stats().draws_refused_not_linked, 1u);
+      EXPECT_EQ(rig.r->stats().triangles_binned, 0u);
+      EXPECT_EQ(rig.covered(), size_t{0});
+      // Unlit, the specular colour does not apply: drawn.
+      DrawState unlit = lit_gouraud();
+      unlit.lighting = false;
+      EXPECT_EQ(rig.frame(g, false, material(true), unlit), Status::kOk);
+      EXPECT_EQ(rig.status, Status::kOk);
+      EXPECT_GT(rig.covered(), size_t{1000});
+    };
+    if (lean_rig) {
+      Lean lean;
+      check(lean);
+    } else {
+      DiffuseOnly only;
+      check(only);
+    }
+  }
+}
+
+TEST(RendererFeatures, WithoutClippingATriangleCrossingAPlaneIsDroppedAndNotLinked) {
+  const Floor f(6);
+  DrawState both = lit_gouraud();
+  both.cull = Cull::kNone;
+  Full full;
+  ASSERT_EQ(full.frame(f.mesh(), false, material(), both), Status::kOk);
+  EXPECT_EQ(full.status, Status::kOk);
+  const FrameStats& fs = full.r->stats();
+  EXPECT_GT(fs.clipped, 0u);  // the nearest row crosses the near plane
+  EXPECT_EQ(fs.dropped_unclipped, 0u);
+  EXPECT_GT(full.covered(), size_t{500});
+  // Without the clipper: the draw is taken, the triangles that cross a plane are dropped and
+  // counted, the others drawn as with it, and render() returns kNotLinked.
+  Lean lean;
+  ASSERT_EQ(lean.frame(f.mesh(), false, material(), both), Status::kOk);
+  EXPECT_EQ(lean.status, Status::kNotLinked);
+  const FrameStats& ls = lean.r->stats();
+  EXPECT_EQ(ls.dropped_unclipped, fs.clipped);
+  EXPECT_EQ(ls.clipped, 0u);
+  EXPECT_EQ(ls.draws_refused_not_linked, 0u);
+  EXPECT_EQ(ls.triangles_in, fs.triangles_in);
+  EXPECT_EQ(ls.binned_inputs + ls.dropped_unclipped + ls.culled_backface + ls.culled_zero_area +
+                ls.culled_offscreen + ls.clipped_away + ls.rejected_invalid,
+            ls.triangles_in);
+  size_t same = 0, background = 0;
+  const auto bg = PF::encode(kBackground);
+  for (size_t i = 0; i < full.sink.frame().size(); ++i) {
+    same += lean.sink.frame()[i] == full.sink.frame()[i];
+    background += lean.sink.frame()[i] != full.sink.frame()[i] && lean.sink.frame()[i] == bg;
+  }
+  EXPECT_LT(same, full.sink.frame().size());
+  EXPECT_EQ(same + background, full.sink.frame().size());
+  EXPECT_GT(lean.covered(), size_t{100});
+  // A frame after it that needs no clipping: kOk again.
+  const Grid g(4);
+  ASSERT_EQ(lean.frame(g), Status::kOk);
+  EXPECT_EQ(lean.status, Status::kOk);
+  EXPECT_EQ(lean.r->stats().dropped_unclipped, 0u);
+}
+
+TEST(RendererFeatures, WithoutWorldLightingADrawThatNeedsItIsNotLinked) {
+  // Lit in model space (a rigid model, unit normals, a directional light): the same frame.
+  const Grid unit(6), longer(6, 1.25);
+  const Mat4 turned = rotate_y(fx(20));
+  Full full;
+  ASSERT_EQ(full.frame(unit.mesh(), false, material(), lit_gouraud(), turned), Status::kOk);
+  EXPECT_GT(full.covered(), size_t{1000});
+  ModelSpaceOnly only;
+  ASSERT_EQ(only.frame(unit.mesh(), false, material(), lit_gouraud(), turned), Status::kOk);
+  EXPECT_EQ(only.status, Status::kOk);
+  EXPECT_EQ(only.sink.frame(), full.sink.frame());
+  // Two-sided, with back faces (the general triangle loop lights every vertex through
+  // VertexStage::light), shiny (the split of the specular term) and unculled: the same too.
+  DrawState both = lit_gouraud();
+  both.cull = Cull::kNone;
+  std::vector<std::array<uint16_t, 3>> reversed;  // every other triangle a back face
+  for (size_t t = 0; t < unit.triangles.size(); ++t) {
+    const auto& tri = unit.triangles[t];
+    reversed.push_back(t % 2 == 0 ? tri : std::array<uint16_t, 3>{tri[0], tri[2], tri[1]});
+  }
+  const Mesh mixed{unit.positions, unit.normals, {}, {}, reversed, {}};
+  ASSERT_EQ(full.frame(mixed, true, material(true), both, turned), Status::kOk);
+  EXPECT_GT(full.covered(), size_t{1000});
+  ASSERT_EQ(only.frame(mixed, true, material(true), both, turned), Status::kOk);
+  EXPECT_EQ(only.status, Status::kOk);
+  EXPECT_EQ(only.sink.frame(), full.sink.frame());
+  // What needs the world-space path: normals that are not unit, a model that is not rigid (x
+  // scaled), a point light. Drawn with it, refused without it.
+  Mat4 stretched = Mat4::identity();
+  stretched.m[0][0] = fx(1.5);
+  LightSet point = lights();
+  point.lights[0] = Light::point({fx(0.5), fx(0.5), fx(0.0)}, {32767, 32767, 32767});
+  struct Case {
+    const char* what;
+    const Grid& grid;
+    Mat4 model;
+    const LightSet* lights;
+  };
+  const Case cases[] = {{"normals of length 1.25", longer, Mat4::identity(), nullptr},
+                        {"a model scaled along x", unit, stretched, nullptr},
+                        {"a point light", unit, Mat4::identity(), &point}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    Full with;
+    ASSERT_EQ(with.frame(c.grid.mesh(), false, material(), lit_gouraud(), c.model, c.lights),
+              Status::kOk);
+    EXPECT_EQ(with.status, Status::kOk);
+    EXPECT_GT(with.covered(), size_t{1000});
+    ModelSpaceOnly without;
+    EXPECT_EQ(without.frame(c.grid.mesh(), false, material(), lit_gouraud(), c.model, c.lights),
+              Status::kNotLinked);
+    EXPECT_EQ(without.status, Status::kNotLinked);
+    EXPECT_EQ(without.r->stats().draws_refused_not_linked, 1u);
+    EXPECT_EQ(without.covered(), size_t{0});
+    // Unlit, the normals and lights do not matter: drawn.
+    DrawState unlit = lit_gouraud();
+    unlit.lighting = false;
+    EXPECT_EQ(without.frame(c.grid.mesh(), false, material(), unlit, c.model, c.lights),
+              Status::kOk);
+    EXPECT_EQ(without.status, Status::kOk);
+    EXPECT_GT(without.covered(), size_t{1000});
+  }
+  Lean lean;
+  EXPECT_EQ(lean.frame(longer), Status::kNotLinked);
+}
+
+// A front end given no routine for triangles' own colours (FrontEndRoutines::flat: a renderer
+// whose span set admits no flat-shaded or one-coloured draw) refuses those draws.
+TEST(RendererFeatures, AFrontEndWithoutOwnColoursRefusesFlatAndOneColouredDraws) {
+  BasicFrameStorage<std::vector> store(caps());
+  FrontEndRoutines routines;  // every routine but that one
+  routines.flat = nullptr;
+  const auto fe = std::make_unique<FrontEnd>();
+  ASSERT_EQ(fe->configure(store.storage().front_end(), kW, kH, kK, &routines), Status::kOk);
+  ASSERT_EQ(fe->begin_frame(camera(), lights(), kBackground), Status::kOk);
+  const Grid g(2);
+  DrawState flat = lit_gouraud();
+  flat.shading = Shading::kFlat;
+  DrawState one_colour = lit_gouraud();
+  one_colour.lighting = false;  // unlit, and the grid has no vertex colours
+  EXPECT_EQ(fe->draw(g.mesh(), Mat4::identity(), material(), flat), Status::kNotLinked);
+  EXPECT_EQ(fe->draw(g.mesh(), Mat4::identity(), material(), one_colour), Status::kNotLinked);
+  EXPECT_EQ(fe->draw(g.mesh(), Mat4::identity(), material(), lit_gouraud()), Status::kOk);
+  EXPECT_EQ(fe->stats().draws_refused_not_linked, 2u);
+  EXPECT_GT(fe->stats().triangles_binned, 0u);
 }
 
 }  // namespace

@@ -599,7 +599,7 @@ TEST(VertexLighting, PointLitVertexIsLitAtItsWorldPosition) {
   const Unit30 n = stage.world_normal(normals[0]);
   const Vec3 world = transform_affine(model, positions[0]);
   const LitColor want = light_point_split(pl, n, world);
-  const LitColor got = stage.light(mesh, colors, 0, false);
+  const LitColor got = VertexStage::light(stage, mesh, colors, 0, false);
   EXPECT_EQ(got.primary, want.primary);
   EXPECT_EQ(got.secondary, want.secondary);
   // Not the colour at the model-space position: the test tells the two apart.

@@ -189,6 +189,30 @@ class StackUsageTest(unittest.TestCase):
         # 8 + 16 + (32 + 16 + 12)
         self.assertIn("main: 84 B via main -> __aeabi_ldivmod -> __udivmoddi4", out)
 
+    def test_arguments_reserved_before_the_push_add_to_the_ci_frame(self):
+        # f takes a by-value object partly in registers: its code reserves 8 B for them before
+        # it pushes its registers, which its .ci frame (40 B) leaves out; g's `sub sp` is its
+        # locals, counted in its .ci frame already (no push follows it).
+        ci = {"a.ci": graph("/src/a.cpp", node("main", 8), node("f", 40), node("g", 16),
+                            edge("main", "f"), edge("main", "g"))}
+        dis = """\
+            00000200 <f>:
+                 200:	sub	sp, #8
+                 202:	stmdb	sp!, {r4, r5, r6, r7, r8, r9, sl, lr}
+                 206:	ldmia.w	sp!, {r4, r5, r6, r7, r8, r9, sl, lr}
+                 20a:	add	sp, #8
+                 20c:	bx	lr
+
+            00000300 <g>:
+                 300:	sub	sp, #16
+                 302:	add	sp, #16
+                 304:	bx	lr
+            """
+        rc, out, err = self.run_tool(ci, "100 10 T main\n200 14 T f\n300 6 T g\n", dis,
+                                     args=["--entry", "main", "--verbose"])
+        self.assertEqual(rc, 0, err)
+        self.assertIn("main: 56 B via main -> f\n", out)  # 8 + 40 + 8
+
     def test_unfollowable_sp_write_is_an_error(self):
         ci = {"a.ci": graph("/src/a.cpp", node("main", 8), edge("main", "asm_fn"))}
         dis = """\
