@@ -1,5 +1,7 @@
 #include "lineraster/core/binning/front_end.hpp"
 
+#include <algorithm>
+
 #include "lineraster/core/binning/mesh_draw.hpp"
 
 #include "lineraster/core/lighting/lighting_table.hpp"
@@ -65,9 +67,7 @@ bool model_space_lighting(const Mesh& mesh, const Mat4& model, bool position) {
   if (position) return false;
   NormalRotation rows;
   if (!rigid_normal_rows(normal_matrix(model), rows)) return false;
-  for (const Normal16& n : mesh.normals)
-    if (!unit_normal(n)) return false;
-  return true;
+  return std::ranges::all_of(mesh.normals, [](const Normal16& n) { return unit_normal(n); });
 }
 
 // Whether the draw's triangles have colours of their own, not planes (MeshDraw::flat_colors):
