@@ -8,7 +8,7 @@
 #
 # Built at -O1 (the armhf and aarch64 presets): what these runs check is the integers and frames
 # of a 32-bit (64-bit) ARM target, which do not depend on the optimiser, and -O3 took 411 s of
-# compilation in CI (-O1: about 230 s; its tests run about 40 s longer under the emulator).
+# compilation in CI (-O1: 230 to 270 s; its tests run about 40 s longer under the emulator).
 # The command-line tools' and examples' tests are left to the host builds: the whole suite took
 # about 15 of CI's 40 minutes here (about 12 of them compiling at -O3 on two cores), and what
 # 32-bit ARM Linux can break (int and pointer widths, the frames, the panel command streams,
