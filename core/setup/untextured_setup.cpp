@@ -25,6 +25,15 @@ constexpr uint32_t magnitude(int32_t v) {
   return v < 0 ? 0u - static_cast<uint32_t>(v) : static_cast<uint32_t>(v);
 }
 
+// The least and the largest of three: std::min({...}) is a loop over an array on the stack, out
+// of line at -Os (two such functions and their calls).
+constexpr uint32_t min3(uint32_t a, uint32_t b, uint32_t c) {
+  return std::min(a, std::min(b, c));
+}
+constexpr uint32_t max3(uint32_t a, uint32_t b, uint32_t c) {
+  return std::max(a, std::max(b, c));
+}
+
 // ~ 2^62 / d for d in [2^31, 2^32), in (2^30, 2^31): a 17-bit estimate (recip16: one division,
 // or a table on Armv6-M) and one Newton step in high-word products; relative error below 2^-28
 // (docs/numerics.md#untextured-planes). The same integers on every core.
@@ -167,7 +176,7 @@ namespace {
   for (int c = 0; c < 3; ++c) {
     const uint32_t a = channel(v[0]->color, c), b = channel(v[1]->color, c),
                    e = channel(v[2]->color, c);
-    const uint32_t range = std::max({a, b, e}) - std::min({a, b, e});
+    const uint32_t range = max3(a, b, e) - min3(a, b, e);
     d = std::max(d, c == 1 ? range * bound.green_weight : range);
   }
   return umul64(wmax - wmin, d) <= umul64(bound.bound, wmin);
@@ -175,8 +184,8 @@ namespace {
 }  // namespace
 
 bool affine_within(const ScreenVertex* const v[3], const AffineBound& bound) {
-  const uint32_t wmin = std::min({v[0]->w, v[1]->w, v[2]->w});
-  const uint32_t wmax = std::max({v[0]->w, v[1]->w, v[2]->w});
+  const uint32_t wmin = min3(v[0]->w, v[1]->w, v[2]->w);
+  const uint32_t wmax = max3(v[0]->w, v[1]->w, v[2]->w);
   if (wmax - wmin <= wmin >> bound.quick_shift) return true;  // whatever the colours
   return colors_within(v, wmin, wmax, bound);
 }
@@ -416,7 +425,7 @@ namespace {
                         : in.colors == ColorPlanes::kAffine ? UntexturedKind::kAffine
                                                             : UntexturedKind::kPerspective;
   if (kind == UntexturedKind::kPerspective && in.affine_ok) {
-    const uint32_t wmin = std::min({va.w, vb.w, vc.w}), wmax = std::max({va.w, vb.w, vc.w});
+    const uint32_t wmin = min3(va.w, vb.w, vc.w), wmax = max3(va.w, vb.w, vc.w);
     if (wmax - wmin <= wmin >> in.affine.quick_shift || colors_within(v, wmin, wmax, in.affine))
       kind = UntexturedKind::kAffine;
   }
@@ -1226,7 +1235,7 @@ UntexturedSetup setup_untextured(const ScreenVertex* const v[3], const Untexture
       }
       break;
     case UntexturedKind::kPerspective: {
-      const uint32_t wmin = std::min({v[0]->w, v[1]->w, v[2]->w});
+      const uint32_t wmin = min3(v[0]->w, v[1]->w, v[2]->w);
       uint32_t q[3];
       for (int i = 0; i < 3; ++i) q[i] = perspective_q(wmin, v[i]->w);
       const int32_t qs[3] = {static_cast<int32_t>(q[0]), static_cast<int32_t>(q[1]),
