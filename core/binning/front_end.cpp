@@ -452,7 +452,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   PreparedLighting& pl = lighting_;
   if (plan.lit)
-    prepare_lighting(lights_, material, view_dir, camera_.eye, pl);
+    routines_->prepare(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
   if (plan.kind.phong && routines_->phong(records_, state, pl, record) != Status::kOk) {
@@ -718,7 +718,7 @@ void FrontEnd::replay(uint8_t index) {
   PreparedLighting& pl = lighting_;
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   if (plan.lit)
-    prepare_lighting(lights_, material, view_dir, camera_.eye, pl);
+    routines_->prepare(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
   run_mesh(index, c.mesh, c.model, material, state, plan, pl);

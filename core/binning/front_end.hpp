@@ -180,6 +180,10 @@ struct FrontEndRoutines {
   LightFn light = &VertexStage::light<true, true>;
   bool specular = true;
   bool world_lighting = true;
+  // A lit draw's lighting preparation: prepare_lighting, or prepare_diffuse_lighting where no
+  // draw the renderer takes reads more than directional lights' diffuse terms (no specular,
+  // point light, local viewer or Phong: those draws are refused before it is called).
+  PrepareLightingFn prepare = &prepare_lighting;
 };
 inline constexpr FrontEndRoutines kEveryRoutine{};
 

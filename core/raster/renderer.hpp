@@ -141,6 +141,11 @@ class Renderer {
       (kSpans.has(SpanFamily::kUntextured) && detail::has(kSpans.colors, ColorPlanes::kNone));
   static constexpr bool kAttributes =
       kSpans.has(SpanFamily::kTextured) || kSpans.has(SpanFamily::kPhong);
+  // Lighting that reads only directional lights' diffuse terms: no specular term linked, no
+  // span that reads the position (point lights, the local viewer), no Phong.
+  static constexpr bool kDiffuseLighting = !kFeatures.specular &&
+                                           !detail::has(kSpans.position, true) &&
+                                           !kSpans.has(SpanFamily::kPhong);
   // The features of kFeatures, nullptr for those it leaves out.
   static constexpr FrontEndRoutines kRoutines{
       &admits<kSpans>,
@@ -160,7 +165,9 @@ class Renderer {
       &FrontEndParts::triangles<kFeatures.two_sided, kFeatures.vertex_cache, kFeatures.clipping>,
       &VertexStage::light<kFeatures.specular, kFeatures.world_lighting>,
       kFeatures.specular,
-      kFeatures.world_lighting};
+      kFeatures.world_lighting,
+      kDiffuseLighting ? &prepare_diffuse_lighting
+                       : static_cast<PrepareLightingFn>(&prepare_lighting)};
 
   // render() with bands (kFeatures.bands), after its checks. Inlined: one stack frame.
   [[gnu::always_inline]] inline Status render_bands(FrameStats& stats, StripSink<PF>& sink,
