@@ -499,7 +499,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   colors.point = routines_->point_light;
   colors.attributes = routines_->attributes;
   // Lit Gouraud under directional lights and a rigid model: the lights turned into model space.
-  if (colors.pending && !colors.need_position && stage.object_lights(pl, object_lights_))
+  if (colors.pending && !colors.need_position && stage.object_lights(pl, object_lights_, routines_->object_lights))
     colors.object = &object_lights_;
   const size_t base = store_.count();
   draw_first_triangle_ = edges_.size();

@@ -184,6 +184,9 @@ struct FrontEndRoutines {
   // draw the renderer takes reads more than directional lights' diffuse terms (no specular,
   // point light, local viewer or Phong: those draws are refused before it is called).
   PrepareLightingFn prepare = &prepare_lighting;
+  // And the lights in model space: prepare_object_lights, or prepare_diffuse_object_lights with
+  // prepare_diffuse_lighting.
+  PrepareObjectLightsFn object_lights = &prepare_object_lights;
 };
 inline constexpr FrontEndRoutines kEveryRoutine{};
 

@@ -167,7 +167,8 @@ class Renderer {
       kFeatures.specular,
       kFeatures.world_lighting,
       kDiffuseLighting ? &prepare_diffuse_lighting
-                       : static_cast<PrepareLightingFn>(&prepare_lighting)};
+                       : static_cast<PrepareLightingFn>(&prepare_lighting),
+      kDiffuseLighting ? &prepare_diffuse_object_lights : &prepare_object_lights};
 
   // render() with bands (kFeatures.bands), after its checks. Inlined: one stack frame.
   [[gnu::always_inline]] inline Status render_bands(FrameStats& stats, StripSink<PF>& sink,
