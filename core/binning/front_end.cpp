@@ -139,6 +139,17 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
 
 Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
                       Cull cull, const int32_t* rows, bool cached) {
+  return bin_as<false>(a, b, c, draw, flat, flat_spec, cull, rows, cached);
+}
+
+Outcome FrontEnd::bin_lean(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat,
+                           Rgb8 flat_spec, Cull cull, const int32_t* rows) {
+  return bin_as<true>(a, b, c, draw, flat, flat_spec, cull, rows, false);
+}
+
+template <bool kLean>
+Outcome FrontEnd::bin_as(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat,
+                         Rgb8 flat_spec, Cull cull, const int32_t* rows, bool cached) {
   const ScreenVertex& v0 = store_.vertex(a);
   const ScreenVertex& v1 = store_.vertex(b);
   const ScreenVertex& v2 = store_.vertex(c);
@@ -150,35 +161,46 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
   }
   // Locals, not classify()'s outputs: kept in registers.
   int32_t r0 = rows[0], r1 = rows[1];
-  // Binning a band: another band's triangle is binned there; one from above starts here.
-  // (One pass: the band is the viewport, to which classify() clamped the rows already.)
-  if (edges_.banding()) [[unlikely]] {
-    if (edges_.outside_window(r0, r1)) return Outcome::kBinned;
-    edges_.clamp_to_window(r0, r1);
-  }
-  while (edges_.full()) {
-    // The band (the first one: the whole frame, until now) ends higher up, until it is one
-    // strip (below the minimum, or without bands: the triangle is dropped, and counted). From
-    // now on each draw keeps only the vertices its binned triangles use.
-    if (routines_->bands == nullptr) {
+  if constexpr (kLean) {
+    // No band: a full table drops the triangle (the loop below without bands).
+    (void)draw;
+    (void)r1;
+    (void)cached;
+    if (edges_.full()) {
       edges_.set_dropped();
       return Outcome::kCapacity;
     }
-    edges_.start_banding();
-    if (!routines_->bands->shrink(*this)) {
-      edges_.set_dropped();
-      return Outcome::kCapacity;
+  } else {
+    // Binning a band: another band's triangle is binned there; one from above starts here.
+    // (One pass: the band is the viewport, to which classify() clamped the rows already.)
+    if (edges_.banding()) [[unlikely]] {
+      if (edges_.outside_window(r0, r1)) return Outcome::kBinned;
+      edges_.clamp_to_window(r0, r1);
     }
-    if (r0 > edges_.window_last()) return Outcome::kBinned;
-    if (r1 > edges_.window_last()) r1 = edges_.window_last();
-  }
-  if (edges_.signing()) routines_->sign->triangle(*this, a, b, c, draw, flat, flat_spec, r0, r1);
-  // Through the vertex cache: the triangle's vertices are copied out of it on first use.
-  if (cached) {
-    const auto persist = routines_->cache->persist;
-    if (!(store_.*persist)(a) || !(store_.*persist)(b) || !(store_.*persist)(c)) {
-      overflow_ = true;
-      return Outcome::kVertexCapacity;
+    while (edges_.full()) {
+      // The band (the first one: the whole frame, until now) ends higher up, until it is one
+      // strip (below the minimum, or without bands: the triangle is dropped, and counted). From
+      // now on each draw keeps only the vertices its binned triangles use.
+      if (routines_->bands == nullptr) {
+        edges_.set_dropped();
+        return Outcome::kCapacity;
+      }
+      edges_.start_banding();
+      if (!routines_->bands->shrink(*this)) {
+        edges_.set_dropped();
+        return Outcome::kCapacity;
+      }
+      if (r0 > edges_.window_last()) return Outcome::kBinned;
+      if (r1 > edges_.window_last()) r1 = edges_.window_last();
+    }
+    if (edges_.signing()) routines_->sign->triangle(*this, a, b, c, draw, flat, flat_spec, r0, r1);
+    // Through the vertex cache: the triangle's vertices are copied out of it on first use.
+    if (cached) {
+      const auto persist = routines_->cache->persist;
+      if (!(store_.*persist)(a) || !(store_.*persist)(b) || !(store_.*persist)(c)) {
+        overflow_ = true;
+        return Outcome::kVertexCapacity;
+      }
     }
   }
   // A triangle from above the band was counted in its own band: not counted again (only once
@@ -194,7 +216,7 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
 // One triangle of a draw: culled, lit (lit Gouraud: its vertices on first use; flat: its face),
 // clipped when it crosses a plane, and binned. This and the two ends below are always inlined
 // into draw(): one loop body, whose locals share one stack frame.
-template <bool kTwoSided, bool kCache, bool kClip>
+template <bool kTwoSided, bool kCache, bool kClip, bool kBandsOrSigns>
 void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   const size_t n = d.mesh.positions.size();
   if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
@@ -273,8 +295,8 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   Rgb8 flat{}, flat_spec{};
   if (d.own_colors != nullptr) d.own_colors(d, tri, *sv[2], back, flat, flat_spec);
   if (oc_or == 0) {
-    bin_inside(d, vi, sv, back && d.plan.gouraud, flat, flat_spec, classified ? rows : nullptr,
-               kCache && d.cached);
+    bin_inside<!kCache && !kBandsOrSigns>(d, vi, sv, back && d.plan.gouraud, flat, flat_spec,
+                                          classified ? rows : nullptr, kCache && d.cached);
     return;
   }
   clip_and_bin(d, vi, sv, clip, oc_or, back && d.plan.gouraud, flat, flat_spec);
@@ -282,6 +304,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
 
 // A triangle inside every plane. A two-sided Gouraud back face gets its own copies of its
 // vertices, with the back colours.
+template <bool kLeanBin>
 void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&sv)[3],
                           bool back_copies, Rgb8 flat, Rgb8 flat_spec, const int32_t* rows,
                           bool cached) {
@@ -321,8 +344,12 @@ void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&
     }
   }
   // Corners in the vertex cache (back-face copies are in the store already).
-  const Outcome r =
-      bin(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows, cached && !back_copies);
+  Outcome r;
+  if constexpr (kLeanBin)
+    r = bin_lean(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows);
+  else
+    r = bin(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows,
+            cached && !back_copies);
   count_outcome(stats_, r == Outcome::kBinned, r);
 }
 
@@ -499,7 +526,8 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   colors.point = routines_->point_light;
   colors.attributes = routines_->attributes;
   // Lit Gouraud under directional lights and a rigid model: the lights turned into model space.
-  if (colors.pending && !colors.need_position && stage.object_lights(pl, object_lights_, routines_->object_lights))
+  if (colors.pending && !colors.need_position &&
+      stage.object_lights(pl, object_lights_, routines_->object_lights))
     colors.object = &object_lights_;
   const size_t base = store_.count();
   draw_first_triangle_ = edges_.size();
@@ -552,32 +580,49 @@ void FrontEnd::triangle_loop(MeshDraw& d) {
 }
 
 // Triangles [t, end) through draw_triangle(), inlined here: one stack frame for its locals.
-template <bool kTwoSided, bool kCache, bool kClip>
+template <bool kTwoSided, bool kCache, bool kClip, bool kBandsOrSigns>
 uint32_t FrontEnd::general_triangles(MeshDraw& d, uint32_t t, uint32_t end) {
-  for (; t < end; ++t) draw_triangle<kTwoSided, kCache, kClip>(d, d.mesh.triangles[t]);
+  for (; t < end; ++t)
+    draw_triangle<kTwoSided, kCache, kClip, kBandsOrSigns>(d, d.mesh.triangles[t]);
   return t;
 }
 
-template <bool kTwoSided, bool kCache, bool kClip>
+template <bool kTwoSided, bool kCache, bool kClip, bool kBandsOrSigns>
 uint32_t FrontEndParts::triangles(FrontEnd& fe, MeshDraw& d, uint32_t t, uint32_t end) {
-  return fe.general_triangles<kTwoSided, kCache, kClip>(d, t, end);
+  return fe.general_triangles<kTwoSided, kCache, kClip, kBandsOrSigns>(d, t, end);
 }
-template uint32_t FrontEndParts::triangles<false, false, false>(FrontEnd&, MeshDraw&, uint32_t,
-                                                                uint32_t);
-template uint32_t FrontEndParts::triangles<false, false, true>(FrontEnd&, MeshDraw&, uint32_t,
-                                                               uint32_t);
-template uint32_t FrontEndParts::triangles<false, true, false>(FrontEnd&, MeshDraw&, uint32_t,
-                                                               uint32_t);
-template uint32_t FrontEndParts::triangles<false, true, true>(FrontEnd&, MeshDraw&, uint32_t,
-                                                              uint32_t);
-template uint32_t FrontEndParts::triangles<true, false, false>(FrontEnd&, MeshDraw&, uint32_t,
-                                                               uint32_t);
-template uint32_t FrontEndParts::triangles<true, false, true>(FrontEnd&, MeshDraw&, uint32_t,
-                                                              uint32_t);
-template uint32_t FrontEndParts::triangles<true, true, false>(FrontEnd&, MeshDraw&, uint32_t,
-                                                              uint32_t);
-template uint32_t FrontEndParts::triangles<true, true, true>(FrontEnd&, MeshDraw&, uint32_t,
-                                                             uint32_t);
+template uint32_t FrontEndParts::triangles<false, false, false, false>(FrontEnd&, MeshDraw&,
+                                                                       uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<false, false, false, true>(FrontEnd&, MeshDraw&,
+                                                                      uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<false, false, true, false>(FrontEnd&, MeshDraw&,
+                                                                      uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<false, false, true, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                     uint32_t);
+template uint32_t FrontEndParts::triangles<false, true, false, false>(FrontEnd&, MeshDraw&,
+                                                                      uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<false, true, false, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                     uint32_t);
+template uint32_t FrontEndParts::triangles<false, true, true, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                     uint32_t);
+template uint32_t FrontEndParts::triangles<false, true, true, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                    uint32_t);
+template uint32_t FrontEndParts::triangles<true, false, false, false>(FrontEnd&, MeshDraw&,
+                                                                      uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<true, false, false, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                     uint32_t);
+template uint32_t FrontEndParts::triangles<true, false, true, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                     uint32_t);
+template uint32_t FrontEndParts::triangles<true, false, true, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                    uint32_t);
+template uint32_t FrontEndParts::triangles<true, true, false, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                     uint32_t);
+template uint32_t FrontEndParts::triangles<true, true, false, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                    uint32_t);
+template uint32_t FrontEndParts::triangles<true, true, true, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                    uint32_t);
+template uint32_t FrontEndParts::triangles<true, true, true, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                   uint32_t);
 
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
                              std::span<const std::array<uint16_t, 3>> triangles,

@@ -103,9 +103,9 @@ struct FrontEndParts {
   static void sign_triangle(FrontEnd& fe, uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
                             Rgb8 flat, Rgb8 flat_spec, int32_t r0, int32_t r1);
   // The general triangle loop (FrontEnd::general_triangles) with or without two-sided
-  // lighting's back faces, the vertex cache and the clipper: the renderer links the one of its
-  // features.
-  template <bool kTwoSided, bool kCache, bool kClip>
+  // lighting's back faces, the vertex cache, the clipper, and bands or strip signatures
+  // (kBandsOrSigns): the renderer links the one of its features.
+  template <bool kTwoSided, bool kCache, bool kClip, bool kBandsOrSigns>
   static uint32_t triangles(FrontEnd& fe, MeshDraw& d, uint32_t t, uint32_t end);
 };
 struct BandRoutines {
@@ -168,10 +168,11 @@ struct FrontEndRoutines {
   const CacheRoutines* cache = &kCacheRoutines;
   bool (*front_facing)(const ClipCoord (&)[3]) = &front_facing_clip;
   const SignRoutines* sign = &kSignRoutines;
-  // The general triangle loop: FrontEndParts::triangles<kTwoSided, kCache, kClip>, true where
-  // front_facing, cache, clip are set (a loop without them would draw those draws wrong).
+  // The general triangle loop: FrontEndParts::triangles<kTwoSided, kCache, kClip,
+  // kBandsOrSigns>, true where front_facing, cache, clip, bands or sign are set (a loop without
+  // them would draw those draws wrong).
   uint32_t (*triangles)(FrontEnd&, MeshDraw&, uint32_t,
-                        uint32_t) = &FrontEndParts::triangles<true, true, true>;
+                        uint32_t) = &FrontEndParts::triangles<true, true, true, true>;
   // A lit vertex's colours (VertexStage::light<kSpecular, kWorld>), whether its specular term is
   // linked (RendererFeatures::specular): when not (light<false, ...>, and light_face<false>
   // above), a lit draw whose material has a specular colour is refused (kNotLinked); and whether
@@ -288,7 +289,7 @@ class FrontEnd {
   // kCache: with two-sided lighting's back faces, with the vertex cache (FrontEndRoutines::
   // triangles: the renderer's features).
   [[gnu::noinline]] void triangle_loop(MeshDraw& d);
-  template <bool kTwoSided, bool kCache, bool kClip>
+  template <bool kTwoSided, bool kCache, bool kClip, bool kBandsOrSigns>
   [[gnu::noinline]] uint32_t general_triangles(MeshDraw& d, uint32_t t, uint32_t end);
   [[gnu::noinline]] uint32_t lane_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] uint32_t lane_run_triangles(MeshDraw& d, uint32_t t);
@@ -297,8 +298,9 @@ class FrontEnd {
   static constexpr size_t kLightList = 48;
   [[gnu::noinline]] void light_list(MeshDraw& d, std::span<ScreenVertex* const> list);
   [[gnu::noinline]] void light_other(MeshDraw& d, uint32_t i);
-  template <bool kTwoSided, bool kCache, bool kClip>
+  template <bool kTwoSided, bool kCache, bool kClip, bool kBandsOrSigns>
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
+  template <bool kLeanBin>
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
                                                 ScreenVertex* const (&sv)[3], bool back_copies,
                                                 Rgb8 flat, Rgb8 flat_spec, const int32_t* rows,
@@ -342,6 +344,16 @@ class FrontEnd {
   // (A flag, not a template parameter: one copy for the general triangle loop's rare paths.)
   Outcome bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
               Cull cull, const int32_t* rows = nullptr, bool cached = false);
+  // bin() where no band, strip signature or vertex cache can be (the general loop of a renderer
+  // without them: FrontEndParts::triangles<..., false, ..., false>): the same without their
+  // paths (their code is not linked), cached false.
+  [[gnu::noinline]] Outcome bin_lean(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat,
+                                     Rgb8 flat_spec, Cull cull, const int32_t* rows);
+  // The body of both (kLean: bin_lean).
+  template <bool kLean>
+  [[gnu::always_inline]] inline Outcome bin_as(uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
+                                               Rgb8 flat, Rgb8 flat_spec, Cull cull,
+                                               const int32_t* rows, bool cached);
   bool needs_cache(size_t n, const DrawPlan& plan) const;
   // Refuses a draw the renderer links no routine for.
   bool admitted(const DrawState& state, const DrawKind& kind) const {

@@ -104,8 +104,7 @@ void prepare_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec
 void prepare_diffuse_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec3 eye,
                               PreparedLighting& pl);
 // Either of the two (the front end's FrontEndRoutines::prepare).
-using PrepareLightingFn = void (*)(const LightSet&, const Material&, Vec3, Vec3,
-                                   PreparedLighting&);
+using PrepareLightingFn = void (*)(const LightSet&, const Material&, Vec3, Vec3, PreparedLighting&);
 
 // Lit colour of a surface point with unit normal n (world) at world position p (read only for
 // point lights and the local viewer).

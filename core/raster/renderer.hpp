@@ -143,9 +143,8 @@ class Renderer {
       kSpans.has(SpanFamily::kTextured) || kSpans.has(SpanFamily::kPhong);
   // Lighting that reads only directional lights' diffuse terms: no specular term linked, no
   // span that reads the position (point lights, the local viewer), no Phong.
-  static constexpr bool kDiffuseLighting = !kFeatures.specular &&
-                                           !detail::has(kSpans.position, true) &&
-                                           !kSpans.has(SpanFamily::kPhong);
+  static constexpr bool kDiffuseLighting =
+      !kFeatures.specular && !detail::has(kSpans.position, true) && !kSpans.has(SpanFamily::kPhong);
   // The features of kFeatures, nullptr for those it leaves out.
   static constexpr FrontEndRoutines kRoutines{
       &admits<kSpans>,
@@ -162,7 +161,8 @@ class Renderer {
       kFeatures.vertex_cache ? &kCacheRoutines : nullptr,
       kFeatures.two_sided ? &front_facing_clip : nullptr,
       kFeatures.strip_skipping ? &kSignRoutines : nullptr,
-      &FrontEndParts::triangles<kFeatures.two_sided, kFeatures.vertex_cache, kFeatures.clipping>,
+      &FrontEndParts::triangles<kFeatures.two_sided, kFeatures.vertex_cache, kFeatures.clipping,
+                                kFeatures.bands || kFeatures.strip_skipping>,
       &VertexStage::light<kFeatures.specular, kFeatures.world_lighting>,
       kFeatures.specular,
       kFeatures.world_lighting,
