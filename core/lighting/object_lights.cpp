@@ -18,7 +18,7 @@ int64_t dot30(const int32_t (&a)[3], const int32_t (&b)[3]) {
 }
 
 // Row v minus its projection on the unit row u (Q1.30), in place; not normalised.
-void remove_along(int64_t (&v)[3], const int32_t (&u)[3]) {
+[[gnu::always_inline]] inline void remove_along(int64_t (&v)[3], const int32_t (&u)[3]) {
   int32_t v32[3] = {static_cast<int32_t>(v[0]), static_cast<int32_t>(v[1]),
                     static_cast<int32_t>(v[2])};
   const int64_t d = dot30(v32, u);
