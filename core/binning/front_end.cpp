@@ -12,13 +12,11 @@ namespace lr {
 namespace {
 
 // The checks of draw() (kInvalidArgument: nothing is added, nothing counted), and its plan.
-// check_texture: FrontEndRoutines::validate (nullptr: the renderer refuses textured and Phong
-// draws, kNotLinked, and links no test of their textures).
+// check_maps: FrontEndRoutines::check_maps (nullptr: the renderer refuses textured and Phong
+// draws, kNotLinked, and links no test of their maps).
 Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& lights, DrawPlan& p,
-                 Status (*check_texture)(const Texture&)) {
-  auto invalid = [check_texture](const Texture& t) {
-    return check_texture != nullptr && check_texture(t) != Status::kOk;
-  };
+                 Status (*check_maps)(const Mesh&, const DrawState&, const LightSet&,
+                                      const DrawPlan&)) {
   const size_t n = mesh.positions.size();
   if ((!mesh.normals.empty() && mesh.normals.size() != n) ||
       (!mesh.colors.empty() && mesh.colors.size() != n))
@@ -33,6 +31,23 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
   // Unlit meshes without vertex colours have one colour: no colour planes needed.
   p.kind.color_planes = p.gouraud && (p.lit || !mesh.colors.empty() || p.textured);
   p.kind.position = !lights.normal_only();
+  if ((p.textured || p.kind.phong) && check_maps != nullptr &&
+      check_maps(mesh, state, lights, p) != Status::kOk)
+    return Status::kInvalidArgument;
+  // Textured, lit and modulated: primary and specular colours kept apart (GL's separate
+  // specular colour), so that the texel modulates the primary only.
+  p.split = p.textured && p.lit && state.sampler.env == TexEnv::kModulate;
+  p.uv = p.textured || (p.kind.phong && state.normal_map != nullptr);
+  p.two_sided = p.lit && lights.two_sided && !p.kind.phong;  // Phong flips at setup
+  return Status::kOk;
+}
+
+}  // namespace
+
+Status FrontEndParts::check_maps(const Mesh& mesh, const DrawState& state, const LightSet& lights,
+                                 const DrawPlan& p) {
+  auto invalid = [](const Texture& t) { return validate(t) != Status::kOk; };
+  const size_t n = mesh.positions.size();
   if (p.textured) {
     if (invalid(*state.texture)) return Status::kInvalidArgument;
     if (state.sampler.mip != MipMode::kNone && state.texture->level_count < 2)
@@ -51,13 +66,10 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
          state.table.size > kMaxLightingTable))
       return Status::kInvalidArgument;
   }
-  // Textured, lit and modulated: primary and specular colours kept apart (GL's separate
-  // specular colour), so that the texel modulates the primary only.
-  p.split = p.textured && p.lit && state.sampler.env == TexEnv::kModulate;
-  p.uv = p.textured || (p.kind.phong && state.normal_map != nullptr);
-  p.two_sided = p.lit && lights.two_sided && !p.kind.phong;  // Phong flips at setup
   return Status::kOk;
 }
+
+namespace {
 
 // Whether a lit Gouraud or textured draw can be lit in model space alone (a renderer without
 // RendererFeatures::world_lighting): directional lights and the infinite viewer (no position), a
@@ -440,7 +452,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   // Refused whole, with nothing added and only the draw counted: arguments that disagree, a
   // state the renderer links no routine for, a store the draw needs that was not given.
   DrawPlan plan;
-  if (plan_draw(mesh, state, lights_, plan, routines_->validate) != Status::kOk)
+  if (plan_draw(mesh, state, lights_, plan, routines_->check_maps) != Status::kOk)
     return refuse(Status::kInvalidArgument);
   const bool triangle_colors = !plan.gouraud && !plan.kind.phong;  // flat: colours per triangle
   // (Phong draws light per pixel: their position is the span set's own dimension.)
@@ -759,7 +771,7 @@ void FrontEnd::replay(uint8_t index) {
   }
   const Material material = c.material.get();
   DrawPlan plan;
-  plan_draw(c.mesh, state, lights_, plan, routines_->validate);  // passed in draw()
+  plan_draw(c.mesh, state, lights_, plan, routines_->check_maps);  // passed in draw()
   PreparedLighting& pl = lighting_;
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   if (plan.lit)

@@ -94,6 +94,12 @@ struct FrontEndParts {
   // unlit mesh's one colour.
   static void flat_colors(const MeshDraw& d, const std::array<uint16_t, 3>& tri,
                           const ScreenVertex& last, bool back, Rgb8& flat, Rgb8& flat_spec);
+  // A textured or Phong draw's maps against the mesh and the state (plan_draw's checks of
+  // them): kInvalidArgument when a texture is invalid (validate()), mipmapping is asked of a
+  // texture without levels, the texture coordinates or tangents are not one per vertex, or a
+  // lighting table is not usable; else kOk.
+  static Status check_maps(const Mesh& mesh, const DrawState& state, const LightSet& lights,
+                           const DrawPlan& p);
   // Bands: a draw's arguments kept in its record, for the bands that bin it again (replay).
   static void record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,
                           const Material& material, const DrawState& state);
@@ -151,9 +157,11 @@ struct FrontEndRoutines {
   // the set admits such draws (else nullptr: they are refused).
   void (*flat)(const MeshDraw&, const std::array<uint16_t, 3>&, const ScreenVertex&, bool, Rgb8&,
                Rgb8&) = &FrontEndParts::flat_colors;
-  // The test of a draw's textures (texture, environment and normal maps: validate()), wherever
-  // attributes is set; nullptr where not (the draws that have textures are refused then).
-  Status (*validate)(const Texture&) = &lr::validate;
+  // The checks of a textured or Phong draw's maps (FrontEndParts::check_maps: the textures'
+  // validate(), mipmap levels, texture coordinates, tangents, lighting table), wherever
+  // attributes is set; nullptr where not (those draws are refused then, kNotLinked).
+  Status (*check_maps)(const Mesh&, const DrawState&, const LightSet&,
+                       const DrawPlan&) = &FrontEndParts::check_maps;
   // The clipper: clip_polygon<true> (texture coordinates, specular colour and surface carried)
   // wherever attributes is set; clip_polygon<false> only where it is not (no draw then has them);
   // nullptr without RendererFeatures::clipping (triangles then is a loop without the clipper).

@@ -153,7 +153,7 @@ class Renderer {
       detail::has(kSpans.position, true) ? &light_point_at : nullptr,
       kAttributes ? &VertexStage::attributes : nullptr,
       kFlat ? &FrontEndParts::flat_colors : nullptr,
-      kAttributes ? &validate : nullptr,
+      kAttributes ? &FrontEndParts::check_maps : nullptr,
       !kFeatures.clipping ? nullptr
       : kAttributes       ? &clip_polygon<true>
                           : &clip_polygon<false>,
