@@ -461,7 +461,8 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
       (plan.lit && !plan.kind.phong && plan.kind.position && routines_->point_light == nullptr) ||
       ((plan.uv || plan.kind.phong) && routines_->attributes == nullptr) ||
       (plan.two_sided && routines_->front_facing == nullptr) ||
-      (needs_flat_colors(plan) && routines_->flat == nullptr) ||
+      (needs_flat_colors(plan) &&
+       (routines_->flat == nullptr || routines_->one_color == nullptr)) ||
       (plan.lit && !routines_->specular && has_specular(material)) ||
       (plan.lit && plan.gouraud && !routines_->world_lighting &&
        !model_space_lighting(mesh, model, plan.kind.position)) ||
@@ -486,7 +487,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   DrawRecord& record = records_[draw_index];
   record.triangle_colors = triangle_colors;
   if (!triangle_colors && !plan.kind.color_planes && !plan.kind.phong)
-    record.color = to_rgb8_sat(material.diffuse);
+    record.color = routines_->one_color(material.diffuse);
 
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   PreparedLighting& pl = lighting_;
@@ -779,6 +780,10 @@ void FrontEnd::replay(uint8_t index) {
   else
     pl = PreparedLighting{};
   run_mesh(index, c.mesh, c.model, material, state, plan, pl);
+}
+
+Rgb8 FrontEndParts::one_color(Color15 c) {
+  return to_rgb8_sat(c);
 }
 
 void FrontEndParts::flat_colors(const MeshDraw& d, const std::array<uint16_t, 3>& tri,

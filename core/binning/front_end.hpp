@@ -94,6 +94,8 @@ struct FrontEndParts {
   // unlit mesh's one colour.
   static void flat_colors(const MeshDraw& d, const std::array<uint16_t, 3>& tri,
                           const ScreenVertex& last, bool back, Rgb8& flat, Rgb8& flat_spec);
+  // An unlit one-coloured draw's colour: c saturated to 8 bits (to_rgb8_sat).
+  static Rgb8 one_color(Color15 c);
   // A textured or Phong draw's maps against the mesh and the state (plan_draw's checks of
   // them): kInvalidArgument when a texture is invalid (validate()), mipmapping is asked of a
   // texture without levels, the texture coordinates or tangents are not one per vertex, or a
@@ -157,6 +159,9 @@ struct FrontEndRoutines {
   // the set admits such draws (else nullptr: they are refused).
   void (*flat)(const MeshDraw&, const std::array<uint16_t, 3>&, const ScreenVertex&, bool, Rgb8&,
                Rgb8&) = &FrontEndParts::flat_colors;
+  // A one-coloured draw's colour (its material's diffuse colour, to_rgb8_sat), where flat is
+  // set (else nullptr: such draws are refused, as they need flat too).
+  Rgb8 (*one_color)(Color15) = &FrontEndParts::one_color;
   // The checks of a textured or Phong draw's maps (FrontEndParts::check_maps: the textures'
   // validate(), mipmap levels, texture coordinates, tangents, lighting table), wherever
   // attributes is set; nullptr where not (those draws are refused then, kNotLinked).

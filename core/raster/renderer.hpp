@@ -153,6 +153,7 @@ class Renderer {
       detail::has(kSpans.position, true) ? &light_point_at : nullptr,
       kAttributes ? &VertexStage::attributes : nullptr,
       kFlat ? &FrontEndParts::flat_colors : nullptr,
+      kFlat ? &FrontEndParts::one_color : nullptr,
       kAttributes ? &FrontEndParts::check_maps : nullptr,
       !kFeatures.clipping ? nullptr
       : kAttributes       ? &clip_polygon<true>
