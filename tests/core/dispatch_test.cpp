@@ -346,6 +346,43 @@ bool all_null(const std::array<T, N>& a) {
   return true;
 }
 
+// admits<kSet> of a set of untextured spans only (its short form, without span_state_of)
+// answers as draw_admitted(kSet, ...) for every depth test, shading, perspective, lighting,
+// texture and draw kind.
+template <SpanSet kSet>
+void expect_admits_as_draw_admitted() {
+  static_assert(kSet.families == detail::bit(SpanFamily::kUntextured));
+  static const Texture texture{};  // (only its presence is read: the set has no textured spans)
+  int admitted = 0;
+  for (const bool depth : {false, true})
+    for (const Shading shading : {Shading::kFlat, Shading::kGouraud, Shading::kPhong})
+      for (const Perspective persp : {Perspective::kExact, Perspective::kAffine})
+        for (const bool textured : {false, true})
+          for (const bool phong : {false, true})
+            for (const bool planes : {false, true}) {
+              DrawState st;
+              st.depth_test = depth;
+              st.shading = shading;
+              st.perspective = persp;
+              st.texture = textured ? &texture : nullptr;
+              const DrawKind kind{phong, planes, false};
+              const bool want = draw_admitted(kSet, st, kind);
+              EXPECT_EQ(admits<kSet>(st, kind), want)
+                  << "depth " << depth << " shading " << static_cast<int>(shading)
+                  << " perspective " << static_cast<int>(persp) << " textured " << textured
+                  << " phong " << phong << " planes " << planes;
+              admitted += want ? 1 : 0;
+            }
+  EXPECT_GT(admitted, 0);
+}
+
+TEST(SpanDispatch, AnUntexturedSetAdmitsAsDrawAdmitted) {
+  expect_admits_as_draw_admitted<kUntexturedSpans>();
+  expect_admits_as_draw_admitted<kUntexturedSpans.only_depth(true)>();
+  expect_admits_as_draw_admitted<kUntexturedSpans.only(ColorPlanes::kPerspective)>();
+  expect_admits_as_draw_admitted<kUntexturedSpans.only(ColorPlanes::kNone).only_depth(false)>();
+}
+
 TEST(SpanDispatch, TheEnumerationCoversEveryFamilyOnceAndTheFullSetAdmitsIt) {
   EXPECT_EQ(kSpanStateCount, 6u + 72u + 240u);
   for (size_t i = 0; i < kSpanStateCount; ++i) {
