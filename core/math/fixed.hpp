@@ -88,7 +88,8 @@ constexpr int clz32(uint32_t v) {
 #if defined(__OPTIMIZE_SIZE__)
 [[gnu::noinline]]
 #endif
-constexpr int clz64(uint64_t v) {
+constexpr int
+clz64(uint64_t v) {
   return __builtin_clzll(v);
 }
 
@@ -96,7 +97,8 @@ constexpr int clz64(uint64_t v) {
 #if defined(__OPTIMIZE_SIZE__)
 [[gnu::noinline]]
 #endif
-constexpr uint64_t abs64(int64_t v) {
+constexpr uint64_t
+abs64(int64_t v) {
   return v < 0 ? uint64_t{0} - static_cast<uint64_t>(v) : static_cast<uint64_t>(v);
 }
 

@@ -88,7 +88,8 @@ constexpr uint32_t recip16_table(uint32_t d) {
 #if defined(__OPTIMIZE_SIZE__)
 [[gnu::noinline]]
 #endif
-constexpr uint32_t recip32_newton(uint32_t d) {
+constexpr uint32_t
+recip32_newton(uint32_t d) {
   // X0 = 2^48 / (d >> 16) within 2^-15 of 2^64 / d (relative), below 2^33 + 2^16.
   uint64_t x = uint64_t{recip16(d >> 16)} << 16;
   // E = 2^64 - d X0, |E| < 2^50, exact in wrapping 64-bit arithmetic; X0 / 2 * E / 2^19 < 2^63.
