@@ -21,7 +21,7 @@ constexpr int bit_length(uint32_t v) {
   return v == 0 ? 0 : 32 - clz32(v);
 }
 
-constexpr uint32_t magnitude(int32_t v) {
+LR_SIZE_NOINLINE constexpr uint32_t magnitude(int32_t v) {
   return v < 0 ? 0u - static_cast<uint32_t>(v) : static_cast<uint32_t>(v);
 }
 
