@@ -227,7 +227,7 @@ class FrontEnd {
   // Where the frame is: kOk while one is begun and not rendered (draws are taken), else the
   // status naming why not: kNotConfigured, kNoFrame (none begun since configure(), or the last
   // begin_frame() failed), kFrameRendered (render() ended it).
-  Status frame_status() const {
+  LR_SIZE_NOINLINE Status frame_status() const {
     if (!configured_) return Status::kNotConfigured;
     if (phase_ == Phase::kIdle) return Status::kNoFrame;
     return phase_ == Phase::kRendered ? Status::kFrameRendered : Status::kOk;
@@ -349,7 +349,7 @@ class FrontEnd {
   // lighting pools, a mesh larger than a store below the vertex cache's minimum: no band can
   // take it) also counts its triangles as dropped, in this frame's statistics for good. Returns
   // `why`.
-  Status refuse(Status why, uint32_t triangles = 0, bool vertex_store = false);
+  LR_SIZE_NOINLINE Status refuse(Status why, uint32_t triangles = 0, bool vertex_store = false);
 
   // rows: the triangle's first and last row when classify() already passed it (its tests are
   // not repeated), else nullptr.
