@@ -296,12 +296,14 @@ bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const U
 }
 
 namespace {
-// Where a division is a library call (Armv6-M; hosts too, so that their tests run it), small_rows
-// first tries one candidate column on the middle vertex's row before dividing: the same answer.
-// A candidate's offset from the column base stays below kMaxCandidate, so that its products
-// with an edge's dy (below 2^14) fit 32 bits.
-#if defined(__arm__) && defined(__ARM_FEATURE_IDIV)
-constexpr bool kRowsCandidate = true;
+// small_rows first tries one candidate column on the middle vertex's row before dividing: the
+// same answer, mostly without the divisions (a library call on Armv6-M; hosts too, so that their
+// tests run it). Not where the code is built for size and the core divides in one instruction:
+// there the candidate's test is more code than the two divisions. A candidate's offset from the
+// column base stays below kMaxCandidate, so that its products with an edge's dy (below 2^14) fit
+// 32 bits.
+#if defined(__arm__) && defined(__ARM_FEATURE_IDIV) && defined(__OPTIMIZE_SIZE__)
+constexpr bool kRowsCandidate = false;
 #else
 constexpr bool kRowsCandidate = true;
 #endif
