@@ -169,6 +169,14 @@ Plane fast_plane(const FastBasis& b, const int32_t a[3], int u) {
 }
 
 namespace {
+// The affine colour test's quick part (AffineBound::quick_shift) first, but where the code is
+// built for size: the colour test alone gives the same answer (the quick test implies it).
+#if defined(__OPTIMIZE_SIZE__)
+constexpr bool kQuickAffineTest = false;
+#else
+constexpr bool kQuickAffineTest = true;
+#endif
+
 // affine_within's colour test, for w_max - w_min above the quick test's bound.
 [[gnu::noinline]] bool colors_within(const ScreenVertex* const v[3], uint32_t wmin, uint32_t wmax,
                                      const AffineBound& bound) {
@@ -186,7 +194,7 @@ namespace {
 bool affine_within(const ScreenVertex* const v[3], const AffineBound& bound) {
   const uint32_t wmin = min3(v[0]->w, v[1]->w, v[2]->w);
   const uint32_t wmax = max3(v[0]->w, v[1]->w, v[2]->w);
-  if (wmax - wmin <= wmin >> bound.quick_shift) return true;  // whatever the colours
+  if (kQuickAffineTest && wmax - wmin <= wmin >> bound.quick_shift) return true;  // any colours
   return colors_within(v, wmin, wmax, bound);
 }
 
@@ -428,7 +436,8 @@ namespace {
                                                             : UntexturedKind::kPerspective;
   if (kind == UntexturedKind::kPerspective && in.affine_ok) {
     const uint32_t wmin = min3(va.w, vb.w, vc.w), wmax = max3(va.w, vb.w, vc.w);
-    if (wmax - wmin <= wmin >> in.affine.quick_shift || colors_within(v, wmin, wmax, in.affine))
+    if ((kQuickAffineTest && wmax - wmin <= wmin >> in.affine.quick_shift) ||
+        colors_within(v, wmin, wmax, in.affine))
       kind = UntexturedKind::kAffine;
   }
   if (kind == UntexturedKind::kAffine && in.lanes) kind = UntexturedKind::kLanes;
