@@ -12,11 +12,10 @@ namespace lr {
 namespace {
 
 // The checks of draw() (kInvalidArgument: nothing is added, nothing counted), and its plan.
-// check_maps: FrontEndRoutines::check_maps (nullptr: the renderer refuses textured and Phong
-// draws, kNotLinked, and links no test of their maps).
+// maps: FrontEndRoutines::maps (nullptr: the renderer refuses textured and Phong draws,
+// kNotLinked, and links no test of their maps).
 Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& lights, DrawPlan& p,
-                 Status (*check_maps)(const Mesh&, const DrawState&, const LightSet&,
-                                      const DrawPlan&)) {
+                 const MapRoutines* maps) {
   const size_t n = mesh.positions.size();
   if ((!mesh.normals.empty() && mesh.normals.size() != n) ||
       (!mesh.colors.empty() && mesh.colors.size() != n))
@@ -31,8 +30,8 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
   // Unlit meshes without vertex colours have one colour: no colour planes needed.
   p.kind.color_planes = p.gouraud && (p.lit || !mesh.colors.empty() || p.textured);
   p.kind.position = !lights.normal_only();
-  if ((p.textured || p.kind.phong) && check_maps != nullptr &&
-      check_maps(mesh, state, lights, p) != Status::kOk)
+  if ((p.textured || p.kind.phong) && maps != nullptr &&
+      maps->check(mesh, state, lights, p) != Status::kOk)
     return Status::kInvalidArgument;
   // Textured, lit and modulated: primary and specular colours kept apart (GL's separate
   // specular colour), so that the texel modulates the primary only.
@@ -43,6 +42,14 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
 }
 
 }  // namespace
+
+bool FrontEndParts::maps_store_missing(const FrontEnd& fe, const DrawPlan& p,
+                                       const DrawState& state) {
+  return (p.uv && !fe.store_.has_tex()) || ((p.textured || p.kind.phong) && !fe.active_extra_) ||
+         (p.kind.phong &&
+          (!fe.store_.has_surfaces() || !fe.records_.has_pixel_lights() ||
+           (state.pixel_lighting == PixelLighting::kTable && !fe.records_.has_lighting_tables())));
+}
 
 Status FrontEndParts::check_maps(const Mesh& mesh, const DrawState& state, const LightSet& lights,
                                  const DrawPlan& p) {
@@ -452,14 +459,15 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   // Refused whole, with nothing added and only the draw counted: arguments that disagree, a
   // state the renderer links no routine for, a store the draw needs that was not given.
   DrawPlan plan;
-  if (plan_draw(mesh, state, lights_, plan, routines_->check_maps) != Status::kOk)
+  if (plan_draw(mesh, state, lights_, plan, routines_->maps) != Status::kOk)
     return refuse(Status::kInvalidArgument);
   const bool triangle_colors = !plan.gouraud && !plan.kind.phong;  // flat: colours per triangle
   // (Phong draws light per pixel: their position is the span set's own dimension.)
   if (!admitted(state, plan.kind) ||
       (triangle_colors && plan.lit && routines_->face_light == nullptr) ||
       (plan.lit && !plan.kind.phong && plan.kind.position && routines_->point_light == nullptr) ||
-      ((plan.uv || plan.kind.phong) && routines_->attributes == nullptr) ||
+      ((plan.uv || plan.kind.phong) &&
+       (routines_->attributes == nullptr || routines_->maps == nullptr)) ||
       (plan.two_sided && routines_->front_facing == nullptr) ||
       (needs_flat_colors(plan) &&
        (routines_->flat == nullptr || routines_->one_color == nullptr)) ||
@@ -468,10 +476,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
        !model_space_lighting(mesh, model, plan.kind.position)) ||
       (routines_->cache == nullptr && needs_cache(mesh.positions.size(), plan)))
     return refuse(Status::kNotLinked);
-  if ((plan.uv && !store_.has_tex()) || ((plan.textured || plan.kind.phong) && !active_extra_) ||
-      (plan.kind.phong &&
-       (!store_.has_surfaces() || !records_.has_pixel_lights() ||
-        (state.pixel_lighting == PixelLighting::kTable && !records_.has_lighting_tables()))) ||
+  if (((plan.textured || plan.kind.phong) && routines_->maps->store_missing(*this, plan, state)) ||
       (triangle_colors && !edges_.has_colors()))
     return refuse(Status::kMissingStore);
   const size_t n = mesh.positions.size();
@@ -485,6 +490,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   const uint8_t draw_index =
       records_.add(state, plan.kind.color_planes, static_cast<uint16_t>(store_.count()));
   DrawRecord& record = records_[draw_index];
+  if (plan.textured) routines_->maps->record(record, state);
   record.triangle_colors = triangle_colors;
   if (!triangle_colors && !plan.kind.color_planes && !plan.kind.phong)
     record.color = routines_->one_color(material.diffuse);
@@ -645,7 +651,9 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   if (uv && tex.size() != vertices.size()) return refuse(Status::kInvalidArgument);
   if (!uv) tex = {};
   const bool gouraud = state.shading == Shading::kGouraud;
-  if (!admitted(state, {false, gouraud, !lights_.normal_only()})) return refuse(Status::kNotLinked);
+  if (!admitted(state, {false, gouraud, !lights_.normal_only()}) ||
+      (uv && routines_->maps == nullptr))
+    return refuse(Status::kNotLinked);
   if ((uv && (!store_.has_tex() || !active_extra_)) || (!gouraud && !edges_.has_colors()))
     return refuse(Status::kMissingStore);
   const auto tri_count = static_cast<uint32_t>(triangles.size());
@@ -654,6 +662,7 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
     return refuse(Status::kCapacity, tri_count, true);
   if (records_.full()) return refuse(Status::kCapacity, tri_count, false);
   const uint8_t draw_index = records_.add(state, gouraud, static_cast<uint16_t>(store_.count()));
+  if (uv) routines_->maps->record(records_[draw_index], state);
   records_[draw_index].triangle_colors = !gouraud;
   replay_screen_ = &FrontEnd::replay_screen;
   if (edges_.signing()) routines_->sign->draw(*this, draw_index, nullptr);
@@ -772,7 +781,7 @@ void FrontEnd::replay(uint8_t index) {
   }
   const Material material = c.material.get();
   DrawPlan plan;
-  plan_draw(c.mesh, state, lights_, plan, routines_->check_maps);  // passed in draw()
+  plan_draw(c.mesh, state, lights_, plan, routines_->maps);  // passed in draw()
   PreparedLighting& pl = lighting_;
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   if (plan.lit)

@@ -102,6 +102,9 @@ struct FrontEndParts {
   // lighting table is not usable; else kOk.
   static Status check_maps(const Mesh& mesh, const DrawState& state, const LightSet& lights,
                            const DrawPlan& p);
+  // Whether a textured or Phong draw lacks a store it needs (tex_vertices, active_extra; Phong:
+  // surfaces, pixel_lights, and for kTable lighting_tables): draw()'s kMissingStore.
+  static bool maps_store_missing(const FrontEnd& fe, const DrawPlan& p, const DrawState& state);
   // Bands: a draw's arguments kept in its record, for the bands that bin it again (replay).
   static void record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,
                           const Material& material, const DrawState& state);
@@ -124,6 +127,16 @@ struct BandRoutines {
                  const DrawState&) = &FrontEndParts::record_call;
 };
 inline constexpr BandRoutines kBandRoutines{};
+// What only textured and Phong draws need of the front end: their maps' checks, their stores'
+// check and their record's texture fields (DrawRecords::texture_fields).
+struct MapRoutines {
+  Status (*check)(const Mesh&, const DrawState&, const LightSet&,
+                  const DrawPlan&) = &FrontEndParts::check_maps;
+  bool (*store_missing)(const FrontEnd&, const DrawPlan&,
+                        const DrawState&) = &FrontEndParts::maps_store_missing;
+  void (*record)(DrawRecord&, const DrawState&) = &DrawRecords::texture_fields;
+};
+inline constexpr MapRoutines kMapRoutines{};
 // The vertex cache (vertex_store.hpp): a mesh larger than the free vertex store.
 struct CacheRoutines {
   bool (VertexStore::*begin)(bool, bool) = &VertexStore::begin_cache;
@@ -162,11 +175,10 @@ struct FrontEndRoutines {
   // A one-coloured draw's colour (its material's diffuse colour, to_rgb8_sat), where flat is
   // set (else nullptr: such draws are refused, as they need flat too).
   Rgb8 (*one_color)(Color15) = &FrontEndParts::one_color;
-  // The checks of a textured or Phong draw's maps (FrontEndParts::check_maps: the textures'
-  // validate(), mipmap levels, texture coordinates, tangents, lighting table), wherever
-  // attributes is set; nullptr where not (those draws are refused then, kNotLinked).
-  Status (*check_maps)(const Mesh&, const DrawState&, const LightSet&,
-                       const DrawPlan&) = &FrontEndParts::check_maps;
+  // What textured and Phong draws need (MapRoutines: their maps' checks, the textures' validate()
+  // among them, their stores' check, their record's texture fields), wherever attributes is set;
+  // nullptr where not (those draws are refused then, kNotLinked).
+  const MapRoutines* maps = &kMapRoutines;
   // The clipper: clip_polygon<true> (texture coordinates, specular colour and surface carried)
   // wherever attributes is set; clip_polygon<false> only where it is not (no draw then has them);
   // nullptr without RendererFeatures::clipping (triangles then is a loop without the clipper).

@@ -154,7 +154,7 @@ class Renderer {
       kAttributes ? &VertexStage::attributes : nullptr,
       kFlat ? &FrontEndParts::flat_colors : nullptr,
       kFlat ? &FrontEndParts::one_color : nullptr,
-      kAttributes ? &FrontEndParts::check_maps : nullptr,
+      kAttributes ? &kMapRoutines : nullptr,
       !kFeatures.clipping ? nullptr
       : kAttributes       ? &clip_polygon<true>
                           : &clip_polygon<false>,

@@ -165,7 +165,7 @@ class RigBase {
  public:
   virtual ~RigBase() = default;
   FrontEnd& r() { return *builder_; }
-  // Whether its front end checks textured and Phong draws' maps (FrontEndRoutines::check_maps:
+  // Whether its front end checks textured and Phong draws' maps (FrontEndRoutines::maps:
   // a renderer with textured or Phong spans; the others refuse those draws, kNotLinked, before
   // any check of their maps).
   virtual bool checks_maps() const { return true; }
