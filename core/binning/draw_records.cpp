@@ -12,22 +12,22 @@ uint8_t DrawRecords::add(const DrawState& state, bool has_color_planes, uint16_t
   r.filter = state.sampler.filter;
   r.wrap_s = state.sampler.wrap_s;
   r.wrap_t = state.sampler.wrap_t;
-  if (state.texture != nullptr) {
-    const Texture& tex = *state.texture;
-    r.texture = &tex;
-    r.uv = true;
-    r.env = state.sampler.env;
-    r.mip = state.sampler.mip;
-    r.persp = tex_persp_of(state.perspective);
-    r.span_len = state.perspective == Perspective::kSpan8    ? 8
-                 : state.perspective == Perspective::kSpan16 ? 16
-                 : state.perspective == Perspective::kSpan32 ? 32
-                                                             : 0;
-  }
   r.colors = color_planes_of(state, has_color_planes);
   const auto index = static_cast<uint8_t>(count_);
   draws_[count_++] = r;
   return index;
+}
+
+void DrawRecords::texture_fields(DrawRecord& r, const DrawState& state) {
+  r.texture = state.texture;
+  r.uv = true;
+  r.env = state.sampler.env;
+  r.mip = state.sampler.mip;
+  r.persp = tex_persp_of(state.perspective);
+  r.span_len = state.perspective == Perspective::kSpan8    ? 8
+               : state.perspective == Perspective::kSpan16 ? 16
+               : state.perspective == Perspective::kSpan32 ? 32
+                                                           : 0;
 }
 
 Status DrawRecords::add_phong_state(const DrawState& state, const PreparedLighting& pl,

@@ -45,7 +45,11 @@ class DrawRecords {
 
   // A new record for a draw's state (not full()): returns its index. first_vertex: where its
   // vertices will start in the vertex store (set again when it is binned).
+  // A textured state's fields are not set here: texture_fields() sets them (FrontEndRoutines::
+  // maps: a renderer without textured spans links none of them).
   uint8_t add(const DrawState& state, bool color_planes, uint16_t first_vertex);
+  // A record's texture, sampler and perspective fields from a textured state.
+  static void texture_fields(DrawRecord& r, const DrawState& state);
   // Takes back the last record (a draw refused after it was added).
   void drop_last() { --count_; }
   // The record's signature, once it is final (per_pixel_material: a Phong draw's material).

@@ -192,7 +192,7 @@ class EdgeTable {
 
   // Appends a triangle to the bucket of the strip of row r0 and returns it for the caller to
   // fill in (its `next` is set here). Not full().
-  BinnedTriangle& add(int32_t r0) {
+  [[gnu::always_inline]] BinnedTriangle& add(int32_t r0) {
     const auto index = static_cast<uint16_t>(count_++);
     BinnedTriangle& t = triangles_[index];
     uint16_t& head = buckets_[strip_of_row(r0)];

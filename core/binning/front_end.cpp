@@ -12,13 +12,10 @@ namespace lr {
 namespace {
 
 // The checks of draw() (kInvalidArgument: nothing is added, nothing counted), and its plan.
-// check_texture: FrontEndRoutines::validate (nullptr: the renderer refuses textured and Phong
-// draws, kNotLinked, and links no test of their textures).
+// maps: FrontEndRoutines::maps (nullptr: the renderer refuses textured and Phong draws,
+// kNotLinked, and links no test of their maps).
 Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& lights, DrawPlan& p,
-                 Status (*check_texture)(const Texture&)) {
-  auto invalid = [check_texture](const Texture& t) {
-    return check_texture != nullptr && check_texture(t) != Status::kOk;
-  };
+                 const MapRoutines* maps) {
   const size_t n = mesh.positions.size();
   if ((!mesh.normals.empty() && mesh.normals.size() != n) ||
       (!mesh.colors.empty() && mesh.colors.size() != n))
@@ -33,6 +30,31 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
   // Unlit meshes without vertex colours have one colour: no colour planes needed.
   p.kind.color_planes = p.gouraud && (p.lit || !mesh.colors.empty() || p.textured);
   p.kind.position = !lights.normal_only();
+  if ((p.textured || p.kind.phong) && maps != nullptr &&
+      maps->check(mesh, state, lights, p) != Status::kOk)
+    return Status::kInvalidArgument;
+  // Textured, lit and modulated: primary and specular colours kept apart (GL's separate
+  // specular colour), so that the texel modulates the primary only.
+  p.split = p.textured && p.lit && state.sampler.env == TexEnv::kModulate;
+  p.uv = p.textured || (p.kind.phong && state.normal_map != nullptr);
+  p.two_sided = p.lit && lights.two_sided && !p.kind.phong;  // Phong flips at setup
+  return Status::kOk;
+}
+
+}  // namespace
+
+bool FrontEndParts::maps_store_missing(const FrontEnd& fe, const DrawPlan& p,
+                                       const DrawState& state) {
+  return (p.uv && !fe.store_.has_tex()) || ((p.textured || p.kind.phong) && !fe.active_extra_) ||
+         (p.kind.phong &&
+          (!fe.store_.has_surfaces() || !fe.records_.has_pixel_lights() ||
+           (state.pixel_lighting == PixelLighting::kTable && !fe.records_.has_lighting_tables())));
+}
+
+Status FrontEndParts::check_maps(const Mesh& mesh, const DrawState& state, const LightSet& lights,
+                                 const DrawPlan& p) {
+  auto invalid = [](const Texture& t) { return validate(t) != Status::kOk; };
+  const size_t n = mesh.positions.size();
   if (p.textured) {
     if (invalid(*state.texture)) return Status::kInvalidArgument;
     if (state.sampler.mip != MipMode::kNone && state.texture->level_count < 2)
@@ -51,13 +73,10 @@ Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& light
          state.table.size > kMaxLightingTable))
       return Status::kInvalidArgument;
   }
-  // Textured, lit and modulated: primary and specular colours kept apart (GL's separate
-  // specular colour), so that the texel modulates the primary only.
-  p.split = p.textured && p.lit && state.sampler.env == TexEnv::kModulate;
-  p.uv = p.textured || (p.kind.phong && state.normal_map != nullptr);
-  p.two_sided = p.lit && lights.two_sided && !p.kind.phong;  // Phong flips at setup
   return Status::kOk;
 }
+
+namespace {
 
 // Whether a lit Gouraud or textured draw can be lit in model space alone (a renderer without
 // RendererFeatures::world_lighting): directional lights and the infinite viewer (no position), a
@@ -139,6 +158,17 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
 
 Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
                       Cull cull, const int32_t* rows, bool cached) {
+  return bin_as<false>(a, b, c, draw, flat, flat_spec, cull, rows, cached);
+}
+
+Outcome FrontEnd::bin_lean(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat,
+                           Rgb8 flat_spec, Cull cull, const int32_t* rows) {
+  return bin_as<true>(a, b, c, draw, flat, flat_spec, cull, rows, false);
+}
+
+template <bool kLean>
+Outcome FrontEnd::bin_as(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat,
+                         Rgb8 flat_spec, Cull cull, const int32_t* rows, bool cached) {
   const ScreenVertex& v0 = store_.vertex(a);
   const ScreenVertex& v1 = store_.vertex(b);
   const ScreenVertex& v2 = store_.vertex(c);
@@ -150,35 +180,46 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
   }
   // Locals, not classify()'s outputs: kept in registers.
   int32_t r0 = rows[0], r1 = rows[1];
-  // Binning a band: another band's triangle is binned there; one from above starts here.
-  // (One pass: the band is the viewport, to which classify() clamped the rows already.)
-  if (edges_.banding()) [[unlikely]] {
-    if (edges_.outside_window(r0, r1)) return Outcome::kBinned;
-    edges_.clamp_to_window(r0, r1);
-  }
-  while (edges_.full()) {
-    // The band (the first one: the whole frame, until now) ends higher up, until it is one
-    // strip (below the minimum, or without bands: the triangle is dropped, and counted). From
-    // now on each draw keeps only the vertices its binned triangles use.
-    if (routines_->bands == nullptr) {
+  if constexpr (kLean) {
+    // No band: a full table drops the triangle (the loop below without bands).
+    (void)draw;
+    (void)r1;
+    (void)cached;
+    if (edges_.full()) {
       edges_.set_dropped();
       return Outcome::kCapacity;
     }
-    edges_.start_banding();
-    if (!routines_->bands->shrink(*this)) {
-      edges_.set_dropped();
-      return Outcome::kCapacity;
+  } else {
+    // Binning a band: another band's triangle is binned there; one from above starts here.
+    // (One pass: the band is the viewport, to which classify() clamped the rows already.)
+    if (edges_.banding()) [[unlikely]] {
+      if (edges_.outside_window(r0, r1)) return Outcome::kBinned;
+      edges_.clamp_to_window(r0, r1);
     }
-    if (r0 > edges_.window_last()) return Outcome::kBinned;
-    if (r1 > edges_.window_last()) r1 = edges_.window_last();
-  }
-  if (edges_.signing()) routines_->sign->triangle(*this, a, b, c, draw, flat, flat_spec, r0, r1);
-  // Through the vertex cache: the triangle's vertices are copied out of it on first use.
-  if (cached) {
-    const auto persist = routines_->cache->persist;
-    if (!(store_.*persist)(a) || !(store_.*persist)(b) || !(store_.*persist)(c)) {
-      overflow_ = true;
-      return Outcome::kVertexCapacity;
+    while (edges_.full()) {
+      // The band (the first one: the whole frame, until now) ends higher up, until it is one
+      // strip (below the minimum, or without bands: the triangle is dropped, and counted). From
+      // now on each draw keeps only the vertices its binned triangles use.
+      if (routines_->bands == nullptr) {
+        edges_.set_dropped();
+        return Outcome::kCapacity;
+      }
+      edges_.start_banding();
+      if (!routines_->bands->shrink(*this)) {
+        edges_.set_dropped();
+        return Outcome::kCapacity;
+      }
+      if (r0 > edges_.window_last()) return Outcome::kBinned;
+      if (r1 > edges_.window_last()) r1 = edges_.window_last();
+    }
+    if (edges_.signing()) routines_->sign->triangle(*this, a, b, c, draw, flat, flat_spec, r0, r1);
+    // Through the vertex cache: the triangle's vertices are copied out of it on first use.
+    if (cached) {
+      const auto persist = routines_->cache->persist;
+      if (!(store_.*persist)(a) || !(store_.*persist)(b) || !(store_.*persist)(c)) {
+        overflow_ = true;
+        return Outcome::kVertexCapacity;
+      }
     }
   }
   // A triangle from above the band was counted in its own band: not counted again (only once
@@ -194,7 +235,7 @@ Outcome FrontEnd::bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 fla
 // One triangle of a draw: culled, lit (lit Gouraud: its vertices on first use; flat: its face),
 // clipped when it crosses a plane, and binned. This and the two ends below are always inlined
 // into draw(): one loop body, whose locals share one stack frame.
-template <bool kTwoSided, bool kCache, bool kClip>
+template <bool kTwoSided, bool kCache, bool kClip, bool kBandsOrSigns>
 void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   const size_t n = d.mesh.positions.size();
   if (tri[0] >= n || tri[1] >= n || tri[2] >= n) {
@@ -273,8 +314,8 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
   Rgb8 flat{}, flat_spec{};
   if (d.own_colors != nullptr) d.own_colors(d, tri, *sv[2], back, flat, flat_spec);
   if (oc_or == 0) {
-    bin_inside(d, vi, sv, back && d.plan.gouraud, flat, flat_spec, classified ? rows : nullptr,
-               kCache && d.cached);
+    bin_inside<!kCache && !kBandsOrSigns>(d, vi, sv, back && d.plan.gouraud, flat, flat_spec,
+                                          classified ? rows : nullptr, kCache && d.cached);
     return;
   }
   clip_and_bin(d, vi, sv, clip, oc_or, back && d.plan.gouraud, flat, flat_spec);
@@ -282,6 +323,7 @@ void FrontEnd::draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri) {
 
 // A triangle inside every plane. A two-sided Gouraud back face gets its own copies of its
 // vertices, with the back colours.
+template <bool kLeanBin>
 void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&sv)[3],
                           bool back_copies, Rgb8 flat, Rgb8 flat_spec, const int32_t* rows,
                           bool cached) {
@@ -321,8 +363,12 @@ void FrontEnd::bin_inside(MeshDraw& d, uint16_t (&vi)[3], ScreenVertex* const (&
     }
   }
   // Corners in the vertex cache (back-face copies are in the store already).
-  const Outcome r =
-      bin(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows, cached && !back_copies);
+  Outcome r;
+  if constexpr (kLeanBin)
+    r = bin_lean(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows);
+  else
+    r = bin(vi[0], vi[1], vi[2], d.draw, flat, flat_spec, d.state.cull, rows,
+            cached && !back_copies);
   count_outcome(stats_, r == Outcome::kBinned, r);
 }
 
@@ -413,25 +459,24 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   // Refused whole, with nothing added and only the draw counted: arguments that disagree, a
   // state the renderer links no routine for, a store the draw needs that was not given.
   DrawPlan plan;
-  if (plan_draw(mesh, state, lights_, plan, routines_->validate) != Status::kOk)
+  if (plan_draw(mesh, state, lights_, plan, routines_->maps) != Status::kOk)
     return refuse(Status::kInvalidArgument);
   const bool triangle_colors = !plan.gouraud && !plan.kind.phong;  // flat: colours per triangle
   // (Phong draws light per pixel: their position is the span set's own dimension.)
   if (!admitted(state, plan.kind) ||
       (triangle_colors && plan.lit && routines_->face_light == nullptr) ||
       (plan.lit && !plan.kind.phong && plan.kind.position && routines_->point_light == nullptr) ||
-      ((plan.uv || plan.kind.phong) && routines_->attributes == nullptr) ||
+      ((plan.uv || plan.kind.phong) &&
+       (routines_->attributes == nullptr || routines_->maps == nullptr)) ||
       (plan.two_sided && routines_->front_facing == nullptr) ||
-      (needs_flat_colors(plan) && routines_->flat == nullptr) ||
+      (needs_flat_colors(plan) &&
+       (routines_->flat == nullptr || routines_->one_color == nullptr)) ||
       (plan.lit && !routines_->specular && has_specular(material)) ||
       (plan.lit && plan.gouraud && !routines_->world_lighting &&
        !model_space_lighting(mesh, model, plan.kind.position)) ||
       (routines_->cache == nullptr && needs_cache(mesh.positions.size(), plan)))
     return refuse(Status::kNotLinked);
-  if ((plan.uv && !store_.has_tex()) || ((plan.textured || plan.kind.phong) && !active_extra_) ||
-      (plan.kind.phong &&
-       (!store_.has_surfaces() || !records_.has_pixel_lights() ||
-        (state.pixel_lighting == PixelLighting::kTable && !records_.has_lighting_tables()))) ||
+  if (((plan.textured || plan.kind.phong) && routines_->maps->store_missing(*this, plan, state)) ||
       (triangle_colors && !edges_.has_colors()))
     return refuse(Status::kMissingStore);
   const size_t n = mesh.positions.size();
@@ -445,14 +490,15 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
   const uint8_t draw_index =
       records_.add(state, plan.kind.color_planes, static_cast<uint16_t>(store_.count()));
   DrawRecord& record = records_[draw_index];
+  if (plan.textured) routines_->maps->record(record, state);
   record.triangle_colors = triangle_colors;
   if (!triangle_colors && !plan.kind.color_planes && !plan.kind.phong)
-    record.color = to_rgb8_sat(material.diffuse);
+    record.color = routines_->one_color(material.diffuse);
 
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   PreparedLighting& pl = lighting_;
   if (plan.lit)
-    prepare_lighting(lights_, material, view_dir, camera_.eye, pl);
+    routines_->prepare(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
   if (plan.kind.phong && routines_->phong(records_, state, pl, record) != Status::kOk) {
@@ -499,7 +545,8 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   colors.point = routines_->point_light;
   colors.attributes = routines_->attributes;
   // Lit Gouraud under directional lights and a rigid model: the lights turned into model space.
-  if (colors.pending && !colors.need_position && stage.object_lights(pl, object_lights_))
+  if (colors.pending && !colors.need_position &&
+      stage.object_lights(pl, object_lights_, routines_->object_lights))
     colors.object = &object_lights_;
   const size_t base = store_.count();
   draw_first_triangle_ = edges_.size();
@@ -552,32 +599,49 @@ void FrontEnd::triangle_loop(MeshDraw& d) {
 }
 
 // Triangles [t, end) through draw_triangle(), inlined here: one stack frame for its locals.
-template <bool kTwoSided, bool kCache, bool kClip>
+template <bool kTwoSided, bool kCache, bool kClip, bool kBandsOrSigns>
 uint32_t FrontEnd::general_triangles(MeshDraw& d, uint32_t t, uint32_t end) {
-  for (; t < end; ++t) draw_triangle<kTwoSided, kCache, kClip>(d, d.mesh.triangles[t]);
+  for (; t < end; ++t)
+    draw_triangle<kTwoSided, kCache, kClip, kBandsOrSigns>(d, d.mesh.triangles[t]);
   return t;
 }
 
-template <bool kTwoSided, bool kCache, bool kClip>
+template <bool kTwoSided, bool kCache, bool kClip, bool kBandsOrSigns>
 uint32_t FrontEndParts::triangles(FrontEnd& fe, MeshDraw& d, uint32_t t, uint32_t end) {
-  return fe.general_triangles<kTwoSided, kCache, kClip>(d, t, end);
+  return fe.general_triangles<kTwoSided, kCache, kClip, kBandsOrSigns>(d, t, end);
 }
-template uint32_t FrontEndParts::triangles<false, false, false>(FrontEnd&, MeshDraw&, uint32_t,
-                                                                uint32_t);
-template uint32_t FrontEndParts::triangles<false, false, true>(FrontEnd&, MeshDraw&, uint32_t,
-                                                               uint32_t);
-template uint32_t FrontEndParts::triangles<false, true, false>(FrontEnd&, MeshDraw&, uint32_t,
-                                                               uint32_t);
-template uint32_t FrontEndParts::triangles<false, true, true>(FrontEnd&, MeshDraw&, uint32_t,
-                                                              uint32_t);
-template uint32_t FrontEndParts::triangles<true, false, false>(FrontEnd&, MeshDraw&, uint32_t,
-                                                               uint32_t);
-template uint32_t FrontEndParts::triangles<true, false, true>(FrontEnd&, MeshDraw&, uint32_t,
-                                                              uint32_t);
-template uint32_t FrontEndParts::triangles<true, true, false>(FrontEnd&, MeshDraw&, uint32_t,
-                                                              uint32_t);
-template uint32_t FrontEndParts::triangles<true, true, true>(FrontEnd&, MeshDraw&, uint32_t,
-                                                             uint32_t);
+template uint32_t FrontEndParts::triangles<false, false, false, false>(FrontEnd&, MeshDraw&,
+                                                                       uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<false, false, false, true>(FrontEnd&, MeshDraw&,
+                                                                      uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<false, false, true, false>(FrontEnd&, MeshDraw&,
+                                                                      uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<false, false, true, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                     uint32_t);
+template uint32_t FrontEndParts::triangles<false, true, false, false>(FrontEnd&, MeshDraw&,
+                                                                      uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<false, true, false, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                     uint32_t);
+template uint32_t FrontEndParts::triangles<false, true, true, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                     uint32_t);
+template uint32_t FrontEndParts::triangles<false, true, true, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                    uint32_t);
+template uint32_t FrontEndParts::triangles<true, false, false, false>(FrontEnd&, MeshDraw&,
+                                                                      uint32_t, uint32_t);
+template uint32_t FrontEndParts::triangles<true, false, false, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                     uint32_t);
+template uint32_t FrontEndParts::triangles<true, false, true, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                     uint32_t);
+template uint32_t FrontEndParts::triangles<true, false, true, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                    uint32_t);
+template uint32_t FrontEndParts::triangles<true, true, false, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                     uint32_t);
+template uint32_t FrontEndParts::triangles<true, true, false, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                    uint32_t);
+template uint32_t FrontEndParts::triangles<true, true, true, false>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                    uint32_t);
+template uint32_t FrontEndParts::triangles<true, true, true, true>(FrontEnd&, MeshDraw&, uint32_t,
+                                                                   uint32_t);
 
 Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
                              std::span<const std::array<uint16_t, 3>> triangles,
@@ -587,7 +651,9 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   if (uv && tex.size() != vertices.size()) return refuse(Status::kInvalidArgument);
   if (!uv) tex = {};
   const bool gouraud = state.shading == Shading::kGouraud;
-  if (!admitted(state, {false, gouraud, !lights_.normal_only()})) return refuse(Status::kNotLinked);
+  if (!admitted(state, {false, gouraud, !lights_.normal_only()}) ||
+      (uv && routines_->maps == nullptr))
+    return refuse(Status::kNotLinked);
   if ((uv && (!store_.has_tex() || !active_extra_)) || (!gouraud && !edges_.has_colors()))
     return refuse(Status::kMissingStore);
   const auto tri_count = static_cast<uint32_t>(triangles.size());
@@ -596,6 +662,7 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
     return refuse(Status::kCapacity, tri_count, true);
   if (records_.full()) return refuse(Status::kCapacity, tri_count, false);
   const uint8_t draw_index = records_.add(state, gouraud, static_cast<uint16_t>(store_.count()));
+  if (uv) routines_->maps->record(records_[draw_index], state);
   records_[draw_index].triangle_colors = !gouraud;
   replay_screen_ = &FrontEnd::replay_screen;
   if (edges_.signing()) routines_->sign->draw(*this, draw_index, nullptr);
@@ -714,14 +781,18 @@ void FrontEnd::replay(uint8_t index) {
   }
   const Material material = c.material.get();
   DrawPlan plan;
-  plan_draw(c.mesh, state, lights_, plan, routines_->validate);  // passed in draw()
+  plan_draw(c.mesh, state, lights_, plan, routines_->maps);  // passed in draw()
   PreparedLighting& pl = lighting_;
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   if (plan.lit)
-    prepare_lighting(lights_, material, view_dir, camera_.eye, pl);
+    routines_->prepare(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
   run_mesh(index, c.mesh, c.model, material, state, plan, pl);
+}
+
+Rgb8 FrontEndParts::one_color(Color15 c) {
+  return to_rgb8_sat(c);
 }
 
 void FrontEndParts::flat_colors(const MeshDraw& d, const std::array<uint16_t, 3>& tri,

@@ -94,6 +94,17 @@ struct FrontEndParts {
   // unlit mesh's one colour.
   static void flat_colors(const MeshDraw& d, const std::array<uint16_t, 3>& tri,
                           const ScreenVertex& last, bool back, Rgb8& flat, Rgb8& flat_spec);
+  // An unlit one-coloured draw's colour: c saturated to 8 bits (to_rgb8_sat).
+  static Rgb8 one_color(Color15 c);
+  // A textured or Phong draw's maps against the mesh and the state (plan_draw's checks of
+  // them): kInvalidArgument when a texture is invalid (validate()), mipmapping is asked of a
+  // texture without levels, the texture coordinates or tangents are not one per vertex, or a
+  // lighting table is not usable; else kOk.
+  static Status check_maps(const Mesh& mesh, const DrawState& state, const LightSet& lights,
+                           const DrawPlan& p);
+  // Whether a textured or Phong draw lacks a store it needs (tex_vertices, active_extra; Phong:
+  // surfaces, pixel_lights, and for kTable lighting_tables): draw()'s kMissingStore.
+  static bool maps_store_missing(const FrontEnd& fe, const DrawPlan& p, const DrawState& state);
   // Bands: a draw's arguments kept in its record, for the bands that bin it again (replay).
   static void record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,
                           const Material& material, const DrawState& state);
@@ -103,9 +114,9 @@ struct FrontEndParts {
   static void sign_triangle(FrontEnd& fe, uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
                             Rgb8 flat, Rgb8 flat_spec, int32_t r0, int32_t r1);
   // The general triangle loop (FrontEnd::general_triangles) with or without two-sided
-  // lighting's back faces, the vertex cache and the clipper: the renderer links the one of its
-  // features.
-  template <bool kTwoSided, bool kCache, bool kClip>
+  // lighting's back faces, the vertex cache, the clipper, and bands or strip signatures
+  // (kBandsOrSigns): the renderer links the one of its features.
+  template <bool kTwoSided, bool kCache, bool kClip, bool kBandsOrSigns>
   static uint32_t triangles(FrontEnd& fe, MeshDraw& d, uint32_t t, uint32_t end);
 };
 struct BandRoutines {
@@ -116,6 +127,16 @@ struct BandRoutines {
                  const DrawState&) = &FrontEndParts::record_call;
 };
 inline constexpr BandRoutines kBandRoutines{};
+// What only textured and Phong draws need of the front end: their maps' checks, their stores'
+// check and their record's texture fields (DrawRecords::texture_fields).
+struct MapRoutines {
+  Status (*check)(const Mesh&, const DrawState&, const LightSet&,
+                  const DrawPlan&) = &FrontEndParts::check_maps;
+  bool (*store_missing)(const FrontEnd&, const DrawPlan&,
+                        const DrawState&) = &FrontEndParts::maps_store_missing;
+  void (*record)(DrawRecord&, const DrawState&) = &DrawRecords::texture_fields;
+};
+inline constexpr MapRoutines kMapRoutines{};
 // The vertex cache (vertex_store.hpp): a mesh larger than the free vertex store.
 struct CacheRoutines {
   bool (VertexStore::*begin)(bool, bool) = &VertexStore::begin_cache;
@@ -151,9 +172,13 @@ struct FrontEndRoutines {
   // the set admits such draws (else nullptr: they are refused).
   void (*flat)(const MeshDraw&, const std::array<uint16_t, 3>&, const ScreenVertex&, bool, Rgb8&,
                Rgb8&) = &FrontEndParts::flat_colors;
-  // The test of a draw's textures (texture, environment and normal maps: validate()), wherever
-  // attributes is set; nullptr where not (the draws that have textures are refused then).
-  Status (*validate)(const Texture&) = &lr::validate;
+  // A one-coloured draw's colour (its material's diffuse colour, to_rgb8_sat), where flat is
+  // set (else nullptr: such draws are refused, as they need flat too).
+  Rgb8 (*one_color)(Color15) = &FrontEndParts::one_color;
+  // What textured and Phong draws need (MapRoutines: their maps' checks, the textures' validate()
+  // among them, their stores' check, their record's texture fields), wherever attributes is set;
+  // nullptr where not (those draws are refused then, kNotLinked).
+  const MapRoutines* maps = &kMapRoutines;
   // The clipper: clip_polygon<true> (texture coordinates, specular colour and surface carried)
   // wherever attributes is set; clip_polygon<false> only where it is not (no draw then has them);
   // nullptr without RendererFeatures::clipping (triangles then is a loop without the clipper).
@@ -168,10 +193,11 @@ struct FrontEndRoutines {
   const CacheRoutines* cache = &kCacheRoutines;
   bool (*front_facing)(const ClipCoord (&)[3]) = &front_facing_clip;
   const SignRoutines* sign = &kSignRoutines;
-  // The general triangle loop: FrontEndParts::triangles<kTwoSided, kCache, kClip>, true where
-  // front_facing, cache, clip are set (a loop without them would draw those draws wrong).
+  // The general triangle loop: FrontEndParts::triangles<kTwoSided, kCache, kClip,
+  // kBandsOrSigns>, true where front_facing, cache, clip, bands or sign are set (a loop without
+  // them would draw those draws wrong).
   uint32_t (*triangles)(FrontEnd&, MeshDraw&, uint32_t,
-                        uint32_t) = &FrontEndParts::triangles<true, true, true>;
+                        uint32_t) = &FrontEndParts::triangles<true, true, true, true>;
   // A lit vertex's colours (VertexStage::light<kSpecular, kWorld>), whether its specular term is
   // linked (RendererFeatures::specular): when not (light<false, ...>, and light_face<false>
   // above), a lit draw whose material has a specular colour is refused (kNotLinked); and whether
@@ -180,6 +206,13 @@ struct FrontEndRoutines {
   LightFn light = &VertexStage::light<true, true>;
   bool specular = true;
   bool world_lighting = true;
+  // A lit draw's lighting preparation: prepare_lighting, or prepare_diffuse_lighting where no
+  // draw the renderer takes reads more than directional lights' diffuse terms (no specular,
+  // point light, local viewer or Phong: those draws are refused before it is called).
+  PrepareLightingFn prepare = &prepare_lighting;
+  // And the lights in model space: prepare_object_lights, or prepare_diffuse_object_lights with
+  // prepare_diffuse_lighting.
+  PrepareObjectLightsFn object_lights = &prepare_object_lights;
 };
 inline constexpr FrontEndRoutines kEveryRoutine{};
 
@@ -206,7 +239,7 @@ class FrontEnd {
   // Where the frame is: kOk while one is begun and not rendered (draws are taken), else the
   // status naming why not: kNotConfigured, kNoFrame (none begun since configure(), or the last
   // begin_frame() failed), kFrameRendered (render() ended it).
-  Status frame_status() const {
+  LR_SIZE_NOINLINE Status frame_status() const {
     if (!configured_) return Status::kNotConfigured;
     if (phase_ == Phase::kIdle) return Status::kNoFrame;
     return phase_ == Phase::kRendered ? Status::kFrameRendered : Status::kOk;
@@ -281,7 +314,7 @@ class FrontEnd {
   // kCache: with two-sided lighting's back faces, with the vertex cache (FrontEndRoutines::
   // triangles: the renderer's features).
   [[gnu::noinline]] void triangle_loop(MeshDraw& d);
-  template <bool kTwoSided, bool kCache, bool kClip>
+  template <bool kTwoSided, bool kCache, bool kClip, bool kBandsOrSigns>
   [[gnu::noinline]] uint32_t general_triangles(MeshDraw& d, uint32_t t, uint32_t end);
   [[gnu::noinline]] uint32_t lane_triangles(MeshDraw& d, uint32_t t);
   [[gnu::noinline]] uint32_t lane_run_triangles(MeshDraw& d, uint32_t t);
@@ -290,8 +323,9 @@ class FrontEnd {
   static constexpr size_t kLightList = 48;
   [[gnu::noinline]] void light_list(MeshDraw& d, std::span<ScreenVertex* const> list);
   [[gnu::noinline]] void light_other(MeshDraw& d, uint32_t i);
-  template <bool kTwoSided, bool kCache, bool kClip>
+  template <bool kTwoSided, bool kCache, bool kClip, bool kBandsOrSigns>
   [[gnu::always_inline]] inline void draw_triangle(MeshDraw& d, const std::array<uint16_t, 3>& tri);
+  template <bool kLeanBin>
   [[gnu::always_inline]] inline void bin_inside(MeshDraw& d, uint16_t (&vi)[3],
                                                 ScreenVertex* const (&sv)[3], bool back_copies,
                                                 Rgb8 flat, Rgb8 flat_spec, const int32_t* rows,
@@ -327,7 +361,7 @@ class FrontEnd {
   // lighting pools, a mesh larger than a store below the vertex cache's minimum: no band can
   // take it) also counts its triangles as dropped, in this frame's statistics for good. Returns
   // `why`.
-  Status refuse(Status why, uint32_t triangles = 0, bool vertex_store = false);
+  LR_SIZE_NOINLINE Status refuse(Status why, uint32_t triangles = 0, bool vertex_store = false);
 
   // rows: the triangle's first and last row when classify() already passed it (its tests are
   // not repeated), else nullptr.
@@ -335,6 +369,16 @@ class FrontEnd {
   // (A flag, not a template parameter: one copy for the general triangle loop's rare paths.)
   Outcome bin(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat, Rgb8 flat_spec,
               Cull cull, const int32_t* rows = nullptr, bool cached = false);
+  // bin() where no band, strip signature or vertex cache can be (the general loop of a renderer
+  // without them: FrontEndParts::triangles<..., false, ..., false>): the same without their
+  // paths (their code is not linked), cached false.
+  [[gnu::noinline]] Outcome bin_lean(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 flat,
+                                     Rgb8 flat_spec, Cull cull, const int32_t* rows);
+  // The body of both (kLean: bin_lean).
+  template <bool kLean>
+  [[gnu::always_inline]] inline Outcome bin_as(uint16_t a, uint16_t b, uint16_t c, uint8_t draw,
+                                               Rgb8 flat, Rgb8 flat_spec, Cull cull,
+                                               const int32_t* rows, bool cached);
   bool needs_cache(size_t n, const DrawPlan& plan) const;
   // Refuses a draw the renderer links no routine for.
   bool admitted(const DrawState& state, const DrawKind& kind) const {

@@ -41,22 +41,29 @@ PreparedLighting prepare_lighting(const LightSet& set, const Material& m, Vec3 v
   return pl;
 }
 
-void prepare_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec3 eye,
-                      PreparedLighting& pl) {
+namespace {
+// prepare_lighting (kFull) or prepare_diffuse_lighting: the latter leaves out what only point
+// lights, the local viewer and specular materials read (the half vectors, the specular
+// products, the view direction, the point lights' terms).
+template <bool kFull>
+[[gnu::always_inline]] inline void prepare(const LightSet& set, const Material& m, Vec3 view_dir,
+                                           Vec3 eye, PreparedLighting& pl) {
   pl = PreparedLighting{};
   pl.count = set.count > kMaxLights ? kMaxLights : set.count;
-  pl.shininess_q8 = m.shininess_q8;
   pl.material = m;
-  pl.local_viewer = set.local_viewer;
-  pl.eye = eye;
-  pl.view = unit_of(view_dir);
+  if constexpr (kFull) {
+    pl.shininess_q8 = m.shininess_q8;
+    pl.local_viewer = set.local_viewer;
+    pl.eye = eye;
+    pl.view = unit_of(view_dir);
+  }
   for (int c = 0; c < 3; ++c)
     pl.base[c] =
         channel(m.emission, c) + mul15(channel(set.global_ambient, c), channel(m.ambient, c));
   for (int i = 0; i < pl.count; ++i) {
     const Light& src = set.lights[static_cast<size_t>(i)];
     PreparedLighting::Light& d = pl.lights[static_cast<size_t>(i)];
-    d.point = src.kind == LightKind::kPoint;
+    d.point = kFull && src.kind == LightKind::kPoint;
     pl.any_point = pl.any_point || d.point;
     if (d.point) {
       d.position = src.position;
@@ -65,15 +72,26 @@ void prepare_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec
       d.kq = src.quadratic.raw < 0 ? 0 : src.quadratic.raw;
     } else {
       d.l = unit_of(src.position);
-      d.h = half_vector(d.l, pl.view);
+      if constexpr (kFull) d.h = half_vector(d.l, pl.view);
     }
     for (int c = 0; c < 3; ++c) {
       d.ka[c] = mul15(channel(src.ambient, c), channel(m.ambient, c));
       if (!d.point) pl.base[c] += d.ka[c];
       d.kd[c] = mul15(channel(src.diffuse, c), channel(m.diffuse, c));
-      d.ks[c] = mul15(channel(src.specular, c), channel(m.specular, c));
+      if constexpr (kFull) d.ks[c] = mul15(channel(src.specular, c), channel(m.specular, c));
     }
   }
+}
+}  // namespace
+
+void prepare_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec3 eye,
+                      PreparedLighting& pl) {
+  prepare<true>(set, m, view_dir, eye, pl);
+}
+
+void prepare_diffuse_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec3 eye,
+                              PreparedLighting& pl) {
+  prepare<false>(set, m, view_dir, eye, pl);
 }
 
 namespace {

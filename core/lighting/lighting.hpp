@@ -96,6 +96,15 @@ PreparedLighting prepare_lighting(const LightSet& set, const Material& m, Vec3 v
 // The same into `pl` (no temporary on the caller's stack: the front end keeps one for its draws).
 void prepare_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec3 eye,
                       PreparedLighting& pl);
+// prepare_lighting for lighting that reads only the directional lights' diffuse and ambient
+// terms (RendererFeatures::specular off, no point light or local viewer admitted, no Phong: the
+// front end refuses the draws that need more before it prepares their lighting): the same count,
+// material, base, l, ka and kd; no half vector, view direction or specular product (zero), and
+// every light taken as directional.
+void prepare_diffuse_lighting(const LightSet& set, const Material& m, Vec3 view_dir, Vec3 eye,
+                              PreparedLighting& pl);
+// Either of the two (the front end's FrontEndRoutines::prepare).
+using PrepareLightingFn = void (*)(const LightSet&, const Material&, Vec3, Vec3, PreparedLighting&);
 
 // Lit colour of a surface point with unit normal n (world) at world position p (read only for
 // point lights and the local viewer).

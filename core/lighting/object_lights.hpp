@@ -29,6 +29,12 @@ struct ObjectLights {
 // pl's directional lights into model space by the rotation rows of a rigid model
 // (rigid_normal_rows): l_model = R^T l.
 void prepare_object_lights(const PreparedLighting& pl, const NormalRotation& r, ObjectLights& out);
+// The same without the half vectors (h stays zero), for lighting prepared by
+// prepare_diffuse_lighting (no specular product: light_object never reads them).
+void prepare_diffuse_object_lights(const PreparedLighting& pl, const NormalRotation& r,
+                                   ObjectLights& out);
+using PrepareObjectLightsFn = void (*)(const PreparedLighting&, const NormalRotation&,
+                                       ObjectLights&);
 
 // |n|^2 of a Normal16, Q2.28 (each square below 2^30: no wrap).
 [[gnu::always_inline]] constexpr uint32_t normal_len2(const Normal16& n) {

@@ -19,6 +19,7 @@
 #include <array>
 #include <cstdint>
 
+#include "lineraster/core/math/fixed.hpp"
 #include "lineraster/core/math/wide_mul.hpp"
 
 namespace lr {
@@ -83,8 +84,9 @@ constexpr uint32_t recip16_table(uint32_t d) {
 }
 
 // recip32 from recip16 of the divisor's top half: one Newton step in 64-bit products, then an
-// exact correction (tests compare it with the 64-bit division).
-constexpr uint32_t recip32_newton(uint32_t d) {
+// exact correction (tests compare it with the 64-bit division). A call where the code is built
+// for size (one copy, not one per caller).
+LR_SIZE_NOINLINE constexpr uint32_t recip32_newton(uint32_t d) {
   // X0 = 2^48 / (d >> 16) within 2^-15 of 2^64 / d (relative), below 2^33 + 2^16.
   uint64_t x = uint64_t{recip16(d >> 16)} << 16;
   // E = 2^64 - d X0, |E| < 2^50, exact in wrapping 64-bit arithmetic; X0 / 2 * E / 2^19 < 2^63.

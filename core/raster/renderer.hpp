@@ -141,6 +141,10 @@ class Renderer {
       (kSpans.has(SpanFamily::kUntextured) && detail::has(kSpans.colors, ColorPlanes::kNone));
   static constexpr bool kAttributes =
       kSpans.has(SpanFamily::kTextured) || kSpans.has(SpanFamily::kPhong);
+  // Lighting that reads only directional lights' diffuse terms: no specular term linked, no
+  // span that reads the position (point lights, the local viewer), no Phong.
+  static constexpr bool kDiffuseLighting =
+      !kFeatures.specular && !detail::has(kSpans.position, true) && !kSpans.has(SpanFamily::kPhong);
   // The features of kFeatures, nullptr for those it leaves out.
   static constexpr FrontEndRoutines kRoutines{
       &admits<kSpans>,
@@ -149,7 +153,8 @@ class Renderer {
       detail::has(kSpans.position, true) ? &light_point_at : nullptr,
       kAttributes ? &VertexStage::attributes : nullptr,
       kFlat ? &FrontEndParts::flat_colors : nullptr,
-      kAttributes ? &validate : nullptr,
+      kFlat ? &FrontEndParts::one_color : nullptr,
+      kAttributes ? &kMapRoutines : nullptr,
       !kFeatures.clipping ? nullptr
       : kAttributes       ? &clip_polygon<true>
                           : &clip_polygon<false>,
@@ -157,10 +162,14 @@ class Renderer {
       kFeatures.vertex_cache ? &kCacheRoutines : nullptr,
       kFeatures.two_sided ? &front_facing_clip : nullptr,
       kFeatures.strip_skipping ? &kSignRoutines : nullptr,
-      &FrontEndParts::triangles<kFeatures.two_sided, kFeatures.vertex_cache, kFeatures.clipping>,
+      &FrontEndParts::triangles<kFeatures.two_sided, kFeatures.vertex_cache, kFeatures.clipping,
+                                kFeatures.bands || kFeatures.strip_skipping>,
       &VertexStage::light<kFeatures.specular, kFeatures.world_lighting>,
       kFeatures.specular,
-      kFeatures.world_lighting};
+      kFeatures.world_lighting,
+      kDiffuseLighting ? &prepare_diffuse_lighting
+                       : static_cast<PrepareLightingFn>(&prepare_lighting),
+      kDiffuseLighting ? &prepare_diffuse_object_lights : &prepare_object_lights};
 
   // render() with bands (kFeatures.bands), after its checks. Inlined: one stack frame.
   [[gnu::always_inline]] inline Status render_bands(FrameStats& stats, StripSink<PF>& sink,

@@ -25,6 +25,27 @@ namespace lr {
 
 namespace detail {
 
+// pick_up() of a kWideEdges triangle: out of line where the code is built for size (one copy for
+// a visit's three pick-ups), inlined elsewhere.
+#if defined(__OPTIMIZE_SIZE__)
+#define LR_PICK_UP_WIDE [[gnu::noinline]]
+#else
+#define LR_PICK_UP_WIDE [[gnu::always_inline]] inline
+#endif
+template <class Walker>
+LR_PICK_UP_WIDE Walker pick_up_wide(const ActiveTriangle& t, const StripRows& s, int side,
+                                    bool bottom, int32_t r, int32_t r_last) {
+  const BinnedTriangle& bt = s.triangles[t.index];
+  const ScreenVertex* v[3] = {&s.vertices[bt.v[0]], &s.vertices[bt.v[1]], &s.vertices[bt.v[2]]};
+  sort_by_y(v);
+  const int which = bottom                   ? ActiveTriangle::kBottom
+                    : side == t.short_side() ? ActiveTriangle::kTop
+                                             : ActiveTriangle::kLong;
+  const PickedEdge p = wide_edge(v, which, r, r_last);
+  return Walker(p.e, p.cb, 0);
+}
+#undef LR_PICK_UP_WIDE
+
 // The edge of side `side` (0 left, 1 right) of t's rows down to mid_row (bottom: the bottom
 // edge) picked up at row r, for rows up to r_last of this visit.
 template <class Walker>
@@ -34,14 +55,7 @@ template <class Walker>
     if (bottom) return Walker(t.bottom, t.col_base, r - t.mid_row - 1);
     return Walker(t.side_edge(side), t.col_base, r - t.first_row);
   }
-  const BinnedTriangle& bt = s.triangles[t.index];
-  const ScreenVertex* v[3] = {&s.vertices[bt.v[0]], &s.vertices[bt.v[1]], &s.vertices[bt.v[2]]};
-  sort_by_y(v);
-  const int which = bottom                   ? ActiveTriangle::kBottom
-                    : side == t.short_side() ? ActiveTriangle::kTop
-                                             : ActiveTriangle::kLong;
-  const PickedEdge p = wide_edge(v, which, r, r_last);
-  return Walker(p.e, p.cb, 0);
+  return pick_up_wide<Walker>(t, s, side, bottom, r, r_last);
 }
 
 }  // namespace detail

@@ -161,6 +161,11 @@ class StripLoop {
       kUsedRoutines<kSpans>.untextured[untextured_index(false, ColorPlanes::kAffine)],
       kUsedRoutines<kSpans>.untextured[untextured_index(true, ColorPlanes::kAffine)]};
 
+  // Whether the set admits untextured draws without colour planes (flat-shaded, one-coloured):
+  // only then has a draw or a triangle a pixel of its own to encode (the others' code is not
+  // linked: no such draw is admitted).
+  static constexpr bool kFlatPixels = detail::has(kSpans.colors, ColorPlanes::kNone);
+
   // The lanes row loop where visit() takes runs of lanes triangles in one call (else nullptr),
   // and the run's words (in the object: on the stack they would deepen its deepest path).
   static constexpr RowFn kRunRows = lanes_run_rows<PF, kSpans>();
@@ -505,7 +510,7 @@ template <class PF, int K, SpanSet kSpans>
     // Textured and Phong triangles get their slot's extra planes (the front end refuses such
     // draws when there are none). A renderer without those spans sets up no such planes.
     c.legacy = kTexture && (dr.texture != nullptr || dr.phong);
-    c.triangle_pixel = dr.colors == ColorPlanes::kNone && dr.triangle_colors;
+    c.triangle_pixel = kFlatPixels && dr.colors == ColorPlanes::kNone && dr.triangle_colors;
     c.rows =
         &kUntexturedRowTable<PF, kSpans>[untextured_row_index(dr.depth, UntexturedKind::kFlat)];
     c.lanes_rows = c.rows[UntexturedTriangle::made(UntexturedKind::kLanes, false).row_offset()];
@@ -515,7 +520,7 @@ template <class PF, int K, SpanSet kSpans>
     in.lanes = kRgb565Lanes<PF>;
     in.affine_ok = kAffineColors[dr.depth ? 1 : 0];
     in.affine = kRgb565Lanes<PF> ? kAffineBound565 : kAffineBound8;
-    if (dr.colors == ColorPlanes::kNone && !dr.triangle_colors)
+    if (kFlatPixels && dr.colors == ColorPlanes::kNone && !dr.triangle_colors)
       in.flat_pixel = pixel_bits<PF>(PF::encode(dr.color));
     in.lanes_first = lanes_first_of(in);
     c.lanes = kHandLanes && in.lanes_first && !c.legacy;
@@ -542,7 +547,7 @@ template <class PF, int K, SpanSet kSpans>
   } else {
     t.ext = nullptr;
     UntexturedInput& in = c.in;
-    if (c.triangle_pixel)
+    if (kFlatPixels && c.triangle_pixel)
       in.flat_pixel = pixel_bits<PF>(PF::encode(frame_.triangle_colors[node].primary));
     const UntexturedTriangle u = setup_untextured_triangle(v, window, in, t);
     if (!u.pixels()) {

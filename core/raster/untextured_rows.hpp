@@ -64,11 +64,24 @@ template <class PF, class Span>
 template <class PF>
 using UntexturedSpanFn = uint32_t (*)(const ActiveTriangle& t, typename PF::Storage* px,
                                       uint16_t* depth, int32_t col, int32_t row, int32_t count);
+// The perspective and affine colour spans of a depth test, one routine (persp: which), for the
+// shared walk: their loops differ only in the pixel's colour.
+template <class PF, bool kDepth>
+[[gnu::noinline]] uint32_t untextured_colors_call(const ActiveTriangle& t, typename PF::Storage* px,
+                                                  uint16_t* depth, int32_t col, int32_t row,
+                                                  int32_t count, bool persp) {
+  return untextured_span<PF, kDepth, UntexturedKind::kPerspective>(t, px, depth, col, row, count,
+                                                                   persp);
+}
 template <class PF, bool kDepth, UntexturedKind kKind>
 [[gnu::noinline]] uint32_t untextured_span_call(const ActiveTriangle& t, typename PF::Storage* px,
                                                 uint16_t* depth, int32_t col, int32_t row,
                                                 int32_t count) {
-  return untextured_span<PF, kDepth, kKind>(t, px, depth, col, row, count);
+  if constexpr (kKind == UntexturedKind::kPerspective || kKind == UntexturedKind::kAffine)
+    return untextured_colors_call<PF, kDepth>(t, px, depth, col, row, count,
+                                              kKind == UntexturedKind::kPerspective);
+  else
+    return untextured_span<PF, kDepth, kKind>(t, px, depth, col, row, count);
 }
 // The shared walk (kSharedRowWalk): one per pixel format.
 template <class PF>

@@ -21,8 +21,17 @@ constexpr int bit_length(uint32_t v) {
   return v == 0 ? 0 : 32 - clz32(v);
 }
 
-constexpr uint32_t magnitude(int32_t v) {
+LR_SIZE_NOINLINE constexpr uint32_t magnitude(int32_t v) {
   return v < 0 ? 0u - static_cast<uint32_t>(v) : static_cast<uint32_t>(v);
+}
+
+// The least and the largest of three: std::min({...}) is a loop over an array on the stack, out
+// of line at -Os (two such functions and their calls).
+constexpr uint32_t min3(uint32_t a, uint32_t b, uint32_t c) {
+  return std::min(a, std::min(b, c));
+}
+constexpr uint32_t max3(uint32_t a, uint32_t b, uint32_t c) {
+  return std::max(a, std::max(b, c));
 }
 
 // ~ 2^62 / d for d in [2^31, 2^32), in (2^30, 2^31): a 17-bit estimate (recip16: one division,
@@ -160,6 +169,14 @@ Plane fast_plane(const FastBasis& b, const int32_t a[3], int u) {
 }
 
 namespace {
+// The affine colour test's quick part (AffineBound::quick_shift) first, but where the code is
+// built for size: the colour test alone gives the same answer (the quick test implies it).
+#if defined(__OPTIMIZE_SIZE__)
+constexpr bool kQuickAffineTest = false;
+#else
+constexpr bool kQuickAffineTest = true;
+#endif
+
 // affine_within's colour test, for w_max - w_min above the quick test's bound.
 [[gnu::noinline]] bool colors_within(const ScreenVertex* const v[3], uint32_t wmin, uint32_t wmax,
                                      const AffineBound& bound) {
@@ -167,7 +184,7 @@ namespace {
   for (int c = 0; c < 3; ++c) {
     const uint32_t a = channel(v[0]->color, c), b = channel(v[1]->color, c),
                    e = channel(v[2]->color, c);
-    const uint32_t range = std::max({a, b, e}) - std::min({a, b, e});
+    const uint32_t range = max3(a, b, e) - min3(a, b, e);
     d = std::max(d, c == 1 ? range * bound.green_weight : range);
   }
   return umul64(wmax - wmin, d) <= umul64(bound.bound, wmin);
@@ -175,9 +192,9 @@ namespace {
 }  // namespace
 
 bool affine_within(const ScreenVertex* const v[3], const AffineBound& bound) {
-  const uint32_t wmin = std::min({v[0]->w, v[1]->w, v[2]->w});
-  const uint32_t wmax = std::max({v[0]->w, v[1]->w, v[2]->w});
-  if (wmax - wmin <= wmin >> bound.quick_shift) return true;  // whatever the colours
+  const uint32_t wmin = min3(v[0]->w, v[1]->w, v[2]->w);
+  const uint32_t wmax = max3(v[0]->w, v[1]->w, v[2]->w);
+  if (kQuickAffineTest && wmax - wmin <= wmin >> bound.quick_shift) return true;  // any colours
   return colors_within(v, wmin, wmax, bound);
 }
 
@@ -287,12 +304,14 @@ bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const U
 }
 
 namespace {
-// Where a division is a library call (Armv6-M; hosts too, so that their tests run it), small_rows
-// first tries one candidate column on the middle vertex's row before dividing: the same answer.
-// A candidate's offset from the column base stays below kMaxCandidate, so that its products
-// with an edge's dy (below 2^14) fit 32 bits.
-#if defined(__arm__) && defined(__ARM_FEATURE_IDIV)
-constexpr bool kRowsCandidate = true;
+// small_rows first tries one candidate column on the middle vertex's row before dividing: the
+// same answer, mostly without the divisions (a library call on Armv6-M; hosts too, so that their
+// tests run it). Not where the code is built for size and the core divides in one instruction:
+// there the candidate's test is more code than the two divisions. A candidate's offset from the
+// column base stays below kMaxCandidate, so that its products with an edge's dy (below 2^14) fit
+// 32 bits.
+#if defined(__arm__) && defined(__ARM_FEATURE_IDIV) && defined(__OPTIMIZE_SIZE__)
+constexpr bool kRowsCandidate = false;
 #else
 constexpr bool kRowsCandidate = true;
 #endif
@@ -416,8 +435,9 @@ namespace {
                         : in.colors == ColorPlanes::kAffine ? UntexturedKind::kAffine
                                                             : UntexturedKind::kPerspective;
   if (kind == UntexturedKind::kPerspective && in.affine_ok) {
-    const uint32_t wmin = std::min({va.w, vb.w, vc.w}), wmax = std::max({va.w, vb.w, vc.w});
-    if (wmax - wmin <= wmin >> in.affine.quick_shift || colors_within(v, wmin, wmax, in.affine))
+    const uint32_t wmin = min3(va.w, vb.w, vc.w), wmax = max3(va.w, vb.w, vc.w);
+    if ((kQuickAffineTest && wmax - wmin <= wmin >> in.affine.quick_shift) ||
+        colors_within(v, wmin, wmax, in.affine))
       kind = UntexturedKind::kAffine;
   }
   if (kind == UntexturedKind::kAffine && in.lanes) kind = UntexturedKind::kLanes;
@@ -1226,7 +1246,7 @@ UntexturedSetup setup_untextured(const ScreenVertex* const v[3], const Untexture
       }
       break;
     case UntexturedKind::kPerspective: {
-      const uint32_t wmin = std::min({v[0]->w, v[1]->w, v[2]->w});
+      const uint32_t wmin = min3(v[0]->w, v[1]->w, v[2]->w);
       uint32_t q[3];
       for (int i = 0; i < 3; ++i) q[i] = perspective_q(wmin, v[i]->w);
       const int32_t qs[3] = {static_cast<int32_t>(q[0]), static_cast<int32_t>(q[1]),

@@ -17,10 +17,16 @@ SpanState span_state_of(const DrawState& state, const DrawKind& kind);
 // Whether `set` admits the draw's span state and the formats and wraps of its textures.
 bool draw_admitted(const SpanSet& set, const DrawState& state, const DrawKind& kind);
 
-// The AdmitFn of a renderer restricted to kSet.
+// The AdmitFn of a renderer restricted to kSet. A set of untextured spans only admits what
+// draw_admitted() does without the other families' states and samplers: a draw neither Phong
+// nor textured whose depth test and colour planes it has (no code of theirs linked).
 template <SpanSet kSet>
 bool admits(const DrawState& state, const DrawKind& kind) {
-  return draw_admitted(kSet, state, kind);
+  if constexpr (kSet.families == detail::bit(SpanFamily::kUntextured))
+    return !kind.phong && state.texture == nullptr && detail::has(kSet.depth, state.depth_test) &&
+           detail::has(kSet.colors, color_planes_of(state, kind.color_planes));
+  else
+    return draw_admitted(kSet, state, kind);
 }
 
 }  // namespace lr

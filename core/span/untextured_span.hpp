@@ -63,10 +63,14 @@ inline bool half_depth_pass(uint32_t z, uint16_t& stored) {
 }
 }  // namespace detail
 
+// persp: for kPerspective, whether the triangle is one (else kAffine's span: one routine for
+// both where the code is built for size, untextured_rows.hpp); the kind's own value elsewhere.
 template <class PF, bool kDepth, UntexturedKind kKind>
 [[gnu::always_inline]] inline uint32_t untextured_span(const ActiveTriangle& t,
                                                        typename PF::Storage* px, uint16_t* depth,
-                                                       int32_t col, int32_t row, int32_t count) {
+                                                       int32_t col, int32_t row, int32_t count,
+                                                       bool persp = kKind ==
+                                                                    UntexturedKind::kPerspective) {
   uint32_t z = 0, dz = 0;
   if constexpr (kDepth) {
     z = t.z.at(col, row);
@@ -83,7 +87,7 @@ template <class PF, bool kDepth, UntexturedKind kKind>
         dc[k] = t.c[k].gx;
       }
     }
-    if constexpr (kKind == UntexturedKind::kPerspective) {
+    if (kKind == UntexturedKind::kPerspective && persp) {
       q = t.q.at(col, row);
       dq = t.q.gx;
     }
@@ -98,7 +102,7 @@ template <class PF, bool kDepth, UntexturedKind kKind>
       if (pass) {
         if constexpr (kKind == UntexturedKind::kFlat) {
           px[i] = flat;
-        } else if constexpr (kKind == UntexturedKind::kPerspective) {
+        } else if (kKind == UntexturedKind::kPerspective && persp) {
           const detail::Reciprocal rc(q);
           px[i] = pack15<PF>(rc.apply(c[0]), rc.apply(c[1]), rc.apply(c[2]));
         } else {

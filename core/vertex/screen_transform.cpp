@@ -68,13 +68,12 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
     // |value| 2^32 <= sum_j |K m_j| b + |K t| 2^16 < 2^L (the row times K, in Q32.32); and the
     // same without K, whose bound the exact path's range (|clip| < 2^19) must hold.
     Wide with_k, plain;
-    for (int j = 0; j < 3; ++j) {
+    for (int j = 0; j < 4; ++j) {  // the three factors of the position, then the translation
       const int64_t m = mvp.m[i][j].raw;
-      with_k.add_mul(abs64(k[i] * m), b);
-      plain.add_mul(abs64(m), b);
+      const uint32_t scale = j < 3 ? b : 1u << 16;
+      with_k.add_mul(abs64(k[i] * m), scale);
+      plain.add_mul(abs64(m), scale);
     }
-    with_k.add_mul(abs64(k[i] * mvp.m[i][3].raw), 1u << 16);
-    plain.add_mul(abs64(mvp.m[i][3].raw), 1u << 16);
     if (plain.bit_length() > 50) return;  // the exact path for every vertex (enabled_ false)
     // V 2^32 < 2^L, E = 61 - L: every row sum |V| 2^E below 2^29.
     exponent[i] = 61 - with_k.bit_length();
@@ -117,10 +116,10 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
   w.f = 29 + exy - ew - n_max;
   const int e[4] = {exy, exy, ez, ew};
   RowWords* const rows[4] = {&w.x, &w.y, &w.z, &w.w};
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 3; ++j) rows[i]->a[j] = scaled(k[i] * mvp.m[i][j].raw, e[i] - ps);
-    rows[i]->t = scaled(k[i] * mvp.m[i][3].raw, e[i] - 16);
-  }
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)  // the three factors, then the translation
+      (j < 3 ? rows[i]->a[j] : rows[i]->t) =
+          scaled(k[i] * mvp.m[i][j].raw, e[i] - (j < 3 ? ps : 16));
   if constexpr (kSplitWideProducts)
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 3; ++j) split_[i][j] = halves(rows[i]->a[j]);

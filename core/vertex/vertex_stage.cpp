@@ -204,11 +204,17 @@ bool VertexStage::project(const ClipCoord& c, ScreenVertex& v) const {
   // away from zero (n is negative left of and below the viewport). Every quotient is below
   // 2^32 (docs/numerics.md#projection-and-snapping), so n + w / 2 < 2^32 w and its shifted
   // value fits the division.
+  const auto half = static_cast<uint64_t>(w / 2);
+#if defined(__OPTIMIZE_SIZE__)
+  // Built for size: divide_64by32 for each (its normalisation and reciprocal are these, per
+  // quotient: the same integers in one copy of the code).
+  auto quotient = [&](uint64_t n) { return divide_64by32(n + half, static_cast<uint32_t>(w)).q; };
+#else
   const int sh = clz32(static_cast<uint32_t>(w));
   const uint32_t d = static_cast<uint32_t>(w) << sh;
   const uint32_t inv = recip32(d);
-  const auto half = static_cast<uint64_t>(w / 2);
   auto quotient = [&](uint64_t n) { return divide_2by1((n + half) << sh, d, inv).q; };
+#endif
   auto rounded = [&](int64_t n) {
     return n >= 0 ? static_cast<int64_t>(quotient(static_cast<uint64_t>(n)))
                   : -static_cast<int64_t>(quotient(static_cast<uint64_t>(-n)));

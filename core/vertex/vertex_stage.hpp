@@ -145,10 +145,12 @@ class VertexStage {
                                                      SurfaceVertex* surfaces, TexVertex* tex) const;
 
   // The directional lights of pl in model space into out when the model matrix is rigid (false:
-  // it is not, and lighting stays in world space).
-  bool object_lights(const PreparedLighting& pl, ObjectLights& out) const {
+  // it is not, and lighting stays in world space), by `prepare` (prepare_object_lights, or
+  // prepare_diffuse_object_lights for lighting without specular products).
+  bool object_lights(const PreparedLighting& pl, ObjectLights& out,
+                     PrepareObjectLightsFn prepare = &prepare_object_lights) const {
     if (!rigid_) return false;
-    prepare_object_lights(pl, rot_, out);
+    prepare(pl, rot_, out);
     return true;
   }
 

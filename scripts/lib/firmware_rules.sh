@@ -98,8 +98,9 @@ lr_fw_guard() {
 # the span routines of its families; textured and Phong spans call texel fetchers; the front
 # end calls the renderer's admission test and the routines of its FrontEndRoutines (Phong
 # records, flat shading's face lighting, triangles' own colours, point lighting, vertex
-# attributes, the texture test, the clipper with or without them: those of the renderer's span
-# set; bands (with the draw's record for them), the vertex cache, two-sided lighting's clipped
+# attributes, the checks, stores and record fields of textured and Phong draws' maps, a
+# one-coloured draw's colour, the clipper with or without them: those of the renderer's span
+# set; the lighting's preparation (whole, or diffuse only); bands (with the draw's record for them), the vertex cache, two-sided lighting's clipped
 # back-face test, strip signatures and the per-vertex lighting with or without specular and the
 # world-space path: those of its RendererFeatures), and draw_screen's binning when it
 # replays a band; the panel path (the Cortex-M7 demo) calls its bus; Reset_Handler calls the
@@ -116,7 +117,10 @@ lr_fw_stack_rules=(
   --indirect-from 'lr::FrontEndParts::flat_colors\(|lr::MeshDraw::flat_colors\(' 'lr::VertexStage::light_face(<[^>]*>)?\('
   --indirect-from 'lr::FrontEnd::(general_triangles<[^>]*>|light_corners|light_other|light_list|triangle_loop|run_mesh)\(|lr::MeshDraw::light_vertex\(' 'lr::VertexStage::light<'
   --indirect-from 'lr::FrontEnd::general_triangles<[^>]*>\(' 'lr::FrontEndParts::flat_colors\('
-  --indirect-from 'plan_draw\(|lr::FrontEnd::(draw|replay)\(' '^lr::validate\('
+  --indirect-from 'plan_draw\(|lr::FrontEnd::(draw|replay)\(' 'lr::FrontEndParts::check_maps\('
+  --indirect-from 'lr::FrontEnd::(draw|draw_screen)\(' 'lr::FrontEndParts::(maps_store_missing|one_color)\(|lr::DrawRecords::texture_fields\('
+  --indirect-from 'lr::FrontEnd::(draw|replay)\(' 'lr::prepare(_diffuse)?_lighting\('
+  --indirect-from 'lr::FrontEnd::run_mesh\(|lr::VertexStage::object_lights\(' 'lr::prepare(_diffuse)?_object_lights\('
   --indirect-from 'lr::FrontEnd::draw\(' 'lr::FrontEndParts::record_call\('
   --indirect-from 'lr::VertexStage::(light|light_face)(<[^>]*>)?\(' 'lr::light_point_at\('
   --indirect-from 'lr::VertexStage::transform_range\(' 'lr::VertexStage::attributes\('

@@ -490,6 +490,33 @@ TEST(ApiErrors, DrawOutsideTheSpanSet) {
   EXPECT_EQ(every.draw_tri(bad), Status::kInvalidArgument);
 }
 
+// Nor any other check of a textured or Phong draw's maps (FrontEndRoutines::check_maps): a
+// mipmapped sampler on a texture without levels, texture coordinates that are not one per vertex
+// are refused as outside the set by a renderer without textured and Phong spans, and found
+// invalid by one with them.
+TEST(ApiErrors, MapChecksOfADrawOutsideTheSpanSet) {
+  DrawState mip = textured();
+  mip.sampler.mip = MipMode::kNearest;  // green_texture() has one level
+  const Tri tri;
+  const std::array<TexCoord, 2> two_uvs{};
+  Mesh short_uvs = tri.mesh();
+  short_uvs.uvs = two_uvs;
+  Rig<kUntexturedSpans> rig;
+  ASSERT_TRUE(rig.ready());
+  ASSERT_EQ(rig.draw_square(square(4, 4, 8, kRed), plain()), Status::kOk);
+  EXPECT_EQ(rig.draw_tri(mip), Status::kNotLinked);
+  EXPECT_EQ(rig.r->draw(short_uvs, Mat4::identity(), Material{}, textured()), Status::kNotLinked);
+  EXPECT_EQ(rig.r->stats().draws_refused_not_linked, 2u);
+  EXPECT_EQ(rig.r->stats().draws_refused_invalid, 0u);
+  expect_refused_then_rendered(rig, Status::kNotLinked);
+  Rig<kAllSpans> every;
+  ASSERT_TRUE(every.ready());
+  EXPECT_EQ(every.draw_tri(mip), Status::kInvalidArgument);
+  EXPECT_EQ(every.r->draw(short_uvs, Mat4::identity(), Material{}, textured()),
+            Status::kInvalidArgument);
+  EXPECT_EQ(every.r->stats().draws_refused_invalid, 2u);
+}
+
 // A renderer links flat shading's face lighting only when its set admits flat-shaded draws,
 // and the lighting that reads the position (point lights, the local viewer) of Gouraud, flat
 // and textured draws only when the set admits the position (SpanSet::position): the draws that

@@ -544,13 +544,17 @@ class Sequence {
     const Stores& k = *stores_;
     Status want = Status::kOk;
     bool maybe_capacity = false;
-    if ((!c.normals.empty() && c.normals.size() != n) ||
-        (!c.colors.empty() && c.colors.size() != n) ||
-        (s.lighting && s.shading != Shading::kFlat && c.normals.empty()) ||
+    // A textured or Phong draw's maps are checked only by a renderer with textured or Phong
+    // spans (FrontEndRoutines::maps); the others refuse such a draw as not linked.
+    const bool maps_invalid =
         (textured && s.sampler.mip != MipMode::kNone && s.texture->level_count < 2) ||
         (textured && !c.uvs.empty() && c.uvs.size() != n) ||
         (table && (!m_.lights.normal_only() || s.table.size < kMinLightingTable ||
-                   s.table.size > kMaxLightingTable))) {
+                   s.table.size > kMaxLightingTable));
+    if ((!c.normals.empty() && c.normals.size() != n) ||
+        (!c.colors.empty() && c.colors.size() != n) ||
+        (s.lighting && s.shading != Shading::kFlat && c.normals.empty()) ||
+        ((kTexturedLinked || kPhongLinked) && maps_invalid)) {
       want = Status::kInvalidArgument;
     } else if ((textured && !kTexturedLinked) || (phong && !kPhongLinked)) {
       want = Status::kNotLinked;

@@ -165,6 +165,10 @@ class RigBase {
  public:
   virtual ~RigBase() = default;
   FrontEnd& r() { return *builder_; }
+  // Whether its front end checks textured and Phong draws' maps (FrontEndRoutines::maps:
+  // a renderer with textured or Phong spans; the others refuse those draws, kNotLinked, before
+  // any check of their maps).
+  virtual bool checks_maps() const { return true; }
   // want: what render() returns (a frame with a refused draw: the refusal's status).
   host::ImageRgb8 render(Status want = Status::kOk) {
     EXPECT_EQ(render_frame(), want);
@@ -201,6 +205,9 @@ class Rig final : public RigBase {
   Rig() : renderer_(std::make_unique<Renderer<PF, kK, kSet>>()) {
     builder_ = &renderer_->front_end();
     EXPECT_EQ(renderer_->configure(storage(), kW, kH), Status::kOk);
+  }
+  bool checks_maps() const override {
+    return kSet.has(SpanFamily::kTextured) || kSet.has(SpanFamily::kPhong);
   }
 
  private:
@@ -337,6 +344,43 @@ bool all_null(const std::array<T, N>& a) {
   for (T p : a)
     if (p != nullptr) return false;
   return true;
+}
+
+// admits<kSet> of a set of untextured spans only (its short form, without span_state_of)
+// answers as draw_admitted(kSet, ...) for every depth test, shading, perspective, lighting,
+// texture and draw kind.
+template <SpanSet kSet>
+void expect_admits_as_draw_admitted() {
+  static_assert(kSet.families == detail::bit(SpanFamily::kUntextured));
+  static const Texture texture{};  // (only its presence is read: the set has no textured spans)
+  int admitted = 0;
+  for (const bool depth : {false, true})
+    for (const Shading shading : {Shading::kFlat, Shading::kGouraud, Shading::kPhong})
+      for (const Perspective persp : {Perspective::kExact, Perspective::kAffine})
+        for (const bool textured : {false, true})
+          for (const bool phong : {false, true})
+            for (const bool planes : {false, true}) {
+              DrawState st;
+              st.depth_test = depth;
+              st.shading = shading;
+              st.perspective = persp;
+              st.texture = textured ? &texture : nullptr;
+              const DrawKind kind{phong, planes, false};
+              const bool want = draw_admitted(kSet, st, kind);
+              EXPECT_EQ(admits<kSet>(st, kind), want)
+                  << "depth " << depth << " shading " << static_cast<int>(shading)
+                  << " perspective " << static_cast<int>(persp) << " textured " << textured
+                  << " phong " << phong << " planes " << planes;
+              admitted += want ? 1 : 0;
+            }
+  EXPECT_GT(admitted, 0);
+}
+
+TEST(SpanDispatch, AnUntexturedSetAdmitsAsDrawAdmitted) {
+  expect_admits_as_draw_admitted<kUntexturedSpans>();
+  expect_admits_as_draw_admitted<kUntexturedSpans.only_depth(true)>();
+  expect_admits_as_draw_admitted<kUntexturedSpans.only(ColorPlanes::kPerspective)>();
+  expect_admits_as_draw_admitted<kUntexturedSpans.only(ColorPlanes::kNone).only_depth(false)>();
 }
 
 TEST(SpanDispatch, TheEnumerationCoversEveryFamilyOnceAndTheFullSetAdmitsIt) {
@@ -545,7 +589,8 @@ void check_state_with(size_t I, RigBase& small) {
 
   // Other states are refused, with nothing added and only the draws counted: kNotLinked where
   // the full set takes the draw (a state whose arguments the quad does not meet, a normal map
-  // without tangents, is kInvalidArgument in both).
+  // without tangents, is kInvalidArgument in both, but kNotLinked where the small one checks no
+  // maps: a renderer without textured and Phong spans).
   ASSERT_EQ(draw_scene(small, u), Status::kOk);
   ASSERT_EQ(draw_scene(full, u), Status::kOk);
   const FrameStats before = small.r().stats();
@@ -557,7 +602,9 @@ void check_state_with(size_t I, RigBase& small) {
     const Status in_full =
         full.r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), v.material, v.state);
     ASSERT_TRUE(in_full == Status::kOk || in_full == Status::kInvalidArgument) << "state " << j;
-    const Status refusal = in_full == Status::kOk ? Status::kNotLinked : in_full;
+    const bool maps = kSpanStates[j].family != SpanFamily::kUntextured;  // textured or Phong
+    const Status refusal =
+        in_full == Status::kOk || (maps && !small.checks_maps()) ? Status::kNotLinked : in_full;
     EXPECT_EQ(small.r().draw(near_quad().mesh(), place(0, 0, -3, 0, 0), v.material, v.state),
               refusal)
         << "state " << I << " admitted state " << j;

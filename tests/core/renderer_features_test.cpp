@@ -455,5 +455,23 @@ TEST(RendererFeatures, AFrontEndWithoutOwnColoursRefusesFlatAndOneColouredDraws)
   EXPECT_GT(fe->stats().triangles_binned, 0u);
 }
 
+// Nor one given triangles' own colours but no one-coloured draw's colour (FrontEndRoutines::
+// one_color).
+TEST(RendererFeatures, AFrontEndWithoutOneColourRefusesOneColouredDraws) {
+  BasicFrameStorage<std::vector> store(caps());
+  FrontEndRoutines routines;  // every routine but that one
+  routines.one_color = nullptr;
+  const auto fe = std::make_unique<FrontEnd>();
+  ASSERT_EQ(fe->configure(store.storage().front_end(), kW, kH, kK, &routines), Status::kOk);
+  ASSERT_EQ(fe->begin_frame(camera(), lights(), kBackground), Status::kOk);
+  const Grid g(2);
+  DrawState one_colour = lit_gouraud();
+  one_colour.lighting = false;  // unlit, and the grid has no vertex colours
+  EXPECT_EQ(fe->draw(g.mesh(), Mat4::identity(), material(), one_colour), Status::kNotLinked);
+  EXPECT_EQ(fe->draw(g.mesh(), Mat4::identity(), material(), lit_gouraud()), Status::kOk);
+  EXPECT_EQ(fe->stats().draws_refused_not_linked, 1u);
+  EXPECT_GT(fe->stats().triangles_binned, 0u);
+}
+
 }  // namespace
 }  // namespace lr
