@@ -1175,6 +1175,26 @@ UntexturedTriangle LanesSetup::rest(const uint16_t index[3], ActiveTriangle& t) 
 
 UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
                                              const UntexturedInput& in, ActiveTriangle& t) {
+#if defined(__OPTIMIZE_SIZE__)
+  // Where code size comes first, every triangle's rows by setup_rows, whose records are exact as
+  // small_rows' are (the same rows, columns, flags and slivers; only the words of an edge no row
+  // reads may differ) and which the triangles beyond the small path need anyway: one routine
+  // for the rows instead of two (about 0.5 KB), at some instructions per triangle.
+  const int32_t first = std::max(first_row_below(v[0]->y), w.first_min);
+  const int32_t last = std::min(last_row_at_or_above(v[2]->y), w.last_max);
+  if (!setup_rows(v, first, last, w.width, t)) return UntexturedTriangle::sliver();
+  const int32_t e1x = v[1]->x - v[0]->x, e1y = v[1]->y - v[0]->y;
+  const int32_t e2x = v[2]->x - v[0]->x, e2y = v[2]->y - v[0]->y;
+  SmallRows rows;
+  rows.m = magnitude(e1x) | magnitude(e2x) | static_cast<uint32_t>(e2y);  // e2y >= e1y >= 0
+  if (rows.m >= (1u << kSmallEdgeBits)) {
+    const UntexturedSetup u = setup_untextured(v, in, t);
+    return UntexturedTriangle::made(u.kind, u.wide);
+  }
+  rows.d = e1x * e2y - e2x * e1y;  // below 2^29 in magnitude: edges below 2^14
+  rows.result = SmallRows::kPixels;
+  return finish_triangle(v, w, in, t, rows, false, false);
+#else
   SmallRows rows;
   // Lanes planes by hand made with the rows (tried: the rows had pixels on their first rows).
   bool tried = false, made = false;
@@ -1185,6 +1205,7 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
     rows = kSmallRowsByHand ? small_rows_by_hand(v, w, t) : small_rows_c(v, w, t);
   }
   return finish_triangle(v, w, in, t, rows, tried, made);
+#endif
 }
 
 UntexturedSetup setup_untextured(const ScreenVertex* const v[3], const UntexturedInput& in,

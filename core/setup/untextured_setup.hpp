@@ -108,7 +108,8 @@ static_assert(kUntexturedKinds <= 4);
 
 // The whole setup of an untextured triangle (vertices v sorted by y, non-zero area): rows,
 // edges (setup_rows) and planes. Triangles within 64 pixels take one path in 32-bit arithmetic
-// for all of it; the others setup_rows and setup_untextured.
+// for all of it; the others setup_rows and setup_untextured. Where code size comes first (-Os),
+// setup_rows makes every triangle's rows (the same records and pixels: exact either way).
 UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], const RowWindow& w,
                                              const UntexturedInput& in, ActiveTriangle& t);
 

@@ -114,6 +114,72 @@ TEST(SmallRows, PixelsOnTheMiddleRowAsTheRecordsColumnsSay) {
   EXPECT_GT(all_nudged, 10000);
 }
 
+// What the -Os build relies on (setup_untextured_triangle makes every triangle's rows with
+// setup_rows there): for the small path's triangles setup_rows makes the same rows, flags, column
+// base and words of every edge a row reads as small_rows, and finds pixels exactly when the
+// small path does (small_rows' kPixels, or kLaterRows and a later row with a pixel centre, which
+// setup_untextured_triangle tells by making planes).
+TEST(SmallRows, SetupRowsMakesTheSameRecordAndSlivers) {
+  lanes::Random rng;
+  rng.s = 4711u;
+  int compared = 0, slivers = 0, later = 0, flat = 0;
+  for (int c = 0; c < 200000; ++c) {
+    ScreenVertex v[3];
+    lanes::random_triangle(rng, v);
+    if (rng.in(0, 2) == 0) {  // centres on edges, flat tops and bottoms
+      for (ScreenVertex& x : v) {
+        x.x &= ~(kHalfPixel - 1);
+        x.y &= ~(kHalfPixel - 1);
+      }
+    }
+    if (signed_area2(v[0], v[1], v[2]) == 0) continue;
+    const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
+    sort_by_y(s);
+    const RowWindow window{rng.in(-4, lanes::kHeight), lanes::kHeight - 1, lanes::kWidth};
+    ActiveTriangle a, b;
+    const SmallRows r = small_rows(s, window, a);
+    if (r.result == SmallRows::kSlow) continue;
+    UntexturedInput in;
+    in.colors = ColorPlanes::kAffine;
+    in.lanes = true;
+    ActiveTriangle u;
+    const bool small_pixels = setup_untextured_triangle(s, window, in, u).pixels();
+    const int32_t first = std::max(first_row_below(s[0]->y), window.first_min);
+    const int32_t last = std::min(last_row_at_or_above(s[2]->y), window.last_max);
+    const bool rows_pixels = setup_rows(s, first, last, window.width, b);
+    ASSERT_EQ(rows_pixels, small_pixels) << c;
+    later += r.result == SmallRows::kLaterRows;
+    if (!rows_pixels) {
+      ++slivers;
+      continue;
+    }
+    ASSERT_EQ(a.first_row, b.first_row) << c;
+    ASSERT_EQ(a.mid_row, b.mid_row) << c;
+    ASSERT_EQ(a.last_row, b.last_row) << c;
+    ASSERT_EQ(a.col_base, b.col_base) << c;
+    ASSERT_EQ(a.flags, b.flags) << c;
+    const int ss = a.short_side();
+    const auto same_edge = [](const RowEdge& x, const RowEdge& y) {
+      return x.q == y.q && x.dx == y.dx && x.dy == y.dy;
+    };
+    ASSERT_TRUE(same_edge(a.side_edge(1 - ss), b.side_edge(1 - ss))) << c;  // the long edge
+    if (a.mid_row >= a.first_row) {
+      ASSERT_TRUE(same_edge(a.side_edge(ss), b.side_edge(ss))) << c;
+    }
+    if (a.last_row > a.mid_row) {
+      ASSERT_TRUE(same_edge(a.bottom, b.bottom)) << c;
+    }
+    flat += s[0]->y == s[1]->y || s[1]->y == s[2]->y;
+    ++compared;
+  }
+  std::printf("compared %d, slivers %d, later rows only %d, flat %d\n", compared, slivers, later,
+              flat);
+  EXPECT_GT(compared, 40000);
+  EXPECT_GT(slivers, 1000);
+  EXPECT_GT(later, 1000);
+  EXPECT_GT(flat, 500);
+}
+
 // LanesSetup (the strip loop's call for lanes draws: by hand on Armv7E-M, lr_span_check compares
 // it there) against sort_by_y and setup_untextured_triangle.
 TEST(LanesSetup, FromIndicesAsSortAndSetup) {
