@@ -66,9 +66,11 @@ inline constexpr bool kLaneSpanAsm = true;  // Armv6-M
 #else
 inline constexpr bool kLaneSpanAsm = false;
 #endif
-// Armv7-M: the renderers there draw lanes triangles with their whole visit by hand
-// (lane_rows.hpp) but where code size comes first (-Os: the shared row walk calls this span).
-#if defined(__thumb2__)
+// Armv7-M where code size comes first (-Os): the shared row walk calls the span out of line
+// there, and lanes triangles take it instead of their whole visit by hand (lane_rows.hpp).
+// Elsewhere the C loop (inlined into a row walk, its twelve registers are more than GCC 12 finds
+// on every core).
+#if defined(__thumb2__) && defined(__OPTIMIZE_SIZE__)
 inline constexpr bool kLaneSpanAsmV7 = true;
 #else
 inline constexpr bool kLaneSpanAsmV7 = false;
@@ -144,10 +146,10 @@ uint32_t lane_span_v6m(uint16_t* px, uint16_t* depth, int32_t n, uint32_t z, uin
                        uint32_t br, uint32_t dbr, uint32_t g, uint32_t dg);
 #endif
 
-// The same loop on Armv7-M (n > 0): the index from -n up to 0 scales itself in the addresses,
-// the lanes pack with the modified immediates. Per written pixel 15 instructions (16 with the
-// byte swap), per rejected one 8.
-#if defined(__thumb2__)
+// The same loop on Armv7-M at -Os (n > 0): the index from -n up to 0 scales itself in the
+// addresses, the lanes pack with the modified immediates. Per written pixel 15 instructions (16
+// with the byte swap), per rejected one 8.
+#if defined(__thumb2__) && defined(__OPTIMIZE_SIZE__)
 template <bool kSwap>
 [[gnu::always_inline]] inline uint32_t lane_span_v7m(uint16_t* px, uint16_t* depth, int32_t n,
                                                      uint32_t z, uint32_t dz, uint32_t br,
@@ -199,7 +201,7 @@ uint32_t lane_span_v7m(uint16_t* px, uint16_t* depth, int32_t n, uint32_t z, uin
 #endif
 }  // namespace detail
 
-// The loop of the renderer's span: by hand on Armv6-M and Armv7-M with the depth test for the
+// The loop of the renderer's span: by hand on Armv6-M (Armv7-M at -Os) with the depth test for the
 // RGB565 formats (whose from_value is the value or its byte swap), lane_span_portable elsewhere.
 template <class PF, bool kDepth>
 [[gnu::always_inline]] inline uint32_t lane_span(typename PF::Storage* px, uint16_t* depth,

@@ -1,10 +1,10 @@
 // lr_span_check: the lanes row loop by hand (core/span/lane_rows.hpp, the Armv7E-M asm) against
 // its C twin, on random triangles drawn strip by strip into random strip buffers
 // (firmware/span_check/lane_cases.hpp): the same pixels, depths and counts on every visit; on
-// Armv6-M and Armv7-M the span loop by hand (core/span/lane_span.hpp) against its C twin on
-// random spans. Also the C twin against the renderer's generic row loop (a span routine per row,
-// by hand on Armv6-M and Armv7-M), which every core runs. Reports on the console (semihosting);
-// exit status 0 when nothing differs.
+// Armv6-M (and Armv7-M at -Os) the span loop by hand (core/span/lane_span.hpp) against its C twin
+// on random spans. Also the C twin against the renderer's generic row loop (a span routine per row,
+// by hand on Armv6-M and on Armv7-M at -Os), which every core runs. Reports on the console
+// (semihosting); exit status 0 when nothing differs.
 #include <cstdint>
 
 #include "firmware/common/semihost.hpp"
@@ -105,7 +105,7 @@ int main() {
   } else {
     sh::write("lr_span_check: no hand-allocated visit on this core\n");
   }
-  // The span loop of the generic row loop: by hand on Armv6-M and Armv7-M (lane_span.hpp).
+  // The span loop of the generic row loop: by hand on Armv6-M, and Armv7-M at -Os (lane_span.hpp).
   const auto span = [](uint16_t* px, uint16_t* depth, int32_t n, uint32_t z, uint32_t dz,
                        uint32_t br, uint32_t dbr, uint32_t g, uint32_t dg) {
     return lr::lane_span<PF, true>(px, depth, n, z, dz, br, dbr, g, dg);
