@@ -82,8 +82,8 @@ step "bare metal: footprint (flash, RAM, worst-case and measured stack) for M0+ 
 # -O3 images' (footprint.sh compares the checksums across every tree it is given).
 cmake --preset cortex-m4f-size -DLR_HOST_TOOLS_DIR="$LR_HOST_TOOLS_DIR" >/dev/null
 bash scripts/footprint.sh build/cortex-m0plus build/cortex-m4f build/cortex-m4f-size
-# The hand-written lanes row loop and bin lane have code of their own at -Os (one shared copy of
-# their rarer parts): their checks against the C twins, as that build compiles them.
+# What the -Os build compiles differently from -O3 (lanes triangles through the shared row walk
+# with the span loop by hand, the setup's rows): their checks against the C twins there.
 cmake --build build/cortex-m4f-size -j"$jobs" --target lr_span_check lr_bin_check
 for image in lr_span_check lr_bin_check; do
   out="$(timeout 900 qemu-system-arm -M mps2-an386 -nographic -monitor none -semihosting \

@@ -231,31 +231,11 @@ namespace detail {
      "str    r5, [r0, #16]\n\t"        \
      "str    r6, [r0, #28]\n\t"        \
      "str    r1, [%[a], #40]\n\t" BACK
-// Where code size comes first (-Os), one copy of it for both row loops (one instruction more
-// per switch: the loop chosen again by kInside).
-#if defined(__OPTIMIZE_SIZE__)
-#define LR_LANE_SWITCH_INSIDE \
-  LR_LANE_SWITCH("17", "f", "tst    r2, #4\n\tbne    11b\n\tb      1f\n\t")
-#define LR_LANE_SWITCH_CLAMPED ""
-#define LR_LANE_TO_CLAMPED "17b"
-// And one copy of the flush: r0 says whether the run goes on (label 10) after it.
-#define LR_LANE_FLUSH_RUN \
-  "movs   r0, #1\n\t"     \
-  "b      20f\n\t"
-#define LR_LANE_FLUSH_END \
-  "movs   r0, #0\n\t"     \
-  "20:\n\t" LR_LANE_FLUSH \
-  "cbz    r0, 21f\n\t"    \
-  "mov    r12, #0\n\t"    \
-  "b      10b\n\t"        \
-  "21:\n\t"
-#else
 #define LR_LANE_SWITCH_INSIDE LR_LANE_SWITCH("17", "f", "b      11b\n\t")
 #define LR_LANE_SWITCH_CLAMPED LR_LANE_SWITCH("7", "b", "b      1b\n\t")
 #define LR_LANE_TO_CLAMPED "7f"
 #define LR_LANE_FLUSH_RUN LR_LANE_FLUSH "mov    r12, #0\n\t"
 #define LR_LANE_FLUSH_END LR_LANE_FLUSH
-#endif
 // The columns relative to col_base, clamped to [0, width).
 #define LR_LANE_CLAMP              \
   "add    r0, r10\n\t"             \
