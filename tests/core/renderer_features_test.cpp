@@ -434,6 +434,13 @@ TEST(RendererFeatures, WithoutWorldLightingADrawThatNeedsItIsNotLinked) {
   EXPECT_EQ(lean.frame(longer), Status::kNotLinked);
 }
 
+// fe configured on store with routines, its frame begun (the front-end tests below).
+void begin_front_end(FrontEnd& fe, BasicFrameStorage<std::vector>& store,
+                     const FrontEndRoutines& routines) {
+  ASSERT_EQ(fe.configure(store.storage().front_end(), kW, kH, kK, &routines), Status::kOk);
+  ASSERT_EQ(fe.begin_frame(camera(), lights(), kBackground), Status::kOk);
+}
+
 // A front end given no routine for triangles' own colours (FrontEndRoutines::flat: a renderer
 // whose span set admits no flat-shaded or one-coloured draw) refuses those draws.
 TEST(RendererFeatures, AFrontEndWithoutOwnColoursRefusesFlatAndOneColouredDraws) {
@@ -441,8 +448,7 @@ TEST(RendererFeatures, AFrontEndWithoutOwnColoursRefusesFlatAndOneColouredDraws)
   FrontEndRoutines routines;  // every routine but that one
   routines.flat = nullptr;
   const auto fe = std::make_unique<FrontEnd>();
-  ASSERT_EQ(fe->configure(store.storage().front_end(), kW, kH, kK, &routines), Status::kOk);
-  ASSERT_EQ(fe->begin_frame(camera(), lights(), kBackground), Status::kOk);
+  ASSERT_NO_FATAL_FAILURE(begin_front_end(*fe, store, routines));
   const Grid g(2);
   DrawState flat = lit_gouraud();
   flat.shading = Shading::kFlat;
@@ -462,8 +468,7 @@ TEST(RendererFeatures, AFrontEndWithoutOneColourRefusesOneColouredDraws) {
   FrontEndRoutines routines;  // every routine but that one
   routines.one_color = nullptr;
   const auto fe = std::make_unique<FrontEnd>();
-  ASSERT_EQ(fe->configure(store.storage().front_end(), kW, kH, kK, &routines), Status::kOk);
-  ASSERT_EQ(fe->begin_frame(camera(), lights(), kBackground), Status::kOk);
+  ASSERT_NO_FATAL_FAILURE(begin_front_end(*fe, store, routines));
   const Grid g(2);
   DrawState one_colour = lit_gouraud();
   one_colour.lighting = false;  // unlit, and the grid has no vertex colours
