@@ -305,20 +305,13 @@ bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const U
 
 namespace {
 // small_rows first tries one candidate column on the middle vertex's row before dividing: the
-// same answer, mostly without the divisions (a library call on Armv6-M; hosts too, so that their
-// tests run it). Not where the code is built for size and the core divides in one instruction:
-// there the candidate's test is more code than the two divisions. A candidate's offset from the
-// column base stays below kMaxCandidate, so that its products with an edge's dy (below 2^14) fit
-// 32 bits.
-#if defined(__arm__) && defined(__ARM_FEATURE_IDIV) && defined(__OPTIMIZE_SIZE__)
-constexpr bool kRowsCandidate = false;
-#else
-constexpr bool kRowsCandidate = true;
-#endif
+// same answer, mostly without the divisions (a library call on Armv6-M). A candidate's offset
+// from the column base stays below kMaxCandidate, so that its products with an edge's dy (below
+// 2^14) fit 32 bits.
 constexpr uint32_t kMaxCandidate = 1u << 16;
 
 // small_rows, inlined into setup_untextured_triangle (one copy in an image without
-// small_rows_by_hand).
+// small_rows_by_hand; at -Os setup_rows makes the rows instead).
 [[gnu::always_inline]] inline SmallRows small_rows_c(const ScreenVertex* const v[3],
                                                      const RowWindow& w, ActiveTriangle& t) {
   const ScreenVertex &va = *v[0], &vb = *v[1], &vc = *v[2];
@@ -381,7 +374,7 @@ constexpr uint32_t kMaxCandidate = 1u << 16;
   const uint32_t q_long = ql + static_cast<uint32_t>(e2x) * k;
   const uint32_t q_short = mid >= first ? qt + static_cast<uint32_t>(e1x) * k : qb;
   const uint32_t dy_short = mid >= first ? top_dy : btm_dy;
-  if constexpr (kRowsCandidate) {
+  {
     // The column of (about: 5/16 for 1/3) the centroid: its centre on row rm is inside when the
     // left edge's column is at or left of it and the right edge's right of it
     // (floor(Q / dy) <= c < floor(Q' / dy') as products); mostly so, and then no division.
