@@ -852,7 +852,67 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "beq    10f\n\t"                \
   "ldm    %[f], {r0, r1, r2}\n\t" \
   "12:\n\t"
-#define LR_LANES_BLOCK_ASM(STEP_SORT, AFTER_SORT, STEP_PLANES) \
+// LanesSetup's step after the rows when their result is kLaterRows (only a row other than the
+// middle vertex's may have a pixel centre): later_rows_have_pixels from the record just stored,
+// every row from first_row on, the left and right edges from edge_q[0] and [1] (the record is
+// left edge first), the short side's switched to the bottom edge after mid_row. Columns are
+// compared as quotients: left < width - col_base, right > -col_base, left < right. The result
+// (word 7) becomes kPixels when a row has a pixel centre, and the triangle goes on to its planes;
+// else kNoPixels, and the block returns 4 (LanesSetup's sliver) at once.
+#define LR_LANES_LATER_ROWS                                             \
+  "cmp    r0, #2\n\t"                                                   \
+  "bne    39f\n\t"                                                      \
+  "ldr    r1, [%[f], #16]\n\t"                                          \
+  "ldrsh  r3, [r1, #36]\n\t"                                            \
+  "ldrsh  r4, [r1, #38]\n\t"                                            \
+  "ldrsh  r5, [r1, #40]\n\t"                                            \
+  "ldrd   r6, r12, [%[f], #32]\n\t"                                     \
+  "sub    r12, r12, r6\n\t"                                             \
+  "rsb    r6, r6, #0\n\t"                                               \
+  "ldrd   r8, r11, [r1]\n\t"                                            \
+  "ldrd   r9, lr, [r1, #8]\n\t"                                         \
+  "ldrd   r10, r0, [r1, #16]\n\t"                                       \
+  "31:\n\t"                                                             \
+  "cmp    r3, r4\n\t"                                                   \
+  "bgt    34f\n\t"                                                      \
+  "32:\n\t"                                                             \
+  "udiv   r1, r8, r10\n\t"                                              \
+  "udiv   r2, r11, r0\n\t"                                              \
+  "add    r8, r8, r9\n\t"                                               \
+  "add    r11, r11, lr\n\t"                                             \
+  "cmp    r1, r12\n\t"                                                  \
+  "bge    33f\n\t"                                                      \
+  "cmp    r2, r6\n\t"                                                   \
+  "ble    33f\n\t"                                                      \
+  "cmp    r1, r2\n\t"                                                   \
+  "blt    35f\n\t"                                                      \
+  "33:\n\t"                                                             \
+  "add    r3, r3, #1\n\t"                                               \
+  "cmp    r3, r5\n\t"                                                   \
+  "ble    31b\n\t"                                                      \
+  "movs   r0, #3\n\t"                                                   \
+  "str    r0, [%[f], #28]\n\t"                                          \
+  "movs   r0, #4\n\t" /* the block's status for a sliver */             \
+  "b      39f\n\t"                                                      \
+  "34:\n\t" /* past mid_row: the bottom edge on the short side, once */ \
+  "movw   r4, #32767\n\t"                                               \
+  "ldr    r1, [%[f], #16]\n\t"                                          \
+  "ldrb   r2, [r1, #47]\n\t"                                            \
+  "tst    r2, #1\n\t"                                                   \
+  "beq    37f\n\t"                                                      \
+  "ldrd   r11, lr, [r1, #24]\n\t"                                       \
+  "ldr    r0, [r1, #32]\n\t"                                            \
+  "b      32b\n\t"                                                      \
+  "37:\n\t"                                                             \
+  "ldrd   r8, r9, [r1, #24]\n\t"                                        \
+  "ldr    r10, [r1, #32]\n\t"                                           \
+  "b      32b\n\t"                                                      \
+  "35:\n\t"                                                             \
+  "movs   r0, #1\n\t"                                                   \
+  "36:\n\t"                                                             \
+  "str    r0, [%[f], #28]\n\t"                                          \
+  "39:\n\t"
+#define LR_LANES_BLOCK_ASM(STEP_SORT, AFTER_SORT, STEP_PLANES, AFTER_ROWS) \
   "str    r1, [%[f], #16]\n\t" STEP_SORT /* the vertices: r0-r2 (binned top first:              \
                                             store_top_first), the y of the other two r5, r6 */  \
   "ldr    r3, [%[f], #96]\n\t"                                                                  \
@@ -873,7 +933,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "movlt  r1, r2\n\t"                                                                           \
   "movlt  r2, r3\n\t"                                                                           \
   "stm    %[f], {r0, r1, r2}\n\t"                                                               \
-  AFTER_SORT LR_SMALL_ROWS_BODY \
+  AFTER_SORT LR_SMALL_ROWS_BODY AFTER_ROWS \
       "cmp    r0, #1\n\t" \
       "bne    20f\n\t" \
       STEP_PLANES \
@@ -986,7 +1046,8 @@ struct LanesFrame {
 //
 // t goes to word 4 from the block; index (LanesSetup's, for kSortStep: else unused) is read
 // from its register. Returns 1 exactly when the rows and planes were made and the affine test
-// (when a step) held: LanesSetup's usual result, read from no frame word.
+// (when a step) held: LanesSetup's usual result, read from no frame word; 4 (kBlock only) when no
+// row has a pixel centre (LR_LANES_LATER_ROWS).
 template <bool kBlock>
 [[gnu::noinline]] uint32_t small_lanes_asm(LanesFrame& frame, ActiveTriangle* t,
                                            const uint16_t* index) {
@@ -1000,7 +1061,8 @@ template <bool kBlock>
                 offsetof(ActiveTriangle, col_base) == 42 && offsetof(ActiveTriangle, flags) == 47);
   static_assert(ActiveTriangle::kBottomRight == 1 && ActiveTriangle::kInside == 4 &&
                 kSmallEdgeBits == 14 && kSubpixelBits == 8);
-  static_assert(SmallRows::kSlow == 0 && SmallRows::kPixels == 1 && SmallRows::kLaterRows == 2);
+  static_assert(SmallRows::kSlow == 0 && SmallRows::kPixels == 1 && SmallRows::kLaterRows == 2 &&
+                SmallRows::kNoPixels == 3);
   static_assert(offsetof(ScreenVertex, z) == 8 && offsetof(ScreenVertex, color) == 16 &&
                 offsetof(Color15, g) == 2 && offsetof(Color15, b) == 4);
   static_assert(offsetof(ActiveTriangle, z) == 52 && offsetof(ActiveTriangle, c) == 64 &&
@@ -1014,16 +1076,16 @@ template <bool kBlock>
   register ActiveTriangle* t_reg asm("r1") = t;
   register const uint16_t* index_reg asm("r2") = index;
   if constexpr (kBlock)
-    asm volatile(LR_LANES_BLOCK_ASM("", "", "")
+    asm volatile(LR_LANES_BLOCK_ASM("", "", "", LR_LANES_LATER_ROWS)
                  : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
                  : [f] "r"(f)
                  : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   else
-    asm volatile(
-        LR_LANES_BLOCK_ASM(LR_LANES_STEP("4", "11f"), LR_LANES_NO_SORT, LR_LANES_STEP("2", "20f"))
-        : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
-        : [f] "r"(f)
-        : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
+    asm volatile(LR_LANES_BLOCK_ASM(LR_LANES_STEP("4", "11f"), LR_LANES_NO_SORT,
+                                    LR_LANES_STEP("2", "20f"), "")
+                 : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
+                 : [f] "r"(f)
+                 : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   return status;
 }
 }  // namespace
@@ -1061,18 +1123,10 @@ namespace {
   const ScreenVertex* const v[3] = {reinterpret_cast<const ScreenVertex*>(f.w[0]),
                                     reinterpret_cast<const ScreenVertex*>(f.w[1]),
                                     reinterpret_cast<const ScreenVertex*>(f.w[2])};
-  SmallRows rows = f.rows();
-  // A pixel centre on a later row only: when there is one, the block makes the planes and the
-  // affine test from the frame as its rows left it (d, m), as it does after kPixels.
-  if (rows.result == SmallRows::kLaterRows) {
-    if (!later_rows_have_pixels(t, t.first_row, w.width)) return UntexturedTriangle::sliver();
-    const uint32_t steps = f.w[21];
-    f.w[21] = steps & (kPlanesStep | kAffineStep);
-    const uint32_t status = small_lanes_asm<false>(f, &t, nullptr);
-    f.w[21] = steps;
-    if (status == 1) return UntexturedTriangle::made(UntexturedKind::kLanes, false);
-    rows.result = SmallRows::kPixels;
-  }
+  const SmallRows rows = f.rows();
+  // The block went through the later rows itself (LR_LANES_LATER_ROWS): kNoPixels is a sliver;
+  // a triangle with a pixel centre on a later row came back as kPixels.
+  if (rows.result == SmallRows::kNoPixels) return UntexturedTriangle::sliver();
   return finish_triangle(v, w, in, t, rows, rows.result == SmallRows::kPixels, f.w[22] != 0);
 }
 }  // namespace
@@ -1105,6 +1159,7 @@ UntexturedTriangle LanesSetup::rest(const uint16_t /*index*/[3], ActiveTriangle&
 #undef LR_LANES_STEP
 #undef LR_LANES_NO_SORT
 #undef LR_LANES_BLOCK_ASM
+#undef LR_LANES_LATER_ROWS
 #else
 bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*/, uint32_t /*m*/,
                                 ActiveTriangle& /*t*/) {

@@ -146,8 +146,10 @@ Plane fast_plane(const FastBasis& b, const int32_t a[3], int u);
 // twice its signed area and m the OR of its edge components' magnitudes, and kPixels when the
 // middle vertex's row (or the first) has a pixel centre in [0, width), kLaterRows when only a
 // later row may. Exposed for tests.
+// LanesSetup's block, which tests the later rows itself, gives kNoPixels for a triangle none of
+// whose rows in the window has a pixel centre in [0, width) (small_rows never does).
 struct SmallRows {
-  static constexpr uint8_t kSlow = 0, kPixels = 1, kLaterRows = 2;
+  static constexpr uint8_t kSlow = 0, kPixels = 1, kLaterRows = 2, kNoPixels = 3;
   int32_t d = 0;
   uint32_t m = 0;
   uint8_t result = kSlow;
@@ -198,16 +200,19 @@ class LanesSetup {
  public:
   void prepare(const RowWindow& w, const UntexturedInput& in, const ScreenVertex* vertices);
   UntexturedTriangle set_up(const uint16_t index[3], ActiveTriangle& t) {
-    if constexpr (kSmallPlanesByHand) {             // 32-bit addresses
-      if (block(frame_, t, index) == 1) [[likely]]  // a lanes triangle, rows and planes made
+    if constexpr (kSmallPlanesByHand) {  // 32-bit addresses
+      const uint32_t status = block(frame_, t, index);
+      if (status == 1) [[likely]]  // a lanes triangle, rows and planes made
         return UntexturedTriangle::made(UntexturedKind::kLanes, false);
+      if (status == 4) return UntexturedTriangle::sliver();  // no row has a pixel centre
     }
     return rest(index, t);
   }
 
  private:
   // The hand-made block where kSmallPlanesByHand (nothing elsewhere: 0), and what remains after
-  // it. t and index go in registers; 1 is its usual result (rows and planes made).
+  // it. t and index go in registers; 1 is its usual result (rows and planes made), 4 a sliver
+  // (no row of the window has a pixel centre in [0, width): its rows made, no planes).
   static uint32_t block(uint32_t* frame, ActiveTriangle& t, const uint16_t index[3]);
   UntexturedTriangle rest(const uint16_t index[3], ActiveTriangle& t);
 
