@@ -507,20 +507,12 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "strh   r10, [r1, #36]\n\t"                                                                    \
   "strh   r0, [r1, #38]\n\t"                                                                     \
   "strh   r11, [r1, #40]\n\t" /* cb r11, cmax r12, xa r3 = x0 + 128 - 256 cb, the width in lr */ \
-  "movs   r11, #0\n\t"                                                                           \
-  "cmp    r5, r11\n\t"                                                                           \
-  "it     lt\n\t"                                                                                \
-  "movlt  r11, r5\n\t"                                                                           \
-  "cmp    r8, r11\n\t"                                                                           \
-  "it     lt\n\t"                                                                                \
-  "movlt  r11, r8\n\t"                                                                           \
-  "movs   r12, #0\n\t"                                                                           \
-  "cmp    r5, r12\n\t"                                                                           \
-  "it     gt\n\t"                                                                                \
-  "movgt  r12, r5\n\t"                                                                           \
-  "cmp    r8, r12\n\t"                                                                           \
-  "it     gt\n\t"                                                                                \
-  "movgt  r12, r8\n\t"                                                                           \
+  "cmp    r5, r8\n\t"                                                                            \
+  "itete  lt\n\t"                                                                                \
+  "andlt  r11, r5, r5, asr #31\n\t"                                                              \
+  "andge  r11, r8, r8, asr #31\n\t"                                                              \
+  "biclt  r12, r8, r8, asr #31\n\t"                                                              \
+  "bicge  r12, r5, r5, asr #31\n\t"                                                              \
   "add    r11, r11, r3\n\t"                                                                      \
   "sub    r11, r11, #128\n\t"                                                                    \
   "asr    r11, r11, #8\n\t"                                                                      \
