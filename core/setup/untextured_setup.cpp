@@ -605,22 +605,19 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "mla    lr, r5, r3, lr\n\t"                                                                    \
   "udiv   lr, lr, r6\n\t"                                                                        \
   "6:\n\t"                                                                                       \
-  "ldrd   r0, r12, [%[f], #32]\n\t"                                                              \
-  "add    r11, r11, r0\n\t"                                                                      \
-  "add    lr, lr, r0\n\t"                                                                        \
-  "tst    r2, #1\n\t"                                                                            \
-  "ite    ne\n\t"                                                                                \
-  "movne  r3, r11\n\t"                                                                           \
-  "moveq  r3, lr\n\t"                                                                            \
-  "ite    ne\n\t"                                                                                \
-  "movne  r4, lr\n\t"                                                                            \
-  "moveq  r4, r11\n\t"                                                                           \
+  "ldrd   r3, r12, [%[f], #32]\n\t" /* the column base, the width */                             \
+  "tst    r2, #1\n\t"               /* left quotient r11, right lr */                            \
+  "ittt   eq\n\t"                                                                                \
+  "eoreq  r11, r11, lr\n\t"                                                                      \
+  "eoreq  lr, lr, r11\n\t"                                                                       \
+  "eoreq  r11, r11, lr\n\t"                                                                      \
+  "sub    r12, r12, r3\n\t" /* left < width - base */                                            \
   "movs   r0, #2\n\t"                                                                            \
-  "cmp    r3, r12\n\t"                                                                           \
+  "cmp    r11, r12\n\t"                                                                          \
   "bge    9f\n\t"                                                                                \
-  "cmp    r4, #0\n\t"                                                                            \
+  "cmn    lr, r3\n\t" /* right + base > 0 */                                                     \
   "ble    9f\n\t"                                                                                \
-  "cmp    r3, r4\n\t"                                                                            \
+  "cmp    r11, lr\n\t"                                                                           \
   "bge    9f\n\t"                                                                                \
   "movs   r0, #1\n\t"                                                                            \
   "b      9f\n\t"                                                                                \
@@ -851,9 +848,15 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 // compared as quotients: left < width - col_base, right > -col_base, left < right. The result
 // (word 7) becomes kPixels when a row has a pixel centre, and the triangle goes on to its planes;
 // else kNoPixels, and the block returns 4 (LanesSetup's sliver) at once.
+// The step after the rows where the later rows are not tested: on to the planes with kPixels.
+#define LR_LANES_ROWS_MADE \
+  "cmp    r0, #1\n\t"      \
+  "bne    20f\n\t"
 #define LR_LANES_LATER_ROWS                                             \
+  "cmp    r0, #1\n\t"                                                   \
+  "beq    39f\n\t"                                                      \
   "cmp    r0, #2\n\t"                                                   \
-  "bne    39f\n\t"                                                      \
+  "bne    20f\n\t"                                                      \
   "ldr    r1, [%[f], #16]\n\t"                                          \
   "ldrsh  r3, [r1, #36]\n\t"                                            \
   "ldrsh  r4, [r1, #38]\n\t"                                            \
@@ -885,7 +888,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "movs   r0, #3\n\t"                                                   \
   "str    r0, [%[f], #28]\n\t"                                          \
   "movs   r0, #4\n\t" /* the block's status for a sliver */             \
-  "b      39f\n\t"                                                      \
+  "b      20f\n\t"                                                      \
   "34:\n\t" /* past mid_row: the bottom edge on the short side, once */ \
   "movw   r4, #32767\n\t"                                               \
   "ldr    r1, [%[f], #16]\n\t"                                          \
@@ -901,7 +904,6 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "b      32b\n\t"                                                      \
   "35:\n\t"                                                             \
   "movs   r0, #1\n\t"                                                   \
-  "36:\n\t"                                                             \
   "str    r0, [%[f], #28]\n\t"                                          \
   "39:\n\t"
 #define LR_LANES_BLOCK_ASM(STEP_SORT, AFTER_SORT, STEP_PLANES, AFTER_ROWS) \
@@ -925,10 +927,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "movlt  r1, r2\n\t"                                                                           \
   "movlt  r2, r3\n\t"                                                                           \
   "stm    %[f], {r0, r1, r2}\n\t"                                                               \
-  AFTER_SORT LR_SMALL_ROWS_BODY AFTER_ROWS \
-      "cmp    r0, #1\n\t" \
-      "bne    20f\n\t" \
-      STEP_PLANES \
+  AFTER_SORT LR_SMALL_ROWS_BODY AFTER_ROWS STEP_PLANES \
       "10:\n\t" LR_SMALL_PLANES_ASM \
       /* the affine colour test (affine_within): w_max - w_min <= w_min >> shift, or */ \
       /* (w_max - w_min) D <= bound w_min with D the largest channel range (green's times its */ \
@@ -1074,7 +1073,7 @@ template <bool kBlock>
                  : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   else
     asm volatile(LR_LANES_BLOCK_ASM(LR_LANES_STEP("4", "11f"), LR_LANES_NO_SORT,
-                                    LR_LANES_STEP("2", "20f"), "")
+                                    LR_LANES_STEP("2", "20f"), LR_LANES_ROWS_MADE)
                  : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
                  : [f] "r"(f)
                  : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
@@ -1152,6 +1151,7 @@ UntexturedTriangle LanesSetup::rest(const uint16_t /*index*/[3], ActiveTriangle&
 #undef LR_LANES_NO_SORT
 #undef LR_LANES_BLOCK_ASM
 #undef LR_LANES_LATER_ROWS
+#undef LR_LANES_ROWS_MADE
 #else
 bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*/, uint32_t /*m*/,
                                 ActiveTriangle& /*t*/) {
