@@ -127,8 +127,18 @@ class VertexStage {
  public:
   // bound: every coordinate of the positions the stage will transform lies in [-bound - 1,
   // bound] (position_bound); the default takes any (the short path then has less precision).
+  // position_frac: the positions' fraction bits (Mesh::position_frac, in [16, 30]). fine_model:
+  // the model with more fraction bits (valid, and model its rounding to Q16.16: the lighting
+  // reads model), or nullptr. With it or the camera's fine_projection the model-view-projection
+  // is composed as FineMat4 products (the finest fraction count its entries allow), else as
+  // today's Q16.16 products (the same integers as before fine transforms).
   VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width, int height,
-              uint32_t bound = 0x7FFFFFFFu);
+              uint32_t bound = 0x7FFFFFFFu, int position_frac = 16,
+              const FineMat4* fine_model = nullptr);
+
+  // The draw's model-view-projection as the stage composes it (see the constructor).
+  static FineMat4 model_view_projection(const Camera& camera, const Mat4& model,
+                                        const FineMat4* fine_model);
 
   // The mesh's vertices into out[0, n) (and surfaces[0, n) for Phong, tex[0, n) for draws
   // with texture coordinates; else nullptr): transformed, clip-tested (outcode), projected and
@@ -180,7 +190,17 @@ class VertexStage {
   [[gnu::noinline]] void attributes(const Mesh& mesh, const VertexColors& colors, size_t i,
                                     ScreenVertex& sv, SurfaceVertex* surface, TexVertex* tex) const;
 
-  ClipCoord clip(const Vec3& model_position) const { return transform_point(mvp_, model_position); }
+  ClipCoord clip(const Vec3& model_position) const {
+    return transform_point(mvp_, model_position, position_frac_);
+  }
+  // A mesh position in Q16.16 (rounded from position_frac bits): what the lighting reads.
+  Vec3 q16(const Vec3& p) const {
+    if (position_frac_ == 16) return p;
+    const int s = position_frac_ - 16;
+    return {Fixed::from_raw(static_cast<int32_t>(shift_rounded(p.x.raw, s))),
+            Fixed::from_raw(static_cast<int32_t>(shift_rounded(p.y.raw, s))),
+            Fixed::from_raw(static_cast<int32_t>(shift_rounded(p.z.raw, s)))};
+  }
   // Projects and snaps a clip-space point inside every plane; false when w <= 0.
   bool project(const ClipCoord& c, ScreenVertex& v) const;
   // A mesh normal in world space, unit Q1.30. Under a rigid model matrix a rotation and one
@@ -194,7 +214,8 @@ class VertexStage {
 
  private:
   const Mat4& model_;
-  Mat4 mvp_;
+  FineMat4 mvp_;
+  int32_t position_frac_;
   Mat4 nm_;
   NormalRotation rot_;  // nm_'s rows normalised, when rigid_
   bool rigid_ = false;
