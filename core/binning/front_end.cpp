@@ -458,9 +458,12 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
     count_outcome(stats_, binned, last);
 }
 Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& material,
-                      const DrawState& state, const FineMat4* fine_model) {
+                      const DrawState& state, const FineMat4* fine_model, FineComposeFn compose) {
   if (const Status st = frame_status(); st != Status::kOk) return st;
-  if (fine_model != nullptr && !fine_model->valid()) return refuse(Status::kInvalidArgument);
+  if (fine_model != nullptr) {
+    if (!fine_model->valid() || compose == nullptr) return refuse(Status::kInvalidArgument);
+    fine_compose_ = compose;
+  }
   // Refused whole, with nothing added and only the draw counted: arguments that disagree, a
   // state the renderer links no routine for, a store the draw needs that was not given.
   DrawPlan plan;
@@ -536,9 +539,10 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
     stats_.dropped_vertex_capacity += static_cast<uint32_t>(mesh.triangles.size());
     return;
   }
+  // (A fine model: fine_compose_ is set, draw() took it with the model.)
   const VertexStage stage(camera_, model, guard_, width_, height_,
                           mesh.bound != 0 ? mesh.bound : position_bound(mesh.positions.data(), n),
-                          mesh.position_frac, fine_model);
+                          mesh.position_frac, fine_model, fine_compose_);
   VertexColors colors;
   colors.lit = plan.lit;
   colors.pending = plan.lit && plan.gouraud;
@@ -673,8 +677,9 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   replay_screen_ = &FrontEnd::replay_screen;
   if (edges_.signing()) routines_->sign->draw(*this, draw_index, nullptr);
   DrawCall& call = records_[draw_index].call;
-  call.mesh = Mesh{};
-  call.mesh.triangles = triangles;
+  Mesh screen_mesh{};
+  screen_mesh.triangles = triangles;
+  call.mesh.set(screen_mesh);
   call.screen = vertices;
   call.screen_tex = tex;
   call.model = Mat4{};
@@ -788,14 +793,15 @@ void FrontEnd::replay(uint8_t index) {
   }
   const Material material = c.material.get();
   DrawPlan plan;
-  plan_draw(c.mesh, state, lights_, plan, routines_->maps);  // passed in draw()
+  const Mesh mesh = c.mesh.get();
+  plan_draw(mesh, state, lights_, plan, routines_->maps);  // passed in draw()
   PreparedLighting& pl = lighting_;
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   if (plan.lit)
     routines_->prepare(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
-  run_mesh(index, c.mesh, c.model, material, state, plan, pl, c.fine_model);
+  run_mesh(index, mesh, c.model, material, state, plan, pl, c.fine_model);
 }
 
 Rgb8 FrontEndParts::one_color(Color15 c) {
@@ -810,7 +816,7 @@ void FrontEndParts::flat_colors(const MeshDraw& d, const std::array<uint16_t, 3>
 void FrontEndParts::record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,
                                 const Material& material, const DrawState& state,
                                 const FineMat4* fine_model) {
-  call.mesh = mesh;
+  call.mesh.set(mesh);
   call.screen = {};
   call.model = model;
   call.fine_model = fine_model;
@@ -821,7 +827,7 @@ void FrontEndParts::record_call(DrawCall& call, const Mesh& mesh, const Mat4& mo
 
 void FrontEnd::replay_screen(FrontEnd& fe, uint8_t index, const DrawState& state) {
   const DrawCall& c = fe.records_[index].call;
-  fe.run_screen(index, c.screen, c.screen_tex, c.mesh.triangles, state);
+  fe.run_screen(index, c.screen, c.screen_tex, c.mesh.get().triangles, state);
 }
 
 void FrontEnd::save_binning_counts() {

@@ -251,9 +251,10 @@ class FrontEnd {
   // The status of this frame's first refused draw (kOk: none was refused): what render() returns.
   Status refused() const { return refused_; }
 
-  // Adds a mesh (see Renderer::draw; fine_model: the draw with a FineMat4 model, or nullptr).
+  // Adds a mesh (see Renderer::draw; fine_model: the draw's FineMat4 model, or nullptr, and
+  // compose the function that composes its model-view-projection: fine_model_view_projection).
   Status draw(const Mesh& mesh, const Mat4& model, const Material& material, const DrawState& state,
-              const FineMat4* fine_model = nullptr);
+              const FineMat4* fine_model = nullptr, FineComposeFn compose = nullptr);
   // Adds triangles already in screen space (see Renderer::draw_screen).
   Status draw_screen(std::span<const ScreenVertex> vertices,
                      std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state,
@@ -412,6 +413,9 @@ class FrontEnd {
   // Bands: the stores overflowed (the rest of the frame is only recorded), and the refused
   // draws' triangles (counted in every band's statistics).
   bool overflow_ = false;
+  // The composition of fine draws' model-view-projection (set by the first draw with a FineMat4
+  // model: nullptr until then, so that an image without one links none).
+  FineComposeFn fine_compose_ = nullptr;
   // The routines of configure() (nullptr until then: zero bytes).
   const FrontEndRoutines* routines_ = nullptr;
   uint32_t refused_triangles_ = 0, refused_vertices_ = 0;

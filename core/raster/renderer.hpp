@@ -89,7 +89,7 @@ class Renderer {
   // as draw(). docs/numerics.md#fine-transforms.
   Status draw(const Mesh& mesh, const FineMat4& model, const Material& material,
               const DrawState& state) {
-    return front_.draw(mesh, to_mat4(model), material, state, &model);
+    return front_.draw(mesh, to_mat4(model), material, state, &model, &fine_model_view_projection);
   }
 
   // Adds triangles already in screen space (snapped subpixel positions, depth, colour):

@@ -10,10 +10,10 @@ namespace lr {
 // View and projection matrices (OpenGL meaning), and the eye position in world space (for the
 // local viewer).
 // Optional: fine_projection, the projection with more fraction bits (perspective_fine; frac 0:
-// none, the default). When given, the vertex stage composes it with the view and the draw's
-// model without rounding to Q16.16 (the projection and view above stay what the lighting reads:
-// keep projection the same transform, e.g. to_mat4(fine_projection)).
-// docs/numerics.md#fine-transforms.
+// none, the default). Draws of a FineMat4 model (Renderer::draw(mesh, FineMat4, ...)) compose it
+// with the view and their model without rounding to Q16.16 (with their model and projection
+// when it is not given); draws of a Mat4 model take projection, as before. Keep projection the
+// same transform (e.g. to_mat4(fine_projection)). docs/numerics.md#fine-transforms.
 struct Camera {
   Mat4 view = Mat4::identity();
   Mat4 projection = Mat4::identity();

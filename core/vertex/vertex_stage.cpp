@@ -25,20 +25,27 @@ Unit30 transform_normal_call(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
   return transform_normal(nm, x, y, z);
 }
 
-FineMat4 VertexStage::model_view_projection(const Camera& camera, const Mat4& model,
-                                            const FineMat4* fine_model) {
-  if (camera.fine_projection.frac == 0 && fine_model == nullptr)
-    return to_fine(camera.projection * camera.view * model);
+FineMat4 fine_model_view_projection(const Camera& camera, const FineMat4& model) {
   const FineMat4 projection =
       camera.fine_projection.frac != 0 ? camera.fine_projection : to_fine(camera.projection);
-  return projection *
-         (to_fine(camera.view) * (fine_model != nullptr ? *fine_model : to_fine(model)));
+  // An identity view leaves the model's entries as they are (its product is exact): skipped.
+  if (camera.view == Mat4::identity()) return projection * model;
+  return projection * (to_fine(camera.view) * model);
+}
+
+FineMat4 VertexStage::model_view_projection(const Camera& camera, const Mat4& model,
+                                            const FineMat4* fine_model) {
+  if (fine_model != nullptr) return fine_model_view_projection(camera, *fine_model);
+  return to_fine(camera.projection * camera.view * model);
 }
 
 VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width,
-                         int height, uint32_t bound, int position_frac, const FineMat4* fine_model)
+                         int height, uint32_t bound, int position_frac, const FineMat4* fine_model,
+                         FineComposeFn compose)
     : model_(model),
-      mvp_(model_view_projection(camera, model, fine_model)),
+      mvp_(fine_model != nullptr && compose != nullptr
+               ? compose(camera, *fine_model)
+               : to_fine(camera.projection * camera.view * model)),
       position_frac_(position_frac),
       nm_(normal_matrix(model)),
       guard_(guard),

@@ -75,6 +75,13 @@ using PointLightFn = LitColor (*)(const PreparedLighting& pl, const Unit30& n, c
 // links neither.
 LitColor light_point_at(const PreparedLighting& pl, const Unit30& n, const Mat4* model, Vec3 p);
 
+// The model-view-projection of a draw with a fine model: P (V M) in FineMat4 products (P the
+// camera's fine_projection, or its projection when it has none; V its view), composed once per
+// draw. Reached only through Renderer::draw(mesh, FineMat4, ...), which hands the front end this
+// function (FineComposeFn): an image that never draws a fine model links no FineMat4 product.
+FineMat4 fine_model_view_projection(const Camera& camera, const FineMat4& model);
+using FineComposeFn = FineMat4 (*)(const Camera&, const FineMat4&);
+
 class VertexStage;
 struct VertexColors;
 // VertexStage::attributes, for the vertices of textured and Phong draws: called through this
@@ -127,16 +134,17 @@ class VertexStage {
  public:
   // bound: every coordinate of the positions the stage will transform lies in [-bound - 1,
   // bound] (position_bound); the default takes any (the short path then has less precision).
-  // position_frac: the positions' fraction bits (Mesh::position_frac, in [16, 30]). fine_model:
-  // the model with more fraction bits (valid, and model its rounding to Q16.16: the lighting
-  // reads model), or nullptr. With it or the camera's fine_projection the model-view-projection
-  // is composed as FineMat4 products (the finest fraction count its entries allow), else as
-  // today's Q16.16 products (the same integers as before fine transforms).
+  // position_frac: the positions' fraction bits (Mesh::position_frac, in [16, 30]). fine_model
+  // and compose: a draw with a FineMat4 model (model its rounding to Q16.16, which the lighting
+  // reads) takes compose(camera, *fine_model) as its model-view-projection
+  // (fine_model_view_projection); without them the Q16.16 product camera.projection *
+  // camera.view * model, as before fine transforms (the same integers).
   VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width, int height,
               uint32_t bound = 0x7FFFFFFFu, int position_frac = 16,
-              const FineMat4* fine_model = nullptr);
+              const FineMat4* fine_model = nullptr, FineComposeFn compose = nullptr);
 
-  // The draw's model-view-projection as the stage composes it (see the constructor).
+  // The draw's model-view-projection as the stage takes it: fine_model_view_projection(camera,
+  // *fine_model) when a fine model is given, else the Q16.16 product as a FineMat4 of frac 16.
   static FineMat4 model_view_projection(const Camera& camera, const Mat4& model,
                                         const FineMat4* fine_model);
 

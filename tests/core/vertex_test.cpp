@@ -618,7 +618,8 @@ std::vector<ScreenVertex> transform_all(const Camera& cam, const Mat4& model,
   mesh.positions = positions;
   mesh.position_frac = static_cast<uint8_t>(frac);
   const VertexStage stage(cam, model, GuardBand{25, 34}, 320, 240,
-                          position_bound(positions.data(), positions.size()), frac, fine_model);
+                          position_bound(positions.data(), positions.size()), frac, fine_model,
+                          &fine_model_view_projection);
   std::vector<ScreenVertex> out(positions.size());
   stage.transform(mesh, VertexColors{}, out.data(), nullptr, nullptr);
   return out;
@@ -724,18 +725,26 @@ TEST(FineTransforms, PeerDrawSnapsAsTheDoubleScene) {
   EXPECT_GT(worst_coarse, 0.1);
 }
 
-// The model-view-projection is today's Q16.16 product unless a fine matrix is given.
-TEST(FineTransforms, ModelViewProjectionIsQ16UnlessAFineMatrixIsGiven) {
+// The model-view-projection is today's Q16.16 product unless the draw's model is a FineMat4
+// (a camera's fine_projection alone changes nothing); with one, P (V M) in FineMat4 products, P
+// the fine projection when the camera has one.
+TEST(FineTransforms, ModelViewProjectionIsQ16UnlessTheModelIsFine) {
   Camera cam;
   ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(4, 3), Fixed::from_int(1),
                           Fixed::from_int(10), cam.projection));
-  const Mat4 model = translate({{}, {}, Fixed::from_double(-2.45)}) * rotate_y(Fixed::from_int(20));
-  const FineMat4 q16 = VertexStage::model_view_projection(cam, model, nullptr);
-  EXPECT_EQ(q16, to_fine(cam.projection * cam.view * model));
+  ASSERT_TRUE(perspective_fine(Fixed::from_int(60), 4, 3, Fixed::from_int(1), Fixed::from_int(10),
+                               cam.fine_projection));
+  const Mat4 model = translate({{}, {}, Fixed::from_raw(-160563)}) * rotate_y(Fixed::from_int(20));
+  EXPECT_EQ(VertexStage::model_view_projection(cam, model, nullptr),
+            to_fine(cam.projection * cam.view * model));
   const FineMat4 fm = to_fine(model);
   const FineMat4 fine = VertexStage::model_view_projection(cam, model, &fm);
-  EXPECT_EQ(fine, to_fine(cam.projection) * (to_fine(cam.view) * fm));
+  EXPECT_EQ(fine, cam.fine_projection * (to_fine(cam.view) * fm));
   EXPECT_GT(fine.frac, 16);
+  Camera coarse = cam;
+  coarse.fine_projection = FineMat4{};
+  EXPECT_EQ(VertexStage::model_view_projection(coarse, model, &fm),
+            to_fine(cam.projection) * (to_fine(cam.view) * fm));
 }
 
 }  // namespace
