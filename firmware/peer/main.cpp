@@ -110,6 +110,7 @@ bool check(lr::Status st, const char* what) {
 struct Prepared {
   lr::Camera camera;
   lr::Mat4 model;
+  lr::FineMat4 fine_model;  // fine scenes (PeerCase::fine)
   lr::DrawState state;
   std::span<const lr::Mesh> meshes;
 };
@@ -126,6 +127,7 @@ bool prepare(R& renderer, const peer::PeerCase& c, Prepared& p) {
     return false;
   }
   p.model = peer::model(c);
+  p.fine_model = c.fine ? peer::fine_model(c) : lr::FineMat4{};
   p.state = c.state;
   p.state.texture = peer::texture(c.geometry);
   p.meshes = peer::meshes(c.geometry);
@@ -138,7 +140,8 @@ template <class R>
                                           lr::DepthSink* depth) {
   lr::Status s = renderer.begin_frame(p.camera, c.lights, peer::kBackground);
   for (size_t d = 0; d < p.meshes.size() && s == lr::Status::kOk; ++d)
-    s = renderer.draw(p.meshes[d], p.model, c.material, p.state);
+    s = c.fine ? renderer.draw(p.meshes[d], p.fine_model, c.material, p.state)
+               : renderer.draw(p.meshes[d], p.model, c.material, p.state);
   return s == lr::Status::kOk ? renderer.render(g_sink, depth) : s;
 }
 

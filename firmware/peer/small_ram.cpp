@@ -116,10 +116,15 @@ bool check(lr::Status st, const char* what) {
   return lr::fw::check(kSmall.name, st, what);
 }
 
+lr::FineMat4 g_fine_model{};  // the peer scene's fine model (PeerCase::fine)
+bool g_fine = false;
+
 // The measured work: one whole frame.
 [[gnu::noinline]] lr::Status render_frame(const lr::Camera& camera, const lr::Mat4& model) {
   lr::Status s = g_renderer.begin_frame(camera, kScene.lights, kScene.background);
-  if (s == lr::Status::kOk) s = g_renderer.draw(asset::meshes[0], model, g_material, kScene.state);
+  if (s == lr::Status::kOk)
+    s = g_fine ? g_renderer.draw(asset::meshes[0], g_fine_model, g_material, kScene.state)
+               : g_renderer.draw(asset::meshes[0], model, g_material, kScene.state);
   return s == lr::Status::kOk ? g_renderer.render(g_sink) : s;
 }
 
@@ -190,6 +195,8 @@ lr::Mat4 g_model;
     const peer::PeerCase& c = peer::kCases[kSmall.scene];
     camera_ok = peer::make_camera(c, g_camera);
     g_model = peer::model(c);
+    g_fine = c.fine;
+    if (c.fine) g_fine_model = peer::fine_model(c);
     g_material = c.material;
   }
   if (!camera_ok) {
