@@ -36,9 +36,7 @@ class ZeroStored {
 // What re-runs a draw when the frame is binned again band by band (FrontEnd::bin_band): the
 // arguments of draw() or draw_screen(). The caller's arrays are referred to, not copied.
 struct DrawCall {
-  // draw(); draw_screen(): its triangles only. (Kept as bytes: Mesh::position_frac's default,
-  // 16, would put a static store of records in .data.)
-  ZeroStored<Mesh> mesh{};
+  Mesh mesh{};                              // draw(); draw_screen(): its triangles only
   std::span<const ScreenVertex> screen{};   // draw_screen()'s vertices
   std::span<const TexVertex> screen_tex{};  // and their texture coordinates
   Mat4 model{};

@@ -17,8 +17,7 @@ namespace {
 Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& lights, DrawPlan& p,
                  const MapRoutines* maps) {
   const size_t n = mesh.positions.size();
-  if (mesh.position_frac < Mesh::kMinPositionFrac || mesh.position_frac > Mesh::kMaxPositionFrac)
-    return Status::kInvalidArgument;
+  if (!mesh.valid_position_frac()) return Status::kInvalidArgument;
   if ((!mesh.normals.empty() && mesh.normals.size() != n) ||
       (!mesh.colors.empty() && mesh.colors.size() != n))
     return Status::kInvalidArgument;
@@ -139,7 +138,7 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
   if (!configured_) return Status::kNotConfigured;
   phase_ = Phase::kIdle;  // until this frame is begun: a failed begin abandons the last frame
   if (lights.count > kMaxLights) return Status::kInvalidArgument;
-  if (camera.fine_projection.frac != 0 && !camera.fine_projection.valid())
+  if (camera.fine_projection != nullptr && !camera.fine_projection->valid())
     return Status::kInvalidArgument;
   camera_ = camera;
   lights_ = lights;
@@ -542,7 +541,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   // (A fine model: fine_compose_ is set, draw() took it with the model.)
   const VertexStage stage(camera_, model, guard_, width_, height_,
                           mesh.bound != 0 ? mesh.bound : position_bound(mesh.positions.data(), n),
-                          mesh.position_frac, fine_model, fine_compose_);
+                          mesh.position_fraction_bits(), fine_model, fine_compose_);
   VertexColors colors;
   colors.lit = plan.lit;
   colors.pending = plan.lit && plan.gouraud;
@@ -677,9 +676,8 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   replay_screen_ = &FrontEnd::replay_screen;
   if (edges_.signing()) routines_->sign->draw(*this, draw_index, nullptr);
   DrawCall& call = records_[draw_index].call;
-  Mesh screen_mesh{};
-  screen_mesh.triangles = triangles;
-  call.mesh.set(screen_mesh);
+  call.mesh = Mesh{};
+  call.mesh.triangles = triangles;
   call.screen = vertices;
   call.screen_tex = tex;
   call.model = Mat4{};
@@ -793,15 +791,14 @@ void FrontEnd::replay(uint8_t index) {
   }
   const Material material = c.material.get();
   DrawPlan plan;
-  const Mesh mesh = c.mesh.get();
-  plan_draw(mesh, state, lights_, plan, routines_->maps);  // passed in draw()
+  plan_draw(c.mesh, state, lights_, plan, routines_->maps);  // passed in draw()
   PreparedLighting& pl = lighting_;
   const Vec3 view_dir{camera_.view.m[2][0], camera_.view.m[2][1], camera_.view.m[2][2]};
   if (plan.lit)
     routines_->prepare(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
-  run_mesh(index, mesh, c.model, material, state, plan, pl, c.fine_model);
+  run_mesh(index, c.mesh, c.model, material, state, plan, pl, c.fine_model);
 }
 
 Rgb8 FrontEndParts::one_color(Color15 c) {
@@ -816,7 +813,7 @@ void FrontEndParts::flat_colors(const MeshDraw& d, const std::array<uint16_t, 3>
 void FrontEndParts::record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,
                                 const Material& material, const DrawState& state,
                                 const FineMat4* fine_model) {
-  call.mesh.set(mesh);
+  call.mesh = mesh;
   call.screen = {};
   call.model = model;
   call.fine_model = fine_model;
@@ -827,7 +824,7 @@ void FrontEndParts::record_call(DrawCall& call, const Mesh& mesh, const Mat4& mo
 
 void FrontEnd::replay_screen(FrontEnd& fe, uint8_t index, const DrawState& state) {
   const DrawCall& c = fe.records_[index].call;
-  fe.run_screen(index, c.screen, c.screen_tex, c.mesh.get().triangles, state);
+  fe.run_screen(index, c.screen, c.screen_tex, c.mesh.triangles, state);
 }
 
 void FrontEnd::save_binning_counts() {

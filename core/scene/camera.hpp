@@ -9,16 +9,18 @@ namespace lr {
 
 // View and projection matrices (OpenGL meaning), and the eye position in world space (for the
 // local viewer).
-// Optional: fine_projection, the projection with more fraction bits (perspective_fine; frac 0:
-// none, the default). Draws of a FineMat4 model (Renderer::draw(mesh, FineMat4, ...)) compose it
-// with the view and their model without rounding to Q16.16 (with their model and projection
-// when it is not given); draws of a Mat4 model take projection, as before. Keep projection the
-// same transform (e.g. to_mat4(fine_projection)). docs/numerics.md#fine-transforms.
+// Optional: fine_projection, the projection with more fraction bits (perspective_fine), or
+// nullptr (the default). Draws of a FineMat4 model (Renderer::draw(mesh, FineMat4, ...)) compose
+// it with the view and their model without rounding to Q16.16 (with projection when it is
+// nullptr); draws of a Mat4 model take projection, as before. Keep projection the same transform
+// (e.g. to_mat4(*fine_projection)). A pointer (the renderer copies the camera: 4 bytes, not 68,
+// of its RAM): the matrix must stay valid until render() returns; begin_frame() refuses one whose
+// frac is outside [16, 30] (kInvalidArgument). docs/numerics.md#fine-transforms.
 struct Camera {
   Mat4 view = Mat4::identity();
   Mat4 projection = Mat4::identity();
   Vec3 eye{};
-  FineMat4 fine_projection{};
+  const FineMat4* fine_projection = nullptr;
 };
 
 // fovy_degrees in (0, 180), aspect > 0, 0 < near < far; all Q16.16. Depth maps near -> -1 and

@@ -29,13 +29,19 @@ struct Mesh {
   // writes it. A bound below a coordinate draws the mesh wrongly (never outside the coordinate
   // budget); one above it costs precision, not correctness.
   uint32_t bound = 0;
-  // The fraction bits of the positions (and of bound), in [kMinPositionFrac, kMaxPositionFrac]:
-  // a position's coordinate is raw / 2^position_frac model units (so |coordinate| <
-  // 2^(31 - position_frac)). 16 (Fixed's Q16.16) by default; lineraster-asset --fine-positions
-  // writes the finest the mesh's bound allows. A draw refuses others (kInvalidArgument). The
-  // vertex stage folds it into the draw's per-draw factors (no work per vertex); the lighting
-  // reads the positions rounded to Q16.16.
-  uint8_t position_frac = 16;
+  // The fraction bits of the positions (and of bound): 0 (the default, so that a default Mesh
+  // is zero bytes and a static store holding one stays in .bss) or 16 for Q16.16, else up to
+  // kMaxPositionFrac: a coordinate is raw / 2^position_fraction_bits() model units (so
+  // |coordinate| < 2^(31 - bits)). lineraster-asset --fine-positions writes the finest the
+  // mesh's bound allows. A draw refuses others (kInvalidArgument). The vertex stage folds it
+  // into the draw's per-draw factors (no work per vertex); the lighting reads the positions
+  // rounded to Q16.16.
+  uint8_t position_frac = 0;
+  constexpr int position_fraction_bits() const { return position_frac == 0 ? 16 : position_frac; }
+  constexpr bool valid_position_frac() const {
+    return position_frac == 0 ||
+           (position_frac >= kMinPositionFrac && position_frac <= kMaxPositionFrac);
+  }
   static constexpr int kMinPositionFrac = 16, kMaxPositionFrac = 30;
 };
 

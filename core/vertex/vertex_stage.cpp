@@ -27,7 +27,7 @@ Unit30 transform_normal_call(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
 
 FineMat4 fine_model_view_projection(const Camera& camera, const FineMat4& model) {
   const FineMat4 projection =
-      camera.fine_projection.frac != 0 ? camera.fine_projection : to_fine(camera.projection);
+      camera.fine_projection != nullptr ? *camera.fine_projection : to_fine(camera.projection);
   // An identity view leaves the model's entries as they are (its product is exact): skipped.
   if (camera.view == Mat4::identity()) return projection * model;
   return projection * (to_fine(camera.view) * model);

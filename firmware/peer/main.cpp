@@ -110,7 +110,8 @@ bool check(lr::Status st, const char* what) {
 struct Prepared {
   lr::Camera camera;
   lr::Mat4 model;
-  lr::FineMat4 fine_model;  // fine scenes (PeerCase::fine)
+  lr::FineMat4 fine_model;       // fine scenes (PeerCase::fine)
+  lr::FineMat4 fine_projection;  // their camera's (camera.fine_projection points to it)
   lr::DrawState state;
   std::span<const lr::Mesh> meshes;
 };
@@ -122,7 +123,7 @@ bool prepare(R& renderer, const peer::PeerCase& c, Prepared& p) {
   storage.active = storage.active.first(active);
   storage.active_index = storage.active_index.first(2 * active);
   if (!check(renderer.configure(storage, peer::kWidth, peer::kHeight), "configure")) return false;
-  if (!peer::make_camera(c, p.camera)) {
+  if (!peer::make_camera(c, p.camera, p.fine_projection)) {
     sh::write("lr_peer: projection rejected\n");
     return false;
   }

@@ -158,15 +158,17 @@ consteval SpanSet scene_spans(const PeerCase& c) {
 
 // The camera of every scene: identity view (eye at the origin looking down -z), fovy 60, the
 // scene's near and far planes; for fine scenes the projection of perspective_fine (the aspect
-// the viewport's ratio 320 / 240) as fine_projection and, rounded, as projection. False if
+// the viewport's ratio 320 / 240) into fine_projection, which the camera points to (the caller
+// keeps it until the frame is rendered), and, rounded, as projection. False if
 // perspective() or perspective_fine() rejects them.
-inline bool make_camera(const PeerCase& c, Camera& out) {
+inline bool make_camera(const PeerCase& c, Camera& out, FineMat4& fine_projection) {
   out = Camera{};
   if (c.fine) {
     if (!perspective_fine(Fixed::from_double(kFovyDeg), kWidth, kHeight, c.near, c.far,
-                          out.fine_projection))
+                          fine_projection))
       return false;
-    out.projection = to_mat4(out.fine_projection);
+    out.fine_projection = &fine_projection;
+    out.projection = to_mat4(fine_projection);
     return true;
   }
   return perspective(Fixed::from_double(kFovyDeg), Fixed::ratio(kWidth, kHeight), c.near, c.far,

@@ -121,7 +121,7 @@ void expect_same_data(const AssetView& h, const Loaded& l) {
   for (size_t d = 0; d < l.draws.size(); ++d) {
     const FixedDraw& fd = l.draws[d];
     const Mesh& m = h.meshes[d];
-    EXPECT_EQ(m.position_frac, fd.position_frac) << "draw " << d;
+    EXPECT_EQ(m.position_fraction_bits(), fd.position_frac) << "draw " << d;
     EXPECT_EQ(m.bound, mesh_bound(m.positions)) << "draw " << d;
     expect_same(m.positions, fd.positions, "position", d);
     expect_same(m.normals, fd.normals, "normal", d);
@@ -206,7 +206,10 @@ TEST(AssetRoundTrip, FinePositionsWriteTheFinestFractionCount) {
 TEST(AssetRoundTrip, HeaderWithoutPositionFracIsQ16) {
   const Loaded l = load("cube.obj", "checker.png", TexelFormat::kRgb565, true, false);
   expect_same_data(LR_ASSET_VIEW(cube_rgb565_before_position_frac), l);
-  for (const Mesh& m : cube_rgb565_before_position_frac::meshes) EXPECT_EQ(m.position_frac, 16);
+  for (const Mesh& m : cube_rgb565_before_position_frac::meshes) {
+    EXPECT_EQ(m.position_frac, 0);  // the default
+    EXPECT_EQ(m.position_fraction_bits(), 16);
+  }
   for (const Mesh& m : cube_rgb565::meshes) EXPECT_EQ(m.position_frac, 16);
 }
 

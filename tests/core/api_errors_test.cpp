@@ -589,15 +589,16 @@ TEST(ApiErrors, DrawWithArgumentsThatDisagree) {
   expect_refused_then_rendered(rig, Status::kInvalidArgument);
 }
 
-// Fraction counts outside [16, 30] (docs/api-errors.md): a mesh's position_frac or a fine
-// model's frac refuses the draw, a camera's fine_projection frac (other than 0, none) the
+// Fraction counts outside [16, 30] (docs/api-errors.md): a mesh's position_frac (but 0, the
+// default: Q16.16) or a fine
+// model's frac refuses the draw, a camera's fine_projection's frac (given: not nullptr) the
 // frame. Counts inside the range draw the same triangle as the Q16.16 draw.
 TEST(ApiErrors, FractionCountsOutsideTheirRange) {
   Rig rig;
   ASSERT_TRUE(rig.ready());
   ASSERT_EQ(rig.draw_square(square(4, 4, 8, kRed), plain()), Status::kOk);
   const Tri tri;
-  for (const int frac : {0, 15, 31, 255}) {
+  for (const int frac : {1, 15, 31, 255}) {
     Mesh m = tri.mesh();
     m.position_frac = static_cast<uint8_t>(frac);
     EXPECT_EQ(rig.r->draw(m, Mat4::identity(), Material{}, plain()), Status::kInvalidArgument)
@@ -614,8 +615,9 @@ TEST(ApiErrors, FractionCountsOutsideTheirRange) {
 
   // The camera: a fine projection of 12 fraction bits refuses begin_frame (no frame begun).
   Camera camera;
-  camera.fine_projection = to_fine(Mat4::identity());
-  camera.fine_projection.frac = 12;
+  FineMat4 projection = to_fine(Mat4::identity());
+  projection.frac = 12;
+  camera.fine_projection = &projection;
   EXPECT_EQ(rig.r->begin_frame(camera, {}, kBackground), Status::kInvalidArgument);
   EXPECT_EQ(rig.draw_tri(plain()), Status::kNoFrame);
   expect_usable(rig);
@@ -623,8 +625,8 @@ TEST(ApiErrors, FractionCountsOutsideTheirRange) {
   // In range: positions in Q13.19 (frac 19), the model and projection as frac-30 identities.
   Rig fine, coarse;
   ASSERT_TRUE(fine.configure() == Status::kOk && coarse.ready());
-  camera.fine_projection = to_fine(Mat4::identity()) * to_fine(Mat4::identity());
-  EXPECT_EQ(camera.fine_projection.frac, 30);
+  projection = to_fine(Mat4::identity()) * to_fine(Mat4::identity());
+  EXPECT_EQ(projection.frac, 30);
   ASSERT_EQ(fine.r->begin_frame(camera, {}, kBackground), Status::kOk);
   std::array<Vec3, 3> p19 = tri.p;
   for (Vec3& v : p19)
@@ -632,7 +634,7 @@ TEST(ApiErrors, FractionCountsOutsideTheirRange) {
   Mesh m = tri.mesh();
   m.positions = p19;
   m.position_frac = 19;
-  const FineMat4 model = camera.fine_projection;
+  const FineMat4 model = projection;
   EXPECT_EQ(fine.r->draw(m, model, Material{}, plain()), Status::kOk);
   EXPECT_EQ(coarse.draw_tri(plain()), Status::kOk);
   ASSERT_EQ(fine.render(), Status::kOk);

@@ -700,9 +700,11 @@ TEST(FineTransforms, PeerDrawSnapsAsTheDoubleScene) {
       translate({{}, {}, Fixed::from_raw(static_cast<int32_t>(std::llround(tz * 65536)))}) *
       rotate_y(Fixed::from_int(20));
   Camera fine;
+  FineMat4 fine_projection{};
   ASSERT_TRUE(perspective_fine(Fixed::from_int(60), 320, 240, Fixed::from_int(1),
-                               Fixed::from_int(10), fine.fine_projection));
-  fine.projection = to_mat4(fine.fine_projection);
+                               Fixed::from_int(10), fine_projection));
+  fine.fine_projection = &fine_projection;
+  fine.projection = to_mat4(fine_projection);
   const FineMat4 fine_model =
       translate_fine(0, 0, static_cast<int32_t>(std::llround(tz * (1 << 28))), 28) *
       rotate_y_fine(Fixed::from_int(20));
@@ -730,19 +732,21 @@ TEST(FineTransforms, PeerDrawSnapsAsTheDoubleScene) {
 // the fine projection when the camera has one.
 TEST(FineTransforms, ModelViewProjectionIsQ16UnlessTheModelIsFine) {
   Camera cam;
+  FineMat4 fine_projection{};
   ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(4, 3), Fixed::from_int(1),
                           Fixed::from_int(10), cam.projection));
   ASSERT_TRUE(perspective_fine(Fixed::from_int(60), 4, 3, Fixed::from_int(1), Fixed::from_int(10),
-                               cam.fine_projection));
+                               fine_projection));
+  cam.fine_projection = &fine_projection;
   const Mat4 model = translate({{}, {}, Fixed::from_raw(-160563)}) * rotate_y(Fixed::from_int(20));
   EXPECT_EQ(VertexStage::model_view_projection(cam, model, nullptr),
             to_fine(cam.projection * cam.view * model));
   const FineMat4 fm = to_fine(model);
   const FineMat4 fine = VertexStage::model_view_projection(cam, model, &fm);
-  EXPECT_EQ(fine, cam.fine_projection * (to_fine(cam.view) * fm));
+  EXPECT_EQ(fine, fine_projection * (to_fine(cam.view) * fm));
   EXPECT_GT(fine.frac, 16);
   Camera coarse = cam;
-  coarse.fine_projection = FineMat4{};
+  coarse.fine_projection = nullptr;
   EXPECT_EQ(VertexStage::model_view_projection(coarse, model, &fm),
             to_fine(cam.projection) * (to_fine(cam.view) * fm));
 }

@@ -123,14 +123,15 @@ void measure_input(size_t i, const peer::PeerSources& src, InputFigures& f) {
   ASSERT_EQ(core_mesh.positions.size(), mesh.positions.size());
   // The flash's vertex of each double one: its position rounded to position_frac fraction bits
   // (lineraster-asset rounds to nearest; S1x's subdivision orders its vertices apart).
-  const int pf = core_mesh.position_frac;
+  const int pf = core_mesh.position_fraction_bits();
   std::map<std::array<int32_t, 3>, size_t> flash;
   for (size_t v = 0; v < core_mesh.positions.size(); ++v) {
     const Vec3& p = core_mesh.positions[v];
     flash[{p.x.raw, p.y.raw, p.z.raw}] = v;
   }
   Camera camera;
-  ASSERT_TRUE(peer::fwp::make_camera(c, camera));
+  FineMat4 fine_projection{};
+  ASSERT_TRUE(peer::fwp::make_camera(c, camera, fine_projection));
   const Mat4 model = peer::fwp::model(c);
   const FineMat4 fine_model = c.fine ? peer::fwp::fine_model(c) : FineMat4{};
   const FineMat4* fine = c.fine ? &fine_model : nullptr;

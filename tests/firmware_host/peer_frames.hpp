@@ -49,7 +49,8 @@ bool render_core(const fwp::PeerCase& c, host::RenderResult& out, std::string& e
     return false;
   }
   Camera camera;
-  if (!fwp::make_camera(c, camera)) {
+  FineMat4 fine_projection{};
+  if (!fwp::make_camera(c, camera, fine_projection)) {
     error = "projection rejected";
     return false;
   }
