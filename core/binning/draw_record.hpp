@@ -40,6 +40,7 @@ struct DrawCall {
   std::span<const ScreenVertex> screen{};   // draw_screen()'s vertices
   std::span<const TexVertex> screen_tex{};  // and their texture coordinates
   Mat4 model{};
+  const FineMat4* fine_model = nullptr;  // draw()'s fine model (the caller keeps it until render)
   ZeroStored<Material> material{};
   ZeroStored<DrawState> state{};
   bool is_screen = false;  // draw_screen()

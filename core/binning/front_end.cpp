@@ -17,6 +17,7 @@ namespace {
 Status plan_draw(const Mesh& mesh, const DrawState& state, const LightSet& lights, DrawPlan& p,
                  const MapRoutines* maps) {
   const size_t n = mesh.positions.size();
+  if (!mesh.valid_position_frac()) return Status::kInvalidArgument;
   if ((!mesh.normals.empty() && mesh.normals.size() != n) ||
       (!mesh.colors.empty() && mesh.colors.size() != n))
     return Status::kInvalidArgument;
@@ -137,6 +138,8 @@ Status FrontEnd::begin_frame(const Camera& camera, const LightSet& lights, Rgb8 
   if (!configured_) return Status::kNotConfigured;
   phase_ = Phase::kIdle;  // until this frame is begun: a failed begin abandons the last frame
   if (lights.count > kMaxLights) return Status::kInvalidArgument;
+  if (camera.fine_projection != nullptr && !camera.fine_projection->valid())
+    return Status::kInvalidArgument;
   camera_ = camera;
   lights_ = lights;
   background_ = background;
@@ -454,8 +457,12 @@ void FrontEnd::clip_and_bin(MeshDraw& d, const uint16_t (&vi)[3], ScreenVertex* 
     count_outcome(stats_, binned, last);
 }
 Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& material,
-                      const DrawState& state) {
+                      const DrawState& state, const FineMat4* fine_model, FineComposeFn compose) {
   if (const Status st = frame_status(); st != Status::kOk) return st;
+  if (fine_model != nullptr) {
+    if (!fine_model->valid() || compose == nullptr) return refuse(Status::kInvalidArgument);
+    fine_compose_ = compose;
+  }
   // Refused whole, with nothing added and only the draw counted: arguments that disagree, a
   // state the renderer links no routine for, a store the draw needs that was not given.
   DrawPlan plan;
@@ -509,9 +516,9 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
     routines_->sign->draw(*this, draw_index, plan.kind.phong ? &material : nullptr);
   // Only bands read the draw's arguments again (replay).
   if (routines_->bands != nullptr)
-    routines_->bands->record(record.call, mesh, model, material, state);
+    routines_->bands->record(record.call, mesh, model, material, state, fine_model);
   if (!overflow_)
-    run_mesh(draw_index, mesh, model, material, state, plan, pl);
+    run_mesh(draw_index, mesh, model, material, state, plan, pl, fine_model);
   else if (routines_->bands == nullptr)  // no band will bin it: dropped, and counted
     stats_.dropped_vertex_capacity += tri_count;
   return Status::kOk;
@@ -519,7 +526,7 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
 
 void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
                         const Material& material, const DrawState& state, const DrawPlan& plan,
-                        const PreparedLighting& pl) {
+                        const PreparedLighting& pl, const FineMat4* fine_model) {
   records_[index].first_vertex = static_cast<uint16_t>(store_.count());
   draw_colors_ = records_[index].triangle_colors;
   const size_t n = mesh.positions.size();
@@ -531,8 +538,10 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
     stats_.dropped_vertex_capacity += static_cast<uint32_t>(mesh.triangles.size());
     return;
   }
+  // (A fine model: fine_compose_ is set, draw() took it with the model.)
   const VertexStage stage(camera_, model, guard_, width_, height_,
-                          mesh.bound != 0 ? mesh.bound : position_bound(mesh.positions.data(), n));
+                          mesh.bound != 0 ? mesh.bound : position_bound(mesh.positions.data(), n),
+                          mesh.position_fraction_bits(), fine_model, fine_compose_);
   VertexColors colors;
   colors.lit = plan.lit;
   colors.pending = plan.lit && plan.gouraud;
@@ -672,6 +681,7 @@ Status FrontEnd::draw_screen(std::span<const ScreenVertex> vertices,
   call.screen = vertices;
   call.screen_tex = tex;
   call.model = Mat4{};
+  call.fine_model = nullptr;
   call.material.set(Material{});
   call.state.set(state);
   call.is_screen = true;
@@ -788,7 +798,7 @@ void FrontEnd::replay(uint8_t index) {
     routines_->prepare(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
-  run_mesh(index, c.mesh, c.model, material, state, plan, pl);
+  run_mesh(index, c.mesh, c.model, material, state, plan, pl, c.fine_model);
 }
 
 Rgb8 FrontEndParts::one_color(Color15 c) {
@@ -801,10 +811,12 @@ void FrontEndParts::flat_colors(const MeshDraw& d, const std::array<uint16_t, 3>
 }
 
 void FrontEndParts::record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,
-                                const Material& material, const DrawState& state) {
+                                const Material& material, const DrawState& state,
+                                const FineMat4* fine_model) {
   call.mesh = mesh;
   call.screen = {};
   call.model = model;
+  call.fine_model = fine_model;
   call.material.set(material);
   call.state.set(state);
   call.is_screen = false;

@@ -107,7 +107,8 @@ struct FrontEndParts {
   static bool maps_store_missing(const FrontEnd& fe, const DrawPlan& p, const DrawState& state);
   // Bands: a draw's arguments kept in its record, for the bands that bin it again (replay).
   static void record_call(DrawCall& call, const Mesh& mesh, const Mat4& model,
-                          const Material& material, const DrawState& state);
+                          const Material& material, const DrawState& state,
+                          const FineMat4* fine_model);
   // Strip signatures (strip_inputs.hpp): the frame's, a draw's, a binned triangle's.
   static uint32_t sign_frame(const FrontEnd& fe);
   static void sign_draw(FrontEnd& fe, uint8_t draw, const Material* per_pixel_material);
@@ -123,8 +124,8 @@ struct BandRoutines {
   bool (*shrink)(FrontEnd&) = &FrontEndParts::shrink_band;
   void (*compact)(FrontEnd&, size_t, bool, bool) = &FrontEndParts::compact_vertices;
   bool (*outside)(FrontEnd&, uint16_t, int, Cull) = &FrontEndParts::polygon_outside_band;
-  void (*record)(DrawCall&, const Mesh&, const Mat4&, const Material&,
-                 const DrawState&) = &FrontEndParts::record_call;
+  void (*record)(DrawCall&, const Mesh&, const Mat4&, const Material&, const DrawState&,
+                 const FineMat4*) = &FrontEndParts::record_call;
 };
 inline constexpr BandRoutines kBandRoutines{};
 // What only textured and Phong draws need of the front end: their maps' checks, their stores'
@@ -250,9 +251,10 @@ class FrontEnd {
   // The status of this frame's first refused draw (kOk: none was refused): what render() returns.
   Status refused() const { return refused_; }
 
-  // Adds a mesh (see Renderer::draw).
-  Status draw(const Mesh& mesh, const Mat4& model, const Material& material,
-              const DrawState& state);
+  // Adds a mesh (see Renderer::draw; fine_model: the draw's FineMat4 model, or nullptr, and
+  // compose the function that composes its model-view-projection: fine_model_view_projection).
+  Status draw(const Mesh& mesh, const Mat4& model, const Material& material, const DrawState& state,
+              const FineMat4* fine_model = nullptr, FineComposeFn compose = nullptr);
   // Adds triangles already in screen space (see Renderer::draw_screen).
   Status draw_screen(std::span<const ScreenVertex> vertices,
                      std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state,
@@ -338,7 +340,8 @@ class FrontEnd {
   // The vertex stage and binning of a recorded draw (draw() runs it unless the stores have
   // overflowed; bin_band runs it for each band).
   void run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model, const Material& material,
-                const DrawState& state, const DrawPlan& plan, const PreparedLighting& pl);
+                const DrawState& state, const DrawPlan& plan, const PreparedLighting& pl,
+                const FineMat4* fine_model);
   void run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
                   std::span<const TexVertex> tex,
                   std::span<const std::array<uint16_t, 3>> triangles, const DrawState& state);
@@ -410,6 +413,9 @@ class FrontEnd {
   // Bands: the stores overflowed (the rest of the frame is only recorded), and the refused
   // draws' triangles (counted in every band's statistics).
   bool overflow_ = false;
+  // The composition of fine draws' model-view-projection (set by the first draw with a FineMat4
+  // model: nullptr until then, so that an image without one links none).
+  FineComposeFn fine_compose_ = nullptr;
   // The routines of configure() (nullptr until then: zero bytes).
   const FrontEndRoutines* routines_ = nullptr;
   uint32_t refused_triangles_ = 0, refused_vertices_ = 0;

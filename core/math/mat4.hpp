@@ -53,6 +53,73 @@ constexpr ClipCoord transform_point(const Mat4& m, Vec3 p) {
   return {row(0), row(1), row(2), row(3)};
 }
 
+// A transform with more fraction bits than Mat4, for draws that ask for a projection finer than
+// Q16.16 (opt-in: Camera::fine_projection, Renderer::draw with a FineMat4 model,
+// Mesh::position_frac; docs/numerics.md#fine-transforms): entry = raw / 2^frac, frac in [16, 30],
+// so |entry| < 2^(31 - frac) (at 30 below 2, at 28 below 8, at 16 Mat4's range). frac 0: no matrix
+// given.
+struct FineMat4 {
+  static constexpr int kMinFrac = 16, kMaxFrac = 30;
+  int32_t m[4][4];
+  int32_t frac;
+  constexpr bool valid() const { return frac >= kMinFrac && frac <= kMaxFrac; }
+  friend constexpr bool operator==(const FineMat4&, const FineMat4&) = default;
+};
+
+// A Mat4 as a FineMat4 (frac 16: the same entries).
+constexpr FineMat4 to_fine(const Mat4& a) {
+  FineMat4 r{};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) r.m[i][j] = a.m[i][j].raw;
+  r.frac = 16;
+  return r;
+}
+
+// v 2^-s rounded to nearest (ties towards +infinity) for s > 0, v 2^-s exactly for s <= 0
+// (|v| 2^-s < 2^63 by the caller's bound).
+constexpr int64_t shift_rounded(int64_t v, int s) {
+  return s > 0 ? (v + (int64_t{1} << (s - 1))) >> s : v * (int64_t{1} << -s);
+}
+
+// A FineMat4 rounded to Q16.16 (saturated): for the lighting, which reads Mat4.
+Mat4 to_mat4(const FineMat4& a);
+
+// a * b with as many fraction bits as the largest entry of the product leaves (at most 30, at
+// least 16: entries beyond 2^15 saturate, as Mat4's product does). Each product of entries is
+// below 2^(la + lb) (la, lb: the bit lengths of the largest magnitudes, <= 32), shifted right
+// by max(0, la + lb - 60) so that the sum of four stays below 2^62; then rounded once to the
+// result's fraction count. Both must be valid().
+FineMat4 operator*(const FineMat4& a, const FineMat4& b);
+
+// M * (p, 1) in clip coordinates (Q28.28) for a point of p_frac fraction bits (in [16, 30]):
+// each product of an entry and a coordinate is below 2^62 and has frac + p_frac >= 32 fraction
+// bits, shifted right by frac + p_frac - 28 >= 4 (below 2^58, the sum of three and the
+// translation below 2^60). At frac = p_frac = 16 the integers of transform_point(Mat4, p).
+constexpr ClipCoord transform_point(const FineMat4& m, Vec3 p, int p_frac) {
+  const int s = m.frac + p_frac - 28;
+  auto row = [&](int i) {
+    return ((int64_t{m.m[i][0]} * p.x.raw) >> s) + ((int64_t{m.m[i][1]} * p.y.raw) >> s) +
+           ((int64_t{m.m[i][2]} * p.z.raw) >> s) + shift_rounded(m.m[i][3], m.frac - 28);
+  };
+  return {row(0), row(1), row(2), row(3)};
+}
+
+// A translation by (x, y, z) 2^-frac (raw values of frac fraction bits, frac in [16, 30]).
+constexpr FineMat4 translate_fine(int32_t x, int32_t y, int32_t z, int frac) {
+  FineMat4 r{};
+  r.frac = frac;
+  for (int i = 0; i < 4; ++i) r.m[i][i] = int32_t{1} << frac;
+  r.m[0][3] = x;
+  r.m[1][3] = y;
+  r.m[2][3] = z;
+  return r;
+}
+
+// Rotations as FineMat4 of frac 30 (sine and cosine in Q1.30: sin_cos_q30, trig.hpp).
+FineMat4 rotate_x_fine(Fixed degrees);
+FineMat4 rotate_y_fine(Fixed degrees);
+FineMat4 rotate_z_fine(Fixed degrees);
+
 // M * (p, 1) dropping w, back in Q16.16 (saturated): world positions for lighting.
 constexpr Vec3 transform_affine(const Mat4& m, Vec3 p) {
   ClipCoord c = transform_point(m, p);

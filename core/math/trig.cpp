@@ -1,5 +1,6 @@
 #include "lineraster/core/math/trig.hpp"
 
+#include "lineraster/core/math/mat4.hpp"
 #include "lineraster/core/math/wide_divide.hpp"
 
 namespace lr {
@@ -39,6 +40,56 @@ Fixed sin_deg(Fixed degrees) {
 
 Fixed cos_deg(Fixed degrees) {
   return sin_deg(degrees + Fixed::from_int(90));
+}
+
+namespace {
+
+// a b 2^-30 rounded, a and b Q2.30 below 2^31 in magnitude: the product below 2^62.
+int64_t mul30(int64_t a, int64_t b) {
+  return shift_rounded(a * b, 30);
+}
+
+// sin and cos of x radians, x in [0, pi/4] in Q2.30: Horner in x^2 (below 0.62, so every
+// partial sum of the series stays below 1 in magnitude: all values below 2^31).
+SinCos30 sin_cos_octant(int64_t x) {
+  const int64_t x2 = mul30(x, x);
+  int64_t p = detail::kSinCoefficients[4];
+  for (int k = 3; k >= 0; --k) p = detail::kSinCoefficients[static_cast<size_t>(k)] + mul30(x2, p);
+  const int64_t s = x + mul30(x, mul30(x2, p));
+  int64_t q = detail::kCosCoefficients[5];
+  for (int k = 4; k >= 0; --k) q = detail::kCosCoefficients[static_cast<size_t>(k)] + mul30(x2, q);
+  const int64_t c = (int64_t{1} << 30) + mul30(x2, q);
+  return {static_cast<int32_t>(s), static_cast<int32_t>(c)};
+}
+
+}  // namespace
+
+SinCos30 sin_cos_q30(Fixed degrees) {
+  // The angle in [0, 360) degrees (Q16.16, exact), its quadrant and the angle r in [0, 90).
+  int32_t a = degrees.raw % static_cast<int32_t>(4 * kQuarterTurn);
+  if (a < 0) a += static_cast<int32_t>(4 * kQuarterTurn);
+  int quadrant = 0;
+  while (a >= kQuarterTurn) {
+    a -= static_cast<int32_t>(kQuarterTurn);
+    ++quadrant;
+  }
+  // Above 45 degrees, the complement: sin r = cos(90 - r). r' in [0, 45] degrees is below 2^22
+  // (Q16.16); times pi / 180 in Q0.44 (below 2^39) it is below 2^61, in Q2.30 after the shift.
+  const bool upper = a > kQuarterTurn / 2;
+  const int64_t r = upper ? kQuarterTurn - a : a;
+  constexpr int64_t kRadiansPerDegreeQ44 = 307041569098;  // round(pi / 180 2^44)
+  const SinCos30 o = sin_cos_octant(shift_rounded(r * kRadiansPerDegreeQ44, 30));
+  const int32_t s = upper ? o.cos : o.sin, c = upper ? o.sin : o.cos;
+  switch (quadrant) {
+    case 0:
+      return {s, c};
+    case 1:
+      return {c, -s};
+    case 2:
+      return {-s, -c};
+    default:
+      return {-c, s};
+  }
 }
 
 }  // namespace lr

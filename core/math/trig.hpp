@@ -17,6 +17,16 @@ namespace lr {
 Fixed sin_deg(Fixed degrees);
 Fixed cos_deg(Fixed degrees);
 
+// Sine and cosine in Q1.30 (in [-2^30, 2^30]), within a few units of 2^-30 of the exact values
+// (docs/numerics.md#sine-and-cosine): the angle reduced exactly to [0, 45] degrees, turned into
+// radians in Q2.30 and the Taylor polynomials to x^11 and x^12 evaluated in Q2.30 (the terms
+// left out are below 2^-31 there; every product of two Q2.30 values below 2^31 is below 2^62).
+// For the matrices of fine transforms (rotate_x_fine ..., perspective_fine).
+struct SinCos30 {
+  int32_t sin, cos;
+};
+SinCos30 sin_cos_q30(Fixed degrees);
+
 namespace detail {
 
 inline constexpr int kTrigSteps = 256;
@@ -44,6 +54,32 @@ consteval std::array<int32_t, kTrigSteps + 1> make_sin_table() {
 }
 
 inline constexpr std::array<int32_t, kTrigSteps + 1> kSinTable = make_sin_table();
+
+// The Taylor coefficients of sin (x^3 ... x^11) and cos (x^2 ... x^12) in Q1.30, rounded.
+consteval int32_t q30(double v) {
+  const double s = v * (1 << 30);
+  return static_cast<int32_t>(s < 0 ? s - 0.5 : s + 0.5);
+}
+consteval std::array<int32_t, 5> make_sin_coefficients() {
+  std::array<int32_t, 5> c{};
+  double f = 1.0;
+  for (int k = 1; k <= 5; ++k) {
+    f *= -1.0 / ((2.0 * k) * (2.0 * k + 1.0));  // (-1)^k / (2k + 1)!
+    c[static_cast<size_t>(k - 1)] = q30(f);
+  }
+  return c;
+}
+consteval std::array<int32_t, 6> make_cos_coefficients() {
+  std::array<int32_t, 6> c{};
+  double f = 1.0;
+  for (int k = 1; k <= 6; ++k) {
+    f *= -1.0 / ((2.0 * k - 1.0) * (2.0 * k));  // (-1)^k / (2k)!
+    c[static_cast<size_t>(k - 1)] = q30(f);
+  }
+  return c;
+}
+inline constexpr std::array<int32_t, 5> kSinCoefficients = make_sin_coefficients();
+inline constexpr std::array<int32_t, 6> kCosCoefficients = make_cos_coefficients();
 
 }  // namespace detail
 }  // namespace lr

@@ -82,6 +82,15 @@ class Renderer {
               const DrawState& state) {
     return front_.draw(mesh, model, material, state);
   }
+  // draw() with a model of more fraction bits (rotate_y_fine ..., FineMat4 products): the vertex
+  // stage composes it with the camera (its fine_projection when given) without rounding to
+  // Q16.16; the lighting reads it rounded to Q16.16. The matrix must stay valid until render()
+  // returns (bands replay the draw); kInvalidArgument when its frac is outside [16, 30]; else
+  // as draw(). docs/numerics.md#fine-transforms.
+  Status draw(const Mesh& mesh, const FineMat4& model, const Material& material,
+              const DrawState& state) {
+    return front_.draw(mesh, to_mat4(model), material, state, &model, &fine_model_view_projection);
+  }
 
   // Adds triangles already in screen space (snapped subpixel positions, depth, colour):
   // for 2D overlays and for tests of the raster rules. Lighting does not apply. A textured

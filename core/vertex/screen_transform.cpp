@@ -51,8 +51,8 @@ uint32_t position_bound(const Vec3* positions, size_t n) {
   return b;
 }
 
-ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int height,
-                                 GuardBand guard) {
+ScreenTransform::ScreenTransform(const FineMat4& mvp, int p_frac, uint32_t bound, int width,
+                                 int height, GuardBand guard) {
   // Coordinates lie in [-(bound + 1), bound]; with bound < 2^(31 - ps) they stay in int32 when
   // shifted by ps, and bound 2^ps >= 2^30 (so a row's factors fit int32, below).
   if (bound > 0x7FFFFFFFu) bound = 0x7FFFFFFFu;  // no int32 coordinate is beyond
@@ -63,25 +63,30 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
   // Row factors: the row's value times K is what the quotient by w must give (subpixels from the
   // centre, window depth from the middle of the range).
   const int64_t k[4] = {sx, -int64_t{sy}, kHalfDepth, 1};
+  // The sums below are in units of 2^-(F + P) (F the matrix's fraction bits, P the positions'):
+  // fp less 32 in Q32.32 (0 for Q16.16 and Q16.16).
+  const int fp = mvp.frac + p_frac - 32;
   int exponent[4];
   for (int i = 0; i < 4; ++i) {
-    // |value| 2^32 <= sum_j |K m_j| b + |K t| 2^16 < 2^L (the row times K, in Q32.32); and the
-    // same without K, whose bound the exact path's range (|clip| < 2^19) must hold.
+    // |value| 2^32 <= (sum_j |K m_j| b + |K t| 2^P) 2^-fp < 2^L (the row times K, in Q32.32);
+    // and the same without K, whose bound the exact path's range (|clip| < 2^19) must hold.
+    // (|K m| < 2^62, b <= 2^31, 2^P <= 2^30: the 128-bit sums hold them.)
     Wide with_k, plain;
     for (int j = 0; j < 4; ++j) {  // the three factors of the position, then the translation
-      const int64_t m = mvp.m[i][j].raw;
-      const uint32_t scale = j < 3 ? b : 1u << 16;
+      const int64_t m = mvp.m[i][j];
+      const uint32_t scale = j < 3 ? b : uint32_t{1} << p_frac;
       with_k.add_mul(abs64(k[i] * m), scale);
       plain.add_mul(abs64(m), scale);
     }
-    if (plain.bit_length() > 50) return;  // the exact path for every vertex (enabled_ false)
+    // the exact path for every vertex (enabled_ false)
+    if (plain.bit_length() - fp > 50) return;
     // V 2^32 < 2^L, E = 61 - L: every row sum |V| 2^E below 2^29.
-    exponent[i] = 61 - with_k.bit_length();
+    exponent[i] = 61 - (with_k.bit_length() - fp);
   }
   // The least w over the bound's cube when it lies inside the guard band (else 0): only now,
   // with every row below 2^50 in Q32.32, are the corners' clip coordinates below 2^46 in Q28.28
   // (guard_free_least_w's products by the band's factors below 2^59).
-  const int64_t cube_w = guard_free_least_w(mvp, bound, guard);
+  const int64_t cube_w = guard_free_least_w(mvp, p_frac, bound, guard);
   const int ew = exponent[3];
   int exy = exponent[0] < exponent[1] ? exponent[0] : exponent[1];
   // n = clz(W) is at least 2 (W < 2^30). r = recip >> (n_max - n) is 2^(61 - n_max) / W, so
@@ -119,7 +124,7 @@ ScreenTransform::ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)  // the three factors, then the translation
       (j < 3 ? rows[i]->a[j] : rows[i]->t) =
-          scaled(k[i] * mvp.m[i][j].raw, e[i] - (j < 3 ? ps : 16));
+          scaled(k[i] * mvp.m[i][j], j < 3 ? e[i] - ps - fp : e[i] - mvp.frac);
   if constexpr (kSplitWideProducts)
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 3; ++j) split_[i][j] = halves(rows[i]->a[j]);
@@ -266,13 +271,14 @@ size_t ScreenTransform::run(const Vec3* p, size_t count, ScreenVertex* out,
 // (exact clip coordinates) in front of the eye and within 7/8 of the band (the projection is
 // linear in clip space and the band convex: the cube's inside follows). Then the least of the
 // corners' w (Q28.28, > 0), else 0.
-int64_t ScreenTransform::guard_free_least_w(const Mat4& mvp, uint32_t bound, GuardBand guard) {
+int64_t ScreenTransform::guard_free_least_w(const FineMat4& mvp, int p_frac, uint32_t bound,
+                                            GuardBand guard) {
   const int32_t hi = static_cast<int32_t>(bound), lo = -hi - 1;
   int64_t least = INT64_MAX;
   for (int c = 0; c < 8; ++c) {
     const Vec3 p{Fixed::from_raw(c & 1 ? hi : lo), Fixed::from_raw(c & 2 ? hi : lo),
                  Fixed::from_raw(c & 4 ? hi : lo)};
-    const ClipCoord q = transform_point(mvp, p);  // |coordinates| < 2^46 (the plain bound)
+    const ClipCoord q = transform_point(mvp, p, p_frac);  // |coordinates| < 2^46 (the plain bound)
     if (q.w <= 0) return 0;
     const int64_t gx = q.w * guard.gx - ((q.w * guard.gx) >> 3);
     const int64_t gy = q.w * guard.gy - ((q.w * guard.gy) >> 3);

@@ -63,10 +63,16 @@ uint32_t position_bound(const Vec3* positions, size_t n);
 
 class ScreenTransform {
  public:
-  // mvp: the draw's model-view-projection (Q16.16); bound: every coordinate of the positions it
-  // will be given lies in [-bound - 1, bound] (position_bound, or Mesh::bound); the viewport
-  // (1..kMaxViewport) and its guard band.
-  ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int height, GuardBand guard);
+  // mvp: the draw's model-view-projection (a valid FineMat4: Q16.16 as to_fine gives it, or
+  // finer); p_frac: the positions' fraction bits, in [16, 30] (Mesh::position_frac); bound:
+  // every coordinate of the positions it will be given lies in [-bound - 1, bound] (raw:
+  // position_bound, or Mesh::bound); the viewport (1..kMaxViewport) and its guard band. The
+  // fraction counts change only the per-draw factors' exponents: the same code per vertex.
+  ScreenTransform(const FineMat4& mvp, int p_frac, uint32_t bound, int width, int height,
+                  GuardBand guard);
+  // A Q16.16 model-view-projection and Q16.16 positions.
+  ScreenTransform(const Mat4& mvp, uint32_t bound, int width, int height, GuardBand guard)
+      : ScreenTransform(to_fine(mvp), 16, bound, width, height, guard) {}
 
   // Whether any vertex can take the short path (false: the draw's clip coordinates may reach the
   // exact path's range limit, or its rows leave no precision for it).
@@ -103,11 +109,14 @@ class ScreenTransform {
   static constexpr int32_t kMaxW = (int32_t{1} << 30) - 1;  // row sums are below 2^29 + 5
   static constexpr uint32_t kHalfDepth = kDepthMax / 2;     // 65535 * 2^15
 
-  static int64_t guard_free_least_w(const Mat4& mvp, uint32_t bound, GuardBand guard);
+  static int64_t guard_free_least_w(const FineMat4& mvp, int p_frac, uint32_t bound,
+                                    GuardBand guard);
 
-  // Rows x, y, z, w: a[j] = K_i m_ij 2^(E_i - ps), |a| < 2^31; t = K_i t_i 2^(E_i - 16),
-  // with m, t the Q16.16 entries, K_i the row's viewport factor and E_i its exponent (x and y
-  // share one): every row sum is below 2^29 + 5 in magnitude (docs/numerics.md#the-short-path).
+  // Rows x, y, z, w: a[j] = K_i m_ij 2^(E_i - ps + 32 - F - P), |a| < 2^31; t = K_i t_i
+  // 2^(E_i - F), with m, t the raw entries of F fraction bits and P the positions' (16 and 16:
+  // a[j] = K_i m_ij 2^(E_i - ps), t = K_i t_i 2^(E_i - 16)), K_i the row's viewport factor and E_i
+  // its exponent (x and y share one): every row sum is below 2^29 + 5 in magnitude
+  // (docs/numerics.md#the-short-path).
   struct alignas(8) RowWords {
     int32_t a[3];  // the row's factors of x, y, z
     int32_t t;     // its translation

@@ -25,15 +25,33 @@ Unit30 transform_normal_call(const Mat4& nm, int64_t x, int64_t y, int64_t z) {
   return transform_normal(nm, x, y, z);
 }
 
+FineMat4 fine_model_view_projection(const Camera& camera, const FineMat4& model) {
+  const FineMat4 projection =
+      camera.fine_projection != nullptr ? *camera.fine_projection : to_fine(camera.projection);
+  // An identity view leaves the model's entries as they are (its product is exact): skipped.
+  if (camera.view == Mat4::identity()) return projection * model;
+  return projection * (to_fine(camera.view) * model);
+}
+
+FineMat4 VertexStage::model_view_projection(const Camera& camera, const Mat4& model,
+                                            const FineMat4* fine_model) {
+  if (fine_model != nullptr) return fine_model_view_projection(camera, *fine_model);
+  return to_fine(camera.projection * camera.view * model);
+}
+
 VertexStage::VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width,
-                         int height, uint32_t bound)
+                         int height, uint32_t bound, int position_frac, const FineMat4* fine_model,
+                         FineComposeFn compose)
     : model_(model),
-      mvp_(camera.projection * camera.view * model),
+      mvp_(fine_model != nullptr && compose != nullptr
+               ? compose(camera, *fine_model)
+               : to_fine(camera.projection * camera.view * model)),
+      position_frac_(position_frac),
       nm_(normal_matrix(model)),
       guard_(guard),
       width_(width),
       height_(height),
-      screen_(mvp_, bound, width, height, guard) {
+      screen_(mvp_, position_frac, bound, width, height, guard) {
   rigid_ = rigid_normal_rows(nm_, rot_);
 }
 
@@ -109,7 +127,8 @@ LitColor VertexStage::light(const VertexStage& stage, const Mesh& mesh, const Ve
     if (colors.split) return light_directional_split<kSpecular>(*colors.lighting, nw);
     return {light_directional<kSpecular>(*colors.lighting, nw), Color15{}};
   }
-  const LitColor c = colors.point(*colors.lighting, nw, &stage.model_, mesh.positions[i]);
+  const LitColor c =
+      colors.point(*colors.lighting, nw, &stage.model_, stage.q16(mesh.positions[i]));
   if (colors.split) return c;
   return {sum_clamped(c.primary, c.secondary), Color15{}};
 }
@@ -130,8 +149,8 @@ LitColor VertexStage::light_face(const VertexColors colors, const Vec3& p0, cons
   if (back) fw = negate(fw);
   Vec3 centroid{};
   if (colors.need_position) {
-    const Vec3 w0 = transform_affine(model_, p0), w1 = transform_affine(model_, p1),
-               w2 = transform_affine(model_, p2);
+    const Vec3 w0 = transform_affine(model_, q16(p0)), w1 = transform_affine(model_, q16(p1)),
+               w2 = transform_affine(model_, q16(p2));
     // The mean of three int32, truncated (C's division): |sum| < 3 2^31, a 64-by-32 division of
     // its magnitude.
     auto mean = [](int32_t a, int32_t b, int32_t c) {
@@ -172,7 +191,7 @@ void VertexStage::attributes(const Mesh& mesh, const VertexColors& colors, size_
     SurfaceVertex& su = *surface;
     const Normal16& nn = mesh.normals[i];
     su.normal = transform_normal_call(nm_, nn.x, nn.y, nn.z);
-    su.position = colors.need_position ? transform_affine(model_, mesh.positions[i]) : Vec3{};
+    su.position = colors.need_position ? transform_affine(model_, q16(mesh.positions[i])) : Vec3{};
     if (colors.tangents) {
       transform_tangent(model_, mesh.tangents[i], su.tangent);
       su.handedness = mesh.tangents[i].w < 0 ? -16384 : 16384;

@@ -75,6 +75,13 @@ using PointLightFn = LitColor (*)(const PreparedLighting& pl, const Unit30& n, c
 // links neither.
 LitColor light_point_at(const PreparedLighting& pl, const Unit30& n, const Mat4* model, Vec3 p);
 
+// The model-view-projection of a draw with a fine model: P (V M) in FineMat4 products (P the
+// camera's fine_projection, or its projection when it has none; V its view), composed once per
+// draw. Reached only through Renderer::draw(mesh, FineMat4, ...), which hands the front end this
+// function (FineComposeFn): an image that never draws a fine model links no FineMat4 product.
+FineMat4 fine_model_view_projection(const Camera& camera, const FineMat4& model);
+using FineComposeFn = FineMat4 (*)(const Camera&, const FineMat4&);
+
 class VertexStage;
 struct VertexColors;
 // VertexStage::attributes, for the vertices of textured and Phong draws: called through this
@@ -127,8 +134,19 @@ class VertexStage {
  public:
   // bound: every coordinate of the positions the stage will transform lies in [-bound - 1,
   // bound] (position_bound); the default takes any (the short path then has less precision).
+  // position_frac: the positions' fraction bits (Mesh::position_frac, in [16, 30]). fine_model
+  // and compose: a draw with a FineMat4 model (model its rounding to Q16.16, which the lighting
+  // reads) takes compose(camera, *fine_model) as its model-view-projection
+  // (fine_model_view_projection); without them the Q16.16 product camera.projection *
+  // camera.view * model, as before fine transforms (the same integers).
   VertexStage(const Camera& camera, const Mat4& model, GuardBand guard, int width, int height,
-              uint32_t bound = 0x7FFFFFFFu);
+              uint32_t bound = 0x7FFFFFFFu, int position_frac = 16,
+              const FineMat4* fine_model = nullptr, FineComposeFn compose = nullptr);
+
+  // The draw's model-view-projection as the stage takes it: fine_model_view_projection(camera,
+  // *fine_model) when a fine model is given, else the Q16.16 product as a FineMat4 of frac 16.
+  static FineMat4 model_view_projection(const Camera& camera, const Mat4& model,
+                                        const FineMat4* fine_model);
 
   // The mesh's vertices into out[0, n) (and surfaces[0, n) for Phong, tex[0, n) for draws
   // with texture coordinates; else nullptr): transformed, clip-tested (outcode), projected and
@@ -180,7 +198,17 @@ class VertexStage {
   [[gnu::noinline]] void attributes(const Mesh& mesh, const VertexColors& colors, size_t i,
                                     ScreenVertex& sv, SurfaceVertex* surface, TexVertex* tex) const;
 
-  ClipCoord clip(const Vec3& model_position) const { return transform_point(mvp_, model_position); }
+  ClipCoord clip(const Vec3& model_position) const {
+    return transform_point(mvp_, model_position, position_frac_);
+  }
+  // A mesh position in Q16.16 (rounded from position_frac bits): what the lighting reads.
+  Vec3 q16(const Vec3& p) const {
+    if (position_frac_ == 16) return p;
+    const int s = position_frac_ - 16;
+    return {Fixed::from_raw(static_cast<int32_t>(shift_rounded(p.x.raw, s))),
+            Fixed::from_raw(static_cast<int32_t>(shift_rounded(p.y.raw, s))),
+            Fixed::from_raw(static_cast<int32_t>(shift_rounded(p.z.raw, s)))};
+  }
   // Projects and snaps a clip-space point inside every plane; false when w <= 0.
   bool project(const ClipCoord& c, ScreenVertex& v) const;
   // A mesh normal in world space, unit Q1.30. Under a rigid model matrix a rotation and one
@@ -194,7 +222,8 @@ class VertexStage {
 
  private:
   const Mat4& model_;
-  Mat4 mvp_;
+  FineMat4 mvp_;
+  int32_t position_frac_;
   Mat4 nm_;
   NormalRotation rot_;  // nm_'s rows normalised, when rigid_
   bool rigid_ = false;

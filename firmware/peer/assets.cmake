@@ -5,10 +5,11 @@
 # whose vertex cache needs it), the bunny subdivided twice (also in spatial order), the cube with the baboon in RGB565, the ground plane
 # (which samples the cube's texture).
 include(${PROJECT_SOURCE_DIR}/firmware/host_tools.cmake)
-lr_asset_header(peer_bunny_asset tests/data/peer/bunny.obj --fit-box)
-lr_asset_header(peer_bunny_local_asset tests/data/peer/bunny.obj --fit-box --locality)
-lr_asset_header(peer_bunnyx_asset tests/data/peer/bunny.obj --fit-box --subdivide 2)
-lr_asset_header(peer_bunnyx_local_asset tests/data/peer/bunny.obj --fit-box --subdivide 2 --locality)
+lr_asset_header(peer_bunny_asset tests/data/peer/bunny.obj --fit-box --fine-positions)
+lr_asset_header(peer_bunny_local_asset tests/data/peer/bunny.obj --fit-box --locality --fine-positions)
+lr_asset_header(peer_bunnyx_asset tests/data/peer/bunny.obj --fit-box --subdivide 2 --fine-positions)
+lr_asset_header(peer_bunnyx_local_asset tests/data/peer/bunny.obj --fit-box --subdivide 2 --locality
+               --fine-positions)
 lr_asset_header(peer_cube_asset tests/data/peer/cube.obj --texture tests/data/peer/baboon.png)
 lr_asset_header(peer_ground_asset tests/data/peer/ground.obj)
 # lr_bench's 64,000-triangle knot (knot64k_gouraud) in spatial order, for the small-RAM program.

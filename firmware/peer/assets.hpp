@@ -6,8 +6,8 @@
 #include "firmware/peer/scenes.hpp"
 #include "lineraster/core/scene/mesh.hpp"
 #include "lineraster/core/texture/texture.hpp"
-#include "peer_bunny_asset.hpp"   // lineraster-asset --obj bunny.obj --fit-box
-#include "peer_bunnyx_asset.hpp"  // lineraster-asset --obj bunny.obj --fit-box --subdivide 2
+#include "peer_bunny_asset.hpp"   // lineraster-asset --obj bunny.obj --fit-box --fine-positions
+#include "peer_bunnyx_asset.hpp"  // ... --fit-box --subdivide 2 --fine-positions
 #include "peer_cube_asset.hpp"    // lineraster-asset --obj cube.obj --texture baboon.png
 #include "peer_ground_asset.hpp"  // lineraster-asset --obj ground.obj
 

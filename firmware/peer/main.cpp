@@ -110,6 +110,8 @@ bool check(lr::Status st, const char* what) {
 struct Prepared {
   lr::Camera camera;
   lr::Mat4 model;
+  lr::FineMat4 fine_model;       // fine scenes (PeerCase::fine)
+  lr::FineMat4 fine_projection;  // their camera's (camera.fine_projection points to it)
   lr::DrawState state;
   std::span<const lr::Mesh> meshes;
 };
@@ -121,11 +123,12 @@ bool prepare(R& renderer, const peer::PeerCase& c, Prepared& p) {
   storage.active = storage.active.first(active);
   storage.active_index = storage.active_index.first(2 * active);
   if (!check(renderer.configure(storage, peer::kWidth, peer::kHeight), "configure")) return false;
-  if (!peer::make_camera(c, p.camera)) {
+  if (!peer::make_camera(c, p.camera, p.fine_projection)) {
     sh::write("lr_peer: projection rejected\n");
     return false;
   }
   p.model = peer::model(c);
+  p.fine_model = c.fine ? peer::fine_model(c) : lr::FineMat4{};
   p.state = c.state;
   p.state.texture = peer::texture(c.geometry);
   p.meshes = peer::meshes(c.geometry);
@@ -138,7 +141,8 @@ template <class R>
                                           lr::DepthSink* depth) {
   lr::Status s = renderer.begin_frame(p.camera, c.lights, peer::kBackground);
   for (size_t d = 0; d < p.meshes.size() && s == lr::Status::kOk; ++d)
-    s = renderer.draw(p.meshes[d], p.model, c.material, p.state);
+    s = c.fine ? renderer.draw(p.meshes[d], p.fine_model, c.material, p.state)
+               : renderer.draw(p.meshes[d], p.model, c.material, p.state);
   return s == lr::Status::kOk ? renderer.render(g_sink, depth) : s;
 }
 

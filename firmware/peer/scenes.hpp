@@ -38,6 +38,10 @@ struct PeerScene {
   bool lit;       // Gouraud with kLightTowards and the bunny's material; else unlit, replace
   Filter filter;  // the textured scenes' filter
   uint32_t mesa_covered;  // pixels Mesa's OpenGL covers (the definition's count)
+  // Fine transforms (issue 36's one-step bound, docs/numerics.md#fine-transforms): the
+  // projection perspective_fine gives, the model of rotate_x_fine and rotate_y_fine, drawn with
+  // Renderer::draw(FineMat4), and the meshes' positions in Q1.30 (assets.cmake). Else Q16.16.
+  bool fine;
 };
 
 inline constexpr int kWidth = 320, kHeight = 240;
@@ -50,12 +54,12 @@ inline constexpr double kMaterialColor[3] = {0.95, 0.78, 0.55};
 inline constexpr double kAmbient = 0.2, kDiffuse = 0.8;
 
 inline constexpr std::array<PeerScene, 6> kScenes = {{
-    {"S1", Geometry::kBunny, 1.0, 10.0, -2.45, 0.0, 20.0, true, Filter::kNearest, 21756},
-    {"S1x", Geometry::kBunnyX, 1.0, 10.0, -2.45, 0.0, 20.0, true, Filter::kNearest, 21756},
-    {"S2n", Geometry::kCube, 1.0, 10.0, -2.75, 30.0, 30.0, false, Filter::kNearest, 39889},
-    {"S2b", Geometry::kCube, 1.0, 10.0, -2.75, 30.0, 30.0, false, Filter::kBilinear, 39889},
-    {"S3n", Geometry::kGround, 0.5, 300.0, 0.0, 0.0, 0.0, false, Filter::kNearest, 38080},
-    {"S3b", Geometry::kGround, 0.5, 300.0, 0.0, 0.0, 0.0, false, Filter::kBilinear, 38080},
+    {"S1", Geometry::kBunny, 1.0, 10.0, -2.45, 0.0, 20.0, true, Filter::kNearest, 21756, true},
+    {"S1x", Geometry::kBunnyX, 1.0, 10.0, -2.45, 0.0, 20.0, true, Filter::kNearest, 21756, true},
+    {"S2n", Geometry::kCube, 1.0, 10.0, -2.75, 30.0, 30.0, false, Filter::kNearest, 39889, false},
+    {"S2b", Geometry::kCube, 1.0, 10.0, -2.75, 30.0, 30.0, false, Filter::kBilinear, 39889, false},
+    {"S3n", Geometry::kGround, 0.5, 300.0, 0.0, 0.0, 0.0, false, Filter::kNearest, 38080, false},
+    {"S3b", Geometry::kGround, 0.5, 300.0, 0.0, 0.0, 0.0, false, Filter::kBilinear, 38080, false},
 }};
 
 // How far the covered pixels may be from Mesa's count: the scene is the definition's if its
@@ -67,7 +71,9 @@ struct PeerCase {
   const char* name = nullptr;
   Geometry geometry = Geometry::kBunny;
   uint32_t mesa_covered = 0;
+  bool fine = false;
   Fixed near, far, translate_z, rotate_x, rotate_y;
+  int32_t translate_z_q28 = 0;  // translate_z in Q4.28 (fine scenes' model)
   LightSet lights;
   Material material;
   DrawState state;
@@ -87,9 +93,14 @@ consteval PeerCase to_case(const PeerScene& s) {
   c.name = s.name;
   c.geometry = s.geometry;
   c.mesa_covered = s.mesa_covered;
+  c.fine = s.fine;
   c.near = Fixed::from_double(s.near);
   c.far = Fixed::from_double(s.far);
   c.translate_z = Fixed::from_double(s.translate_z);
+  {
+    const double t = s.translate_z * (1 << 28);  // |translate_z| < 8
+    c.translate_z_q28 = static_cast<int32_t>(t < 0 ? t - 0.5 : t + 0.5);
+  }
   c.rotate_x = Fixed::from_double(s.rotate_x_deg);
   c.rotate_y = Fixed::from_double(s.rotate_y_deg);
   c.state.cull = Cull::kBack;
@@ -146,15 +157,36 @@ consteval SpanSet scene_spans(const PeerCase& c) {
 }
 
 // The camera of every scene: identity view (eye at the origin looking down -z), fovy 60, the
-// scene's near and far planes. False if perspective() rejects them.
-inline bool make_camera(const PeerCase& c, Camera& out) {
+// scene's near and far planes; for fine scenes the projection of perspective_fine (the aspect
+// the viewport's ratio 320 / 240) into fine_projection, which the camera points to (the caller
+// keeps it until the frame is rendered), and, rounded, as projection. False if
+// perspective() or perspective_fine() rejects them.
+inline bool make_camera(const PeerCase& c, Camera& out, FineMat4& fine_projection) {
   out = Camera{};
+  if (c.fine) {
+    if (!perspective_fine(Fixed::from_double(kFovyDeg), kWidth, kHeight, c.near, c.far,
+                          fine_projection))
+      return false;
+    out.fine_projection = &fine_projection;
+    out.projection = to_mat4(fine_projection);
+    return true;
+  }
   return perspective(Fixed::from_double(kFovyDeg), Fixed::ratio(kWidth, kHeight), c.near, c.far,
                      out.projection);
 }
 
-// The model matrix T(0, 0, translate_z) Rx(rotate_x) Ry(rotate_y).
+// The model matrix T(0, 0, translate_z) Rx(rotate_x) Ry(rotate_y) of a fine scene: the rotations
+// in Q1.30, the translation in Q4.28, their product as FineMat4 (frac 29 here: Q3.29 holds the
+// translation -2.45).
+inline FineMat4 fine_model(const PeerCase& c) {
+  return translate_fine(0, 0, c.translate_z_q28, 28) *
+         (rotate_x_fine(c.rotate_x) * rotate_y_fine(c.rotate_y));
+}
+
+// The model matrix T(0, 0, translate_z) Rx(rotate_x) Ry(rotate_y) in Q16.16 (fine scenes: the
+// fine model rounded, what the renderer's lighting reads of it).
 inline Mat4 model(const PeerCase& c) {
+  if (c.fine) return to_mat4(fine_model(c));
   return translate({Fixed{}, Fixed{}, c.translate_z}) * rotate_x(c.rotate_x) * rotate_y(c.rotate_y);
 }
 

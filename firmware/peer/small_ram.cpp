@@ -116,10 +116,22 @@ bool check(lr::Status st, const char* what) {
   return lr::fw::check(kSmall.name, st, what);
 }
 
+// The model matrix (a Q16.16 one as to_fine gives it: frac 16, drawn as the Mat4 it holds) and,
+// for a fine scene (PeerCase::fine), its projection, which g_camera points to.
+lr::FineMat4 g_model{};
+lr::FineMat4 g_fine_projection{};
+bool g_fine = false;  // draw g_model as a FineMat4
+
+// The draw; out of line, so that the Q16.16 model's copy is off the stack while the frame renders.
+[[gnu::noinline]] lr::Status draw_mesh() {
+  if (g_fine) return g_renderer.draw(asset::meshes[0], g_model, g_material, kScene.state);
+  return g_renderer.draw(asset::meshes[0], lr::to_mat4(g_model), g_material, kScene.state);
+}
+
 // The measured work: one whole frame.
-[[gnu::noinline]] lr::Status render_frame(const lr::Camera& camera, const lr::Mat4& model) {
+[[gnu::noinline]] lr::Status render_frame(const lr::Camera& camera) {
   lr::Status s = g_renderer.begin_frame(camera, kScene.lights, kScene.background);
-  if (s == lr::Status::kOk) s = g_renderer.draw(asset::meshes[0], model, g_material, kScene.state);
+  if (s == lr::Status::kOk) s = draw_mesh();
   return s == lr::Status::kOk ? g_renderer.render(g_sink) : s;
 }
 
@@ -170,7 +182,6 @@ bool in_one_pass(const lr::FrameStats& st) {
 // The camera and the model matrix, static: on the stack they would add to the deepest path, whose
 // bound is part of the RAM budget.
 lr::Camera g_camera;
-lr::Mat4 g_model;
 
 // The stores, the camera and the model matrix; out of line, so that its temporaries are off the
 // stack while the frame renders.
@@ -182,14 +193,15 @@ lr::Mat4 g_model;
     // lr_bench's camera, model matrix and material of the case (firmware/bench/cases.hpp).
     camera_ok =
         lr::fw::demo::make_camera(lr::fw::bench::kKnotView, peer::kWidth, peer::kHeight, g_camera);
-    g_model = lr::rotate_y(lr::Fixed::from_int(0));
+    g_model = lr::to_fine(lr::rotate_y(lr::Fixed::from_int(0)));
     const lr::NamedMaterial* gold = lr::find_material("gold");
     if (gold == nullptr) return false;
     g_material = lr::to_material(*gold);
   } else {
     const peer::PeerCase& c = peer::kCases[kSmall.scene];
-    camera_ok = peer::make_camera(c, g_camera);
-    g_model = peer::model(c);
+    camera_ok = peer::make_camera(c, g_camera, g_fine_projection);
+    g_fine = c.fine;
+    g_model = c.fine ? peer::fine_model(c) : lr::to_fine(peer::model(c));
     g_material = c.material;
   }
   if (!camera_ok) {
@@ -203,8 +215,7 @@ lr::Mat4 g_model;
 bool run() {
   if (!prepare()) return false;
   const lr::Camera& camera = g_camera;
-  const lr::Mat4& model = g_model;
-  const lr::Status first = render_frame(camera, model);
+  const lr::Status first = render_frame(camera);
   const uint32_t sum = g_out.sum.hash.value;
   // The first frame's statistics, read in the renderer (no copy: 144 B of RAM) before the
   // second frame begins.
@@ -215,7 +226,7 @@ bool run() {
   g_out.to_file = false;
   g_out.sum.enabled = false;
   lr_bench_marker();
-  const lr::Status s = render_frame(camera, model);
+  const lr::Status s = render_frame(camera);
   lr_bench_marker();
   if (!check(s, "render (counted)") || !complete(g_renderer.stats())) return false;
 

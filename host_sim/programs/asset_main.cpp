@@ -13,15 +13,19 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: lineraster-asset --obj FILE [--texture FILE.png] [--format rgb565|rgb888|l8|palette8]\n"
-    "  [--mipmaps] [--fit | --fit-box] [--subdivide N] [--locality] --name IDENT --out FILE.hpp\n"
+    "  [--mipmaps] [--fit | --fit-box] [--subdivide N] [--locality] [--fine-positions]\n"
+    "  --name IDENT --out FILE.hpp\n"
     "       lineraster-asset --version | --help\n"
-    "Writes a C++ header with the mesh (Q16.16 positions, Q1.14 normals, Q12.20 uvs, indices,\n"
+    "Writes a C++ header with the mesh (Q16.16 or finer positions, Q1.14 normals, Q12.20 uvs, "
+    "indices,\n"
     "materials) and the texture (level 0 and, with --mipmaps, its mip chain) as constexpr data in\n"
     "namespace IDENT. Without --texture, each material's own map_Kd (if any).\n"
     "--subdivide N: each triangle split in 4 at its edge midpoints, N times (0..4), before the "
     "fit.\n"
     "--fit: centred on the bounding box, farthest vertex at distance 1; --fit-box: centred on the\n"
     "bounding box, uniformly scaled so that its largest half extent is 1 (inside [-1, 1]^3).\n"
+    "--fine-positions: positions with the most fraction bits (16..30, Mesh::position_frac) that\n"
+    "hold the mesh's largest coordinate (30 inside [-1, 1]^3), for finer snapping; else Q16.16.\n"
     "--locality: triangles sorted by the Z-order of their centroids, vertices numbered by first\n"
     "use (for meshes larger than the renderer's vertex store: its vertex cache hits more).\n"
     "Defaults: --format rgb565, no mipmaps, no fit, no subdivision, the file's order.\n"
@@ -115,6 +119,11 @@ const Row kOptions[] = {
     {"--fit-box", OptionKind::kFlag,
      [](AssetArgs& a, const OptionArg&) {
        a.asset.fit_box = true;
+       return OptionError{};
+     }},
+    {"--fine-positions", OptionKind::kFlag,
+     [](AssetArgs& a, const OptionArg&) {
+       a.asset.fine_positions = true;
        return OptionError{};
      }},
     {"--locality", OptionKind::kFlag,

@@ -121,7 +121,8 @@ void write_preamble(std::string& s, const AssetOptions& o, const AssetData& d) {
        std::to_string(vertices) + " vertices, " + std::to_string(triangles) + " triangles" +
        (o.fit ? ", fitted (--fit)" : "") + (o.fit_box ? ", fitted to its box (--fit-box)" : "") +
        (o.subdivide > 0 ? ", subdivided " + std::to_string(o.subdivide) + "x (--subdivide)" : "") +
-       (o.locality ? ", in spatial order (--locality)" : "") + "\n";
+       (o.locality ? ", in spatial order (--locality)" : "") +
+       (o.fine_positions ? ", fine positions (--fine-positions)" : "") + "\n";
   if (d.has_texture) {
     for (size_t k = 0; k <= d.more_textures.size(); ++k) {
       const Texture& t = k == 0 ? d.texture.texture : d.more_textures[k - 1].texture;
@@ -134,8 +135,10 @@ void write_preamble(std::string& s, const AssetOptions& o, const AssetData& d) {
   } else {
     s += "//   texture: none\n";
   }
-  s += "// Formats (core/): positions Q16.16 as {{x}, {y}, {z}} raw values, normals Q1.14, uvs "
-       "Q12.20\n"
+  const int frac = d.draws.empty() ? 16 : d.draws[0].position_frac;
+  s += "// Formats (core/): positions Q" + std::to_string(32 - frac) + "." + std::to_string(frac) +
+       " (Mesh::position_frac " + std::to_string(frac) +
+       ") as {{x}, {y}, {z}} raw values, normals Q1.14, uvs Q12.20\n"
        "// (v = 0 at the image's bottom), colours Q1.15, shininess Q8.8, texture rows bottom row "
        "first.\n"
        "#pragma once\n\n";
@@ -204,7 +207,8 @@ void write_draw(std::string& s, size_t i, const FixedDraw& fd) {
   s += "inline constexpr lr::Mesh mesh_" + id + "{positions_" + id + ", " +
        (fd.normals.empty() ? "{}" : "normals_" + id) + ", " +
        (fd.colors.empty() ? "{}" : "colors_" + id) + ", " + (fd.uvs.empty() ? "{}" : "uvs_" + id) +
-       ", triangles_" + id + ", {}, " + std::to_string(mesh_bound(fd.positions)) + "u};\n\n";
+       ", triangles_" + id + ", {}, " + std::to_string(mesh_bound(fd.positions)) + "u, " +
+       std::to_string(fd.position_frac) + "};\n\n";
 }
 
 // meshes, materials and textured: one entry per draw.
@@ -312,6 +316,7 @@ bool load_asset(const AssetOptions& o, AssetData& out, std::string& error) {
   if (o.locality) sort_for_locality(mesh);
   SceneOptions so;
   so.fit = o.fit;
+  so.fine_positions = o.fine_positions;
   so.use_mesh_materials = true;
   AssetData d;
   if (!build_fixed_draws(mesh, so, d.draws, error)) {

@@ -11,7 +11,10 @@
 //   with a texture: texture_level_L[] for every level (uint16_t for rgb565, uint8_t otherwise,
 //   rows bottom first), texture_palette[] (palette8), and `texture` (lr::Texture).
 // All are `inline constexpr` (one copy however many files include the header). Numbers are raw:
-// Q16.16 positions as {{x}, {y}, {z}} (Fixed's raw value), Q1.14 normals, Q12.20 texture
+// positions as {{x}, {y}, {z}} (Fixed's raw value) of Mesh::position_frac fraction bits (16, or
+// with --fine-positions the most in [16, 30] that hold the mesh's largest coordinate: 30 for a
+// mesh inside [-1, 1]^3), which mesh_D's last field states (headers written before it have no
+// such field: their meshes are Q16.16, the field's default), Q1.14 normals, Q12.20 texture
 // coordinates, Q1.15 material colours, Q8.8 shininess.
 //
 // Texture choice: --texture FILE; else the map_Kd of the first material (in MTL definition order)
@@ -35,12 +38,13 @@ struct AssetOptions {
   std::string texture_path;  // "" = the first material's map_Kd, if any
   TexelFormat format = TexelFormat::kRgb565;
   bool mipmaps = false;
-  bool fit = false;          // fit_transform: farthest vertex at distance 1
-  bool fit_box = false;      // fit_box_transform: largest half extent 1 (not with fit)
-  int subdivide = 0;         // midpoint subdivision levels (mesh_prep.hpp: subdivide), 0..4
-  bool locality = false;     // triangles and vertices in spatial order (locality_order.hpp)
-  std::string name;          // a C++ identifier: the header's namespace
-  std::string command_line;  // recorded in the header's comment ("" = none)
+  bool fit = false;             // fit_transform: farthest vertex at distance 1
+  bool fit_box = false;         // fit_box_transform: largest half extent 1 (not with fit)
+  int subdivide = 0;            // midpoint subdivision levels (mesh_prep.hpp: subdivide), 0..4
+  bool locality = false;        // triangles and vertices in spatial order (locality_order.hpp)
+  bool fine_positions = false;  // positions of the most fraction bits the mesh allows (16..30)
+  std::string name;             // a C++ identifier: the header's namespace
+  std::string command_line;     // recorded in the header's comment ("" = none)
 };
 
 // The loaded and converted inputs of a header.

@@ -45,6 +45,18 @@ bool fixed_vec(const Vec3d& v, Vec3& out) {
   return to_fixed(v[0], out.x) && to_fixed(v[1], out.y) && to_fixed(v[2], out.z);
 }
 
+// v in fixed point of frac fraction bits (16: to_fixed); false when not finite or outside int32.
+bool fine_vec(const Vec3d& v, int frac, Vec3& out) {
+  if (frac == 16) return fixed_vec(v, out);
+  Fixed* c[3] = {&out.x, &out.y, &out.z};
+  for (int i = 0; i < 3; ++i) {
+    const double s = std::ldexp(v[static_cast<size_t>(i)], frac);
+    if (!std::isfinite(s) || std::fabs(s) >= 2147483647.5) return false;
+    *c[i] = Fixed::from_raw(static_cast<int32_t>(std::llround(s)));
+  }
+  return true;
+}
+
 // "FILE:LINE: v (x, y, z) " for a vertex read from a file, else "mesh: vertex N (x, y, z) ".
 std::string vertex_place(const HostMesh& mesh, uint32_t vi) {
   const Vec3d& p = mesh.positions[vi];
@@ -61,6 +73,17 @@ std::string vertex_place(const HostMesh& mesh, uint32_t vi) {
 bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<FixedDraw>& draws,
                        std::string& error) {
   ModelTransform mt = model_transform(mesh, o);
+  // The positions' fraction bits: the finest the fitted mesh's largest coordinate allows.
+  int frac = 16;
+  if (o.fine_positions) {
+    double m = 0;
+    for (const Vec3d& p : mesh.positions)
+      for (int i = 0; i < 3; ++i)
+        m = std::max(m,
+                     std::fabs((p[static_cast<size_t>(i)] - mt.fit_center[static_cast<size_t>(i)]) *
+                               mt.fit_scale));
+    frac = position_frac_for(m);
+  }
   const size_t nt = mesh.triangles.size();
   const bool tangents = !mesh.tangents.empty();
   if (tangents && mesh.tangents.size() != mesh.positions.size()) {
@@ -97,11 +120,13 @@ bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<
     FixedDraw d;
     d.material = material;
     d.material_index = mat;
+    d.position_frac = static_cast<uint8_t>(frac);
     auto flush = [&]() {
       if (!d.triangles.empty()) draws.push_back(std::move(d));
       d = FixedDraw{};
       d.material = material;
       d.material_index = mat;
+      d.position_frac = static_cast<uint8_t>(frac);
       local.clear();
     };
     for (uint32_t t : groups[g]) {
@@ -121,7 +146,7 @@ bool build_fixed_draws(const HostMesh& mesh, const SceneOptions& o, std::vector<
                   (p[1] - mt.fit_center[1]) * mt.fit_scale,
                   (p[2] - mt.fit_center[2]) * mt.fit_scale};
           Vec3 fp;
-          if (!fixed_vec(q, fp)) {
+          if (!fine_vec(q, frac, fp)) {
             error = vertex_place(mesh, vi) + "is not finite or outside the core's range " +
                     "(|x| < 32768" + (o.fit ? " after --fit" : "") + ")" +
                     (o.fit ? "" : "; try --fit");
@@ -428,6 +453,13 @@ bool to_tangent16(const Vec4d& t, Tangent16& out) {
       n14(t[0]), n14(t[1]), n14(t[2]),
       static_cast<int16_t>(t[3] >= 0 ? 1 << Tangent16::kFracBits : -(1 << Tangent16::kFracBits))};
   return true;
+}
+
+int position_frac_for(double max_abs) {
+  for (int frac = Mesh::kMaxPositionFrac; frac > Mesh::kMinPositionFrac; --frac)
+    if (std::isfinite(max_abs) && std::llround(std::ldexp(max_abs, frac)) <= 2147483647)
+      return frac;
+  return Mesh::kMinPositionFrac;
 }
 
 bool to_fixed(double v, Fixed& out) {

@@ -43,6 +43,9 @@ struct SceneOptions {
   double fovy = 60.0, near = 0.1, far = 100.0;
   Vec3d eye{0, 0, 3}, target{0, 0, 0}, up{0, 1, 0};
   bool fit = false;
+  // Positions with the most fraction bits the fitted mesh's largest coordinate allows (in
+  // [16, 30]: Mesh::position_frac), else Q16.16. lineraster-asset --fine-positions.
+  bool fine_positions = false;
   // The model transform: translate * rotate_y * rotate_x * rotate_z * scale (* the fit), so a
   // vertex is turned about z first, then x, then y (degrees, GL's right-handed rotations): x and
   // z set the model upright (a Z-up model: rotate_x -90), y turns it about the vertical axis
@@ -127,9 +130,11 @@ struct FixedDraw {
   std::vector<Tangent16> tangents;  // empty when the mesh has none; Q1.14, w = +-16384
   Material material;
   int32_t material_index = -1;  // the HostMesh material it came from, -1 for the options' one
+  uint8_t position_frac = 16;   // the positions' fraction bits (Mesh::position_frac)
   // With its bound (Mesh::bound), as lineraster-asset writes it: the same frames either way.
   Mesh mesh() const {
-    return {positions, normals, colors, uvs, triangles, tangents, mesh_bound(positions)};
+    return {positions,    normals, colors, uvs, triangles, tangents, mesh_bound(positions),
+            position_frac};
   }
 };
 
@@ -146,6 +151,9 @@ bool render_scene(const HostMesh& mesh, const SceneOptions& options, RenderResul
 
 // The core's conversions, exposed for tests: false when the value cannot be represented.
 bool to_fixed(double v, Fixed& out);
+// The most fraction bits in [16, 30] that hold every coordinate of magnitude up to max_abs
+// rounded (16 when none does: to_fixed's range).
+int position_frac_for(double max_abs);
 bool to_texcoord(const Vec2d& uv, TexCoord& out);
 Color15 to_color15(const Vec3d& c);
 // A unit tangent (x, y, z) in Q1.14 and w = +16384 for w >= 0, else -16384; false when a

@@ -124,6 +124,7 @@ lr_fw_stack_rules=(
   --indirect-from 'lr::FrontEnd::draw\(' 'lr::FrontEndParts::record_call\('
   --indirect-from 'lr::VertexStage::(light|light_face)(<[^>]*>)?\(' 'lr::light_point_at\('
   --indirect-from 'lr::VertexStage::transform_range\(' 'lr::VertexStage::attributes\('
+  --indirect-from 'lr::VertexStage::VertexStage\(' 'lr::fine_model_view_projection\('
   --indirect-from 'lr::FrontEnd::replay\(' 'lr::FrontEnd::(replay_screen|run_screen)\('
   --indirect-from 'lr::FrontEnd::bin\(' 'lr::FrontEndParts::(shrink_band|sign_triangle)\(|lr::VertexStore::persist\('
   --indirect-from 'lr::FrontEnd::begin_frame\(' 'lr::FrontEndParts::sign_frame\('

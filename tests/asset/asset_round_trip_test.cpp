@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +20,7 @@
 
 #include "cube_rgb565.hpp"
 #include "cube_rgb888.hpp"
+#include "knot_fine.hpp"
 #include "knot_l8.hpp"
 #include "knot_palette8.hpp"
 #include "lineraster/core/scene/camera.hpp"
@@ -26,6 +28,7 @@
 #include "lineraster/host_sim/formats/texture_load.hpp"
 #include "lineraster/host_sim/programs/asset_writer.hpp"
 #include "lineraster/host_sim/scene/scene.hpp"
+#include "tests/asset/data/cube_rgb565_before_position_frac.hpp"
 #include "tests/support/core_harness.hpp"
 #include "tests/support/tmp_dir.hpp"
 #include "two_textures.hpp"
@@ -56,13 +59,14 @@ struct Loaded {
 };
 
 Loaded load(const std::string& obj, const std::string& png, TexelFormat format, bool mipmaps,
-            bool fit) {
+            bool fit, bool fine_positions = false) {
   Loaded l;
   HostMesh mesh;
   std::string error;
   EXPECT_TRUE(load_obj(kData + obj, mesh, error)) << error;
   SceneOptions o;
   o.fit = fit;
+  o.fine_positions = fine_positions;
   o.use_mesh_materials = true;
   EXPECT_TRUE(build_fixed_draws(mesh, o, l.draws, error)) << error;
   EXPECT_TRUE(load_texture(kData + png, format, mipmaps, l.texture, error)) << error;
@@ -117,6 +121,8 @@ void expect_same_data(const AssetView& h, const Loaded& l) {
   for (size_t d = 0; d < l.draws.size(); ++d) {
     const FixedDraw& fd = l.draws[d];
     const Mesh& m = h.meshes[d];
+    EXPECT_EQ(m.position_fraction_bits(), fd.position_frac) << "draw " << d;
+    EXPECT_EQ(m.bound, mesh_bound(m.positions)) << "draw " << d;
     expect_same(m.positions, fd.positions, "position", d);
     expect_same(m.normals, fd.normals, "normal", d);
     expect_same(m.colors, fd.colors, "colour", d);
@@ -164,6 +170,47 @@ TEST(AssetRoundTrip, TorusKnotWithTextureL8EqualsTheLoadedFiles) {
   const Loaded l = load("torus_knot.obj", "checker.png", TexelFormat::kL8, true, false);
   expect_same_data(LR_ASSET_VIEW(knot_l8), l);
   EXPECT_EQ(knot_l8::meshes[0].triangles.size(), 4000u);
+}
+
+// --fine-positions: the header's position_frac is the finest the fitted knot allows (30: every
+// coordinate within 1 after --fit), its positions the simulator's of the same count, and each
+// the Q16.16 header's position to within the Q16.16 rounding (the same vertices, 14 more bits).
+TEST(AssetRoundTrip, FinePositionsWriteTheFinestFractionCount) {
+  const Loaded l = load("torus_knot.obj", "checker.png", TexelFormat::kL8, false, true, true);
+  expect_same_data(LR_ASSET_VIEW(knot_fine), l);
+  ASSERT_FALSE(knot_fine::meshes.empty());
+  for (const Mesh& m : knot_fine::meshes) EXPECT_EQ(m.position_frac, 30);
+  for (const Mesh& m : knot_palette8::meshes) EXPECT_EQ(m.position_frac, 16);  // --fit alone
+  const Mesh& fine = knot_fine::meshes[0];
+  const Mesh& q16 = knot_palette8::meshes[0];  // --fit, Q16.16
+  ASSERT_EQ(fine.positions.size(), q16.positions.size());
+  int64_t largest = 0;
+  for (size_t i = 0; i < fine.positions.size(); ++i) {
+    const Vec3& a = fine.positions[i];
+    const Vec3& b = q16.positions[i];
+    for (const auto& [f, c] :
+         {std::pair{a.x.raw, b.x.raw}, std::pair{a.y.raw, b.y.raw}, std::pair{a.z.raw, b.z.raw}}) {
+      const int64_t d = int64_t{f} - (int64_t{c} << 14);  // in units of 2^-30
+      largest = std::max(largest, d < 0 ? -d : d);
+    }
+  }
+  EXPECT_LE(largest, 1 << 13);  // half a Q16.16 unit
+  EXPECT_GT(largest, 0);        // and finer than it
+  // The largest coordinate uses the range: above 2^29 (0.5) and at most 2^30.
+  EXPECT_GT(fine.bound, 1u << 29);
+  EXPECT_LE(fine.bound, 1u << 30);
+}
+
+// A header written before Mesh::position_frac (its meshes have no such field) still compiles and
+// its meshes are Q16.16: the same values as today's header of the same files.
+TEST(AssetRoundTrip, HeaderWithoutPositionFracIsQ16) {
+  const Loaded l = load("cube.obj", "checker.png", TexelFormat::kRgb565, true, false);
+  expect_same_data(LR_ASSET_VIEW(cube_rgb565_before_position_frac), l);
+  for (const Mesh& m : cube_rgb565_before_position_frac::meshes) {
+    EXPECT_EQ(m.position_frac, 0);  // the default
+    EXPECT_EQ(m.position_fraction_bits(), 16);
+  }
+  for (const Mesh& m : cube_rgb565::meshes) EXPECT_EQ(m.position_frac, 16);
 }
 
 // ---- Frames ------------------------------------------------------------------------------------
@@ -426,6 +473,48 @@ TEST(AssetTool, AMaterialTextureWithoutUvsIsLeftOutWithAWarning) {
   ss << in.rdbuf();
   EXPECT_NE(ss.str().find("draw_count = 1"), std::string::npos);
   EXPECT_EQ(ss.str().find("lr::Texture texture{"), std::string::npos);
+}
+
+// --fine-positions: the most fraction bits that hold the largest coordinate (4: 4 2^29 = 2^31 is
+// one too many, so 28), written in the mesh and the header's comment; Q16.16 without it.
+TEST(AssetTool, FinePositionsTakeTheFinestCountTheBoundAllows) {
+  TmpDir dir("lr_asset_test");
+  { std::ofstream(dir.file("box.obj")) << "v 0 0 0\nv 4 0 1\nv 0 2 0.1\nf 1 2 3\n"; }
+  AssetOptions o;
+  o.obj_path = dir.file("box.obj");
+  o.name = "box";
+  o.fine_positions = true;
+  AssetData d;
+  std::string error;
+  ASSERT_TRUE(load_asset(o, d, error)) << error;
+  ASSERT_EQ(d.draws.size(), 1u);
+  EXPECT_EQ(d.draws[0].position_frac, 28);
+  const std::vector<Vec3>& p = d.draws[0].positions;
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p[1].x.raw, 4 << 28);
+  EXPECT_EQ(p[2].z.raw, static_cast<int32_t>(std::llround(0.1 * (1 << 28))));
+  const std::string text = asset_header_text(o, d);
+  EXPECT_NE(text.find("positions Q4.28 (Mesh::position_frac 28)"), std::string::npos);
+  EXPECT_NE(text.find(std::to_string(4 << 28) + "u, 28};"), std::string::npos);
+  EXPECT_NE(text.find("fine positions (--fine-positions)"), std::string::npos);
+  // The tool's flag writes the same; without it Q16.16.
+  const ToolRun r = run_tool(
+      "--obj " + dir.file("box.obj") + " --fine-positions --name a --out " + dir.file("a.hpp"),
+      dir);
+  EXPECT_EQ(r.status, 0) << r.err;
+  std::stringstream written;
+  written << std::ifstream(dir.file("a.hpp")).rdbuf();
+  EXPECT_NE(written.str().find("u, 28};"), std::string::npos);
+  o.fine_positions = false;
+  ASSERT_TRUE(load_asset(o, d, error)) << error;
+  EXPECT_EQ(d.draws[0].position_frac, 16);
+  EXPECT_EQ(d.draws[0].positions[1].x.raw, 4 << 16);
+  EXPECT_NE(asset_header_text(o, d).find("u, 16};"), std::string::npos);
+  // Coordinates of 2^14 and more leave no bit beyond Q16.16: 16.
+  EXPECT_EQ(position_frac_for(16384.0), 16);
+  EXPECT_EQ(position_frac_for(1.0), 30);
+  EXPECT_EQ(position_frac_for(1.9999999), 30);
+  EXPECT_EQ(position_frac_for(2.0), 29);
 }
 
 TEST(AssetTool, FitBoxPutsTheLargestHalfExtentAtOne) {

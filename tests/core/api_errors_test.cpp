@@ -589,6 +589,60 @@ TEST(ApiErrors, DrawWithArgumentsThatDisagree) {
   expect_refused_then_rendered(rig, Status::kInvalidArgument);
 }
 
+// Fraction counts outside [16, 30] (docs/api-errors.md): a mesh's position_frac (but 0, the
+// default: Q16.16) or a fine
+// model's frac refuses the draw, a camera's fine_projection's frac (given: not nullptr) the
+// frame. Counts inside the range draw the same triangle as the Q16.16 draw.
+TEST(ApiErrors, FractionCountsOutsideTheirRange) {
+  Rig rig;
+  ASSERT_TRUE(rig.ready());
+  ASSERT_EQ(rig.draw_square(square(4, 4, 8, kRed), plain()), Status::kOk);
+  const Tri tri;
+  for (const int frac : {1, 15, 31, 255}) {
+    Mesh m = tri.mesh();
+    m.position_frac = static_cast<uint8_t>(frac);
+    EXPECT_EQ(rig.r->draw(m, Mat4::identity(), Material{}, plain()), Status::kInvalidArgument)
+        << frac;
+  }
+  for (const int32_t frac : {0, 15, 31}) {
+    FineMat4 model = to_fine(Mat4::identity());
+    model.frac = frac;
+    EXPECT_EQ(rig.r->draw(tri.mesh(), model, Material{}, plain()), Status::kInvalidArgument)
+        << frac;
+  }
+  EXPECT_EQ(rig.r->stats().draws_refused_invalid, 7u);
+  expect_refused_then_rendered(rig, Status::kInvalidArgument);
+
+  // The camera: a fine projection of 12 fraction bits refuses begin_frame (no frame begun).
+  Camera camera;
+  FineMat4 projection = to_fine(Mat4::identity());
+  projection.frac = 12;
+  camera.fine_projection = &projection;
+  EXPECT_EQ(rig.r->begin_frame(camera, {}, kBackground), Status::kInvalidArgument);
+  EXPECT_EQ(rig.draw_tri(plain()), Status::kNoFrame);
+  expect_usable(rig);
+
+  // In range: positions in Q13.19 (frac 19), the model and projection as frac-30 identities.
+  Rig fine, coarse;
+  ASSERT_TRUE(fine.configure() == Status::kOk && coarse.ready());
+  projection = to_fine(Mat4::identity()) * to_fine(Mat4::identity());
+  EXPECT_EQ(projection.frac, 30);
+  ASSERT_EQ(fine.r->begin_frame(camera, {}, kBackground), Status::kOk);
+  std::array<Vec3, 3> p19 = tri.p;
+  for (Vec3& v : p19)
+    v = {Fixed::from_raw(v.x.raw * 8), Fixed::from_raw(v.y.raw * 8), Fixed::from_raw(v.z.raw * 8)};
+  Mesh m = tri.mesh();
+  m.positions = p19;
+  m.position_frac = 19;
+  const FineMat4 model = projection;
+  EXPECT_EQ(fine.r->draw(m, model, Material{}, plain()), Status::kOk);
+  EXPECT_EQ(coarse.draw_tri(plain()), Status::kOk);
+  ASSERT_EQ(fine.render(), Status::kOk);
+  ASSERT_EQ(coarse.render(), Status::kOk);
+  EXPECT_EQ(fine.sink.frame(), coarse.sink.frame());
+  EXPECT_NE(fine.pixel(32, 16), kBackground);
+}
+
 TEST(ApiErrors, DrawWithAFullStore) {
   FrameCapacities caps = kCaps;
   caps.draws = 1;

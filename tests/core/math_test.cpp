@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "lineraster/core/binning/edge_table.hpp"
 #include "lineraster/core/math/divide.hpp"
+#include "lineraster/core/math/mat4.hpp"
 #include "lineraster/core/math/pow_table.hpp"
 #include "lineraster/core/math/reciprocal.hpp"
 #include "lineraster/core/math/saturate.hpp"
@@ -235,6 +238,105 @@ TEST(Camera, TransformPointAgreesWithDouble) {
   EXPECT_NEAR(double(c.y) * s, cy, 1e-4);
   EXPECT_NEAR(double(c.z) * s, cz, 2e-4);
   EXPECT_NEAR(double(c.w) * s, cw, 1e-4);
+}
+
+// ---- Fine transforms (docs/numerics.md#fine-transforms) --------------------------------------
+
+// sin_cos_q30 within 3 units of 2^-30 of the exact values over two turns either way (the
+// Q16.16 sin_deg is within half a unit of 2^-16), and exact at the quarter turns.
+TEST(FineMath, SinCosQ30WithinThreeUnitsOfTwoToTheMinus30) {
+  double worst = 0;
+  for (int32_t raw = -720 * 65536; raw <= 720 * 65536; raw += 24571) {
+    const SinCos30 sc = sin_cos_q30(Fixed::from_raw(raw));
+    const double a = raw / 65536.0 * kPi / 180;
+    worst = std::max({worst, std::abs(sc.sin - std::ldexp(std::sin(a), 30)),
+                      std::abs(sc.cos - std::ldexp(std::cos(a), 30))});
+  }
+  for (const int deg : {20, 30, 45, 60, -20, 135, 359}) {
+    const SinCos30 sc = sin_cos_q30(Fixed::from_int(deg));
+    const double a = deg * kPi / 180;
+    worst = std::max({worst, std::abs(sc.sin - std::ldexp(std::sin(a), 30)),
+                      std::abs(sc.cos - std::ldexp(std::cos(a), 30))});
+  }
+  std::printf("sin_cos_q30: worst %.2f units of 2^-30\n", worst);
+  EXPECT_LE(worst, 3.0);
+  const int32_t one = 1 << 30;
+  for (const auto& [deg, s, c] :
+       {std::array{0, 0, one}, std::array{90, one, 0}, std::array{180, 0, -one},
+        std::array{270, -one, 0}, std::array{-90, -one, 0}}) {
+    const SinCos30 sc = sin_cos_q30(Fixed::from_int(deg));
+    EXPECT_EQ(sc.sin, s) << deg;
+    EXPECT_EQ(sc.cos, c) << deg;
+  }
+}
+
+// FineMat4 products: rounded once to the finest count the entries allow, within a unit of it of
+// the exact product; Q16.16 matrices through the fine forms give the Q16.16 integers back.
+TEST(FineMath, ProductKeepsTheFinestFractionCount) {
+  const int32_t tz = static_cast<int32_t>(std::llround(-2.45 * (1 << 28)));
+  const FineMat4 t = translate_fine(0, 0, tz, 28);
+  const FineMat4 r = rotate_x_fine(Fixed::from_int(10)) * rotate_y_fine(Fixed::from_int(20));
+  EXPECT_EQ(r.frac, 30);  // rotations: every entry below 1
+  const FineMat4 m = t * r;
+  EXPECT_EQ(m.frac, 29);  // -2.45: two integer bits and the sign (Q3.29 holds [-4, 4))
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      double e = 0;
+      for (int k = 0; k < 4; ++k)
+        e += std::ldexp(t.m[i][k], -t.frac) * std::ldexp(r.m[k][j], -r.frac);
+      EXPECT_LE(std::abs(m.m[i][j] - std::ldexp(e, 29)), 0.5 + 1e-6) << i << "," << j;
+    }
+  EXPECT_EQ(m.m[2][3], 2 * tz);  // exact
+  // Entries beyond 2^15 cannot be finer than 16 bits: saturated there, as Mat4's product.
+  FineMat4 big = translate_fine(0, 0, 0, 16);
+  big.m[0][0] = 30000 << 16;
+  EXPECT_EQ((big * big).frac, 16);
+  EXPECT_EQ((big * big).m[0][0], INT32_MAX);
+  // Q16.16 in, Q16.16 out.
+  Mat4 p;
+  ASSERT_TRUE(
+      perspective(Fixed::from_int(45), Fixed::from_int(1), fx(0.5), Fixed::from_int(50), p));
+  EXPECT_EQ(to_mat4(to_fine(p)), p);
+  const Vec3 pt{fx(0.5), fx(-0.25), fx(1.0)};
+  const ClipCoord a = transform_point(p, pt), b = transform_point(to_fine(p), pt, 16);
+  EXPECT_EQ(a.x, b.x);
+  EXPECT_EQ(a.y, b.y);
+  EXPECT_EQ(a.z, b.z);
+  EXPECT_EQ(a.w, b.w);
+}
+
+// perspective_fine: the aspect the viewport's ratio (exactly 4/3 here); the depth entries within
+// a unit and a half of their fraction count of gluPerspective's (exact divisions, one rounding),
+// f = cos / sin within 16 units of 2^-30 (sin_cos_q30's 3 units each, over sin(30) = 1/2); the
+// same refusals as perspective().
+TEST(Camera, PerspectiveFineMatchesGluPerspectiveWithTheViewportsRatio) {
+  FineMat4 m{};
+  ASSERT_TRUE(
+      perspective_fine(Fixed::from_int(60), 320, 240, Fixed::from_int(1), Fixed::from_int(10), m));
+  EXPECT_EQ(m.frac, 29);  // 2 far near / (far - near) = 2.22: two integer bits
+  const double f = 1.0 / std::tan(30.0 * kPi / 180.0), n = 1, fa = 10;
+  auto e = [&](int i, int j) { return std::ldexp(m.m[i][j], -m.frac); };
+  const double unit = std::ldexp(1.0, -m.frac);
+  EXPECT_NEAR(e(0, 0), f * 240 / 320, std::ldexp(16.0, -30));
+  EXPECT_NEAR(e(1, 1), f, std::ldexp(16.0, -30));
+  EXPECT_NEAR(e(2, 2), (fa + n) / (n - fa), 1.5 * unit);
+  EXPECT_NEAR(e(2, 3), 2 * fa * n / (n - fa), 1.5 * unit);
+  EXPECT_EQ(m.m[3][2], -(1 << 29));
+  EXPECT_EQ(m.m[3][3], 0);
+  EXPECT_EQ(m.m[0][1], 0);
+  // The Q16.16 form of the ratio (4/3 rounded) is further off than this one.
+  Mat4 q;
+  ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(320, 240), Fixed::from_int(1),
+                          Fixed::from_int(10), q));
+  EXPECT_GT(std::abs(d(q.m[0][0]) - f * 0.75), std::abs(e(0, 0) - f * 0.75));
+  // Larger entries, fewer bits: far 300, near 0.5 (the ground plane's).
+  ASSERT_TRUE(perspective_fine(Fixed::from_int(60), 320, 240, fx(0.5), Fixed::from_int(300), m));
+  EXPECT_EQ(m.frac, 30);
+  EXPECT_FALSE(perspective_fine(Fixed::from_int(0), 320, 240, fx(0.1), Fixed::from_int(10), m));
+  EXPECT_FALSE(perspective_fine(Fixed::from_int(180), 320, 240, fx(0.1), Fixed::from_int(10), m));
+  EXPECT_FALSE(perspective_fine(Fixed::from_int(60), 0, 240, fx(0.1), Fixed::from_int(10), m));
+  EXPECT_FALSE(
+      perspective_fine(Fixed::from_int(60), 320, 240, Fixed::from_int(10), Fixed::from_int(1), m));
 }
 
 TEST(PowTable, DefaultTablesWithinTwoAndAQuarterQ15UnitsOfStdPow) {

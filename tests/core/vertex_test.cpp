@@ -608,5 +608,148 @@ TEST(VertexLighting, PointLitVertexIsLitAtItsWorldPosition) {
   EXPECT_EQ(light_point_at(pl, n, &model, positions[0]).secondary, want.secondary);
 }
 
+// ---- Fine transforms (Mesh::position_frac, FineMat4: docs/numerics.md#fine-transforms) ------
+
+// The projected vertices of a draw: out[i] for positions[i] (frac fraction bits).
+std::vector<ScreenVertex> transform_all(const Camera& cam, const Mat4& model,
+                                        const FineMat4* fine_model,
+                                        const std::vector<Vec3>& positions, int frac) {
+  Mesh mesh;
+  mesh.positions = positions;
+  mesh.position_frac = static_cast<uint8_t>(frac);
+  const VertexStage stage(cam, model, GuardBand{25, 34}, 320, 240,
+                          position_bound(positions.data(), positions.size()), frac, fine_model,
+                          &fine_model_view_projection);
+  std::vector<ScreenVertex> out(positions.size());
+  stage.transform(mesh, VertexColors{}, out.data(), nullptr, nullptr);
+  return out;
+}
+
+// A mesh's fraction count is an exponent: the same positions in Q16.16 and, 14 bits finer, in
+// Q2.30 (position_frac 30) project to the same vertices on both paths (the short path's factors
+// take the exponent, the exact path's clip coordinates the shift): x, y, z, w and outcode.
+// Positions from behind the eye to beyond the far plane, so that both paths and every plane
+// are taken.
+TEST(FineTransforms, PositionFracIsAnExponentOfTheSameVertices) {
+  Camera cam;
+  ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(4, 3), Fixed::from_int(1),
+                          Fixed::from_int(10), cam.projection));
+  std::mt19937_64 rng(30);
+  for (const double tz : {-2.45, -1.2, -9.5}) {
+    const Mat4 model =
+        translate({{}, {}, Fixed::from_raw(static_cast<int32_t>(std::llround(tz * 65536)))}) *
+        rotate_y(Fixed::from_int(20));
+    std::vector<Vec3> q16, q30;
+    for (int i = 0; i < 4000; ++i) {
+      auto c = [&] { return static_cast<int32_t>(rng() % 131073) - 65536; };  // [-1, 1]
+      const int32_t x = c(), y = c(), z = c();
+      q16.push_back({Fixed::from_raw(x), Fixed::from_raw(y), Fixed::from_raw(z)});
+      q30.push_back(
+          {Fixed::from_raw(x * 16384), Fixed::from_raw(y * 16384), Fixed::from_raw(z * 16384)});
+    }
+    const std::vector<ScreenVertex> a = transform_all(cam, model, nullptr, q16, 16);
+    const std::vector<ScreenVertex> b = transform_all(cam, model, nullptr, q30, 30);
+    size_t outside = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      ASSERT_EQ(a[i].outcode, b[i].outcode) << tz << " " << i;
+      outside += a[i].outcode != 0;
+      if (a[i].outcode != 0) continue;
+      ASSERT_EQ(a[i].x, b[i].x) << tz << " " << i;
+      ASSERT_EQ(a[i].y, b[i].y) << tz << " " << i;
+      ASSERT_EQ(a[i].z, b[i].z) << tz << " " << i;
+      ASSERT_EQ(a[i].w, b[i].w) << tz << " " << i;
+    }
+    if (tz == -1.2) {
+      EXPECT_GT(outside, 100u);  // (near the eye: the near plane cuts the cube)
+    }
+  }
+}
+
+// Fine transforms snap the peer draw's vertices as the double scene does: the bunny's
+// matrices (perspective_fine with the viewport's ratio, the model of rotate_y_fine and a Q4.28
+// translation) and positions in Q1.30 give every vertex within 2^-8 subpixel beyond half a
+// subpixel of the double scene's exact quotient; the Q16.16 draw (perspective with the Q16.16
+// aspect, rotate_y, Q16.16 positions) is up to about a third of a subpixel beyond it.
+TEST(FineTransforms, PeerDrawSnapsAsTheDoubleScene) {
+  const double kPi = 3.14159265358979323846;
+  const double tz = -2.45, ry = 20.0 * kPi / 180, f = 1 / std::tan(30.0 * kPi / 180);
+  auto exact = [&](const std::array<double, 3>& p) {
+    const double x = std::cos(ry) * p[0] + std::sin(ry) * p[2];
+    const double z = -std::sin(ry) * p[0] + std::cos(ry) * p[2] + tz;
+    const double w = -z;
+    return std::array<double, 2>{320 * 128.0 * (1 + f * 0.75 * x / w),
+                                 240 * 128.0 * (1 - f * p[1] / w)};
+  };
+  std::mt19937_64 rng(36);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<std::array<double, 3>> pd;
+  std::vector<Vec3> q16, q30;
+  for (int i = 0; i < 5000; ++i) {
+    const std::array<double, 3> p{u(rng), u(rng), u(rng)};
+    pd.push_back(p);
+    auto r = [](double v, int frac) {
+      return Fixed::from_raw(static_cast<int32_t>(std::llround(std::ldexp(v, frac))));
+    };
+    q16.push_back({r(p[0], 16), r(p[1], 16), r(p[2], 16)});
+    q30.push_back({r(p[0], 30), r(p[1], 30), r(p[2], 30)});
+  }
+  Camera coarse;
+  ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(320, 240), Fixed::from_int(1),
+                          Fixed::from_int(10), coarse.projection));
+  const Mat4 model =
+      translate({{}, {}, Fixed::from_raw(static_cast<int32_t>(std::llround(tz * 65536)))}) *
+      rotate_y(Fixed::from_int(20));
+  Camera fine;
+  FineMat4 fine_projection{};
+  ASSERT_TRUE(perspective_fine(Fixed::from_int(60), 320, 240, Fixed::from_int(1),
+                               Fixed::from_int(10), fine_projection));
+  fine.fine_projection = &fine_projection;
+  fine.projection = to_mat4(fine_projection);
+  const FineMat4 fine_model =
+      translate_fine(0, 0, static_cast<int32_t>(std::llround(tz * (1 << 28))), 28) *
+      rotate_y_fine(Fixed::from_int(20));
+  const std::vector<ScreenVertex> a = transform_all(coarse, model, nullptr, q16, 16);
+  const std::vector<ScreenVertex> b =
+      transform_all(fine, to_mat4(fine_model), &fine_model, q30, 30);
+  double worst_coarse = 0, worst_fine = 0;
+  for (size_t i = 0; i < pd.size(); ++i) {
+    ASSERT_EQ(a[i].outcode, 0);
+    ASSERT_EQ(b[i].outcode, 0);
+    const auto e = exact(pd[i]);
+    worst_coarse =
+        std::max({worst_coarse, std::abs(a[i].x - e[0]) - 0.5, std::abs(a[i].y - e[1]) - 0.5});
+    worst_fine =
+        std::max({worst_fine, std::abs(b[i].x - e[0]) - 0.5, std::abs(b[i].y - e[1]) - 0.5});
+  }
+  std::printf("peer draw, beyond half a subpixel of the double scene: Q16.16 %.4f, fine %.5f\n",
+              worst_coarse, worst_fine);
+  EXPECT_LE(worst_fine, 1.0 / 256);
+  EXPECT_GT(worst_coarse, 0.1);
+}
+
+// The model-view-projection is today's Q16.16 product unless the draw's model is a FineMat4
+// (a camera's fine_projection alone changes nothing); with one, P (V M) in FineMat4 products, P
+// the fine projection when the camera has one.
+TEST(FineTransforms, ModelViewProjectionIsQ16UnlessTheModelIsFine) {
+  Camera cam;
+  FineMat4 fine_projection{};
+  ASSERT_TRUE(perspective(Fixed::from_int(60), Fixed::ratio(4, 3), Fixed::from_int(1),
+                          Fixed::from_int(10), cam.projection));
+  ASSERT_TRUE(perspective_fine(Fixed::from_int(60), 4, 3, Fixed::from_int(1), Fixed::from_int(10),
+                               fine_projection));
+  cam.fine_projection = &fine_projection;
+  const Mat4 model = translate({{}, {}, Fixed::from_raw(-160563)}) * rotate_y(Fixed::from_int(20));
+  EXPECT_EQ(VertexStage::model_view_projection(cam, model, nullptr),
+            to_fine(cam.projection * cam.view * model));
+  const FineMat4 fm = to_fine(model);
+  const FineMat4 fine = VertexStage::model_view_projection(cam, model, &fm);
+  EXPECT_EQ(fine, fine_projection * (to_fine(cam.view) * fm));
+  EXPECT_GT(fine.frac, 16);
+  Camera coarse = cam;
+  coarse.fine_projection = nullptr;
+  EXPECT_EQ(VertexStage::model_view_projection(coarse, model, &fm),
+            to_fine(cam.projection) * (to_fine(cam.view) * fm));
+}
+
 }  // namespace
 }  // namespace lr

@@ -49,16 +49,20 @@ bool render_core(const fwp::PeerCase& c, host::RenderResult& out, std::string& e
     return false;
   }
   Camera camera;
-  if (!fwp::make_camera(c, camera)) {
+  FineMat4 fine_projection{};
+  if (!fwp::make_camera(c, camera, fine_projection)) {
     error = "projection rejected";
     return false;
   }
   const Mat4 model = fwp::model(c);
+  const FineMat4 fine_model = c.fine ? fwp::fine_model(c) : FineMat4{};
   DrawState state = c.state;
   state.texture = fwp::texture(c.geometry);
   Status s = renderer->begin_frame(camera, c.lights, fwp::kBackground);
   for (const Mesh& m : fwp::meshes(c.geometry))
-    if (s == Status::kOk) s = renderer->draw(m, model, c.material, state);
+    if (s == Status::kOk)
+      s = c.fine ? renderer->draw(m, fine_model, c.material, state)
+                 : renderer->draw(m, model, c.material, state);
   host::CaptureDisplay<PF> display(size_t{fwp::kWidth} * kStripRows);
   host::DepthCapture depth;
   depth.resize(fwp::kWidth, fwp::kHeight);
