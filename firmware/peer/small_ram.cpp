@@ -119,7 +119,8 @@ bool check(lr::Status st, const char* what) {
 // The model matrix (a Q16.16 one as to_fine gives it: frac 16, drawn as the Mat4 it holds) and,
 // for a fine scene (PeerCase::fine), its projection, which g_camera points to.
 lr::FineMat4 g_model{};
-lr::FineMat4 g_fine_projection{};
+// (The knot's build never reads the projection.)
+[[maybe_unused]] lr::FineMat4 g_fine_projection{};
 bool g_fine = false;  // draw g_model as a FineMat4
 
 // The draw; out of line, so that the Q16.16 model's copy is off the stack while the frame renders.
