@@ -367,6 +367,12 @@ constexpr uint32_t kMaxCandidate = 1u << 16;
   t.col_base = static_cast<int16_t>(base);
   t.flags = static_cast<uint8_t>((long_left ? ActiveTriangle::kBottomRight : 0) |
                                  (inside ? ActiveTriangle::kInside : 0));
+  // A triangle of kSurelyPixelsArea2 or more nearly always has a pixel centre in the window: no
+  // test (one that has none gets planes that its rows never use).
+  if (surely_pixels(d)) {
+    out.result = SmallRows::kPixels;
+    return out;
+  }
   // A row with a pixel centre in the viewport's columns: the middle vertex's row (the top
   // edge's last), where the triangle is widest, or another.
   const int32_t rm = mid >= first ? mid : first;
@@ -590,7 +596,11 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "strd   lr, r11, [r1]\n\t"                                                                     \
   "strd   r5, r8, [r1, #8]\n\t"                                                                  \
   "strd   r6, r9, [r1, #16]\n\t"                                                                 \
-  "4:\n\t" /* the columns at the row max(mid, first): long cl r11, short cs lr */                \
+  "4:\n\t" /* twice the area (word 5) at or above kSurelyPixelsArea2: kPixels */                 \
+  "ldr    r0, [%[f], #20]\n\t"                                                                   \
+  "eor    r0, r0, r0, asr #31\n\t"                                                               \
+  "cmp    r0, #0x20000\n\t"                                                                      \
+  "bhs    41f\n\t" /* the columns at the row max(mid, first): long cl r11, short cs lr */        \
   "ldrsh  r0, [r1, #38]\n\t"                                                                     \
   "subs   r3, r0, r10\n\t"                                                                       \
   "bge    5f\n\t"                                                                                \
@@ -619,6 +629,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "ble    9f\n\t"                                                                                \
   "cmp    r11, lr\n\t"                                                                           \
   "bge    9f\n\t"                                                                                \
+  "41:\n\t"                                                                                      \
   "movs   r0, #1\n\t"                                                                            \
   "b      9f\n\t"                                                                                \
   "8:\n\t"                                                                                       \
@@ -1050,6 +1061,7 @@ template <bool kBlock>
                 offsetof(ActiveTriangle, mid_row) == 38 &&
                 offsetof(ActiveTriangle, last_row) == 40 &&
                 offsetof(ActiveTriangle, col_base) == 42 && offsetof(ActiveTriangle, flags) == 47);
+  static_assert(kSurelyPixelsArea2 == 0x20000);  // the rows' test at label 4
   static_assert(ActiveTriangle::kBottomRight == 1 && ActiveTriangle::kInside == 4 &&
                 kSmallEdgeBits == 14 && kSubpixelBits == 8);
   static_assert(SmallRows::kSlow == 0 && SmallRows::kPixels == 1 && SmallRows::kLaterRows == 2 &&

@@ -143,9 +143,9 @@ Plane fast_plane(const FastBasis& b, const int32_t a[3], int u);
 // The rows, edges and flags of a triangle (setup_untextured_triangle's first step, v sorted by
 // y): kSlow when it is not small (an edge component of 2^kSmallEdgeBits subpixels or more) or
 // has no row in the window, nothing made; else t's rows and edges as setup_rows makes them, d
-// twice its signed area and m the OR of its edge components' magnitudes, and kPixels when the
-// middle vertex's row (or the first) has a pixel centre in [0, width), kLaterRows when only a
-// later row may. Exposed for tests.
+// twice its signed area and m the OR of its edge components' magnitudes, and kPixels when |d| is
+// kSurelyPixelsArea2 or more (untested) or the middle vertex's row (or the first) has a pixel
+// centre in [0, width), kLaterRows when only a later row may. Exposed for tests.
 // LanesSetup's block, which tests the later rows itself, gives kNoPixels for a triangle none of
 // whose rows in the window has a pixel centre in [0, width) (small_rows never does).
 struct SmallRows {
@@ -154,6 +154,15 @@ struct SmallRows {
   uint32_t m = 0;
   uint8_t result = kSlow;
 };
+// Twice the area (subpixels squared: 2^19 is four pixels) from which small_rows does not test
+// for a pixel centre: such triangles hardly ever lack one, so over them the test (about 25
+// instructions by hand) costs more than the planes of the rare one without (its rows then draw
+// nothing; it counts as set up, not as without pixels). |d| is taken as d ^ (d >> 31) (one less
+// for negative d).
+inline constexpr uint32_t kSurelyPixelsArea2 = 1u << 17;
+constexpr bool surely_pixels(int32_t d) {
+  return static_cast<uint32_t>(d ^ (d >> 31)) >= kSurelyPixelsArea2;
+}
 SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveTriangle& t);
 // The same by hand where the core divides in one instruction (kSmallRowsByHand: Armv7-M, not at
 // -Os); elsewhere small_rows itself.
