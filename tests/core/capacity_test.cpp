@@ -179,16 +179,18 @@ TEST(Capacity, CrowdedStripsAreDrawnInPassesWithTheSameFrame) {
 // Slivers between pixel centres get no planes and no active slot (rows and edges only): the frame
 // is the one with the slivers moved off the viewport (same submission order, same colours), in
 // strips where triangles already active and new ones interleave with them (no depth test: the
-// active order decides every overlap).
+// active order decides every overlap). Slivers of a pixel of area or more are not tested
+// (kSurelyPixelsArea2): they get planes and slots, and the frame is the same.
 TEST(Capacity, SliversBetweenPixelCentresTakeNoActiveSlot) {
-  auto scene = [](int64_t sliver_dx) {
+  auto scene = [](int64_t sliver_dx, int64_t top_width) {
     ScreenScene s;
     s.add(2 * S, 2 * S, 2 * S, 44 * S, 60 * S, 2 * S);  // rows 2..43, from strip 0
     // Thin diagonal slivers whose boxes hold pixel centres (the binner keeps them) but which hold
-    // none: on row j the one from x = 10 covers x in [j + 1.10, j + 1.30].
+    // none: on row j the one from x = 10 covers x in [j + 1.10, j + 1.18] (20 subpixels wide at
+    // the top: 0.78 pixels of area), or [j + 1.10, j + 1.30] (51: 1.99 pixels).
     auto sliver = [&](int64_t x) {
       x += sliver_dx;
-      s.add(x + 154, 10 * S, x + 205, 10 * S, x + 20 * S + 179, 30 * S);
+      s.add(x + 154, 10 * S, x + 154 + top_width, 10 * S, x + 20 * S + 179, 30 * S);
     };
     sliver(10 * S);
     s.add(4 * S, 9 * S, 40 * S, 40 * S, 50 * S, 12 * S);  // from strip 1, over the first
@@ -197,8 +199,8 @@ TEST(Capacity, SliversBetweenPixelCentresTakeNoActiveSlot) {
     s.add(30 * S, 17 * S, 33 * S, 47 * S, 62 * S, 30 * S);  // from strip 2
     return s;
   };
-  ScreenScene with = scene(0), without = scene(1000 * S);
-  CoreHarness<8> a(64, 48), b(64, 48);
+  ScreenScene with = scene(0, 20), without = scene(1000 * S, 20), wide = scene(0, 51);
+  CoreHarness<8> a(64, 48), b(64, 48), c(64, 48);
   a.begin();
   a.renderer().draw_screen(with.vertices, with.triangles, test::coverage_state());
   host::ImageRgb8 got = a.render();
@@ -210,6 +212,11 @@ TEST(Capacity, SliversBetweenPixelCentresTakeNoActiveSlot) {
   b.renderer().draw_screen(without.vertices, without.triangles, test::coverage_state());
   EXPECT_EQ(b.renderer().stats().triangles_binned, 4u);
   EXPECT_EQ(got.rgb, b.render().rgb);
+  c.begin();
+  c.renderer().draw_screen(wide.vertices, wide.triangles, test::coverage_state());
+  EXPECT_EQ(c.render().rgb, got.rgb);
+  EXPECT_EQ(c.renderer().stats().triangles_without_pixels, 0u);
+  EXPECT_EQ(c.renderer().stats().triangles_set_up, 6u);
   // Every triangle shows somewhere: the last one drawn over the others.
   std::set<std::array<uint8_t, 3>> colours;
   for (size_t i = 0; i + 2 < got.rgb.size(); i += 3)
@@ -228,7 +235,7 @@ TEST(Capacity, CrowdedStripsWithSliversCountEachSliverOnce) {
   s.add(10 * S, 11 * S, 30 * S, 46 * S, 56 * S, 20 * S);  // from strip 1, over both
   // Slivers from strip 1 (as above): the first of its bucket (latest submission first).
   for (int64_t x : {10 * S, 14 * S, 20 * S})
-    s.add(x + 154, 10 * S, x + 205, 10 * S, x + 20 * S + 179, 30 * S);
+    s.add(x + 154, 10 * S, x + 174, 10 * S, x + 20 * S + 179, 30 * S);
   s.add(30 * S, 17 * S, 33 * S, 47 * S, 62 * S, 30 * S);  // from strip 2
   CoreHarness<8> ref(64, 48);
   ref.begin();
