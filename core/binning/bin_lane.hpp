@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "lineraster/core/binning/binned_triangle.hpp"
+#include "lineraster/core/binning/edge_table.hpp"
 #include "lineraster/core/vertex/screen_vertex.hpp"
 
 namespace lr {
@@ -85,7 +86,8 @@ inline BinLaneStop bin_lane_portable(const std::array<uint16_t, 3>*& tp, BinLane
     // (USAT's clamps: [0, 65535])
     a = a < 0 ? 0 : a > 0xFFFF ? 0xFFFF : a;
     c0 = c0 < 0 ? 0 : c0 > 0xFFFF ? 0xFFFF : c0;
-    if (a >= b || a >= k.height || c0 >= c1 || c0 >= k.width) {
+    if (a >= b || a >= k.height || c0 >= c1 || c0 >= k.width ||
+        (one_centre(a, b, c0, c1) && !holds_centre(v0, v1, v2, c0, a))) {
       ++k.offscreen;
       continue;
     }
@@ -192,6 +194,46 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   "sub     r1, r1, r11\n\t"                           \
   "usat    r11, #16, r1, asr #8\n\t"                  \
   "asr     r9, r9, #8\n\t"
+// The one centre (column r1, row r11) of bounds that hold one (one_centre: a and c0 not 0, else
+// on to BACK), tested as holds_centre() tests it: the vertices r4-r6 in the mesh's order (a
+// front face: inside, every edge function is negative), per edge e = dx (yc - ya) - dy (xc - xa)
+// against 1 when a centre on the edge is in (dy > 0, or dy = 0 and dx > 0), else 0 (as e - 1
+// against 0: a compare inside an IT block would set the flags the next one reads): e at or above
+// it is outside (to 83, counted). r11 and r12 kept on the stack; r0, r8-r10 scratch.
+#define LR_BIN_LANE_EDGE(A, B)             \
+  "ldrd    r8, r9, [" A                    \
+  "]\n\t"                                  \
+  "ldrd    r10, r11, [" B                  \
+  "]\n\t"                                  \
+  "sub     r10, r10, r8\n\t" /* dx */      \
+  "sub     r11, r11, r9\n\t" /* dy */      \
+  "sub     r9, r0, r9\n\t"   /* yc - ya */ \
+  "sub     r8, r1, r8\n\t"   /* xc - xa */ \
+  "mul     r12, r10, r9\n\t"               \
+  "mls     r12, r11, r8, r12\n\t"          \
+  "cmp     r11, #0\n\t"                    \
+  "it      eq\n\t"                         \
+  "moveq   r11, r10\n\t"                   \
+  "cmp     r11, #0\n\t"                    \
+  "it      gt\n\t"                         \
+  "subgt   r12, r12, #1\n\t"               \
+  "cmp     r12, #0\n\t"                    \
+  "bge     85f\n\t"
+#define LR_BIN_LANE_ONE_CENTRE(BACK) \
+  "cmp     r11, #0\n\t"                \
+  "it      ne\n\t"                     \
+  "cmpne   r1, #0\n\t"                 \
+  "beq     " BACK "\n\t"               \
+  "push    {r11, r12}\n\t"             \
+  "lsl     r0, r11, #8\n\t"            \
+  "add     r0, r0, #128\n\t" /* yc */  \
+  "lsl     r1, r1, #8\n\t"             \
+  "add     r1, r1, #128\n\t" /* xc */  \
+  LR_BIN_LANE_EDGE("r4", "r5")         \
+  LR_BIN_LANE_EDGE("r5", "r6")         \
+  LR_BIN_LANE_EDGE("r6", "r4")         \
+  "pop     {r11, r12}\n\t"             \
+  "b       " BACK "\n\t"
 // The rest of bin_lane_asm() for one vertex on top (N: the labels' digit): the rows (ROWS), the
 // columns [c0, c1) into r1 and r8 from r0 = x0, r8 = dx1 and r10 = dx2 (min and max with 0 by
 // conditional AND and BIC), the four tests in one chain of conditional compares, the pending
@@ -217,6 +259,14 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   "cmplt   r1, r8\n\t"                                                             \
   "cmplt   r1, r10\n\t"                                                            \
   "bge     83f\n\t"                                                                \
+  "sub     r0, r9, r11\n\t" /* bounds of one centre: its own test (10N) */         \
+  "sub     r10, r8, r1\n\t"                                                        \
+  "add     r0, r0, r10\n\t"                                                        \
+  "cmp     r0, #2\n\t"                                                             \
+  "beq     10" N                                                                   \
+  "f\n\t"                                                                          \
+  "11" N                                                                           \
+  ":\n\t"                                                                          \
   "ldrb    r0, [r4, #23]\n\t" /* a vertex waiting for its colour */                \
   "ldrb    r1, [r5, #23]\n\t"                                                      \
   "ldrb    r8, [r6, #23]\n\t"                                                      \
@@ -274,7 +324,9 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
   "5" N                                                                            \
   "3:\n\t"                                                                         \
   "str     r9, [%[k], #36]\n\t"                                                    \
-  "b       6" N "b\n"
+  "b       6" N                                                                    \
+  "b\n"                                                                            \
+  "10" N ":\n\t" LR_BIN_LANE_ONE_CENTRE("11" N "b")
 // The first part of bin_lane_asm() for one triangle (four copies): the indices read with
 // post-increment (tp on the next triangle from there on), the vertices' addresses, the deltas
 // (dx1 r8, dy1 r9, dx2 r10, -dy2 r11) and minus twice the signed area in r1:r0, its sign in the
@@ -368,6 +420,8 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       LR_BIN_LANE_TAIL("2", LR_BIN_LANE_ROWS_C, "#-2", "#-6", "#-4")
       LR_BIN_LANE_TAIL("0", LR_BIN_LANE_ROWS_A_DY2, "#-6", "#-4", "#-2")
       LR_BIN_LANE_TAIL("4", LR_BIN_LANE_ROWS_A_DY1, "#-6", "#-4", "#-2")
+      "85:\n\t"  // a centre outside (LR_BIN_LANE_ONE_CENTRE)
+      "pop     {r11, r12}\n"
       "83:\n\t"
       "ldr     r8, [%[k], #48]\n\t"
       "add     r8, r8, #1\n\t"
@@ -388,6 +442,8 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
 
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
 #undef LR_BIN_LANE_TAIL
+#undef LR_BIN_LANE_ONE_CENTRE
+#undef LR_BIN_LANE_EDGE
 #undef LR_BIN_LANE_FRONT
 #undef LR_BIN_LANE_ROWS_A_DY2
 #undef LR_BIN_LANE_ROWS_A_DY1

@@ -262,6 +262,35 @@ class EdgeTable {
   uint32_t frame_signature_ = 0;
 };
 
+// Whether the one pixel centre (c, r) of the viewport that a triangle's bounds hold, c and r
+// both at least 1 (one_centre), is covered by it by the raster rules (docs/raster-rules.md):
+// a centre on an edge belongs to the triangle on the edge's right, or above a horizontal
+// bottom edge, as the row loop's columns give it. Such bounds put every vertex within 256
+// subpixels of the centre on each axis: the edge functions' products stay below 2^19.
+constexpr bool holds_centre(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
+                            int32_t c, int32_t r) {
+  const int32_t xc = c * kSubpixel + kHalfPixel, yc = r * kSubpixel + kHalfPixel;
+  // Inside, every edge function is negative when twice the signed area is (a front face's);
+  // the other winding is the same triangle with two vertices swapped.
+  const bool swap = (v1.x - v0.x) * (v2.y - v0.y) - (v2.x - v0.x) * (v1.y - v0.y) > 0;
+  const ScreenVertex* const v[3] = {&v0, swap ? &v2 : &v1, swap ? &v1 : &v2};
+  for (int i = 0; i < 3; ++i) {
+    const ScreenVertex& a = *v[i];
+    const ScreenVertex& b = *v[i == 2 ? 0 : i + 1];
+    const int32_t dx = b.x - a.x, dy = b.y - a.y;
+    const int32_t e = dx * (yc - a.y) - dy * (xc - a.x);
+    // On the edge: in when the inside lies right of it (dy > 0) or above it (dy = 0, dx > 0).
+    if (e >= (dy > 0 || (dy == 0 && dx > 0) ? 1 : 0)) return false;
+  }
+  return true;
+}
+// Whether bounds whose rows are [a, b) and columns [c0, c1) (a and c0 clamped at 0, b and c1
+// not clamped) hold one pixel centre, away from row 0 and column 0 (where the clamp may have
+// cut larger bounds): then the binner tests that centre exactly (holds_centre).
+constexpr bool one_centre(int32_t a, int32_t b, int32_t c0, int32_t c1) {
+  return b - a == 1 && c1 - c0 == 1 && a != 0 && c0 != 0;
+}
+
 // The facing of a triangle from its edge deltas (v1 - v0, v2 - v0; subpixels, below 2^23 inside
 // the guard band): 2 front-facing, 1 back-facing, 0 no area, from the sign of twice the signed
 // area, exact: 32-bit products on cores without a 64-bit product when every delta is in
@@ -289,16 +318,18 @@ inline bool EdgeTable::covers(const ScreenVertex& v0, const ScreenVertex& v1,
   xmax = v2.x > xmax ? v2.x : xmax;
   int32_t a = first_row_below(ymin), b = last_row_at_or_above(ymax);
   if (a < 0) a = 0;
-  if (b > height_ - 1) b = height_ - 1;
   // Columns whose centres can pass both edge tests: [ceil((xmin-128)/256),
   // ceil((xmax-128)/256)).
   int32_t c0 = (xmin - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
   int32_t c1 = (xmax - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
   if (c0 < 0) c0 = 0;
+  // Bounds of one centre inside the viewport: that centre's own test.
+  const bool one = one_centre(a, b + 1, c0, c1) && a < height_ && c0 < width_;
+  if (b > height_ - 1) b = height_ - 1;
   if (c1 > width_) c1 = width_;
   r0 = a;
   if (r1_out != nullptr) *r1_out = b;
-  return a <= b && c0 < c1;
+  return a <= b && c0 < c1 && (!one || holds_centre(v0, v1, v2, c0, a));
 }
 
 inline Outcome EdgeTable::classify_inline(const ScreenVertex& v0, const ScreenVertex& v1,

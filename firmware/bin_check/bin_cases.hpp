@@ -61,7 +61,10 @@ struct Rng {
 };
 
 inline void make_mesh(Rng& r, Mesh& m) {
-  const uint32_t kind = r.next() % 4;
+  const uint32_t kind = r.next() % 5;
+  // Kind 4: every vertex within 300 subpixels of one pixel centre's (tiny triangles, many of
+  // whose bounds hold one centre: the binner tests it, holds_centre()).
+  const int32_t cx = r.range(0, kWidth) * 256 + 128, cy = r.range(0, kHeight) * 256 + 128;
   for (uint32_t i = 0; i < kVertices; ++i) {
     ScreenVertex& v = m.v[i];
     v = ScreenVertex{};
@@ -78,6 +81,11 @@ inline void make_mesh(Rng& r, Mesh& m) {
     } else {  // small triangles on the viewport
       v.x = r.range(-300, kWidth * 256 + 300);
       v.y = r.range(-300, kHeight * 256 + 300);
+    }
+    if (kind == 4) {  // half of them on a lattice of 64 subpixels (centres on edges)
+      const int32_t step = i % 2 == 0 ? 1 : 64;
+      v.x = cx + r.range(-300 / step, 300 / step) * step;
+      v.y = cy + r.range(-300 / step, 300 / step) * step;
     }
     if (kind == 2 && r.next() % 2 == 0) {  // on a pixel centre's row or column, or next to it
       v.x = (v.x & ~255) + 128 + r.range(-1, 1);
