@@ -104,10 +104,16 @@ class EdgeTable {
   Outcome classify(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
                    Cull cull, int32_t& r0, int32_t& r1) const;
   // classify()'s tests after the facing: whether the triangle's bounds hold a pixel centre of
-  // the viewport, its first row (clamped) in r0, its last in *r1 when not nullptr.
+  // the viewport, its first row (clamped) in r0, its last in *r1 when not nullptr. Bounds of
+  // one row may hold one centre: misses_its_centre() then says whether the triangle misses it
+  // (classify culls those, as the lanes do).
   [[gnu::always_inline]] bool covers(const ScreenVertex& v0, const ScreenVertex& v1,
                                      const ScreenVertex& v2, int32_t& r0,
                                      int32_t* r1 = nullptr) const;
+  // Whether the triangle's bounds hold one pixel centre of the viewport (one_centre) that it
+  // does not cover (holds_centre): off the hot paths (a triangle of one row).
+  bool misses_its_centre(const ScreenVertex& v0, const ScreenVertex& v1,
+                         const ScreenVertex& v2) const;
 
   bool full() const { return count_ >= triangles_.size(); }
   size_t capacity() const { return triangles_.size(); }
@@ -323,13 +329,11 @@ inline bool EdgeTable::covers(const ScreenVertex& v0, const ScreenVertex& v1,
   int32_t c0 = (xmin - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
   int32_t c1 = (xmax - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
   if (c0 < 0) c0 = 0;
-  // Bounds of one centre inside the viewport: that centre's own test.
-  const bool one = one_centre(a, b + 1, c0, c1) && a < height_ && c0 < width_;
   if (b > height_ - 1) b = height_ - 1;
   if (c1 > width_) c1 = width_;
   r0 = a;
   if (r1_out != nullptr) *r1_out = b;
-  return a <= b && c0 < c1 && (!one || holds_centre(v0, v1, v2, c0, a));
+  return a <= b && c0 < c1;
 }
 
 inline Outcome EdgeTable::classify_inline(const ScreenVertex& v0, const ScreenVertex& v1,
@@ -339,7 +343,9 @@ inline Outcome EdgeTable::classify_inline(const ScreenVertex& v0, const ScreenVe
   if (f == 0) return Outcome::kZeroArea;
   if ((cull == Cull::kBack && f == 1) || (cull == Cull::kFront && f == 2))
     return Outcome::kBackface;
-  return covers(v0, v1, v2, r0, &r1) ? Outcome::kBinned : Outcome::kOffscreen;
+  return covers(v0, v1, v2, r0, &r1) && (r0 != r1 || !misses_its_centre(v0, v1, v2))
+             ? Outcome::kBinned
+             : Outcome::kOffscreen;
 }
 
 }  // namespace lr
