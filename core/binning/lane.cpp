@@ -56,7 +56,8 @@ uint32_t FrontEnd::lane_triangles(MeshDraw& d, uint32_t t) {
     const ScreenVertex& v1 = base[i1];
     const ScreenVertex& v2 = base[i2];
     int32_t r0, r1;
-    if (!edges_.covers(v0, v1, v2, r0, &r1) || (r0 == r1 && edges_.misses_its_centre(v0, v1, v2))) {
+    if (!edges_.covers(v0, v1, v2, r0, &r1) ||
+        (r0 == r1 && kOneCentreTest && edges_.misses_its_centre(v0, v1, v2))) {
       ++stats_.culled_offscreen;
       continue;
     }
