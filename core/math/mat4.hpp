@@ -68,7 +68,7 @@ struct FineMat4 {
 
 // A Mat4 as a FineMat4 (frac 16: the same entries).
 constexpr FineMat4 to_fine(const Mat4& a) {
-  FineMat4 r{};
+  FineMat4 r;  // every member assigned below (no zeroing first: a memset per Q16.16 draw)
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) r.m[i][j] = a.m[i][j].raw;
   r.frac = 16;
