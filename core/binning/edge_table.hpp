@@ -104,9 +104,11 @@ class EdgeTable {
   Outcome classify(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
                    Cull cull, int32_t& r0, int32_t& r1) const;
   // classify()'s tests after the facing: whether the triangle's bounds hold a pixel centre of
-  // the viewport, its first row (clamped) in r0, its last in *r1 when not nullptr. Bounds of
-  // one row may hold one centre: misses_its_centre() then says whether the triangle misses it
-  // (classify culls those, as the lanes do).
+  // the viewport, its first row (clamped) in r0, its last in *r1 when not nullptr. With kExact,
+  // bounds of one centre hold it only when the triangle covers it (holds_centre); without, a
+  // triangle of one row may still miss its one centre: misses_its_centre() says (the C lane
+  // calls it out of line, which keeps its loop's registers).
+  template <bool kExact = false>
   [[gnu::always_inline]] bool covers(const ScreenVertex& v0, const ScreenVertex& v1,
                                      const ScreenVertex& v2, int32_t& r0,
                                      int32_t* r1 = nullptr) const;
@@ -322,6 +324,7 @@ constexpr bool one_centre(int32_t a, int32_t b, int32_t c0, int32_t c1) {
   return front_facing(area) ? 2u : back_facing(area) ? 1u : 0u;
 }
 
+template <bool kExact>
 inline bool EdgeTable::covers(const ScreenVertex& v0, const ScreenVertex& v1,
                               const ScreenVertex& v2, int32_t& r0, int32_t* r1_out) const {
   int32_t ymin = v0.y < v1.y ? v0.y : v1.y, ymax = v0.y > v1.y ? v0.y : v1.y;
@@ -337,9 +340,13 @@ inline bool EdgeTable::covers(const ScreenVertex& v0, const ScreenVertex& v1,
   int32_t c0 = (xmin - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
   int32_t c1 = (xmax - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
   if (c0 < 0) c0 = 0;
+  r0 = a;
+  if (kExact && b == a && one_centre(a, b + 1, c0, c1) && a < height_ && c0 < width_) {
+    if (r1_out != nullptr) *r1_out = b;
+    return holds_centre(v0, v1, v2, c0, a);
+  }
   if (b > height_ - 1) b = height_ - 1;
   if (c1 > width_) c1 = width_;
-  r0 = a;
   if (r1_out != nullptr) *r1_out = b;
   return a <= b && c0 < c1;
 }
@@ -351,10 +358,7 @@ inline Outcome EdgeTable::classify_inline(const ScreenVertex& v0, const ScreenVe
   if (f == 0) return Outcome::kZeroArea;
   if ((cull == Cull::kBack && f == 1) || (cull == Cull::kFront && f == 2))
     return Outcome::kBackface;
-  return covers(v0, v1, v2, r0, &r1) &&
-                 (r0 != r1 || !kOneCentreTest || !misses_its_centre(v0, v1, v2))
-             ? Outcome::kBinned
-             : Outcome::kOffscreen;
+  return covers<true>(v0, v1, v2, r0, &r1) ? Outcome::kBinned : Outcome::kOffscreen;
 }
 
 }  // namespace lr
