@@ -351,7 +351,7 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 #endif
 
 // bin_lane_portable() hand-allocated (Armv7E-M; elsewhere the C loop): 17 or 19 instructions a
-// back face and 69 to 71 a binned front face without pending vertices. The vertices' base and
+// back face and 74 to 76 a binned front face without pending vertices. The vertices' base and
 // stride in registers for the whole run (an index to an address is one MLA); minus twice the
 // signed area, so that its high word's sign alone tells a back face, and x0 and y0 read again for
 // the faces that stay (their registers take the area); four copies of that first part, so that
@@ -359,9 +359,12 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 // (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for the clamp at 0, in one of four tails picked by
 // the vertex on top (store_top_first), which also stores the indices in its order; the four
 // tests of the bounds in one chain of conditional compares; the constants of a binned face read
-// with one LDM; the record's halves built with one ORR and PKHBT.
+// with one LDM; the record's halves built with one ORR and PKHBT; bounds of one centre tested
+// at it (holds_centre). Where the front end does not take it (kBinLaneAsm false: -Os, whose C
+// lane leaves the one-centre test out) it is the C loop.
 inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) {
-#if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
+#if defined(__ARM_FEATURE_DSP) && defined(__thumb2__) && !defined(__OPTIMIZE_SIZE__)
+  static_assert(kBinLaneAsm && kOneCentreTest);
   // Low registers: CBZ tests them.
   register uint32_t a asm("r0");
   register uint32_t b asm("r1");
