@@ -1,7 +1,5 @@
 #include "lineraster/core/binning/edge_table.hpp"
 
-#include <algorithm>
-
 namespace lr {
 
 Outcome EdgeTable::classify(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
@@ -47,14 +45,9 @@ bool EdgeTable::shrink_window(std::span<const ScreenVertex> vertices, size_t& ma
 
 bool EdgeTable::misses_its_centre(const ScreenVertex& v0, const ScreenVertex& v1,
                                   const ScreenVertex& v2) const {
-  const int32_t ymin = std::min<int32_t>({v0.y, v1.y, v2.y}),
-                ymax = std::max<int32_t>({v0.y, v1.y, v2.y});
-  const int32_t xmin = std::min<int32_t>({v0.x, v1.x, v2.x}),
-                xmax = std::max<int32_t>({v0.x, v1.x, v2.x});
-  const int32_t a = std::max<int32_t>(first_row_below(ymin), 0), b = last_row_at_or_above(ymax) + 1;
-  const int32_t c0 = std::max<int32_t>((xmin - kHalfPixel + kSubpixel - 1) >> kSubpixelBits, 0);
-  const int32_t c1 = (xmax - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
-  return one_centre(a, b, c0, c1) && a < height_ && c0 < width_ && !holds_centre(v0, v1, v2, c0, a);
+  const Bounds k = bounds(v0, v1, v2);
+  return one_centre(k.r0, k.r1 + 1, k.c0, k.c1) && k.r0 < height_ && k.c0 < width_ &&
+         !holds_centre(v0, v1, v2, k.c0, k.r0);
 }
 
 }  // namespace lr

@@ -117,6 +117,16 @@ class EdgeTable {
   bool misses_its_centre(const ScreenVertex& v0, const ScreenVertex& v1,
                          const ScreenVertex& v2) const;
 
+ private:
+  // A triangle's candidate pixel centres: rows [r0, r1] and columns [c0, c1), r0 and c0
+  // clamped at 0, r1 and c1 not clamped (covers() and misses_its_centre() share them).
+  struct Bounds {
+    int32_t r0, r1, c0, c1;
+  };
+  [[gnu::always_inline]] static Bounds bounds(const ScreenVertex& v0, const ScreenVertex& v1,
+                                              const ScreenVertex& v2);
+
+ public:
   bool full() const { return count_ >= triangles_.size(); }
   size_t capacity() const { return triangles_.size(); }
   size_t bucket_size(int strip) const {
@@ -324,31 +334,38 @@ constexpr bool one_centre(int32_t a, int32_t b, int32_t c0, int32_t c1) {
   return front_facing(area) ? 2u : back_facing(area) ? 1u : 0u;
 }
 
-template <bool kExact>
-inline bool EdgeTable::covers(const ScreenVertex& v0, const ScreenVertex& v1,
-                              const ScreenVertex& v2, int32_t& r0, int32_t* r1_out) const {
+inline EdgeTable::Bounds EdgeTable::bounds(const ScreenVertex& v0, const ScreenVertex& v1,
+                                           const ScreenVertex& v2) {
   int32_t ymin = v0.y < v1.y ? v0.y : v1.y, ymax = v0.y > v1.y ? v0.y : v1.y;
   ymin = v2.y < ymin ? v2.y : ymin;
   ymax = v2.y > ymax ? v2.y : ymax;
   int32_t xmin = v0.x < v1.x ? v0.x : v1.x, xmax = v0.x > v1.x ? v0.x : v1.x;
   xmin = v2.x < xmin ? v2.x : xmin;
   xmax = v2.x > xmax ? v2.x : xmax;
-  int32_t a = first_row_below(ymin), b = last_row_at_or_above(ymax);
-  if (a < 0) a = 0;
-  // Columns whose centres can pass both edge tests: [ceil((xmin-128)/256),
-  // ceil((xmax-128)/256)).
-  int32_t c0 = (xmin - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
-  int32_t c1 = (xmax - kHalfPixel + kSubpixel - 1) >> kSubpixelBits;
-  if (c0 < 0) c0 = 0;
-  r0 = a;
-  if (kExact && b == a && one_centre(a, b + 1, c0, c1) && a < height_ && c0 < width_) {
-    if (r1_out != nullptr) *r1_out = b;
-    return holds_centre(v0, v1, v2, c0, a);
+  Bounds k{first_row_below(ymin), last_row_at_or_above(ymax),
+           // Columns whose centres can pass both edge tests: [ceil((xmin-128)/256),
+           // ceil((xmax-128)/256)).
+           (xmin - kHalfPixel + kSubpixel - 1) >> kSubpixelBits,
+           (xmax - kHalfPixel + kSubpixel - 1) >> kSubpixelBits};
+  if (k.r0 < 0) k.r0 = 0;
+  if (k.c0 < 0) k.c0 = 0;
+  return k;
+}
+
+template <bool kExact>
+inline bool EdgeTable::covers(const ScreenVertex& v0, const ScreenVertex& v1,
+                              const ScreenVertex& v2, int32_t& r0, int32_t* r1_out) const {
+  Bounds k = bounds(v0, v1, v2);
+  r0 = k.r0;
+  if (kExact && k.r1 == k.r0 && one_centre(k.r0, k.r1 + 1, k.c0, k.c1) && k.r0 < height_ &&
+      k.c0 < width_) {
+    if (r1_out != nullptr) *r1_out = k.r1;
+    return holds_centre(v0, v1, v2, k.c0, k.r0);
   }
-  if (b > height_ - 1) b = height_ - 1;
-  if (c1 > width_) c1 = width_;
-  if (r1_out != nullptr) *r1_out = b;
-  return a <= b && c0 < c1;
+  if (k.r1 > height_ - 1) k.r1 = height_ - 1;
+  if (k.c1 > width_) k.c1 = width_;
+  if (r1_out != nullptr) *r1_out = k.r1;
+  return k.r0 <= k.r1 && k.c0 < k.c1;
 }
 
 inline Outcome EdgeTable::classify_inline(const ScreenVertex& v0, const ScreenVertex& v1,
