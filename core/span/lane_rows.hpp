@@ -151,10 +151,11 @@ namespace detail {
 // the strip's (stride, y0, y_last, pix0: then in r6, r9-r11) in one LDM: label 10; then the
 // pick-up (label 0), which retires the triangle at once (its slot to the free or the kept list,
 // and the run's next, kept and free stored) and fills the row loop's registers, entering past
-// its LDM). The counts of a run stay in r12 and go to the strip at the run's end or once it has
-// 32 rows or more (its fields then hold the next visit: at most 63 rows and 63 x kMaxViewport
-// pixels). The row loop, its labels numbered from N, with CLAMP between the columns and the
-// span; TO the label of a row past stop, SWITCH its code when it is the loop's own
+// its LDM; a triangle that starts and ends in the strip, label 41, takes no clamp and no pick-up
+// product: 8 fewer). The counts of a run stay in r12 and go to the strip at the run's end or once
+// it has 32 rows or more (its fields then hold the next visit: at most 63 rows and 63 x
+// kMaxViewport pixels). The row loop, its labels numbered from N, with CLAMP between the columns
+// and the span; TO the label of a row past stop, SWITCH its code when it is the loop's own
 // (LR_LANE_SWITCH). The span's set-up (N5) and pixel loop come before the row's part (N1), into
 // which the pixel loop falls: a row with a span takes no branch back.
 #define LR_LANE_ROWS(N1, N8, N5, N2, N3, N4, TO, CLAMP, SWAP, SWITCH)            \
@@ -308,13 +309,19 @@ namespace detail {
       "strhle r4, [r3], #2\n\t"                                            \
       "strhgt r4, [r2], #2\n\t"                                            \
       "stm    r0, {r1, r2, r3}\n\t"                                        \
-      "it     gt\n\t"                                                      \
-      "movgt  r5, r10\n\t"                                                 \
       "ldrsh  r4, [lr, #36]\n\t"                                           \
+      "bgt    40f\n\t"                                                     \
+      "cmp    r4, r9\n\t"                                                  \
+      "bge    41f\n\t"                                                     \
+      "mov    r3, r9\n\t"                                                  \
+      "b      43f\n\t"                                                     \
+      "40:\n\t"                                                            \
+      "mov    r5, r10\n\t"                                                 \
       "cmp    r4, r9\n\t"                                                  \
       "ite    ge\n\t"                                                      \
       "movge  r3, r4\n\t"                                                  \
       "movlt  r3, r9\n\t"                                                  \
+      "43:\n\t"                                                            \
       "mla    r2, r3, r6, r11\n\t"                                         \
       "ldrsh  r11, [lr, #38]\n\t"                                          \
       "ldrsh  r10, [lr, #42]\n\t"                                          \
@@ -335,6 +342,33 @@ namespace detail {
       "sub    r12, r12, r3, lsl #26\n\t"                                   \
       "bne    18b\n\t"                                                     \
       "b      8f\n\t"                                                      \
+      /* a triangle that starts and ends in the strip (most small ones): from its first */ \
+      /* row (no pick-up products), its rows and mid_row (<= last_row) unclamped */         \
+      "41:\n\t"                                                            \
+      "mov    r3, r4\n\t"                                                  \
+      "mla    r2, r4, r6, r11\n\t"                                         \
+      "ldrsh  r11, [lr, #38]\n\t"                                          \
+      "ldrsh  r10, [lr, #42]\n\t"                                          \
+      "str    r5, [%[a], #48]\n\t"                                         \
+      "cmp    r4, r11\n\t"                                                 \
+      "bgt    44f\n\t"                                                     \
+      "ldrb   r0, [lr, #47]\n\t"                                           \
+      "tst    r0, #4\n\t"                                                  \
+      "ldm    lr, {r0, r1, r4, r5}\n\t"                                    \
+      "ldrd   r8, r9, [lr, #16]\n\t"                                       \
+      "stm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"    \
+      "sub    r12, r12, r3, lsl #26\n\t"                                   \
+      "bne    18b\n\t"                                                     \
+      "b      8f\n\t"                                                      \
+      "44:\n\t" /* mid_row = first_row - 1: the bottom edge's record is at this row */ \
+      "mov    r11, r5\n\t"                                                 \
+      "ldm    lr, {r0, r1, r4, r5}\n\t"                                    \
+      "ldrd   r8, r9, [lr, #16]\n\t"                                       \
+      "stm    %[a], {r0, r1, r2, r3, r4, r5, r6, r8, r9, r10, r11}\n\t"    \
+      "sub    r12, r12, r3, lsl #26\n\t"                                   \
+      "add    r1, lr, #24\n\t"                                             \
+      "ldm    r1, {r1, r4, r5}\n\t"                                        \
+      "b      45f\n\t"                                                     \
       "5:\n\t"                                                             \
       "mov    r11, r5\n\t"                                                 \
       "ldm    lr, {r0, r1, r4, r5}\n\t"                                    \
@@ -349,6 +383,7 @@ namespace detail {
       "add    r1, lr, #24\n\t"                                             \
       "ldm    r1, {r1, r4, r5}\n\t"                                        \
       "mla    r1, r4, r0, r1\n\t"                                          \
+      "45:\n\t"                                                            \
       "ldrb   r2, [lr, #47]\n\t"                                           \
       "and    r0, r2, #1\n\t"                                              \
       "add    r0, %[a], r0, lsl #2\n\t"                                    \
