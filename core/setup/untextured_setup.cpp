@@ -471,9 +471,8 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "ldrd   r5, r6, [r1]\n\t"                                                                      \
   "ldrd   r8, r9, [r2]\n\t"                                                                      \
   "ldr    lr, [%[f], #12]\n\t" /* first r10, last r11 */                                         \
-  "sub    r10, r4, #128\n\t"                                                                     \
+  "add    r10, r4, #128\n\t"   /* ((y0 - 128) >> 8) + 1 = (y0 + 128) >> 8 */                     \
   "asr    r10, r10, #8\n\t"                                                                      \
-  "add    r10, r10, #1\n\t"                                                                      \
   "ldr    r12, [lr]\n\t"                                                                         \
   "cmp    r10, r12\n\t"                                                                          \
   "it     lt\n\t"                                                                                \
@@ -485,6 +484,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "it     gt\n\t"                                                                                \
   "movgt  r11, r12\n\t" /* e1x r5, e1y r6, e2x r8, e2y r9; m */                                  \
   "sub    r5, r5, r3\n\t"                                                                        \
+  "sub    r1, r6, #128\n\t" /* yb - 128 (mid) */                                                 \
   "sub    r6, r6, r4\n\t"                                                                        \
   "sub    r8, r8, r3\n\t"                                                                        \
   "sub    r9, r9, r4\n\t"                                                                        \
@@ -499,9 +499,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "bhs    8f\n\t"                                                                                \
   "cmp    r10, r11\n\t"                                                                          \
   "bgt    8f\n\t" /* mid r0 = clamp((yb - 128) >> 8, first - 1, last); the rows */               \
-  "add    r0, r4, r6\n\t"                                                                        \
-  "sub    r0, r0, #128\n\t"                                                                      \
-  "asr    r0, r0, #8\n\t"                                                                        \
+  "asr    r0, r1, #8\n\t"                                                                        \
   "sub    r1, r10, #1\n\t"                                                                       \
   "cmp    r0, r1\n\t"                                                                            \
   "it     lt\n\t"                                                                                \
@@ -547,17 +545,14 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "mul    r11, r5, r9\n\t"                                                                       \
   "mls    r11, r8, r6, r11\n\t"                                                                  \
   "str    r11, [%[f], #20]\n\t"                                                                  \
-  "cmp    r11, #0\n\t"                                                                           \
-  "it     gt\n\t"                                                                                \
-  "orrgt  r2, r2, #1\n\t"                                                                        \
+  "rsb    r11, r11, #0\n\t" /* d > 0: -d < 0 (|d| < 2^29 here) */                                \
+  "orr    r2, r2, r11, lsr #31\n\t"                                                              \
   "strb   r2, [r1, #47]\n\t" /* t0 r4 = 256 first + 128 - y0; the bottom edge at row mid + 1 */  \
-  "lsl    r11, r10, #8\n\t"                                                                      \
-  "add    r11, r11, #128\n\t"                                                                    \
-  "sub    r4, r11, r4\n\t"                                                                       \
+  "rsb    r4, r4, #128\n\t"                                                                      \
+  "add    r4, r4, r10, lsl #8\n\t"                                                               \
   "sub    r11, r0, r10\n\t"                                                                      \
   "add    r11, r11, #1\n\t"                                                                      \
-  "lsl    r11, r11, #8\n\t"                                                                      \
-  "add    r11, r11, r4\n\t"                                                                      \
+  "add    r11, r4, r11, lsl #8\n\t"                                                              \
   "sub    r11, r11, r6\n\t"                                                                      \
   "sub    lr, r8, r5\n\t"                                                                        \
   "mul    r11, lr, r11\n\t"                                                                      \
@@ -567,9 +562,8 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "mla    r11, r0, lr, r11\n\t"                                                                  \
   "sub    r11, r11, #1\n\t"                                                                      \
   "asr    r11, r11, #8\n\t"                                                                      \
-  "cmp    lr, #1\n\t"                                                                            \
-  "it     lt\n\t"                                                                                \
-  "movlt  lr, #1\n\t"                                                                            \
+  "clz    r0, lr\n\t" /* max(dy, 1) for dy >= 0: dy | (clz(dy) >> 5) */                          \
+  "orr    lr, lr, r0, lsr #5\n\t"                                                                \
   "mla    r11, r12, lr, r11\n\t"                                                                 \
   "str    r11, [r1, #24]\n\t"                                                                    \
   "str    lr, [r1, #32]\n\t" /* the long edge ql r11, the top edge qt lr (top_dy in r6) */       \
@@ -582,9 +576,8 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "mla    lr, r5, r4, lr\n\t"                                                                    \
   "sub    lr, lr, #1\n\t"                                                                        \
   "asr    lr, lr, #8\n\t"                                                                        \
-  "cmp    r6, #1\n\t"                                                                            \
-  "it     lt\n\t"                                                                                \
-  "movlt  r6, #1\n\t"                                                                            \
+  "clz    r0, r6\n\t"                                                                            \
+  "orr    r6, r6, r0, lsr #5\n\t"                                                                \
   "mla    lr, r12, r6, lr\n\t" /* the record, left edge first */                                 \
   "tst    r2, #1\n\t"                                                                            \
   "beq    3f\n\t"                                                                                \
@@ -699,20 +692,18 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "clz    r12, r9\n\t" \
   "rsb    r12, r12, #32\n\t" \
   "add    lr, r11, r12, lsl #1\n\t" \
-  "sub    lr, lr, #32\n\t" \
-  "cmp    lr, #10\n\t" \
+  "cmp    lr, #42\n\t" \
   "bgt    18f\n\t" \
   "cmp    r6, #26\n\t" \
   "bgt    18f\n\t" \
   "add    lr, lr, r6\n\t" \
-  "cmp    lr, #35\n\t" \
+  "cmp    lr, #67\n\t" \
   "bgt    18f\n\t" \
   /* tg r9 = 36 - lz - bm; the depth differences below 2^16 (zsh = zbits - 16 or 0) */ \
   "rsb    r9, r11, #36\n\t" \
   "sub    r9, r9, r12\n\t" \
   "subs   r6, r6, #16\n\t" \
-  "it     lt\n\t" \
-  "movlt  r6, #0\n\t" \
+  "bic    r6, r6, r6, asr #31\n\t" \
   "asr    r4, r4, r6\n\t" \
   "asr    r5, r5, r6\n\t" \
   "add    r3, r3, #16384\n\t" \
@@ -729,12 +720,9 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "rsb    r5, r5, #0x40000000\n\t" \
   "lsl    r5, r5, #2\n\t" \
   "smmul  r5, r3, r5\n\t" \
-  "adds   r3, r3, r5\n\t" \
-  "it     vs\n\t" \
-  "mvnvs  r3, #0x80000000\n\t" \
-  "cmp    r8, #0\n\t" \
-  "it     lt\n\t" \
-  "neglt  r3, r3\n\t" \
+  "qadd   r3, r3, r5\n\t" /* (r3 in (0, 2^31): only a positive overflow) */ \
+  "eor    r3, r3, r8, asr #31\n\t" /* signed like d */ \
+  "sub    r3, r3, r8, asr #31\n\t" \
   "strd   r3, r9, [%[f], #48]\n\t" \
   /* the reference pixel and the edges times 2^(14 - bm) */ \
   "rsb    r12, r12, #14\n\t" \
@@ -745,18 +733,16 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "sub    r9, r9, r5\n\t" \
   "sub    r10, r10, r4\n\t" \
   "sub    r11, r11, r5\n\t" \
+  /* c0 = (x0 - 1) >> 8 and fx = (c0 256 + 128 - x0) 2^24 = (127 - ((x0 - 1) & 255)) 2^24 */ \
+  /* = 0x7F000000 - (x0 - 1) 2^24 modulo 2^32; r0 and fy likewise */                           \
   "sub    r6, r4, #1\n\t" \
+  "lsl    lr, r6, #24\n\t" \
+  "rsb    lr, lr, #0x7F000000\n\t" \
   "asr    r6, r6, #8\n\t" \
-  "lsl    lr, r6, #8\n\t" \
-  "add    lr, lr, #128\n\t" \
-  "sub    lr, lr, r4\n\t" \
-  "lsl    lr, lr, #24\n\t" \
   "sub    r4, r5, #1\n\t" \
+  "lsl    r3, r4, #24\n\t" \
+  "rsb    r3, r3, #0x7F000000\n\t" \
   "asr    r4, r4, #8\n\t" \
-  "lsl    r3, r4, #8\n\t" \
-  "add    r3, r3, #128\n\t" \
-  "sub    r3, r3, r5\n\t" \
-  "lsl    r3, r3, #24\n\t" \
   "strd   lr, r3, [%[f], #32]\n\t" \
   "strd   r6, r4, [%[f], #40]\n\t" \
   "lsl    r3, r8, r12\n\t" \
@@ -797,8 +783,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "rsb    r9, r11, r11, lsl #5\n\t" \
   "lsr    r9, r9, #4\n\t" \
   "add    r8, r8, r9, lsl #16\n\t" \
-  "add    r8, r8, #1024\n\t" \
-  "add    r8, r8, #0x4000000\n\t" \
+  "add    r8, r8, #0x04000400\n\t" /* 2^10 in each lane */ \
   "str    r8, [%[f], #72]\n\t" \
   "ldrh   r8, [r1, #20]\n\t" \
   "ldrh   r9, [r2, #20]\n\t" \
