@@ -814,12 +814,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "add    r9, r9, r10, lsl #16\n\t" LR_SP_FINISH("72") \
   "str    r2, [r10, #64]\n\t" \
   "strd   r8, r9, [r10, #68]\n\t" \
-  "movs   r0, #1\n\t" \
-  "b      19f\n\t" \
-  "18:\n\t" \
-  "movs   r0, #0\n\t" \
-  "19:\n\t" \
-  "str    r0, [%[f], #88]\n\t"
+  "movs   r0, #1\n\t" /* made (the failure, label 18, is the block's: 0 at word 88) */
 
 // The block's text. STEP_SORT: the test of kSortStep at its start; AFTER_SORT: what follows the
 // sort (the path without it, into the rows with the vertices from the frame); STEP_PLANES: the
@@ -928,20 +923,17 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
       /* the affine colour test (affine_within): w_max - w_min <= w_min >> shift, or */ \
       /* (w_max - w_min) D <= bound w_min with D the largest channel range (green's times its */ \
       /* weight); else the result 3. w_min r8, w_max - w_min r9. */ \
-      "cmp    r0, #0\n\t" \
-      "beq    20f\n\t" \
       "ldr    r1, [%[f], #84]\n\t" \
       "tst    r1, #8\n\t" \
-      "beq    20f\n\t" \
+      "beq    21f\n\t" \
       "ldm    %[f], {r2, r3, r4}\n\t" \
       "ldr    r5, [r2, #12]\n\t" \
       "ldr    r6, [r3, #12]\n\t" \
       "ldr    r1, [r4, #12]\n\t" \
       "cmp    r5, r6\n\t" \
-      "ite    lo\n\t" \
+      "itete  lo\n\t" \
       "movlo  r8, r5\n\t" \
       "movhs  r8, r6\n\t" \
-      "ite    lo\n\t" \
       "movlo  r9, r6\n\t" \
       "movhs  r9, r5\n\t" \
       "cmp    r1, r8\n\t" \
@@ -997,6 +989,9 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
       "sbcs   r4, r4, r2\n\t" \
       "it     lo\n\t" \
       "movlo  r0, #3\n\t" \
+      "b      21f\n\t" \
+      "18:\n\t" /* the planes were not made */ \
+      "movs   r0, #0\n\t" \
       "21:\n\t" \
       "str    r0, [%[f], #88]\n\t" \
       "20:\n\t"
