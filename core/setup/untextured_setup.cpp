@@ -473,16 +473,15 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "ldr    lr, [%[f], #12]\n\t" /* first r10, last r11 */                                         \
   "add    r10, r4, #128\n\t"   /* ((y0 - 128) >> 8) + 1 = (y0 + 128) >> 8 */                     \
   "asr    r10, r10, #8\n\t"                                                                      \
-  "ldr    r12, [lr]\n\t"                                                                         \
+  "ldrd   r12, r1, [lr]\n\t" /* first_min, last_max */                                           \
   "cmp    r10, r12\n\t"                                                                          \
   "it     lt\n\t"                                                                                \
   "movlt  r10, r12\n\t"                                                                          \
   "sub    r11, r9, #128\n\t"                                                                     \
   "asr    r11, r11, #8\n\t"                                                                      \
-  "ldr    r12, [lr, #4]\n\t"                                                                     \
-  "cmp    r11, r12\n\t"                                                                          \
+  "cmp    r11, r1\n\t"                                                                           \
   "it     gt\n\t"                                                                                \
-  "movgt  r11, r12\n\t" /* e1x r5, e1y r6, e2x r8, e2y r9; m */                                  \
+  "movgt  r11, r1\n\t" /* e1x r5, e1y r6, e2x r8, e2y r9; m */                                   \
   "sub    r5, r5, r3\n\t"                                                                        \
   "sub    r1, r6, #128\n\t" /* yb - 128 (mid) */                                                 \
   "sub    r6, r6, r4\n\t"                                                                        \
@@ -904,12 +903,10 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "ldrh   r4, [r2]\n\t"                                                                         \
   "ldrh   r5, [r2, #2]\n\t"                                                                     \
   "ldrh   r6, [r2, #4]\n\t"                                                                     \
-  "add    r4, r4, r4, lsl #1\n\t"                                                               \
-  "add    r0, r3, r4, lsl #3\n\t"                                                               \
-  "add    r5, r5, r5, lsl #1\n\t"                                                               \
-  "add    r1, r3, r5, lsl #3\n\t"                                                               \
-  "add    r6, r6, r6, lsl #1\n\t"                                                               \
-  "add    r2, r3, r6, lsl #3\n\t"                                                               \
+  "mov    r12, #24\n\t" /* sizeof(ScreenVertex) */ \
+  "mla    r0, r4, r12, r3\n\t" \
+  "mla    r1, r5, r12, r3\n\t" \
+  "mla    r2, r6, r12, r3\n\t" \
   "ldr    r5, [r1, #4]\n\t"                                                                     \
   "ldr    r6, [r2, #4]\n\t" /* sort_below_top: the later swapped when it lies strictly above */ \
   "cmp    r6, r5\n\t"                                                                           \
