@@ -143,6 +143,7 @@ class StripLoop {
   bool set_up(uint16_t node, const BinnedTriangle& bt, SetupContext& c, uint16_t slot,
               ActiveTriangle& t);
   bool set_up_lanes(uint16_t node, const BinnedTriangle& bt, SetupContext& c, ActiveTriangle& t);
+  void set_up_lanes_run(uint16_t& node, uint16_t*& top_slot, size_t& room, SetupContext& c);
   SetupInput setup_input(uint16_t node, const BinnedTriangle& bt, const DrawRecord& dr) const;
   uint8_t draw_of(const BinnedTriangle& bt) const;
   void crowded_strip(int strip, Pixel* pixels, int y0, int rows, SetupContext& context);
@@ -450,6 +451,14 @@ bool StripLoop<PF, K, kSpans>::activate(int strip, SetupContext& context) {
       stats.triangles_wide = wide;
       return false;
     }
+    if constexpr (kHandLanes) {
+      // Consecutive triangles of the lanes draw found last (the common case) in a loop of their
+      // own: fewer values live across the setup block's call than in the general loop's.
+      if (uint32_t{tris[node].v[0]} - context.vertex_lo < context.lanes_count) {
+        set_up_lanes_run(node, top_slot, room, context);
+        continue;
+      }
+    }
     --room;
     const BinnedTriangle& bt = tris[node];
     const uint16_t slot = top_slot[-1];
@@ -481,6 +490,31 @@ bool StripLoop<PF, K, kSpans>::activate(int strip, SetupContext& context) {
   stats.triangles_set_up += static_cast<uint32_t>(added);
   if (active_count_ > stats.max_active) stats.max_active = static_cast<uint32_t>(active_count_);
   return true;
+}
+
+// activate's loop over consecutive triangles of the lanes draw (the first one is): each set up
+// in the slot on top of the free list (top_slot[-1]), which it takes unless it is a sliver, until
+// the bucket ends, the room is used up or a triangle of another draw comes.
+template <class PF, int K, SpanSet kSpans>
+[[gnu::always_inline]] inline void StripLoop<PF, K, kSpans>::set_up_lanes_run(uint16_t& node,
+                                                                              uint16_t*& top_slot,
+                                                                              size_t& room,
+                                                                              SetupContext& c) {
+  const BinnedTriangle* const tris = frame_.triangles.data();
+  ActiveTriangle* const active = storage_.active.data();
+  uint16_t n = node;
+  uint16_t* top = top_slot;
+  size_t left = room;
+  const uint32_t lo = c.vertex_lo, count = c.lanes_count;
+  do {
+    --left;
+    const BinnedTriangle& bt = tris[n];
+    if (set_up_lanes(n, bt, c, active[top[-1]])) --top;
+    n = bt.next;
+  } while (n != kNoTriangle && left != 0 && uint32_t{tris[n].v[0]} - lo < count);
+  node = n;
+  top_slot = top;
+  room = left;
 }
 
 // Sets binned triangle `node` (bt, its record) up in active slot `slot` (t, its record), from the
