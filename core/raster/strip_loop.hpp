@@ -142,7 +142,8 @@ class StripLoop {
   bool activate(int strip, SetupContext& context);
   bool set_up(uint16_t node, const BinnedTriangle& bt, SetupContext& c, uint16_t slot,
               ActiveTriangle& t);
-  bool set_up_lanes(uint16_t node, const BinnedTriangle& bt, SetupContext& c, ActiveTriangle& t);
+  bool set_up_lanes(uint16_t node, const BinnedTriangle& bt, SetupContext& c, ActiveTriangle& t,
+                    uint32_t& slivers);
   void set_up_lanes_run(uint16_t& node, uint16_t*& top_slot, size_t& room, SetupContext& c);
   SetupInput setup_input(uint16_t node, const BinnedTriangle& bt, const DrawRecord& dr) const;
   uint8_t draw_of(const BinnedTriangle& bt) const;
@@ -505,13 +506,15 @@ template <class PF, int K, SpanSet kSpans>
   uint16_t n = node;
   uint16_t* top = top_slot;
   size_t left = room;
+  uint32_t slivers = 0;  // added to the statistics once
   const uint32_t lo = c.vertex_lo, count = c.lanes_count;
   do {
     --left;
     const BinnedTriangle& bt = tris[n];
-    if (set_up_lanes(n, bt, c, active[top[-1]])) --top;
+    if (set_up_lanes(n, bt, c, active[top[-1]], slivers)) --top;
     n = bt.next;
   } while (n != kNoTriangle && left != 0 && uint32_t{tris[n].v[0]} - lo < count);
+  stats_->triangles_without_pixels += slivers;
   node = n;
   top_slot = top;
   room = left;
@@ -530,7 +533,7 @@ template <class PF, int K, SpanSet kSpans>
   constexpr bool kTexture = kPhong || kSpans.has(SpanFamily::kTextured);
   // The common case first: a triangle of the lanes draw found last.
   if (kHandLanes && uint32_t{bt.v[0]} - c.vertex_lo < c.lanes_count) [[likely]]
-    return set_up_lanes(node, bt, c, t);
+    return set_up_lanes(node, bt, c, t, stats_->triangles_without_pixels);
   // Consecutive triangles mostly share their draw: its vertex range before the search, and what
   // setup needs of the draw only when it changes.
   if (uint32_t{bt.v[0]} - c.vertex_lo >= c.vertex_count) [[unlikely]] {
@@ -561,7 +564,7 @@ template <class PF, int K, SpanSet kSpans>
     if (kHandLanes && c.lanes) c.lanes_setup.prepare(c.window, in, frame_.vertices.data());
     c.lanes_count = c.lanes ? c.vertex_count : 0;
   }
-  if (kHandLanes && c.lanes) return set_up_lanes(node, bt, c, t);
+  if (kHandLanes && c.lanes) return set_up_lanes(node, bt, c, t, stats_->triangles_without_pixels);
   const uint8_t draw = c.draw;
   const RowWindow& window = c.window;
   const ScreenVertex* v[3];
@@ -601,21 +604,23 @@ template <class PF, int K, SpanSet kSpans>
   return true;
 }
 
-// set_up of a triangle of a lanes draw (c prepared for it): one call from the indices. Neither
+// set_up of a triangle of a lanes draw (c prepared for it): one call from the indices; a sliver
+// is counted in `slivers` (the statistics', or a run's count: set_up_lanes_run). Neither
 // t.ext nor t.draw is stored: only the textured and Phong rows read them (legacy_rows), and a
 // lanes triangle's rows are untextured.
 template <class PF, int K, SpanSet kSpans>
 [[gnu::always_inline]] inline bool StripLoop<PF, K, kSpans>::set_up_lanes(uint16_t node,
                                                                           const BinnedTriangle& bt,
                                                                           SetupContext& c,
-                                                                          ActiveTriangle& t) {
+                                                                          ActiveTriangle& t,
+                                                                          uint32_t& slivers) {
   constexpr UntexturedTriangle kLanes = UntexturedTriangle::made(UntexturedKind::kLanes, false);
   const UntexturedTriangle u = c.lanes_setup.set_up(bt.v, t);
   if (u == kLanes) [[likely]] {  // what the setup block makes (its row loop known here)
     t.rows = c.lanes_rows;
   } else {
     if (!u.pixels()) {
-      ++stats_->triangles_without_pixels;
+      ++slivers;
       return false;
     }
     if (u.wide()) [[unlikely]]
