@@ -462,8 +462,9 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 #if defined(__thumb2__) && defined(__ARM_FEATURE_IDIV) && !defined(__OPTIMIZE_SIZE__)
 // small_rows by hand (Armv7-M with a divider): GCC 12 spilled a quarter of it. The one operand
 // (left to the compiler) points to the frame of small_lanes_asm below: the vertices (0, 4, 8),
-// the window (12), the triangle (16), then d (20), m (24), the result (28), the column base (32)
-// and the width (36). Ends with the result in r0.
+// the window (12), the triangle (16), then d (20), m (24), the result (28), the column base (32),
+// the width (36) and the edge vectors e1x, e1y, e2x, e2y (112, for the planes; a frame of 32
+// words). Ends with the result in r0.
 #define LR_SMALL_ROWS_ASM "ldm    %[f], {r0, r1, r2}\n\t" LR_SMALL_ROWS_BODY
 // LR_SMALL_ROWS_ASM with the vertices already in r0-r2.
 #define LR_SMALL_ROWS_BODY                                                                      \
@@ -487,6 +488,8 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "sub    r6, r6, r4\n\t"                                                                       \
   "sub    r8, r8, r3\n\t"                                                                       \
   "sub    r9, r9, r4\n\t"                                                                       \
+  "strd   r5, r6, [%[f], #112]\n\t" /* the edge vectors, for the planes */                      \
+  "strd   r8, r9, [%[f], #120]\n\t"                                                             \
   "eor    r12, r5, r5, asr #31\n\t"                                                             \
   "sub    r12, r12, r5, asr #31\n\t"                                                            \
   "eor    r0, r8, r8, asr #31\n\t"                                                              \
@@ -633,10 +636,10 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 // small_planes of a lanes triangle with depth by hand (Armv7E-M): GCC 12 spilled the edges and
 // the plane kind's factor around every plane. The frame as the rows' (d at 20, m at 24, the
 // triangle at 16), then fx, fy (32), c0, r0 (40), rs, tg (48), the depth differences (56), its a0
-// and scale exponent (64), a plane's a0 (72), blue's differences (76) and the result (88, 1 when
-// the planes were made). While the planes are made: E1x r3, E1y r4, E2x r5, E2y r6, the factor
-// r12, left lr.
-// LR_SP_SCALE: plane_scale of rs in r8 and s in r9: r12 = rs >> min(-s, 31) (or rs), lr = s or 0.
+// and scale exponent (64), a plane's a0 (72), blue's differences (76), the result (88, 1 when
+// the planes were made) and the rows' edge vectors (112). While the planes are made: E1x r3, E1y
+// r4, E2x r5, E2y r6, the factor r12, left lr. LR_SP_SCALE: plane_scale of rs in r8 and s in r9:
+// r12 = rs >> min(-s, 31) (or rs), lr = s or 0.
 #define LR_SP_SCALE       \
   "usat   lr, #5, r9\n\t" \
   "rsb    r9, r9, #0\n\t" \
@@ -724,12 +727,8 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   /* the reference pixel and the edges times 2^(14 - bm) */ \
   "rsb    r12, r12, #14\n\t" \
   "ldrd   r4, r5, [r0]\n\t" \
-  "ldrd   r8, r9, [r1]\n\t" \
-  "ldrd   r10, r11, [r2]\n\t" \
-  "sub    r8, r8, r4\n\t" \
-  "sub    r9, r9, r5\n\t" \
-  "sub    r10, r10, r4\n\t" \
-  "sub    r11, r11, r5\n\t" \
+  "ldrd   r8, r9, [%[f], #112]\n\t" /* the rows' edge vectors */ \
+  "ldrd   r10, r11, [%[f], #120]\n\t" \
   /* c0 = (x0 - 1) >> 8 and fx = (c0 256 + 128 - x0) 2^24 = (127 - ((x0 - 1) & 255)) 2^24 */ \
   /* = 0x7F000000 - (x0 - 1) 2^24 modulo 2^32; r0 and fy likewise */                           \
   "sub    r6, r4, #1\n\t" \
@@ -840,59 +839,58 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 #define LR_LANES_ROWS_MADE \
   "cmp    r0, #1\n\t"      \
   "bne    20f\n\t"
-#define LR_LANES_LATER_ROWS                                             \
-  "cmp    r0, #1\n\t"                                                   \
-  "beq    39f\n\t"                                                      \
-  "cmp    r0, #2\n\t"                                                   \
-  "bne    20f\n\t"                                                      \
-  "ldr    r1, [%[f], #16]\n\t"                                          \
-  "ldrsh  r3, [r1, #36]\n\t"                                            \
-  "ldrsh  r4, [r1, #38]\n\t"                                            \
-  "ldrsh  r5, [r1, #40]\n\t"                                            \
-  "ldrd   r6, r12, [%[f], #32]\n\t"                                     \
-  "sub    r12, r12, r6\n\t"                                             \
-  "rsb    r6, r6, #0\n\t"                                               \
-  "ldrd   r8, r11, [r1]\n\t"                                            \
-  "ldrd   r9, lr, [r1, #8]\n\t"                                         \
-  "ldrd   r10, r0, [r1, #16]\n\t"                                       \
-  "31:\n\t"                                                             \
-  "cmp    r3, r4\n\t"                                                   \
-  "bgt    34f\n\t"                                                      \
-  "32:\n\t"                                                             \
-  "udiv   r1, r8, r10\n\t"                                              \
-  "udiv   r2, r11, r0\n\t"                                              \
-  "add    r8, r8, r9\n\t"                                               \
-  "add    r11, r11, lr\n\t"                                             \
-  "cmp    r1, r12\n\t"                                                  \
-  "bge    33f\n\t"                                                      \
-  "cmp    r2, r6\n\t"                                                   \
-  "ble    33f\n\t"                                                      \
-  "cmp    r1, r2\n\t"                                                   \
-  "blt    35f\n\t"                                                      \
-  "33:\n\t"                                                             \
-  "add    r3, r3, #1\n\t"                                               \
-  "cmp    r3, r5\n\t"                                                   \
-  "ble    31b\n\t"                                                      \
-  "movs   r0, #3\n\t"                                                   \
-  "str    r0, [%[f], #28]\n\t"                                          \
-  "movs   r0, #4\n\t" /* the block's status for a sliver */             \
-  "b      20f\n\t"                                                      \
-  "34:\n\t" /* past mid_row: the bottom edge on the short side, once */ \
-  "movw   r4, #32767\n\t"                                               \
-  "ldr    r1, [%[f], #16]\n\t"                                          \
-  "ldrb   r2, [r1, #47]\n\t"                                            \
-  "tst    r2, #1\n\t"                                                   \
-  "beq    37f\n\t"                                                      \
-  "ldrd   r11, lr, [r1, #24]\n\t"                                       \
-  "ldr    r0, [r1, #32]\n\t"                                            \
-  "b      32b\n\t"                                                      \
-  "37:\n\t"                                                             \
-  "ldrd   r8, r9, [r1, #24]\n\t"                                        \
-  "ldr    r10, [r1, #32]\n\t"                                           \
-  "b      32b\n\t"                                                      \
-  "35:\n\t"                                                             \
-  "movs   r0, #1\n\t"                                                   \
-  "str    r0, [%[f], #28]\n\t"                                          \
+#define LR_LANES_LATER_ROWS                                                   \
+  "cmp    r0, #1\n\t"                                                         \
+  "beq    39f\n\t"                                                            \
+  "cmp    r0, #2\n\t"                                                         \
+  "bne    20f\n\t"                                                            \
+  "ldr    r1, [%[f], #16]\n\t"                                                \
+  "ldrsh  r3, [r1, #36]\n\t"                                                  \
+  "ldrsh  r4, [r1, #38]\n\t"                                                  \
+  "ldrsh  r5, [r1, #40]\n\t"                                                  \
+  "ldrd   r6, r12, [%[f], #32]\n\t"                                           \
+  "sub    r12, r12, r6\n\t"                                                   \
+  "rsb    r6, r6, #0\n\t"                                                     \
+  "ldrd   r8, r11, [r1]\n\t"                                                  \
+  "ldrd   r9, lr, [r1, #8]\n\t"                                               \
+  "ldrd   r10, r0, [r1, #16]\n\t"                                             \
+  "31:\n\t"                                                                   \
+  "cmp    r3, r4\n\t"                                                         \
+  "bgt    34f\n\t"                                                            \
+  "32:\n\t"                                                                   \
+  "udiv   r1, r8, r10\n\t"                                                    \
+  "udiv   r2, r11, r0\n\t"                                                    \
+  "add    r8, r8, r9\n\t"                                                     \
+  "add    r11, r11, lr\n\t"                                                   \
+  "cmp    r1, r12\n\t" /* left < width - base, right > -base, left < right */ \
+  "itt    lt\n\t"                                                             \
+  "cmplt  r6, r2\n\t"                                                         \
+  "cmplt  r1, r2\n\t"                                                         \
+  "blt    35f\n\t"                                                            \
+  "33:\n\t"                                                                   \
+  "add    r3, r3, #1\n\t"                                                     \
+  "cmp    r3, r5\n\t"                                                         \
+  "ble    31b\n\t"                                                            \
+  "movs   r0, #3\n\t"                                                         \
+  "str    r0, [%[f], #28]\n\t"                                                \
+  "movs   r0, #4\n\t" /* the block's status for a sliver */                   \
+  "b      20f\n\t"                                                            \
+  "34:\n\t" /* past mid_row: the bottom edge on the short side, once */       \
+  "movw   r4, #32767\n\t"                                                     \
+  "ldr    r1, [%[f], #16]\n\t"                                                \
+  "ldrb   r2, [r1, #47]\n\t"                                                  \
+  "tst    r2, #1\n\t"                                                         \
+  "beq    37f\n\t"                                                            \
+  "ldrd   r11, lr, [r1, #24]\n\t"                                             \
+  "ldr    r0, [r1, #32]\n\t"                                                  \
+  "b      32b\n\t"                                                            \
+  "37:\n\t"                                                                   \
+  "ldrd   r8, r9, [r1, #24]\n\t"                                              \
+  "ldr    r10, [r1, #32]\n\t"                                                 \
+  "b      32b\n\t"                                                            \
+  "35:\n\t"                                                                   \
+  "movs   r0, #1\n\t"                                                         \
+  "str    r0, [%[f], #28]\n\t"                                                \
   "39:\n\t"
 #define LR_LANES_BLOCK_ASM(STEP_SORT, AFTER_SORT, STEP_PLANES, AFTER_ROWS) \
   "str    r1, [%[f], #16]\n\t" STEP_SORT /* the vertices: r0-r2 (binned top first:              \
@@ -1000,7 +998,7 @@ namespace {
 // word 25, the bound and green's weight at 26 and 27: the result 3 when it fails).
 constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8;
 struct LanesFrame {
-  uint32_t w[28];
+  uint32_t w[32];
   LanesFrame() = default;
   LanesFrame(const ScreenVertex* const v[3], uint32_t steps) {
     w[0] = reinterpret_cast<uintptr_t>(v[0]);
@@ -1090,6 +1088,11 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint3
   LanesFrame frame(v, kPlanesStep);
   frame.w[5] = static_cast<uint32_t>(d);
   frame.w[6] = m;
+  // The edge vectors the rows would have left (words 28 to 31).
+  frame.w[28] = static_cast<uint32_t>(v[1]->x - v[0]->x);
+  frame.w[29] = static_cast<uint32_t>(v[1]->y - v[0]->y);
+  frame.w[30] = static_cast<uint32_t>(v[2]->x - v[0]->x);
+  frame.w[31] = static_cast<uint32_t>(v[2]->y - v[0]->y);
   small_lanes_asm<false>(frame, &t, nullptr);
   return frame.planes();
 }
@@ -1147,7 +1150,7 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*
 #if defined(__thumb2__) && defined(__ARM_FEATURE_IDIV) && !defined(__OPTIMIZE_SIZE__)
 SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
                              ActiveTriangle& t) {
-  uint32_t frame[10];
+  uint32_t frame[32];  // (the rows store the edge vectors at words 28 to 31)
   frame[0] = reinterpret_cast<uintptr_t>(v[0]);
   frame[1] = reinterpret_cast<uintptr_t>(v[1]);
   frame[2] = reinterpret_cast<uintptr_t>(v[2]);

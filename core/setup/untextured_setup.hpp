@@ -228,7 +228,7 @@ class LanesSetup {
   const RowWindow* w_ = nullptr;
   const UntexturedInput* in_ = nullptr;
   const ScreenVertex* vertices_ = nullptr;
-  uint32_t frame_[28] = {};  // the hand-made block's frame (untextured_setup.cpp)
+  uint32_t frame_[32] = {};  // the hand-made block's frame (untextured_setup.cpp)
 };
 
 // What the strip loop keeps of LanesSetup where it is not by hand, or where the renderer draws
