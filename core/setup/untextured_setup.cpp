@@ -683,26 +683,24 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "eor    r8, r5, r5, asr #31\n\t" \
   "sub    r8, r8, r5, asr #31\n\t" \
   "orr    r6, r6, r8\n\t" \
-  "clz    r6, r6\n\t" \
-  "rsb    r6, r6, #32\n\t" \
+  "clz    r6, r6\n\t" /* 32 - zbits */ \
   "ldrd   r8, r9, [%[f], #20]\n\t" \
   "eor    r10, r8, r8, asr #31\n\t" \
   "sub    r10, r10, r8, asr #31\n\t" \
   "clz    r11, r10\n\t" \
-  "clz    r12, r9\n\t" \
-  "rsb    r12, r12, #32\n\t" \
-  "add    lr, r11, r12, lsl #1\n\t" \
-  "cmp    lr, #42\n\t" \
+  "clz    r12, r9\n\t" /* 32 - bm */ \
+  "sub    lr, r11, r12, lsl #1\n\t" /* lz + 2 bm - 64 (> 42: wide) */ \
+  "cmn    lr, #22\n\t" \
   "bgt    18f\n\t" \
-  "cmp    r6, #26\n\t" \
+  "cmp    r6, #6\n\t" /* zbits > 26 */ \
+  "blt    18f\n\t" \
+  "sub    lr, lr, r6\n\t" /* lz + 2 bm + zbits - 96 (> 67: wide) */ \
+  "cmn    lr, #29\n\t" \
   "bgt    18f\n\t" \
-  "add    lr, lr, r6\n\t" \
-  "cmp    lr, #67\n\t" \
-  "bgt    18f\n\t" \
-  /* tg r9 = 36 - lz - bm; the depth differences below 2^16 (zsh = zbits - 16 or 0) */ \
-  "rsb    r9, r11, #36\n\t" \
-  "sub    r9, r9, r12\n\t" \
-  "subs   r6, r6, #16\n\t" \
+  /* tg r9; the depth differences below 2^16 (zsh = zbits - 16 or 0) */ \
+  "rsb    r9, r11, #4\n\t" /* tg = 36 - lz - bm = 4 - lz + (32 - bm) */ \
+  "add    r9, r9, r12\n\t" \
+  "rsb    r6, r6, #16\n\t" /* zbits - 16 */ \
   "bic    r6, r6, r6, asr #31\n\t" \
   "asr    r4, r4, r6\n\t" \
   "asr    r5, r5, r6\n\t" \
@@ -725,7 +723,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "sub    r3, r3, r8, asr #31\n\t" \
   "strd   r3, r9, [%[f], #48]\n\t" \
   /* the reference pixel and the edges times 2^(14 - bm) */ \
-  "rsb    r12, r12, #14\n\t" \
+  "sub    r12, r12, #18\n\t" /* 14 - bm */ \
   "ldrd   r4, r5, [r0]\n\t" \
   "ldrd   r8, r9, [%[f], #112]\n\t" /* the rows' edge vectors */ \
   "ldrd   r10, r11, [%[f], #120]\n\t" \
