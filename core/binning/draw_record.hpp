@@ -11,6 +11,7 @@
 
 #include "lineraster/core/lighting/lighting.hpp"
 #include "lineraster/core/lighting/lighting_table.hpp"
+#include "lineraster/core/lighting/one_hue.hpp"
 #include "lineraster/core/math/mat4.hpp"
 #include "lineraster/core/scene/draw_state.hpp"
 #include "lineraster/core/scene/material.hpp"
@@ -50,7 +51,8 @@ struct DrawCall {
 // of records stays in .bss; the front end sets every field a draw uses.
 struct DrawRecord {
   ColorPlanes colors = ColorPlanes::kNone;  // untextured draws
-  bool depth = false;                       // the depth test (DrawState::depth_test)
+  OneHue hue{};        // lit Gouraud colours that are one hue (untextured, not Phong): their ratios
+  bool depth = false;  // the depth test (DrawState::depth_test)
   bool flat = false;
   // The draw's first vertex in the vertex store: its binned triangles refer to vertices from
   // here up to the next draw's first (the strip loop finds a triangle's draw by its first

@@ -508,6 +508,8 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
     routines_->prepare(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
+  if (plan.lit && plan.gouraud && plan.kind.color_planes && !plan.kind.phong && !plan.textured)
+    record.hue = one_hue(pl);
   if (plan.kind.phong && routines_->phong(records_, state, pl, record) != Status::kOk) {
     records_.drop_last();
     return refuse(Status::kCapacity, tri_count, false);

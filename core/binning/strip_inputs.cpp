@@ -87,7 +87,11 @@ void InputHash::add(const Camera& c) {
 void InputHash::add(const DrawRecord& d) {
   add(uint32_t{static_cast<uint8_t>(d.colors)} | uint32_t{d.depth} << 8 | uint32_t{d.flat} << 9 |
       uint32_t{d.phong} << 10 | uint32_t{d.two_sided} << 11 | uint32_t{d.position} << 12 |
-      uint32_t{d.table_bilinear} << 13);
+      uint32_t{d.table_bilinear} << 13 | uint32_t{d.hue.valid} << 14);
+  if (d.hue.valid) {
+    add(d.hue.red);
+    add(d.hue.blue);
+  }
   add(uint32_t{static_cast<uint8_t>(d.filter)} | uint32_t{static_cast<uint8_t>(d.persp)} << 8 |
       uint32_t{d.span_len} << 16 | uint32_t{static_cast<uint8_t>(d.env)} << 24);
   add(uint32_t{static_cast<uint8_t>(d.mip)} | uint32_t{static_cast<uint8_t>(d.wrap_s)} << 8 |

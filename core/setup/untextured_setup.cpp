@@ -277,6 +277,16 @@ LR_SMALL_PLANES_INLINE bool small_planes_c(const ScreenVertex* const v[3], int32
   if (kind == UntexturedKind::kLanes) {
     // Red and blue in lane units (31 c / 16: rs 31 / 32, 2^(1 - tg)), green in 63 c 2^11
     // (rs 63 / 64, 2^(17 - tg)), from the Q1.15 differences.
+    const uint32_t a0 = (63 * 2048 * static_cast<uint32_t>(cg)) + (1u << 25);
+    const PlaneScale gs = plane_scale(rs - (rs >> 6), 17 - tg);
+    if (in.one_hue) {
+      int32_t px, py;
+      small_plane(b, vb.color.g - cg, vc.color.g - cg, a0, gs, t.c[1], px, py);
+      const uint32_t lanes0 = ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024 +
+                              ((((31 * static_cast<uint32_t>(cbl)) >> 4) + 1024) << 16);
+      hue_lanes(b, px, py, gs.left, in.hue, lanes0, t.c[0]);
+      return true;
+    }
     const PlaneScale rb = plane_scale(rs - (rs >> 5), 1 - tg);
     Plane pr, pb;
     small_plane(b, vb.color.r - cr, vc.color.r - cr, ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024,
@@ -284,9 +294,7 @@ LR_SMALL_PLANES_INLINE bool small_planes_c(const ScreenVertex* const v[3], int32
     small_plane(b, vb.color.b - cbl, vc.color.b - cbl,
                 ((31 * static_cast<uint32_t>(cbl)) >> 4) + 1024, rb, pb);
     t.c[0] = Plane{(pb.base << 16) + pr.base, (pb.gx << 16) + pr.gx, (pb.gy << 16) + pr.gy};
-    small_plane(b, vb.color.g - cg, vc.color.g - cg,
-                63 * 2048 * static_cast<uint32_t>(cg) + (1u << 25),
-                plane_scale(rs - (rs >> 6), 17 - tg), t.c[1]);
+    small_plane(b, vb.color.g - cg, vc.color.g - cg, a0, gs, t.c[1]);
     return true;
   }
   const PlaneScale c = plane_scale(rs, 15 - tg);
@@ -442,7 +450,7 @@ namespace {
   if (kind == UntexturedKind::kAffine && in.lanes) kind = UntexturedKind::kLanes;
   if (!tried)
     made = kind == UntexturedKind::kLanes && in.depth && kSmallPlanesByHand
-               ? small_lanes_planes_by_hand(v, d, m, t)
+               ? small_lanes_planes_by_hand(v, d, m, in, t)
                : kind != UntexturedKind::kPerspective && small_planes_c(v, d, m, in, kind, t);
   else
     made = made && kind == UntexturedKind::kLanes;  // else the planes made are not the kind's
@@ -762,7 +770,10 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "mov    r11, #129024\n\t" \
   "mul    r10, r10, r11\n\t" \
   "add    r10, r10, #0x2000000\n\t" \
-  "str    r10, [%[f], #72]\n\t" LR_SP_PLANE LR_SP_FINISH("72") \
+  "str    r10, [%[f], #72]\n\t" LR_SP_PLANE \
+  "ldr    r10, [%[f], #84]\n\t" /* kHueStep: red and blue from green's products */ \
+  "tst    r10, #16\n\t" \
+  "bne    26f\n\t" LR_SP_FINISH("72") \
   "str    r2, [r10, #76]\n\t" \
   "strd   r8, r9, [r10, #80]\n\t" \
   /* red and blue: rs 31 / 32, 2^(1 - tg), a0 (31 c >> 4) + 2^10 in each lane */ \
@@ -808,6 +819,57 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "add    r9, r9, r10, lsl #16\n\t" LR_SP_FINISH("72") \
   "str    r2, [r10, #64]\n\t" \
   "strd   r8, r9, [r10, #68]\n\t" \
+  "b      27f\n\t" \
+  /* one hue: green stored from r0, r1, its products kept in r8, r9; then each lane's products */ \
+  /* mul_hi(p, K 2^e), e = left - 14 (K red at word 23, blue at 19) */ \
+  "26:\n\t" \
+  "lsl    r0, r8, lr\n\t" \
+  "lsl    r1, r9, lr\n\t" \
+  "lsl    r2, r2, lr\n\t" \
+  "ldr    r10, [%[f], #72]\n\t" \
+  "add    r2, r2, r10\n\t" \
+  "ldr    r10, [%[f], #16]\n\t" \
+  "str    r2, [r10, #76]\n\t" \
+  "strd   r0, r1, [r10, #80]\n\t" \
+  "sub    r0, lr, #14\n\t" \
+  "usat   lr, #5, r0\n\t" \
+  "rsb    r0, r0, #0\n\t" \
+  "usat   r0, #5, r0\n\t" \
+  "ldr    r1, [%[f], #92]\n\t" \
+  "ldr    r2, [%[f], #76]\n\t" \
+  "asr    r1, r1, r0\n\t" \
+  "asr    r2, r2, r0\n\t" \
+  "smmul  r3, r8, r1\n\t" /* red px r3, py r4; blue px r5, py r6 */ \
+  "smmul  r4, r9, r1\n\t" \
+  "smmul  r5, r8, r2\n\t" \
+  "smmul  r6, r9, r2\n\t" \
+  "ldrd   r0, r1, [%[f], #32]\n\t" /* fx, fy */ \
+  "smmul  r2, r4, r1\n\t" \
+  "smmla  r2, r3, r0, r2\n\t" \
+  "smmul  r8, r6, r1\n\t" \
+  "smmla  r8, r5, r0, r8\n\t" \
+  "add    r2, r2, r8, lsl #16\n\t" /* the offsets, gradients packed (blue high) */ \
+  "add    r3, r3, r5, lsl #16\n\t" \
+  "add    r4, r4, r6, lsl #16\n\t" \
+  "ldrd   r0, r1, [%[f], #40]\n\t" /* c0, r0 */ \
+  "mls    r2, r3, r0, r2\n\t" \
+  "mls    r2, r4, r1, r2\n\t" \
+  "lsl    r2, r2, lr\n\t" \
+  "lsl    r3, r3, lr\n\t" \
+  "lsl    r4, r4, lr\n\t" \
+  "ldr    r0, [%[f], #0]\n\t" /* a0: (31 c >> 4) + 2^10 in each lane */ \
+  "ldrh   r5, [r0, #16]\n\t" \
+  "ldrh   r6, [r0, #20]\n\t" \
+  "rsb    r5, r5, r5, lsl #5\n\t" \
+  "lsr    r5, r5, #4\n\t" \
+  "rsb    r6, r6, r6, lsl #5\n\t" \
+  "lsr    r6, r6, #4\n\t" \
+  "add    r5, r5, r6, lsl #16\n\t" \
+  "add    r5, r5, #0x04000400\n\t" \
+  "add    r2, r2, r5\n\t" \
+  "str    r2, [r10, #64]\n\t" \
+  "strd   r3, r4, [r10, #68]\n\t" \
+  "27:\n\t" \
   "movs   r0, #1\n\t" /* made (the failure, label 18, is the block's: 0 at word 88) */
 
 // The block's text. STEP_SORT: the test of kSortStep at its start; AFTER_SORT: what follows the
@@ -994,7 +1056,16 @@ namespace {
 // vertex store at word 24, binned topmost first: the other two sorted by sort_below_top's compare)
 // and kAffineStep (when the planes were made, the affine colour test, its quick part's shift at
 // word 25, the bound and green's weight at 26 and 27: the result 3 when it fails).
-constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8;
+// kHueStep: the input is one hue (UntexturedInput::one_hue), its factors at words 23 (red) and
+// 19 (blue; the other path's scratch word for blue's differences).
+constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8, kHueStep = 16;
+// The steps' kHueStep and its factors for input `in`.
+void set_hue(uint32_t* w, const UntexturedInput& in) {
+  if (!in.one_hue) return;
+  w[21] |= kHueStep;
+  w[23] = static_cast<uint32_t>(in.hue[0]);
+  w[19] = static_cast<uint32_t>(in.hue[1]);
+}
 struct LanesFrame {
   uint32_t w[32];
   LanesFrame() = default;
@@ -1073,17 +1144,19 @@ SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
 }
 
 bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
-                                  ActiveTriangle& t, SmallRows& rows) {
+                                  const UntexturedInput& in, ActiveTriangle& t, SmallRows& rows) {
   LanesFrame frame(v, kRowsStep | kPlanesStep);
   frame.w[3] = reinterpret_cast<uintptr_t>(&w);
+  set_hue(frame.w, in);
   small_lanes_asm<false>(frame, &t, nullptr);
   rows = frame.rows();
   return frame.planes();
 }
 
 bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
-                                ActiveTriangle& t) {
+                                const UntexturedInput& in, ActiveTriangle& t) {
   LanesFrame frame(v, kPlanesStep);
+  set_hue(frame.w, in);
   frame.w[5] = static_cast<uint32_t>(d);
   frame.w[6] = m;
   // The edge vectors the rows would have left (words 28 to 31).
@@ -1118,6 +1191,7 @@ void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
   frame_[3] = reinterpret_cast<uintptr_t>(&w);
   frame_[21] = kSortStep | kRowsStep | kPlanesStep |
                (in.colors == ColorPlanes::kPerspective ? kAffineStep : 0u);
+  set_hue(frame_, in);
   frame_[24] = reinterpret_cast<uintptr_t>(vertices);
   frame_[25] = static_cast<uint32_t>(in.affine.quick_shift);
   frame_[26] = in.affine.bound;
@@ -1142,7 +1216,7 @@ UntexturedTriangle LanesSetup::rest(const uint16_t /*index*/[3], ActiveTriangle&
 #undef LR_LANES_ROWS_MADE
 #else
 bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*/, uint32_t /*m*/,
-                                ActiveTriangle& /*t*/) {
+                                const UntexturedInput& /*in*/, ActiveTriangle& /*t*/) {
   return false;
 }
 #if defined(__thumb2__) && defined(__ARM_FEATURE_IDIV) && !defined(__OPTIMIZE_SIZE__)
@@ -1173,7 +1247,8 @@ SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
 }
 #endif
 bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
-                                  ActiveTriangle& t, SmallRows& rows) {
+                                  const UntexturedInput& /*in*/, ActiveTriangle& t,
+                                  SmallRows& rows) {
   rows = small_rows_by_hand(v, w, t);
   return false;
 }
@@ -1227,7 +1302,7 @@ UntexturedTriangle setup_untextured_triangle(const ScreenVertex* const v[3], con
   // Lanes planes by hand made with the rows (tried: the rows had pixels on their first rows).
   bool tried = false, made = false;
   if (kSmallPlanesByHand && in.lanes_first) {
-    made = small_lanes_triangle_by_hand(v, w, t, rows);
+    made = small_lanes_triangle_by_hand(v, w, in, t, rows);
     tried = rows.result == SmallRows::kPixels;
   } else {
     rows = kSmallRowsByHand ? small_rows_by_hand(v, w, t) : small_rows_c(v, w, t);

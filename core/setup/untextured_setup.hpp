@@ -64,7 +64,18 @@ struct UntexturedInput {
   // Most triangles are lanes triangles with depth (lanes_first_of): where kSmallPlanesByHand,
   // their rows and planes are made in one step, before the affine colour test.
   bool lanes_first = false;
+  // A lanes draw whose colours are one hue (DrawRecord::hue): red's and blue's lane planes are
+  // made from green's products times hue[0] and hue[1] (lane_hue_factor).
+  bool one_hue = false;
+  int32_t hue[2] = {0, 0};
 };
+// A one-hue ratio (OneHue, Q1.30, at most 2^31) as the lanes' factor K = ratio 31 / 63 2^31:
+// red's lane gradient is mul_hi(green's product, K) 2^(green's left shift - 14)
+// (docs/numerics.md#one-hue). Below 2^31.
+constexpr int32_t lane_hue_factor(uint32_t ratio_q30) {
+  return static_cast<int32_t>((uint64_t{ratio_q30} * 62u + 31u) / 63u);
+}
+static_assert(lane_hue_factor(1u << 31) < INT32_MAX);
 // What UntexturedInput::lanes_first should be for the rest of the input.
 constexpr bool lanes_first_of(const UntexturedInput& in) {
   return in.lanes && in.depth &&
@@ -190,12 +201,12 @@ inline constexpr bool kSmallPlanesByHand = true;
 inline constexpr bool kSmallPlanesByHand = false;
 #endif
 bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
-                                ActiveTriangle& t);
+                                const UntexturedInput& in, ActiveTriangle& t);
 // small_rows_by_hand and, when its result is kPixels, small_lanes_planes_by_hand in one call
 // (one block of hand-made code where kSmallPlanesByHand): whether the planes were made (false
 // elsewhere: there only the rows are made).
 bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
-                                  ActiveTriangle& t, SmallRows& rows);
+                                  const UntexturedInput& in, ActiveTriangle& t, SmallRows& rows);
 
 // setup_untextured_triangle for the triangles of one strip whose draw has lanes_first: what
 // stays the same between them (the window, the input, the vertex store) given once, then one call

@@ -324,6 +324,14 @@ inline void random_small_triangle(Random& rng, ScreenVertex (&v)[3], int32_t x_l
   }
 }
 
+// Every other case one hue (UntexturedInput::one_hue) with random ratios up to 2: the planes'
+// integers do not depend on the colours being one hue.
+inline void random_hue(Random& rng, UntexturedInput& in, uint32_t c) {
+  in.one_hue = (c & 1u) != 0;
+  in.hue[0] = lane_hue_factor(rng.next() % ((1u << 31) + 1u));
+  in.hue[1] = lane_hue_factor(rng.next() % ((1u << 31) + 1u));
+}
+
 // Runs `cases` random small triangles (every edge component below 2^kSmallEdgeBits subpixels,
 // from a quarter pixel to 62 pixels; depths spread, close (differences of 12 bits, or of up to
 // 26 of which the small path keeps 16) or equal; random colours) through
@@ -350,9 +358,10 @@ inline Tally run_small_planes(uint32_t cases, uint32_t seed = 777u) {
     if (d == 0) continue;
     const auto mag = [](int32_t x) { return x < 0 ? 0u - uint32_t(x) : uint32_t(x); };
     const uint32_t m = mag(e1x) | mag(e2x) | uint32_t(e2y);
+    random_hue(rng, in, c);
     ActiveTriangle a, b;
     const bool made_a = small_planes(s, d, m, in, UntexturedKind::kLanes, a);
-    const bool made_b = small_lanes_planes_by_hand(s, d, m, b);
+    const bool made_b = small_lanes_planes_by_hand(s, d, m, in, b);
     const auto same = [](const Plane& p, const Plane& q) {
       return p.base == q.base && p.gx == q.gx && p.gy == q.gy;
     };
@@ -388,12 +397,13 @@ inline Tally run_small_triangles(uint32_t cases, uint32_t seed = 99991u) {
     const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
     sort_by_y(s);
     const RowWindow window{rng.in(-4, kHeight / 2), kHeight - 1, kWidth};
+    random_hue(rng, in, c);
     ActiveTriangle a, b;
     const SmallRows ra = small_rows(s, window, a);
     const bool made_a = ra.result == SmallRows::kPixels &&
                         small_planes(s, ra.d, ra.m, in, UntexturedKind::kLanes, a);
     SmallRows rb;
-    const bool made_b = small_lanes_triangle_by_hand(s, window, b, rb);
+    const bool made_b = small_lanes_triangle_by_hand(s, window, in, b, rb);
     bool same = ra.result == rb.result && ra.m == rb.m && made_a == made_b;
     if (same && ra.result != SmallRows::kSlow) {
       same = ra.d == rb.d && a.first_row == b.first_row && a.mid_row == b.mid_row &&
