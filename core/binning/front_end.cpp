@@ -508,8 +508,6 @@ Status FrontEnd::draw(const Mesh& mesh, const Mat4& model, const Material& mater
     routines_->prepare(lights_, material, view_dir, camera_.eye, pl);
   else
     pl = PreparedLighting{};
-  if (plan.lit && plan.gouraud && plan.kind.color_planes && !plan.kind.phong && !plan.textured)
-    record.hue = one_hue(pl);
   if (plan.kind.phong && routines_->phong(records_, state, pl, record) != Status::kOk) {
     records_.drop_last();
     return refuse(Status::kCapacity, tri_count, false);
@@ -530,6 +528,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
                         const Material& material, const DrawState& state, const DrawPlan& plan,
                         const PreparedLighting& pl, const FineMat4* fine_model) {
   records_[index].first_vertex = static_cast<uint16_t>(store_.count());
+  one_hue(pl, records_[index].hue);  // (unlit: no diffuse colour, no hue; lanes Gouraud reads it)
   draw_colors_ = records_[index].triangle_colors;
   const size_t n = mesh.positions.size();
   const bool phong = plan.kind.phong, uv = plan.uv;

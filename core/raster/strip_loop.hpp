@@ -560,9 +560,7 @@ template <class PF, int K, SpanSet kSpans>
     if (kFlatPixels && dr.colors == ColorPlanes::kNone && !dr.triangle_colors)
       in.flat_pixel = pixel_bits<PF>(PF::encode(dr.color));
     in.lanes_first = lanes_first_of(in);
-    in.one_hue = in.lanes && dr.colors != ColorPlanes::kNone && dr.hue.valid;
-    in.hue[0] = lane_hue_factor(dr.hue.red);
-    in.hue[1] = lane_hue_factor(dr.hue.blue);
+    in.hue = dr.hue;  // (read by lanes Gouraud triangles only)
     c.lanes = kHandLanes && in.lanes_first && !c.legacy;
     if (kHandLanes && c.lanes) c.lanes_setup.prepare(c.window, in, frame_.vertices.data());
     c.lanes_count = c.lanes ? c.vertex_count : 0;

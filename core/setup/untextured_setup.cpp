@@ -71,6 +71,20 @@ class Scale {
   int32_t half_;
 };
 
+// mul_hi(a, ratio) for a one-hue ratio (OneHue: a multiple of 2^15 below 2^31): a 32 x 16
+// product, floor(a q / 2^17) with q = ratio / 2^15, as (ah q + floor(al q / 2^16)) / 2 (floored;
+// |ah q| < 2^31) on Armv6-M, where mul_hi is four 16 x 16 products; SMMUL elsewhere.
+inline int32_t times_ratio(int32_t a, int32_t ratio) {
+#if defined(__thumb__) && !defined(__thumb2__)
+  const int32_t q = ratio >> 15;
+  const int32_t ah = a >> 16;
+  const auto al = static_cast<uint32_t>(a) & 0xFFFFu;
+  return (ah * q + static_cast<int32_t>((al * static_cast<uint32_t>(q)) >> 16)) >> 1;
+#else
+  return mul_hi(a, ratio);
+#endif
+}
+
 // a b as uint64 without a 64 x 64 library multiply on Armv6-M.
 uint64_t umul64(uint32_t a, uint32_t b) {
   return (uint64_t{mul_hi_u(a, b)} << 32) | uint64_t{static_cast<uint32_t>(a * b)};
@@ -276,25 +290,23 @@ LR_SMALL_PLANES_INLINE bool small_planes_c(const ScreenVertex* const v[3], int32
   const int32_t cr = va.color.r, cg = va.color.g, cbl = va.color.b;
   if (kind == UntexturedKind::kLanes) {
     // Red and blue in lane units (31 c / 16: rs 31 / 32, 2^(1 - tg)), green in 63 c 2^11
-    // (rs 63 / 64, 2^(17 - tg)), from the Q1.15 differences.
-    const uint32_t a0 = (63 * 2048 * static_cast<uint32_t>(cg)) + (1u << 25);
-    const PlaneScale gs = plane_scale(rs - (rs >> 6), 17 - tg);
-    if (in.one_hue) {
-      int32_t px, py;
-      small_plane(b, vb.color.g - cg, vc.color.g - cg, a0, gs, t.c[1], px, py);
-      const uint32_t lanes0 = ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024 +
-                              ((((31 * static_cast<uint32_t>(cbl)) >> 4) + 1024) << 16);
-      hue_lanes(b, px, py, gs.left, in.hue, lanes0, t.c[0]);
-      return true;
-    }
-    const PlaneScale rb = plane_scale(rs - (rs >> 5), 1 - tg);
+    // (rs 63 / 64, 2^(17 - tg)), from the Q1.15 differences. One hue (docs/numerics.md#one-hue):
+    // red and blue from green's differences, their factor times the hue's ratios.
+    const int32_t rc = rs - (rs >> 5);
+    const OneHue& h = in.hue;
+    const bool hue = h.valid;
+    // One hue: rc rho / 4 2^(3 - tg), red's factor times the ratio (below 2^30).
+    const PlaneScale sr = plane_scale(hue ? times_ratio(rc, h.red) : rc, (hue ? 3 : 1) - tg);
+    const PlaneScale sb = plane_scale(hue ? times_ratio(rc, h.blue) : rc, (hue ? 3 : 1) - tg);
+    const int32_t dg1 = vb.color.g - cg, dg2 = vc.color.g - cg;
+    const int32_t dr1 = hue ? dg1 : vb.color.r - cr, dr2 = hue ? dg2 : vc.color.r - cr;
+    const int32_t db1 = hue ? dg1 : vb.color.b - cbl, db2 = hue ? dg2 : vc.color.b - cbl;
     Plane pr, pb;
-    small_plane(b, vb.color.r - cr, vc.color.r - cr, ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024,
-                rb, pr);
-    small_plane(b, vb.color.b - cbl, vc.color.b - cbl,
-                ((31 * static_cast<uint32_t>(cbl)) >> 4) + 1024, rb, pb);
+    small_plane(b, dr1, dr2, ((31 * static_cast<uint32_t>(cr)) >> 4) + 1024, sr, pr);
+    small_plane(b, db1, db2, ((31 * static_cast<uint32_t>(cbl)) >> 4) + 1024, sb, pb);
     t.c[0] = Plane{(pb.base << 16) + pr.base, (pb.gx << 16) + pr.gx, (pb.gy << 16) + pr.gy};
-    small_plane(b, vb.color.g - cg, vc.color.g - cg, a0, gs, t.c[1]);
+    small_plane(b, dg1, dg2, 63 * 2048 * static_cast<uint32_t>(cg) + (1u << 25),
+                plane_scale(rs - (rs >> 6), 17 - tg), t.c[1]);
     return true;
   }
   const PlaneScale c = plane_scale(rs, 15 - tg);
@@ -770,10 +782,10 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "mov    r11, #129024\n\t" \
   "mul    r10, r10, r11\n\t" \
   "add    r10, r10, #0x2000000\n\t" \
-  "str    r10, [%[f], #72]\n\t" LR_SP_PLANE \
-  "ldr    r10, [%[f], #84]\n\t" /* kHueStep: red and blue from green's products */ \
+  "str    r10, [%[f], #72]\n\t" \
+  "ldr    r10, [%[f], #84]\n\t" /* kHueStep: red and blue from green's differences */ \
   "tst    r10, #16\n\t" \
-  "bne    26f\n\t" LR_SP_FINISH("72") \
+  "bne    26f\n\t" LR_SP_PLANE LR_SP_FINISH("72") \
   "str    r2, [r10, #76]\n\t" \
   "strd   r8, r9, [r10, #80]\n\t" \
   /* red and blue: rs 31 / 32, 2^(1 - tg), a0 (31 c >> 4) + 2^10 in each lane */ \
@@ -820,37 +832,48 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "str    r2, [r10, #64]\n\t" \
   "strd   r8, r9, [r10, #68]\n\t" \
   "b      27f\n\t" \
-  /* one hue: green stored from r0, r1, its products kept in r8, r9; then each lane's products */ \
-  /* mul_hi(p, K 2^e), e = left - 14 (K red at word 23, blue at 19) */ \
+  /* one hue: green's numerators made into r6 (x) and r5 (y), kept (the edges are not needed */ \
+  /* after them); red's and blue's factors mul_hi(rs 31 / 32, ratio) 2^(3 - tg) (the ratios */ \
+  /* at words 23 and 19) */ \
   "26:\n\t" \
-  "lsl    r0, r8, lr\n\t" \
-  "lsl    r1, r9, lr\n\t" \
-  "lsl    r2, r2, lr\n\t" \
-  "ldr    r10, [%[f], #72]\n\t" \
-  "add    r2, r2, r10\n\t" \
-  "ldr    r10, [%[f], #16]\n\t" \
+  "mul    r9, r1, r3\n\t" \
+  "mls    r5, r0, r5, r9\n\t" \
+  "mul    r9, r0, r6\n\t" \
+  "mls    r6, r1, r4, r9\n\t" \
+  "smmul  r8, r6, r12\n\t" \
+  "smmul  r9, r5, r12\n\t" \
+  "ldrd   r10, r11, [%[f], #32]\n\t" \
+  "smmul  r2, r9, r11\n\t" \
+  "smmla  r2, r8, r10, r2\n\t" \
+  "ldrd   r10, r11, [%[f], #40]\n\t" \
+  "mls    r2, r8, r10, r2\n\t" \
+  "mls    r2, r9, r11, r2\n\t" LR_SP_FINISH("72") \
   "str    r2, [r10, #76]\n\t" \
-  "strd   r0, r1, [r10, #80]\n\t" \
-  "sub    r0, lr, #14\n\t" \
-  "usat   lr, #5, r0\n\t" \
-  "rsb    r0, r0, #0\n\t" \
-  "usat   r0, #5, r0\n\t" \
-  "ldr    r1, [%[f], #92]\n\t" \
-  "ldr    r2, [%[f], #76]\n\t" \
-  "asr    r1, r1, r0\n\t" \
-  "asr    r2, r2, r0\n\t" \
-  "smmul  r3, r8, r1\n\t" /* red px r3, py r4; blue px r5, py r6 */ \
-  "smmul  r4, r9, r1\n\t" \
-  "smmul  r5, r8, r2\n\t" \
-  "smmul  r6, r9, r2\n\t" \
+  "strd   r8, r9, [r10, #80]\n\t" \
+  "ldrd   r8, r9, [%[f], #48]\n\t" \
+  "sub    r8, r8, r8, asr #5\n\t" \
+  "ldr    r0, [%[f], #92]\n\t" \
+  "ldr    r1, [%[f], #76]\n\t" \
+  "smmul  r0, r8, r0\n\t" \
+  "smmul  r1, r8, r1\n\t" \
+  "rsb    r9, r9, #3\n\t" \
+  "usat   lr, #5, r9\n\t" \
+  "rsb    r9, r9, #0\n\t" \
+  "usat   r9, #5, r9\n\t" \
+  "asr    r0, r0, r9\n\t" \
+  "asr    r1, r1, r9\n\t" \
+  "smmul  r3, r6, r0\n\t" /* red px r3, py r4; blue px r6, py r5 */ \
+  "smmul  r4, r5, r0\n\t" \
+  "smmul  r6, r6, r1\n\t" \
+  "smmul  r5, r5, r1\n\t" \
   "ldrd   r0, r1, [%[f], #32]\n\t" /* fx, fy */ \
   "smmul  r2, r4, r1\n\t" \
   "smmla  r2, r3, r0, r2\n\t" \
-  "smmul  r8, r6, r1\n\t" \
-  "smmla  r8, r5, r0, r8\n\t" \
+  "smmul  r8, r5, r1\n\t" \
+  "smmla  r8, r6, r0, r8\n\t" \
   "add    r2, r2, r8, lsl #16\n\t" /* the offsets, gradients packed (blue high) */ \
-  "add    r3, r3, r5, lsl #16\n\t" \
-  "add    r4, r4, r6, lsl #16\n\t" \
+  "add    r3, r3, r6, lsl #16\n\t" \
+  "add    r4, r4, r5, lsl #16\n\t" \
   "ldrd   r0, r1, [%[f], #40]\n\t" /* c0, r0 */ \
   "mls    r2, r3, r0, r2\n\t" \
   "mls    r2, r4, r1, r2\n\t" \
@@ -1056,15 +1079,15 @@ namespace {
 // vertex store at word 24, binned topmost first: the other two sorted by sort_below_top's compare)
 // and kAffineStep (when the planes were made, the affine colour test, its quick part's shift at
 // word 25, the bound and green's weight at 26 and 27: the result 3 when it fails).
-// kHueStep: the input is one hue (UntexturedInput::one_hue), its factors at words 23 (red) and
-// 19 (blue; the other path's scratch word for blue's differences).
+// kHueStep: the input is one hue (UntexturedInput::hue), its ratios at words 23 (red) and 19
+// (blue; the other path's scratch word for blue's differences).
 constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8, kHueStep = 16;
 // The steps' kHueStep and its factors for input `in`.
 void set_hue(uint32_t* w, const UntexturedInput& in) {
-  if (!in.one_hue) return;
+  if (!in.hue.valid) return;
   w[21] |= kHueStep;
-  w[23] = static_cast<uint32_t>(in.hue[0]);
-  w[19] = static_cast<uint32_t>(in.hue[1]);
+  w[23] = static_cast<uint32_t>(in.hue.red);
+  w[19] = static_cast<uint32_t>(in.hue.blue);
 }
 struct LanesFrame {
   uint32_t w[32];

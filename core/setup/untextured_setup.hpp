@@ -24,6 +24,7 @@
 
 #include <cstdint>
 
+#include "lineraster/core/lighting/one_hue.hpp"
 #include "lineraster/core/output/color.hpp"
 #include "lineraster/core/scene/draw_state.hpp"
 #include "lineraster/core/setup/active_triangle.hpp"
@@ -64,18 +65,10 @@ struct UntexturedInput {
   // Most triangles are lanes triangles with depth (lanes_first_of): where kSmallPlanesByHand,
   // their rows and planes are made in one step, before the affine colour test.
   bool lanes_first = false;
-  // A lanes draw whose colours are one hue (DrawRecord::hue): red's and blue's lane planes are
-  // made from green's products times hue[0] and hue[1] (lane_hue_factor).
-  bool one_hue = false;
-  int32_t hue[2] = {0, 0};
+  // A draw whose colours are one hue (DrawRecord::hue): its small lanes triangles' red and blue
+  // planes are made from green's differences (docs/numerics.md#one-hue).
+  OneHue hue{};
 };
-// A one-hue ratio (OneHue, Q1.30, at most 2^31) as the lanes' factor K = ratio 31 / 63 2^31:
-// red's lane gradient is mul_hi(green's product, K) 2^(green's left shift - 14)
-// (docs/numerics.md#one-hue). Below 2^31.
-constexpr int32_t lane_hue_factor(uint32_t ratio_q30) {
-  return static_cast<int32_t>((uint64_t{ratio_q30} * 62u + 31u) / 63u);
-}
-static_assert(lane_hue_factor(1u << 31) < INT32_MAX);
 // What UntexturedInput::lanes_first should be for the rest of the input.
 constexpr bool lanes_first_of(const UntexturedInput& in) {
   return in.lanes && in.depth &&

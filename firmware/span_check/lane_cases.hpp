@@ -324,12 +324,12 @@ inline void random_small_triangle(Random& rng, ScreenVertex (&v)[3], int32_t x_l
   }
 }
 
-// Every other case one hue (UntexturedInput::one_hue) with random ratios up to 2: the planes'
+// Every other case one hue (UntexturedInput::hue) with random ratios below 2: the planes'
 // integers do not depend on the colours being one hue.
 inline void random_hue(Random& rng, UntexturedInput& in, uint32_t c) {
-  in.one_hue = (c & 1u) != 0;
-  in.hue[0] = lane_hue_factor(rng.next() % ((1u << 31) + 1u));
-  in.hue[1] = lane_hue_factor(rng.next() % ((1u << 31) + 1u));
+  in.hue.valid = (c & 1u) != 0;
+  in.hue.red = static_cast<int32_t>(rng.next() >> 1);
+  in.hue.blue = static_cast<int32_t>(rng.next() >> 1);
 }
 
 // Runs `cases` random small triangles (every edge component below 2^kSmallEdgeBits subpixels,
@@ -445,6 +445,7 @@ inline Tally run_lanes_setup(uint32_t cases, uint32_t seed = 5151u) {
   for (uint32_t c = 0; c < cases; ++c) {
     in.colors = rng.in(0, 7) == 0 ? ColorPlanes::kAffine : ColorPlanes::kPerspective;
     in.lanes_first = lanes_first_of(in);
+    random_hue(rng, in, c);
     ScreenVertex v[3];
     random_triangle(rng, v);
     if (signed_area2(v[0], v[1], v[2]) == 0) continue;

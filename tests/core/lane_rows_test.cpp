@@ -277,28 +277,28 @@ struct LanesTally {
 
 // Random triangles up to 128 px (the lanes' limit), drawn whole in one strip of 32 rows with the
 // generic row loop; each written pixel against the exact colour at its centre, rounded to RGB565.
-// one_hue: the colours green times two random ratios up to 2 (as one_hue() admits them), red and
-// blue rounded, their planes made from green's (UntexturedInput::one_hue).
+// one_hue: the colours green times two random ratios below 2 (as one_hue() admits them), red and
+// blue rounded, their planes made from green's differences (UntexturedInput::hue).
 LanesTally lanes_against_exact(bool one_hue, uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int32_t> pos(0, 96 * kSubpixel),
       size(-128 * kSubpixel, 128 * kSubpixel);
   std::uniform_int_distribution<int> col(0, Color15::kOne);
-  std::uniform_int_distribution<uint32_t> ratio(0, 1u << 31);
+  std::uniform_int_distribution<int32_t> ratio(0, INT32_MAX);
   UntexturedInput in;
   in.colors = ColorPlanes::kAffine;
   in.depth = true;
   in.lanes = true;
   in.affine = kAffineBound565;
-  in.one_hue = one_hue;
+  in.hue.valid = one_hue;
   static lanes::Strip strip;
   LanesTally tally;
   while (tally.triangles < 3000) {
     // Q1.30 ratios of red and blue to green (one hue).
-    const uint32_t hr = ratio(rng), hb = ratio(rng);
-    in.hue[0] = lane_hue_factor(hr);
-    in.hue[1] = lane_hue_factor(hb);
-    const uint64_t most = std::max<uint64_t>({hr, hb, 1u << 30});
+    const int32_t hr = ratio(rng), hb = ratio(rng);
+    in.hue.red = hr;
+    in.hue.blue = hb;
+    const uint64_t most = std::max<uint64_t>({uint64_t(hr), uint64_t(hb), 1u << 30});
     ScreenVertex v[3];
     const int32_t cx = pos(rng),
                   cy = std::uniform_int_distribution<int32_t>(0, 32 * kSubpixel)(rng);
@@ -313,7 +313,7 @@ LanesTally lanes_against_exact(bool one_hue, uint32_t seed) {
         const auto times = [g](uint64_t h) {
           return static_cast<uint16_t>((g * h + (uint64_t{1} << 29)) >> 30);
         };
-        p.color = Color15{times(hr), static_cast<uint16_t>(g), times(hb)};
+        p.color = Color15{times(uint64_t(hr)), static_cast<uint16_t>(g), times(uint64_t(hb))};
       } else {
         p.color = Color15{static_cast<uint16_t>(col(rng)), static_cast<uint16_t>(col(rng)),
                           static_cast<uint16_t>(col(rng))};
