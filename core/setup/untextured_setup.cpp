@@ -834,7 +834,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "b      27f\n\t" \
   /* one hue: green's numerators made into r6 (x) and r5 (y), kept (the edges are not needed */ \
   /* after them); red's and blue's factors mul_hi(rs 31 / 32, ratio) 2^(3 - tg) (the ratios */ \
-  /* at words 23 and 19) */ \
+  /* at words 19 and 20) */ \
   "26:\n\t" \
   "mul    r9, r1, r3\n\t" \
   "mls    r5, r0, r5, r9\n\t" \
@@ -852,8 +852,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "strd   r8, r9, [r10, #80]\n\t" \
   "ldrd   r8, r9, [%[f], #48]\n\t" \
   "sub    r8, r8, r8, asr #5\n\t" \
-  "ldr    r0, [%[f], #92]\n\t" \
-  "ldr    r1, [%[f], #76]\n\t" \
+  "ldrd   r0, r1, [%[f], #76]\n\t" \
   "smmul  r0, r8, r0\n\t" \
   "smmul  r1, r8, r1\n\t" \
   "rsb    r9, r9, #3\n\t" \
@@ -1079,15 +1078,15 @@ namespace {
 // vertex store at word 24, binned topmost first: the other two sorted by sort_below_top's compare)
 // and kAffineStep (when the planes were made, the affine colour test, its quick part's shift at
 // word 25, the bound and green's weight at 26 and 27: the result 3 when it fails).
-// kHueStep: the input is one hue (UntexturedInput::hue), its ratios at words 23 (red) and 19
-// (blue; the other path's scratch word for blue's differences).
+// kHueStep: the input is one hue (UntexturedInput::hue), its ratios at words 19 (red) and 20
+// (blue; the other path's scratch words for blue's differences).
 constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8, kHueStep = 16;
 // The steps' kHueStep and its factors for input `in`.
 void set_hue(uint32_t* w, const UntexturedInput& in) {
   if (!in.hue.valid) return;
   w[21] |= kHueStep;
-  w[23] = static_cast<uint32_t>(in.hue.red);
-  w[19] = static_cast<uint32_t>(in.hue.blue);
+  w[19] = static_cast<uint32_t>(in.hue.red);
+  w[20] = static_cast<uint32_t>(in.hue.blue);
 }
 struct LanesFrame {
   uint32_t w[32];
