@@ -51,7 +51,7 @@ struct DrawCall {
 // of records stays in .bss; the front end sets every field a draw uses.
 struct DrawRecord {
   ColorPlanes colors = ColorPlanes::kNone;  // untextured draws
-  OneHue hue{};        // lit Gouraud colours that are one hue (untextured, not Phong): their ratios
+  OneHue hue{};        // lit colours that are one hue (set for every draw; lanes Gouraud reads it)
   bool depth = false;  // the depth test (DrawState::depth_test)
   bool flat = false;
   // The draw's first vertex in the vertex store: its binned triangles refer to vertices from

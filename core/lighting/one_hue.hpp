@@ -4,7 +4,7 @@
 // have the hue of its diffuse colour Kd, every lit colour is Kd times a scalar: red =
 // (Kd_r / Kd_g) green and blue = (Kd_b / Kd_g) green at every vertex, so at every point of a
 // Gouraud triangle too (interpolation is linear). The small lanes setup then makes red's and
-// blue's planes from green's vertex differences (docs/numerics.md#one-hue), sharing its products.
+// blue's planes from green's vertex differences (docs/numerics.md#one-hue), sharing its numerators.
 //
 // The colours are sums of rounded Q1.15 products, so they are proportional to within a few
 // units: one_hue accepts a PreparedLighting whose base and Ld Kd lie within kHueSlack units of

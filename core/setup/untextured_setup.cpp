@@ -656,10 +656,10 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 // small_planes of a lanes triangle with depth by hand (Armv7E-M): GCC 12 spilled the edges and
 // the plane kind's factor around every plane. The frame as the rows' (d at 20, m at 24, the
 // triangle at 16), then fx, fy (32), c0, r0 (40), rs, tg (48), the depth differences (56), its a0
-// and scale exponent (64), a plane's a0 (72), blue's differences (76), the result (88, 1 when
-// the planes were made) and the rows' edge vectors (112). While the planes are made: E1x r3, E1y
-// r4, E2x r5, E2y r6, the factor r12, left lr. LR_SP_SCALE: plane_scale of rs in r8 and s in r9:
-// r12 = rs >> min(-s, 31) (or rs), lr = s or 0.
+// and scale exponent (64), a plane's a0 (72), blue's differences or the one-hue ratios (76), the
+// result (88, 1 when the planes were made) and the rows' edge vectors (112). While the planes are
+// made: E1x r3, E1y r4, E2x r5, E2y r6, the factor r12, left lr. LR_SP_SCALE: plane_scale of rs in
+// r8 and s in r9: r12 = rs >> min(-s, 31) (or rs), lr = s or 0.
 #define LR_SP_SCALE       \
   "usat   lr, #5, r9\n\t" \
   "rsb    r9, r9, #0\n\t" \
