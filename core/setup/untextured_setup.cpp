@@ -898,6 +898,8 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 // sort (the path without it, into the rows with the vertices from the frame); STEP_PLANES: the
 // test of kPlanesStep after the rows found pixels on their first rows. LanesSetup::block() takes
 // every step but the affine test always, so its copy has none of them (8 instructions a triangle).
+// PASSED: where a triangle that passes the affine test goes: block()'s copy to its end (its
+// result is r0 alone), the steps' copy to the store of word 22 (LanesFrame::planes() reads it).
 #define LR_LANES_STEP(BIT, LABEL) \
   "ldr    r0, [%[f], #84]\n\t"    \
   "tst    r0, #" BIT              \
@@ -974,7 +976,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "movs   r0, #1\n\t"                                                         \
   "str    r0, [%[f], #28]\n\t"                                                \
   "39:\n\t"
-#define LR_LANES_BLOCK_ASM(STEP_SORT, AFTER_SORT, STEP_PLANES, AFTER_ROWS) \
+#define LR_LANES_BLOCK_ASM(STEP_SORT, AFTER_SORT, STEP_PLANES, AFTER_ROWS, PASSED) \
   "str    r1, [%[f], #16]\n\t" STEP_SORT /* the vertices: r0-r2 (binned top first:              \
                                             store_top_first), the y of the other two r5, r6 */  \
   "ldr    r3, [%[f], #96]\n\t"                                                                  \
@@ -1000,7 +1002,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
       /* weight); else the result 3. w_min r8, w_max - w_min r9. */ \
       "ldr    r1, [%[f], #84]\n\t" \
       "tst    r1, #8\n\t" \
-      "beq    21f\n\t" \
+      "beq    " PASSED "\n\t" \
       "ldm    %[f], {r2, r3, r4}\n\t" \
       "ldr    r5, [r2, #12]\n\t" \
       "ldr    r6, [r3, #12]\n\t" \
@@ -1021,7 +1023,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
       "ldr    r1, [%[f], #100]\n\t" \
       "lsr    r1, r8, r1\n\t" \
       "cmp    r9, r1\n\t" \
-      "bls    21f\n\t" \
+      "bls    " PASSED "\n\t" \
       /* the ranges of (g, r) as 16-bit lanes: maximum r10, minimum r11, then r10 - r11 */ \
       "ldr    r5, [r2, #16]\n\t" \
       "ldr    r6, [r3, #16]\n\t" \
@@ -1115,8 +1117,8 @@ struct LanesFrame {
 // (when a step) held: LanesSetup's usual result, read from no frame word; 4 (kBlock only) when no
 // row has a pixel centre (LR_LANES_LATER_ROWS).
 template <bool kBlock>
-[[gnu::noinline]] uint32_t small_lanes_asm(LanesFrame& frame, ActiveTriangle* t,
-                                           const uint16_t* index) {
+[[gnu::always_inline]] inline uint32_t small_lanes_asm(LanesFrame& frame, ActiveTriangle* t,
+                                                       const uint16_t* index) {
   static_assert(offsetof(RowWindow, first_min) == 0 && offsetof(RowWindow, last_max) == 4 &&
                 offsetof(RowWindow, width) == 8);
   static_assert(offsetof(ActiveTriangle, edge_q) == 0 && offsetof(ActiveTriangle, edge_dx) == 8 &&
@@ -1143,17 +1145,21 @@ template <bool kBlock>
   register ActiveTriangle* t_reg asm("r1") = t;
   register const uint16_t* index_reg asm("r2") = index;
   if constexpr (kBlock)
-    asm volatile(LR_LANES_BLOCK_ASM("", "", "", LR_LANES_LATER_ROWS)
+    asm volatile(LR_LANES_BLOCK_ASM("", "", "", LR_LANES_LATER_ROWS, "20f")
                  : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
                  : [f] "r"(f)
                  : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   else
     asm volatile(LR_LANES_BLOCK_ASM(LR_LANES_STEP("4", "11f"), LR_LANES_NO_SORT,
-                                    LR_LANES_STEP("2", "20f"), LR_LANES_ROWS_MADE)
+                                    LR_LANES_STEP("2", "20f"), LR_LANES_ROWS_MADE, "21f")
                  : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
                  : [f] "r"(f)
                  : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   return status;
+}
+// The steps' copy for the by-hand entries below (one, out of line); LanesSetup::block has its own.
+[[gnu::noinline]] uint32_t small_lanes_steps(LanesFrame& frame, ActiveTriangle* t) {
+  return small_lanes_asm<false>(frame, t, nullptr);
 }
 }  // namespace
 
@@ -1161,7 +1167,7 @@ SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
                              ActiveTriangle& t) {
   LanesFrame frame(v, kRowsStep);
   frame.w[3] = reinterpret_cast<uintptr_t>(&w);
-  small_lanes_asm<false>(frame, &t, nullptr);
+  small_lanes_steps(frame, &t);
   return frame.rows();
 }
 
@@ -1170,7 +1176,7 @@ bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindo
   LanesFrame frame(v, kRowsStep | kPlanesStep);
   frame.w[3] = reinterpret_cast<uintptr_t>(&w);
   set_hue(frame.w, in);
-  small_lanes_asm<false>(frame, &t, nullptr);
+  small_lanes_steps(frame, &t);
   rows = frame.rows();
   return frame.planes();
 }
@@ -1186,7 +1192,7 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint3
   frame.w[29] = static_cast<uint32_t>(v[1]->y - v[0]->y);
   frame.w[30] = static_cast<uint32_t>(v[2]->x - v[0]->x);
   frame.w[31] = static_cast<uint32_t>(v[2]->y - v[0]->y);
-  small_lanes_asm<false>(frame, &t, nullptr);
+  small_lanes_steps(frame, &t);
   return frame.planes();
 }
 
