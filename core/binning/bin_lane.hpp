@@ -59,7 +59,7 @@ enum BinLaneStop : uint32_t { kBinLaneEnd, kBinLaneFlush };
 // without area and faces whose bounds (clamped to the viewport) hold no pixel centre counted; every
 // other face's vertices whose colour waits for their first use (color_pending) put on the list,
 // their flags cleared; the face appended to the bucket of its first row's strip as EdgeTable::add()
-// appends it, its vertices top first (store_top_first). Exact: twice the signed area in 64 bits
+// appends it, its vertices in store_binned()'s order. Exact: twice the signed area in 64 bits
 // (the deltas are below 2^23 inside the guard band, each product below 2^46).
 inline BinLaneStop bin_lane_portable(const std::array<uint16_t, 3>*& tp, BinLane& k) {
   for (; tp != k.end; ++tp) {
@@ -103,8 +103,8 @@ inline BinLaneStop bin_lane_portable(const std::array<uint16_t, 3>*& tp, BinLane
     uint16_t& head = k.buckets[(static_cast<uint32_t>(a) * k.strip_reciprocal) >> 17];
     BinnedTriangle& t = k.triangles[index];
     const auto first = static_cast<uint16_t>(k.first2);
-    store_top_first(t.v, static_cast<uint16_t>(first + i0), static_cast<uint16_t>(first + i1),
-                    static_cast<uint16_t>(first + i2), dy1, dy2);
+    store_binned(t.v, static_cast<uint16_t>(first + i0), static_cast<uint16_t>(first + i1),
+                 static_cast<uint16_t>(first + i2), dy1, dy2);
     t.next = head;
     head = static_cast<uint16_t>(index);
   }
@@ -166,7 +166,7 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__)
 // bin_lane_asm()'s rows [a, b) into r11 and r9 from r1 = y0, r9 = dy1 and r11 = -dy2, one macro
-// per vertex on top (store_top_first): a on top with dy2 or dy1 the larger (min(0, ..) = 0, so
+// per vertex on top (store_sorted): a on top with dy2 or dy1 the larger (min(0, ..) = 0, so
 // a = y0's row, b from the larger); b on top (a from dy1 < 0, b from max(0, dy2)); c on top (a
 // from dy2 < 0, b from max(0, dy1)). a = max(0, (y0 + 128 + min(0, dy1, dy2)) >> 8) (USAT),
 // b = (y0 + 128 + max(0, dy1, dy2)) >> 8.
@@ -238,7 +238,7 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 // columns [c0, c1) into r1 and r8 from r0 = x0, r8 = dx1 and r10 = dx2 (min and max with 0 by
 // conditional AND and BIC), the four tests in one chain of conditional compares, the pending
 // vertices and the record, its indices read from the triangle at byte offsets O0, O1 and O2
-// (store_top_first's order; tp is on the next triangle already).
+// (store_sorted's order; tp is on the next triangle already).
 #define LR_BIN_LANE_TAIL(N, ROWS, O0, O1, O2)                                      \
   "7" N ":\n\t" ROWS                                                               \
   "add     r0, r0, #127\n\t"                                                       \
@@ -357,7 +357,8 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 // the faces that stay (their registers take the area); four copies of that first part, so that
 // a back face in the first three needs no test of the end; rows as
 // (y + 128 + min(0, dy1, dy2)) >> 8 with USAT for the clamp at 0, in one of four tails picked by
-// the vertex on top (store_top_first), which also stores the indices in its order; the four
+// the vertex on top and the order of the other two (store_sorted), which also stores the indices in
+// that order; the four
 // tests of the bounds in one chain of conditional compares; the constants of a binned face read
 // with one LDM; the record's halves built with one ORR and PKHBT; bounds of one centre tested
 // at it (holds_centre). Where the front end does not take it (kBinLaneAsm false: -Os, whose C
@@ -365,6 +366,7 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) {
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__) && !defined(__OPTIMIZE_SIZE__)
   static_assert(kBinLaneAsm && kOneCentreTest);
+  static_assert(kBinnedSorted);  // its tails store the order store_sorted gives
   // Low registers: CBZ tests them.
   register uint32_t a asm("r0");
   register uint32_t b asm("r1");
@@ -407,22 +409,29 @@ inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) 
       "str     r8, [%[k], #44]\n\t"
       "b       3b\n"
       "41:\n\t"
-      // x0 and y0 again; the vertex on top (store_top_first) picks the tail that stores the
-      // vertices in its order.
+      // x0 and y0 again; the vertex on top and the order below it (store_sorted) pick the tail
+      // that stores the vertices in that order.
       "ldrd    r0, r1, [r4]\n\t"
       "cmn     r9, r11\n\t"  // dy1 - dy2
       "bgt     42f\n\t"
       "cmp     r9, #0\n\t"  // dy1 <= dy2
       "bge     70f\n\t"     // a on top
-      // b on top
+      // b on top: (b, c, a), or (b, a, c) where a lies strictly above c (store_sorted)
+      "cmp     r11, #0\n\t"  // dy2 > 0
+      "blt     75f\n\t"
       LR_BIN_LANE_TAIL("1", LR_BIN_LANE_ROWS_B, "#-4", "#-2", "#-6")
       "42:\n\t"
       "cmp     r11, #0\n\t"  // dy2 < dy1
       "ble     74f\n\t"      // a on top
-      // c on top
+      // c on top: (c, a, b), or (c, b, a) where b lies strictly above a
+      "cmp     r9, #0\n\t"  // dy1 < 0
+      "blt     76f\n\t"
       LR_BIN_LANE_TAIL("2", LR_BIN_LANE_ROWS_C, "#-2", "#-6", "#-4")
       LR_BIN_LANE_TAIL("0", LR_BIN_LANE_ROWS_A_DY2, "#-6", "#-4", "#-2")
-      LR_BIN_LANE_TAIL("4", LR_BIN_LANE_ROWS_A_DY1, "#-6", "#-4", "#-2")
+      // a on top with c strictly above b: (a, c, b)
+      LR_BIN_LANE_TAIL("4", LR_BIN_LANE_ROWS_A_DY1, "#-6", "#-2", "#-4")
+      LR_BIN_LANE_TAIL("5", LR_BIN_LANE_ROWS_B, "#-4", "#-6", "#-2")
+      LR_BIN_LANE_TAIL("6", LR_BIN_LANE_ROWS_C, "#-2", "#-4", "#-6")
       "85:\n\t"  // a centre outside (LR_BIN_LANE_ONE_CENTRE)
       "pop     {r11, r12}\n"
       "83:\n\t"

@@ -17,7 +17,7 @@ inline constexpr size_t kMaxStoreEntries = 0xFFFF;  // indices are uint16; 0xFFF
 
 // 8 bytes, word-aligned (the front end's lane stores one with a doubleword store).
 struct alignas(4) BinnedTriangle {
-  uint16_t v[3];  // vertex store indices, topmost first (store_top_first() below)
+  uint16_t v[3];  // vertex store indices, topmost first (store_binned() below)
   uint16_t next;  // next triangle of the same bucket (lists are built by prepending, so
                   // they run from the latest submission to the earliest)
 };
@@ -45,6 +45,49 @@ constexpr void store_top_first(T (&v)[3], T a, T b, T c, int32_t dy1, int32_t dy
     v[1] = b;
     v[2] = c;
   }
+}
+
+// The order sorted by y (topmost first, then the other two as sort_below_top orders them): the
+// rotation above with sort_below_top's compare made here, on dy1 and dy2. Setup's hand-made lanes
+// block (kBinnedSorted) then needs no compare of its own; the winding is lost.
+template <class T>
+constexpr void store_sorted(T (&v)[3], T a, T b, T c, int32_t dy1, int32_t dy2) {
+  if (dy1 <= dy2 && dy1 < 0) {  // b on top; a strictly above c: (b, a, c)
+    v[0] = b;
+    v[1] = dy2 > 0 ? a : c;
+    v[2] = dy2 > 0 ? c : a;
+  } else if (dy2 < dy1 && dy2 < 0) {  // c on top; b strictly above a: (c, b, a)
+    v[0] = c;
+    v[1] = dy1 < 0 ? b : a;
+    v[2] = dy1 < 0 ? a : b;
+  } else {  // a on top; c strictly above b: (a, c, b)
+    v[0] = a;
+    v[1] = dy2 < dy1 ? c : b;
+    v[2] = dy2 < dy1 ? b : c;
+  }
+}
+
+// Whether binning stores vertices sorted (store_sorted): where setup's hand-made lanes block reads
+// them as binned (kSmallPlanesByHand in core/setup/untextured_setup.hpp: Armv7E-M with a divide
+// instruction, not at -Os), for the triangles of every draw that block may take (untextured,
+// colour planes, not Phong: sorts_for_lanes in draw_record.hpp; the front end's lane sorts all
+// it takes). Elsewhere the rotation (store_top_first), and setup sorts with one compare; two-sided
+// Phong reads the winding at setup.
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && defined(__ARM_FEATURE_IDIV) && \
+    !defined(__OPTIMIZE_SIZE__)
+inline constexpr bool kBinnedSorted = true;
+#else
+inline constexpr bool kBinnedSorted = false;
+#endif
+
+// The order binning stores: store_sorted where kBinnedSorted and `sorted`, else the rotation.
+template <class T>
+constexpr void store_binned(T (&v)[3], T a, T b, T c, int32_t dy1, int32_t dy2,
+                            bool sorted = true) {
+  if (kBinnedSorted && sorted)
+    store_sorted(v, a, b, c, dy1, dy2);
+  else
+    store_top_first(v, a, b, c, dy1, dy2);
 }
 
 // A flat-shaded triangle's colours (FrameStorage::triangle_colors, one per binned triangle):

@@ -95,6 +95,15 @@ struct DrawRecord {
   uint32_t inputs = 0;
 };
 
+// Whether binning stores the draw's triangles sorted by y where kBinnedSorted
+// (binned_triangle.hpp): every draw whose triangles setup's hand-made lanes block may take
+// (untextured, with colour planes, not Phong: the strip loop's lanes draws are among them). The
+// others keep the rotation, which their setup sorts with one compare (and two-sided Phong reads for
+// the winding).
+constexpr bool sorts_for_lanes(const DrawRecord& r) {
+  return r.colors != ColorPlanes::kNone && r.texture == nullptr && !r.phong;
+}
+
 // The colour planes of an untextured draw (its record and its span state agree through this).
 constexpr ColorPlanes color_planes_of(const DrawState& state, bool has_color_planes) {
   if (state.shading == Shading::kFlat || !has_color_planes) return ColorPlanes::kNone;

@@ -229,7 +229,7 @@ Outcome FrontEnd::bin_as(uint16_t a, uint16_t b, uint16_t c, uint8_t draw, Rgb8 
   // it is added: a dropped one was never counted here).
   edges_.note_carried(rows[0]);
   BinnedTriangle& t = edges_.add(r0);
-  store_top_first(t.v, a, b, c, v1.y - v0.y, v2.y - v0.y);
+  store_binned(t.v, a, b, c, v1.y - v0.y, v2.y - v0.y, draw_sorted_);
   if (draw_colors_) edges_.set_colors({flat, flat_spec});
   ++stats_.triangles_binned;
   return Outcome::kBinned;
@@ -530,6 +530,7 @@ void FrontEnd::run_mesh(uint8_t index, const Mesh& mesh, const Mat4& model,
   records_[index].first_vertex = static_cast<uint16_t>(store_.count());
   one_hue(pl, records_[index].hue);  // (unlit: no diffuse colour, no hue; lanes Gouraud reads it)
   draw_colors_ = records_[index].triangle_colors;
+  if constexpr (kBinnedSorted) draw_sorted_ = sorts_for_lanes(records_[index]);
   const size_t n = mesh.positions.size();
   const bool phong = plan.kind.phong, uv = plan.uv;
   // A mesh larger than the free store goes through the vertex cache at the top of the stores.
@@ -598,7 +599,9 @@ constexpr bool kLane = true;
 // path's are never on the stack together.
 void FrontEnd::triangle_loop(MeshDraw& d) {
   const auto count = static_cast<uint32_t>(d.mesh.triangles.size());
-  if (!kLane || d.cached || d.plan.two_sided || draw_colors_ || edges_.signing()) {
+  // (The lane stores the vertices sorted: not two-sided Phong's, whose setup reads the winding.)
+  if (!kLane || d.cached || d.plan.two_sided || draw_colors_ || edges_.signing() ||
+      (kBinnedSorted && records_[d.draw].two_sided)) {
     routines_->triangles(*this, d, 0, count);
     return;
   }
@@ -699,6 +702,7 @@ void FrontEnd::run_screen(uint8_t index, std::span<const ScreenVertex> vertices,
                           const DrawState& state) {
   records_[index].first_vertex = static_cast<uint16_t>(store_.count());
   draw_colors_ = records_[index].triangle_colors;
+  if constexpr (kBinnedSorted) draw_sorted_ = sorts_for_lanes(records_[index]);
   const size_t n = vertices.size();
   const bool uv = !tex.empty();
   if (!store_.mesh_fits(n, false, uv)) {

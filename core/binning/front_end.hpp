@@ -431,9 +431,11 @@ class FrontEnd {
   // Out of line: inlined, they widened bin_band's frame, which is on the deepest stack path.
   [[gnu::noinline]] void save_binning_counts();
   [[gnu::noinline]] void restore_binning_counts();
-  // The running draw: its first binned triangle, whether its triangles have TriangleColors.
+  // The running draw: its first binned triangle, whether its triangles have TriangleColors,
+  // whether they are binned sorted by y (kBinnedSorted and sorts_for_lanes: store_binned).
   size_t draw_first_triangle_ = 0;
   bool draw_colors_ = false;
+  bool draw_sorted_ = false;
   // Working memory of one draw, kept here rather than on the stack (the worst-case stack is a
   // budget of its own, and these are the largest locals of the deepest path): the draw's
   // prepared lighting, its lights in model space (VertexColors::object), a clipped polygon with

@@ -70,8 +70,8 @@ uint32_t FrontEnd::lane_triangles(MeshDraw& d, uint32_t t) {
     // The y read again for the order (on Armv6-M, kept from the tests above, they took stack
     // slots in the loop that most faces leave at the facing: 17 instructions a triangle on S1).
     asm volatile("" ::: "memory");
-    store_top_first(bt.v, static_cast<uint16_t>(first + i0), static_cast<uint16_t>(first + i1),
-                    static_cast<uint16_t>(first + i2), v1.y - v0.y, v2.y - v0.y);
+    store_binned(bt.v, static_cast<uint16_t>(first + i0), static_cast<uint16_t>(first + i1),
+                 static_cast<uint16_t>(first + i2), v1.y - v0.y, v2.y - v0.y);
     ++binned;
   }
   run.finish();

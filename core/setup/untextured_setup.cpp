@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <optional>
 
+#include "lineraster/core/binning/binned_triangle.hpp"
 #include "lineraster/core/math/fixed.hpp"
 #include "lineraster/core/math/reciprocal.hpp"
 #include "lineraster/core/math/wide_mul.hpp"
@@ -977,8 +978,8 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "str    r0, [%[f], #28]\n\t"                                                \
   "39:\n\t"
 #define LR_LANES_BLOCK_ASM(STEP_SORT, AFTER_SORT, STEP_PLANES, AFTER_ROWS, PASSED) \
-  "str    r1, [%[f], #16]\n\t" STEP_SORT /* the vertices: r0-r2 (binned top first:              \
-                                            store_top_first), the y of the other two r5, r6 */  \
+  "str    r1, [%[f], #16]\n\t" STEP_SORT /* the vertices: r0-r2 (binned sorted by y:           \
+                                            store_sorted, kBinnedSorted) */                     \
   "ldr    r3, [%[f], #96]\n\t"                                                                  \
   "ldrh   r4, [r2]\n\t"                                                                         \
   "ldrh   r5, [r2, #2]\n\t"                                                                     \
@@ -987,13 +988,6 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "mla    r0, r4, r12, r3\n\t" \
   "mla    r1, r5, r12, r3\n\t" \
   "mla    r2, r6, r12, r3\n\t" \
-  "ldr    r5, [r1, #4]\n\t"                                                                     \
-  "ldr    r6, [r2, #4]\n\t" /* sort_below_top: the later swapped when it lies strictly above */ \
-  "cmp    r6, r5\n\t"                                                                           \
-  "ittt   lt\n\t"                                                                               \
-  "movlt  r3, r1\n\t"                                                                           \
-  "movlt  r1, r2\n\t"                                                                           \
-  "movlt  r2, r3\n\t"                                                                           \
   "stm    %[f], {r0, r1, r2}\n\t"                                                               \
   AFTER_SORT LR_SMALL_ROWS_BODY AFTER_ROWS STEP_PLANES \
       "10:\n\t" LR_SMALL_PLANES_ASM \
@@ -1077,12 +1071,13 @@ namespace {
 // The frame of the small lanes setup by hand (the words above), with the steps to take in word 21:
 // kRowsStep, kPlanesStep or both (the planes then only when the rows' result is kPixels), and
 // LanesSetup's: kSortStep (the vertices from the three indices (small_lanes_asm's index) into the
-// vertex store at word 24, binned topmost first: the other two sorted by sort_below_top's compare)
+// vertex store at word 24, binned sorted by y: store_sorted, kBinnedSorted)
 // and kAffineStep (when the planes were made, the affine colour test, its quick part's shift at
 // word 25, the bound and green's weight at 26 and 27: the result 3 when it fails).
 // kHueStep: the input is one hue (UntexturedInput::hue), its ratios at words 19 (red) and 20
 // (blue; the other path's scratch words for blue's differences).
 constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8, kHueStep = 16;
+static_assert(kBinnedSorted);  // LanesSetup's block reads the vertices in their binned order
 // The steps' kHueStep and its factors for input `in`.
 void set_hue(uint32_t* w, const UntexturedInput& in) {
   if (!in.hue.valid) return;

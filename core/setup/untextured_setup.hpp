@@ -24,6 +24,7 @@
 
 #include <cstdint>
 
+#include "lineraster/core/binning/binned_triangle.hpp"
 #include "lineraster/core/lighting/one_hue.hpp"
 #include "lineraster/core/output/color.hpp"
 #include "lineraster/core/scene/draw_state.hpp"
@@ -186,13 +187,8 @@ bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const U
                   UntexturedKind kind, ActiveTriangle& t);
 // small_planes' integers for kLanes with depth, by hand where the core has SMMUL/SMMLA
 // (kSmallPlanesByHand: Armv7E-M with a divide instruction, not at -Os); elsewhere it makes nothing
-// and returns false.
-#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && defined(__ARM_FEATURE_IDIV) && \
-    !defined(__OPTIMIZE_SIZE__)
-inline constexpr bool kSmallPlanesByHand = true;
-#else
-inline constexpr bool kSmallPlanesByHand = false;
-#endif
+// and returns false. The targets where binning stores the vertices sorted for it (kBinnedSorted).
+inline constexpr bool kSmallPlanesByHand = kBinnedSorted;
 bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
                                 const UntexturedInput& in, ActiveTriangle& t);
 // small_rows_by_hand and, when its result is kPixels, small_lanes_planes_by_hand in one call
@@ -203,9 +199,9 @@ bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindo
 
 // setup_untextured_triangle for the triangles of one strip whose draw has lanes_first: what
 // stays the same between them (the window, the input, the vertex store) given once, then one call
-// per triangle from its three vertex indices (as binned, top first: store_top_first; the other
-// two sorted here by sort_below_top). Where
-// kSmallPlanesByHand, vertex fetch, sort, rows, planes and the affine colour test's quick part
+// per triangle from its three vertex indices (as binned: sorted by y where kBinnedSorted, else
+// top first and the other two sorted here by sort_below_top). Where
+// kSmallPlanesByHand, vertex fetch, rows, planes and the affine colour test's quick part
 // are one block of hand-made code (the rest, rare, as setup_untextured_triangle does it); the
 // same result and record as sort_by_y and setup_untextured_triangle everywhere. w and in must
 // outlive the calls (the strip loop's setup context holds them).

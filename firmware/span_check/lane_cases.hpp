@@ -429,7 +429,7 @@ inline Tally run_small_triangles(uint32_t cases, uint32_t seed = 99991u) {
 
 // Runs `cases` random triangles of random_triangle's kinds, their w and colours spread so that
 // the affine colour test goes every way, through LanesSetup (from their vertex indices in a
-// random order, stored top first as binning stores them) and through sort_by_y and
+// random order, stored as binning stores them: store_binned) and through sort_by_y and
 // setup_untextured_triangle without lanes_first: the same result and the same record. triangles
 // counts the lanes ones, visits the slivers and pixels the others (perspective planes, or the
 // general path).
@@ -466,10 +466,10 @@ inline Tally run_lanes_setup(uint32_t cases, uint32_t seed = 5151u) {
     }
     uint16_t order[3] = {0, 1, 2};
     for (int i = 2; i > 0; --i) std::swap(order[i], order[rng.in(0, i)]);
-    // As binned: top first.
+    // As binned (store_binned: sorted by y where the block reads them so).
     uint16_t index[3];
-    store_top_first(index, order[0], order[1], order[2], v[order[1]].y - v[order[0]].y,
-                    v[order[2]].y - v[order[0]].y);
+    store_binned(index, order[0], order[1], order[2], v[order[1]].y - v[order[0]].y,
+                 v[order[2]].y - v[order[0]].y);
     const RowWindow window{rng.in(-4, kHeight / 2), kHeight - 1, kWidth};
     ActiveTriangle a, b;
     std::memset(static_cast<void*>(&a), 0, sizeof a);

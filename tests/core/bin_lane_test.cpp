@@ -91,11 +91,9 @@ TEST(BinLane, CLaneBinsWhatTheEdgeTableBins) {
   EXPECT_GT(t.low_word_zero, 1000u);
 }
 
-// Every triangle with corners on rows 0..3 (ties of every kind): stored as the rotation that
-// starts at sort_by_y's first (the winding kept), and sorted by one compare as sort_by_y sorts
-// it, and as sort_by_y sorts the submitted order except where b is on top and a level with c.
-TEST(BinLane, TopFirstIsARotationThatOneCompareSorts) {
-  uint32_t other_order = 0;
+// f(v, ya, yb, yc) for every triangle with corners on rows 0..3 (ties of every kind).
+template <class F>
+void each_row_triple(F f) {
   for (int32_t ya = 0; ya < 4; ++ya)
     for (int32_t yb = 0; yb < 4; ++yb)
       for (int32_t yc = 0; yc < 4; ++yc) {
@@ -103,25 +101,62 @@ TEST(BinLane, TopFirstIsARotationThatOneCompareSorts) {
         v[0].y = ya * 256;
         v[1].y = yb * 256;
         v[2].y = yc * 256;
-        uint16_t t[3];
-        store_top_first(t, uint16_t{0}, uint16_t{1}, uint16_t{2}, v[1].y - v[0].y, v[2].y - v[0].y);
-        EXPECT_TRUE(t[1] == (t[0] + 1) % 3 && t[2] == (t[0] + 2) % 3) << ya << yb << yc;
-        const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
-        sort_by_y(s);
-        const ScreenVertex* r[3] = {&v[t[0]], &v[t[1]], &v[t[2]]};
-        EXPECT_EQ(r[0], s[0]) << ya << yb << yc;
-        const ScreenVertex* sr[3] = {r[0], r[1], r[2]};
-        sort_by_y(sr);
-        sort_below_top(r);
-        EXPECT_TRUE(r[0] == sr[0] && r[1] == sr[1] && r[2] == sr[2]) << ya << yb << yc;
-        if (yb < ya && ya == yc) {
-          EXPECT_TRUE(r[1] == &v[2] && r[2] == &v[0]) << ya << yb << yc;
-          ++other_order;
-        } else {
-          EXPECT_TRUE(r[1] == s[1] && r[2] == s[2]) << ya << yb << yc;
-        }
+        f(v, ya, yb, yc);
       }
+}
+
+// Stored as the rotation that starts at sort_by_y's first (the winding kept), and sorted by one
+// compare as sort_by_y sorts it, and as sort_by_y sorts the submitted order except where b is on
+// top and a level with c.
+TEST(BinLane, TopFirstIsARotationThatOneCompareSorts) {
+  uint32_t other_order = 0;
+  each_row_triple([&](const ScreenVertex(&v)[3], int32_t ya, int32_t yb, int32_t yc) {
+    uint16_t t[3];
+    store_top_first(t, uint16_t{0}, uint16_t{1}, uint16_t{2}, v[1].y - v[0].y, v[2].y - v[0].y);
+    EXPECT_TRUE(t[1] == (t[0] + 1) % 3 && t[2] == (t[0] + 2) % 3) << ya << yb << yc;
+    const ScreenVertex* s[3] = {&v[0], &v[1], &v[2]};
+    sort_by_y(s);
+    const ScreenVertex* r[3] = {&v[t[0]], &v[t[1]], &v[t[2]]};
+    EXPECT_EQ(r[0], s[0]) << ya << yb << yc;
+    const ScreenVertex* sr[3] = {r[0], r[1], r[2]};
+    sort_by_y(sr);
+    sort_below_top(r);
+    EXPECT_TRUE(r[0] == sr[0] && r[1] == sr[1] && r[2] == sr[2]) << ya << yb << yc;
+    if (yb < ya && ya == yc) {
+      EXPECT_TRUE(r[1] == &v[2] && r[2] == &v[0]) << ya << yb << yc;
+      ++other_order;
+    } else {
+      EXPECT_TRUE(r[1] == s[1] && r[2] == s[2]) << ya << yb << yc;
+    }
+  });
   EXPECT_EQ(other_order, 6u);  // yb < ya == yc: (ya, yb) in {(1, 0), (2, 0..1), (3, 0..2)}
+}
+
+// store_sorted (where setup's hand-made lanes block reads binned vertices as they are,
+// kBinnedSorted) is the rotation followed by sort_below_top's compare: the order setup made from
+// the rotation, every tie included. store_binned stores it where kBinnedSorted and asked to,
+// else the rotation (the draws the block never takes; two-sided Phong reads the winding).
+TEST(BinLane, SortedIsTheRotationSortedBelowItsTop) {
+  uint32_t swapped = 0;
+  each_row_triple([&](const ScreenVertex(&v)[3], int32_t ya, int32_t yb, int32_t yc) {
+    const int32_t dy1 = v[1].y - v[0].y, dy2 = v[2].y - v[0].y;
+    uint16_t rot[3], sorted[3], asked[3], kept[3];
+    store_top_first(rot, uint16_t{0}, uint16_t{1}, uint16_t{2}, dy1, dy2);
+    store_sorted(sorted, uint16_t{0}, uint16_t{1}, uint16_t{2}, dy1, dy2);
+    store_binned(asked, uint16_t{0}, uint16_t{1}, uint16_t{2}, dy1, dy2, true);
+    store_binned(kept, uint16_t{0}, uint16_t{1}, uint16_t{2}, dy1, dy2, false);
+    const ScreenVertex* r[3] = {&v[rot[0]], &v[rot[1]], &v[rot[2]]};
+    sort_below_top(r);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(r[k], &v[sorted[k]]) << ya << yb << yc << k;
+      EXPECT_EQ(asked[k], kBinnedSorted ? sorted[k] : rot[k]) << ya << yb << yc << k;
+      EXPECT_EQ(kept[k], rot[k]) << ya << yb << yc << k;
+    }
+    EXPECT_LE(v[sorted[0]].y, v[sorted[1]].y);
+    EXPECT_LE(v[sorted[1]].y, v[sorted[2]].y);
+    swapped += sorted[1] != rot[1];
+  });
+  EXPECT_EQ(swapped, 18u);  // the rotation's last two strictly out of order
 }
 
 // Triangles whose bounds hold one pixel centre of the viewport (one_centre) are binned exactly
