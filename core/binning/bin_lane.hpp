@@ -22,6 +22,7 @@ inline constexpr bool kBinLaneAsm = true;
 #else
 inline constexpr bool kBinLaneAsm = false;
 #endif
+static_assert(kBinLaneAsm == kBinnedSorted);  // its tails store store_sorted's order
 
 // What the lane reads and updates, in the order bin_lane_asm() addresses it (byte offsets in
 // its code, asserted below: do not reorder).
@@ -366,7 +367,6 @@ inline const std::array<uint16_t, 3>* first_out_of_range(const std::array<uint16
 inline BinLaneStop bin_lane_asm(const std::array<uint16_t, 3>*& tp, BinLane& k) {
 #if defined(__ARM_FEATURE_DSP) && defined(__thumb2__) && !defined(__OPTIMIZE_SIZE__)
   static_assert(kBinLaneAsm && kOneCentreTest);
-  static_assert(kBinnedSorted);  // its tails store the order store_sorted gives
   // Low registers: CBZ tests them.
   register uint32_t a asm("r0");
   register uint32_t b asm("r1");

@@ -67,14 +67,14 @@ constexpr void store_sorted(T (&v)[3], T a, T b, T c, int32_t dy1, int32_t dy2) 
   }
 }
 
-// Whether binning stores vertices sorted (store_sorted): where setup's hand-made lanes block reads
-// them as binned (kSmallPlanesByHand in core/setup/untextured_setup.hpp: Armv7E-M with a divide
-// instruction, not at -Os), for the triangles of every draw that block may take (untextured,
-// colour planes, not Phong: sorts_for_lanes in draw_record.hpp; the front end's lane sorts all
-// it takes). Elsewhere the rotation (store_top_first), and setup sorts with one compare; two-sided
-// Phong reads the winding at setup.
-#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && defined(__ARM_FEATURE_IDIV) && \
-    !defined(__OPTIMIZE_SIZE__)
+// Whether binning stores vertices sorted (store_sorted): where the front end's bin lane is made by
+// hand (kBinLaneAsm in bin_lane.hpp: Thumb-2 with the DSP extension, not at -Os), which covers
+// every target of setup's hand-made lanes block (kSmallPlanesByHand in
+// core/setup/untextured_setup.hpp, which reads the vertices as binned), for the triangles of every
+// draw that block may take (untextured, colour planes, not Phong: sorts_for_lanes in
+// draw_record.hpp; the lane sorts all it takes). Elsewhere the rotation (store_top_first); setup
+// without the block sorts with one compare either way; two-sided Phong reads the winding.
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && !defined(__OPTIMIZE_SIZE__)
 inline constexpr bool kBinnedSorted = true;
 #else
 inline constexpr bool kBinnedSorted = false;

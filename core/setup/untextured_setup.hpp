@@ -187,8 +187,14 @@ bool small_planes(const ScreenVertex* const v[3], int32_t d, uint32_t m, const U
                   UntexturedKind kind, ActiveTriangle& t);
 // small_planes' integers for kLanes with depth, by hand where the core has SMMUL/SMMLA
 // (kSmallPlanesByHand: Armv7E-M with a divide instruction, not at -Os); elsewhere it makes nothing
-// and returns false. The targets where binning stores the vertices sorted for it (kBinnedSorted).
-inline constexpr bool kSmallPlanesByHand = kBinnedSorted;
+// and returns false. Binning stores the vertices sorted there (kBinnedSorted).
+#if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && defined(__ARM_FEATURE_IDIV) && \
+    !defined(__OPTIMIZE_SIZE__)
+inline constexpr bool kSmallPlanesByHand = true;
+#else
+inline constexpr bool kSmallPlanesByHand = false;
+#endif
+static_assert(!kSmallPlanesByHand || kBinnedSorted);
 bool small_lanes_planes_by_hand(const ScreenVertex* const v[3], int32_t d, uint32_t m,
                                 const UntexturedInput& in, ActiveTriangle& t);
 // small_rows_by_hand and, when its result is kPixels, small_lanes_planes_by_hand in one call

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <span>
+#include <utility>
 
 #include "firmware/bin_check/bin_cases.hpp"
 #include "lineraster/core/binning/edge_table.hpp"
@@ -18,14 +19,18 @@ namespace {
 namespace bins = fw::bins;
 
 // The order in which a binned triangle's vertices are stored, from its definition: the rotation
-// of (a, b, c) that starts at sort_by_y's first (the topmost, the earliest of a tie).
+// of (a, b, c) that starts at sort_by_y's first (the topmost, the earliest of a tie); where
+// kBinnedSorted (the lane stores store_sorted's order), its last two swapped when the later lies
+// strictly above.
 std::array<uint16_t, 3> reference_order(const ScreenVertex* base,
                                         const std::array<uint16_t, 3>& in) {
   const ScreenVertex* s[3] = {&base[in[0]], &base[in[1]], &base[in[2]]};
   sort_by_y(s);
   size_t top = 0;
   while (&base[in[top]] != s[0]) ++top;
-  return {in[top], in[(top + 1) % 3], in[(top + 2) % 3]};
+  std::array<uint16_t, 3> r = {in[top], in[(top + 1) % 3], in[(top + 2) % 3]};
+  if (kBinnedSorted && base[r[2]].y < base[r[1]].y) std::swap(r[1], r[2]);
+  return r;
 }
 
 // The lane as the binner would do it: classify_inline() with back faces culled, then the
