@@ -991,33 +991,60 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "stm    %[f], {r0, r1, r2}\n\t"                                                               \
   AFTER_SORT LR_SMALL_ROWS_BODY AFTER_ROWS STEP_PLANES \
       "10:\n\t" LR_SMALL_PLANES_ASM \
-      /* the affine colour test (affine_within): w_max - w_min <= w_min >> shift, or */ \
-      /* (w_max - w_min) D <= bound w_min with D the largest channel range (green's times its */ \
-      /* weight); else the result 3. w_min r8, w_max - w_min r9. */ \
+      /* the affine colour test (affine_within, kAffineBound565): w_max - w_min <= w_min >> 5, */ \
+      /* or (w_max - w_min) D <= bound w_min with D the largest channel range (green's times */ \
+      /* its weight); else the result 3. w_min r8, w_max - w_min r9. One hue first: D within */ \
+      /* range_g F + kHueRangeSlack (LanesFrame), F at word 25: when that passes, D does. */ \
       "ldr    r1, [%[f], #84]\n\t" \
       "tst    r1, #8\n\t" \
       "beq    " PASSED "\n\t" \
       "ldm    %[f], {r2, r3, r4}\n\t" \
       "ldr    r5, [r2, #12]\n\t" \
       "ldr    r6, [r3, #12]\n\t" \
-      "ldr    r1, [r4, #12]\n\t" \
+      "ldr    r12, [r4, #12]\n\t" \
       "cmp    r5, r6\n\t" \
       "itete  lo\n\t" \
       "movlo  r8, r5\n\t" \
       "movhs  r8, r6\n\t" \
       "movlo  r9, r6\n\t" \
       "movhs  r9, r5\n\t" \
-      "cmp    r1, r8\n\t" \
+      "cmp    r12, r8\n\t" \
       "it     lo\n\t" \
-      "movlo  r8, r1\n\t" \
-      "cmp    r1, r9\n\t" \
+      "movlo  r8, r12\n\t" \
+      "cmp    r12, r9\n\t" \
       "it     hi\n\t" \
-      "movhi  r9, r1\n\t" \
+      "movhi  r9, r12\n\t" \
       "sub    r9, r9, r8\n\t" \
-      "ldr    r1, [%[f], #100]\n\t" \
-      "lsr    r1, r8, r1\n\t" \
-      "cmp    r9, r1\n\t" \
+      "cmp    r9, r8, lsr #5\n\t" \
       "bls    " PASSED "\n\t" \
+      "tst    r1, #16\n\t" /* kHueStep */ \
+      "beq    28f\n\t" \
+      "ldrh   r5, [r2, #18]\n\t" \
+      "ldrh   r6, [r3, #18]\n\t" \
+      "ldrh   r12, [r4, #18]\n\t" \
+      "cmp    r5, r6\n\t" \
+      "itete  lo\n\t" \
+      "movlo  r10, r5\n\t" \
+      "movhs  r10, r6\n\t" \
+      "movlo  r11, r6\n\t" \
+      "movhs  r11, r5\n\t" \
+      "cmp    r12, r10\n\t" \
+      "it     lo\n\t" \
+      "movlo  r10, r12\n\t" \
+      "cmp    r12, r11\n\t" \
+      "it     hi\n\t" \
+      "movhi  r11, r12\n\t" \
+      "sub    r11, r11, r10\n\t" \
+      "ldr    lr, [%[f], #100]\n\t" \
+      "mov    r1, #0xC0000\n\t" /* kHueRangeSlack 2^15 */ \
+      "mla    r11, r11, lr, r1\n\t" /* D 2^15 at most, below 2^31 */ \
+      "umull  r5, r6, r9, r11\n\t" \
+      "mov    r1, #0x4100000\n\t" /* bound 2^15 */ \
+      "umull  r1, r12, r1, r8\n\t" \
+      "subs   r1, r1, r5\n\t" \
+      "sbcs   r12, r12, r6\n\t" \
+      "bhs    " PASSED "\n\t" \
+      "28:\n\t" \
       /* the ranges of (g, r) as 16-bit lanes: maximum r10, minimum r11, then r10 - r11 */ \
       "ldr    r5, [r2, #16]\n\t" \
       "ldr    r6, [r3, #16]\n\t" \
@@ -1072,18 +1099,31 @@ namespace {
 // kRowsStep, kPlanesStep or both (the planes then only when the rows' result is kPixels), and
 // LanesSetup's: kSortStep (the vertices from the three indices (small_lanes_asm's index) into the
 // vertex store at word 24, binned sorted by y: store_sorted, kBinnedSorted)
-// and kAffineStep (when the planes were made, the affine colour test, its quick part's shift at
-// word 25, the bound and green's weight at 26 and 27: the result 3 when it fails).
+// and kAffineStep (when the planes were made, kAffineBound565's colour test, the bound and
+// green's weight at 26 and 27: the result 3 when it fails).
 // kHueStep: the input is one hue (UntexturedInput::hue), its ratios at words 19 (red) and 20
-// (blue; the other path's scratch words for blue's differences).
+// (blue; the other path's scratch words for blue's differences), the affine test's F at 25.
 constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8, kHueStep = 16;
 static_assert(kBinnedSorted);  // LanesSetup's block reads the vertices in their binned order
-// The steps' kHueStep and its factors for input `in`.
+// The affine colour test of a one-hue draw bounds D, the largest channel range of a triangle
+// (green's counted twice), by green's range times F = max(2, rho_r, rho_b) plus this many units
+// of Q1.15: each vertex colour lies within 9.5 units of rho green (docs/numerics.md#one-hue), so
+// a red or blue range exceeds rho times green's by at most 19, and the stored rho (floored to
+// 2^-15) by one more; the rest is margin (clipped vertices' colours are interpolated, rounded).
+// When (w_max - w_min) (range_g F + slack) <= bound w_min holds, the exact test holds: the
+// result is the same, only found sooner.
+inline constexpr uint32_t kHueRangeSlack = 24;
+static_assert((kHueRangeSlack << 15) == 0xC0000 && (kAffineBound565.bound << 15) == 0x4100000 &&
+              kAffineBound565.quick_shift == 5);  // the block's immediates
+// The steps' kHueStep and its factors for input `in`; F = max(2, rho_r, rho_b) in Q15 (at most
+// 2^16: the ratios are below 2) for the affine test.
 void set_hue(uint32_t* w, const UntexturedInput& in) {
   if (!in.hue.valid) return;
   w[21] |= kHueStep;
   w[19] = static_cast<uint32_t>(in.hue.red);
   w[20] = static_cast<uint32_t>(in.hue.blue);
+  w[25] = std::max({uint32_t{2} << 15, static_cast<uint32_t>(in.hue.red) >> 15,
+                    static_cast<uint32_t>(in.hue.blue) >> 15});
 }
 struct LanesFrame {
   uint32_t w[32];
@@ -1216,7 +1256,6 @@ void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
                (in.colors == ColorPlanes::kPerspective ? kAffineStep : 0u);
   set_hue(frame_, in);
   frame_[24] = reinterpret_cast<uintptr_t>(vertices);
-  frame_[25] = static_cast<uint32_t>(in.affine.quick_shift);
   frame_[26] = in.affine.bound;
   frame_[27] = in.affine.green_weight;
 }

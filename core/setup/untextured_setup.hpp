@@ -71,10 +71,14 @@ struct UntexturedInput {
   OneHue hue{};
 };
 // What UntexturedInput::lanes_first should be for the rest of the input.
+// (LanesSetup's block tests kAffineBound565 itself: lanes are RGB565 pixels.)
 constexpr bool lanes_first_of(const UntexturedInput& in) {
   return in.lanes && in.depth &&
          (in.colors == ColorPlanes::kAffine ||
-          (in.colors == ColorPlanes::kPerspective && in.affine_ok));
+          (in.colors == ColorPlanes::kPerspective && in.affine_ok &&
+           in.affine.bound == kAffineBound565.bound &&
+           in.affine.green_weight == kAffineBound565.green_weight &&
+           in.affine.quick_shift == kAffineBound565.quick_shift));
 }
 
 struct UntexturedSetup {
