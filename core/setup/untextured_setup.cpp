@@ -118,6 +118,14 @@ constexpr int32_t lane6(uint32_t c15) {
 static_assert(lane5(Color15::kOne) == (1 << 16) - (1 << 10));
 static_assert(lane6(Color15::kOne) < INT32_MAX);
 
+// The window's words of the hand-made blocks' frames: its width (word 23) and its first_min and
+// last_max (32, 33), set once per window rather than read through a pointer per triangle.
+[[maybe_unused]] void set_window(uint32_t* frame, const RowWindow& w) {
+  frame[23] = static_cast<uint32_t>(w.width);
+  frame[32] = static_cast<uint32_t>(w.first_min);
+  frame[33] = static_cast<uint32_t>(w.last_max);
+}
+
 }  // namespace
 
 bool fast_basis(const ScreenVertex* const v[3], int max_spread, FastBasis& b) {
@@ -483,171 +491,171 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 #if defined(__thumb2__) && defined(__ARM_FEATURE_IDIV) && !defined(__OPTIMIZE_SIZE__)
 // small_rows by hand (Armv7-M with a divider): GCC 12 spilled a quarter of it. The one operand
 // (left to the compiler) points to the frame of small_lanes_asm below: the vertices (0, 4, 8),
-// the window (12), the triangle (16), then d (20), m (24), the result (28), the window's width
-// (92: set once per frame, not per triangle) and the edge vectors e1x, e1y, e2x, e2y (112, for
-// the planes; a frame of 32 words). Ends with the result in r0.
+// the triangle (16), then d (20), m (24), the result (28), the window's width (92), the edge
+// vectors e1x, e1y, e2x, e2y (112, for the planes) and the window's first_min and last_max (128);
+// a frame of kLanesFrameWords words, the window's set once per window, not per triangle. Ends
+// with the result in r0.
 #define LR_SMALL_ROWS_ASM "ldm    %[f], {r0, r1, r2}\n\t" LR_SMALL_ROWS_BODY
 // LR_SMALL_ROWS_ASM with the vertices already in r0-r2.
-#define LR_SMALL_ROWS_BODY                                                                        \
-  "ldrd   r3, r4, [r0]\n\t"                                                                       \
-  "ldrd   r5, r6, [r1]\n\t"                                                                       \
-  "ldrd   r8, r9, [r2]\n\t"                                                                       \
-  "ldr    lr, [%[f], #12]\n\t" /* first r10, last r11 */                                          \
-  "add    r10, r4, #128\n\t"   /* ((y0 - 128) >> 8) + 1 = (y0 + 128) >> 8 */                      \
-  "asr    r10, r10, #8\n\t"                                                                       \
-  "ldrd   r12, r1, [lr]\n\t" /* first_min, last_max */                                            \
-  "cmp    r10, r12\n\t"                                                                           \
-  "it     lt\n\t"                                                                                 \
-  "movlt  r10, r12\n\t"                                                                           \
-  "sub    r11, r9, #128\n\t"                                                                      \
-  "asr    r11, r11, #8\n\t"                                                                       \
-  "cmp    r11, r1\n\t"                                                                            \
-  "it     gt\n\t"                                                                                 \
-  "movgt  r11, r1\n\t" /* e1x r5, e1y r6, e2x r8, e2y r9; m */                                    \
-  "sub    r5, r5, r3\n\t"                                                                         \
-  "sub    r1, r6, #128\n\t" /* yb - 128 (mid) */                                                  \
-  "sub    r6, r6, r4\n\t"                                                                         \
-  "sub    r8, r8, r3\n\t"                                                                         \
-  "sub    r9, r9, r4\n\t"                                                                         \
-  "strd   r5, r6, [%[f], #112]\n\t" /* the edge vectors, for the planes */                        \
-  "strd   r8, r9, [%[f], #120]\n\t"                                                               \
-  "eor    r12, r5, r5, asr #31\n\t"                                                               \
-  "sub    r12, r12, r5, asr #31\n\t"                                                              \
-  "eor    r0, r8, r8, asr #31\n\t"                                                                \
-  "sub    r0, r0, r8, asr #31\n\t"                                                                \
-  "orr    r12, r12, r0\n\t"                                                                       \
-  "orr    r12, r12, r9\n\t"                                                                       \
-  "str    r12, [%[f], #24]\n\t"                                                                   \
-  "cmp    r12, #16384\n\t"                                                                        \
-  "bhs    8f\n\t"                                                                                 \
-  "cmp    r10, r11\n\t"                                                                           \
-  "bgt    8f\n\t" /* mid r0 = clamp((yb - 128) >> 8, first - 1, last); the rows */                \
-  "asr    r0, r1, #8\n\t"                                                                         \
-  "sub    r1, r10, #1\n\t"                                                                        \
-  "cmp    r0, r1\n\t"                                                                             \
-  "it     lt\n\t"                                                                                 \
-  "movlt  r0, r1\n\t"                                                                             \
-  "cmp    r0, r11\n\t"                                                                            \
-  "it     gt\n\t"                                                                                 \
-  "movgt  r0, r11\n\t"                                                                            \
-  "ldr    r1, [%[f], #16]\n\t"                                                                    \
-  "strh   r10, [r1, #36]\n\t"                                                                     \
-  "strh   r0, [r1, #38]\n\t"                                                                      \
-  "strh   r11, [r1, #40]\n\t" /* cb r11, xmax - 128 r12, xa r3 = x0 + 128 - 256 cb, width lr */   \
-  "cmp    r5, r8\n\t"                                                                             \
-  "itete  lt\n\t"                                                                                 \
-  "andlt  r11, r5, r5, asr #31\n\t"                                                               \
-  "andge  r11, r8, r8, asr #31\n\t"                                                               \
-  "biclt  r12, r8, r8, asr #31\n\t"                                                               \
-  "bicge  r12, r5, r5, asr #31\n\t"                                                               \
-  "sub    r3, r3, #128\n\t"                                                                       \
-  "add    r11, r11, r3\n\t"                                                                       \
-  "asr    r11, r11, #8\n\t"                                                                       \
-  "add    r12, r12, r3\n\t" /* xmax - 128: cmax <= width exactly when it is <= 256 width */       \
-  "add    r3, r3, #256\n\t"                                                                       \
-  "sub    r3, r3, r11, lsl #8\n\t"                                                                \
-  "ldr    lr, [%[f], #92]\n\t" /* the width */ /* inside: ucb r12 = cb, base 0, flags 4; else ucb \
-                                                  0, base cb, flags 0 (in r2) */                                                                               \
-  "cmp    r11, #0\n\t"                                                                            \
-  "blt    1f\n\t"                                                                                 \
-  "cmp    r12, lr, lsl #8\n\t"                                                                    \
-  "bgt    1f\n\t"                                                                                 \
-  "mov    r12, r11\n\t"                                                                           \
-  "movs   r11, #0\n\t"                                                                            \
-  "movs   r2, #4\n\t"                                                                             \
-  "b      2f\n\t"                                                                                 \
-  "1:\n\t"                                                                                        \
-  "movs   r12, #0\n\t"                                                                            \
-  "movs   r2, #0\n\t"                                                                             \
-  "2:\n\t"                                                                                        \
-  "strh   r11, [r1, #42]\n\t" /* d, the flags (kBottomRight when d > 0) */                        \
-  "mul    r11, r5, r9\n\t"                                                                        \
-  "mls    r11, r8, r6, r11\n\t"                                                                   \
-  "str    r11, [%[f], #20]\n\t"                                                                   \
-  "rsb    r11, r11, #0\n\t" /* d > 0: -d < 0 (|d| < 2^29 here) */                                 \
-  "orr    r2, r2, r11, lsr #31\n\t"                                                               \
-  "strb   r2, [r1, #47]\n\t" /* t0 r4 = 256 first + 128 - y0; the bottom edge at row mid + 1 */   \
-  "rsb    r4, r4, #128\n\t"                                                                       \
-  "add    r4, r4, r10, lsl #8\n\t"                                                                \
-  "sub    r11, r0, r10\n\t"                                                                       \
-  "add    r11, r11, #1\n\t"                                                                       \
-  "add    r11, r4, r11, lsl #8\n\t"                                                               \
-  "sub    r11, r11, r6\n\t"                                                                       \
-  "sub    lr, r8, r5\n\t"                                                                         \
-  "mul    r11, lr, r11\n\t"                                                                       \
-  "str    lr, [r1, #28]\n\t"                                                                      \
-  "sub    lr, r9, r6\n\t"                                                                         \
-  "add    r0, r3, r5\n\t"                                                                         \
-  "mla    r11, r0, lr, r11\n\t"                                                                   \
-  "sub    r11, r11, #1\n\t"                                                                       \
-  "asr    r11, r11, #8\n\t"                                                                       \
-  "clz    r0, lr\n\t" /* max(dy, 1) for dy >= 0: dy | (clz(dy) >> 5) */                           \
-  "orr    lr, lr, r0, lsr #5\n\t"                                                                 \
-  "mla    r11, r12, lr, r11\n\t"                                                                  \
-  "str    r11, [r1, #24]\n\t"                                                                     \
-  "str    lr, [r1, #32]\n\t" /* the long edge ql r11, the top edge qt lr (top_dy in r6) */        \
-  "mul    r11, r3, r9\n\t"                                                                        \
-  "mla    r11, r8, r4, r11\n\t"                                                                   \
-  "sub    r11, r11, #1\n\t"                                                                       \
-  "asr    r11, r11, #8\n\t"                                                                       \
-  "mla    r11, r12, r9, r11\n\t"                                                                  \
-  "mul    lr, r3, r6\n\t"                                                                         \
-  "mla    lr, r5, r4, lr\n\t"                                                                     \
-  "sub    lr, lr, #1\n\t"                                                                         \
-  "asr    lr, lr, #8\n\t"                                                                         \
-  "clz    r0, r6\n\t"                                                                             \
-  "orr    r6, r6, r0, lsr #5\n\t"                                                                 \
-  "mla    lr, r12, r6, lr\n\t" /* the record, left edge first */                                  \
-  "tst    r2, #1\n\t"                                                                             \
-  "beq    3f\n\t"                                                                                 \
-  "strd   r11, lr, [r1]\n\t"                                                                      \
-  "strd   r8, r5, [r1, #8]\n\t"                                                                   \
-  "strd   r9, r6, [r1, #16]\n\t"                                                                  \
-  "b      4f\n\t"                                                                                 \
-  "3:\n\t"                                                                                        \
-  "strd   lr, r11, [r1]\n\t"                                                                      \
-  "strd   r5, r8, [r1, #8]\n\t"                                                                   \
-  "strd   r6, r9, [r1, #16]\n\t"                                                                  \
-  "4:\n\t" /* twice the area (word 5) at or above kSurelyPixelsArea2: kPixels */                  \
-  "ldr    r0, [%[f], #20]\n\t"                                                                    \
-  "eor    r0, r0, r0, asr #31\n\t"                                                                \
-  "cmp    r0, #0x20000\n\t"                                                                       \
-  "bhs    41f\n\t" /* the columns at the row max(mid, first): long cl r11, short cs lr */         \
-  "ldrsh  r0, [r1, #38]\n\t"                                                                      \
-  "subs   r3, r0, r10\n\t"                                                                        \
-  "bge    5f\n\t"                                                                                 \
-  "udiv   r11, r11, r9\n\t"                                                                       \
-  "ldr    r4, [r1, #24]\n\t"                                                                      \
-  "ldr    r12, [r1, #32]\n\t"                                                                     \
-  "udiv   lr, r4, r12\n\t"                                                                        \
-  "b      6f\n\t"                                                                                 \
-  "5:\n\t"                                                                                        \
-  "mla    r11, r8, r3, r11\n\t"                                                                   \
-  "udiv   r11, r11, r9\n\t"                                                                       \
-  "mla    lr, r5, r3, lr\n\t"                                                                     \
-  "udiv   lr, lr, r6\n\t"                                                                         \
-  "6:\n\t"                                                                                        \
-  "ldrsh  r3, [r1, #42]\n\t" /* the column base, the width */                                     \
-  "ldr    r12, [%[f], #92]\n\t"                                                                   \
-  "tst    r2, #1\n\t" /* left quotient r11, right lr */                                           \
-  "ittt   eq\n\t"                                                                                 \
-  "eoreq  r11, r11, lr\n\t"                                                                       \
-  "eoreq  lr, lr, r11\n\t"                                                                        \
-  "eoreq  r11, r11, lr\n\t"                                                                       \
-  "sub    r12, r12, r3\n\t" /* left < width - base */                                             \
-  "movs   r0, #2\n\t"                                                                             \
-  "cmp    r11, r12\n\t"                                                                           \
-  "bge    9f\n\t"                                                                                 \
-  "cmn    lr, r3\n\t" /* right + base > 0 */                                                      \
-  "ble    9f\n\t"                                                                                 \
-  "cmp    r11, lr\n\t"                                                                            \
-  "bge    9f\n\t"                                                                                 \
-  "41:\n\t"                                                                                       \
-  "movs   r0, #1\n\t"                                                                             \
-  "b      9f\n\t"                                                                                 \
-  "8:\n\t"                                                                                        \
-  "movs   r0, #0\n\t"                                                                             \
-  "9:\n\t"                                                                                        \
+#define LR_SMALL_ROWS_BODY                                                                      \
+  "ldrd   r3, r4, [r0]\n\t"                                                                     \
+  "ldrd   r5, r6, [r1]\n\t"                                                                     \
+  "ldrd   r8, r9, [r2]\n\t"                                                                     \
+  "add    r10, r4, #128\n\t" /* first r10, last r11: ((y0 - 128) >> 8) + 1 = (y0 + 128) >> 8 */ \
+  "asr    r10, r10, #8\n\t"                                                                     \
+  "ldrd   r12, r1, [%[f], #128]\n\t" /* first_min, last_max */                                  \
+  "cmp    r10, r12\n\t"                                                                         \
+  "it     lt\n\t"                                                                               \
+  "movlt  r10, r12\n\t"                                                                         \
+  "sub    r11, r9, #128\n\t"                                                                    \
+  "asr    r11, r11, #8\n\t"                                                                     \
+  "cmp    r11, r1\n\t"                                                                          \
+  "it     gt\n\t"                                                                               \
+  "movgt  r11, r1\n\t" /* e1x r5, e1y r6, e2x r8, e2y r9; m */                                  \
+  "sub    r5, r5, r3\n\t"                                                                       \
+  "sub    r1, r6, #128\n\t" /* yb - 128 (mid) */                                                \
+  "sub    r6, r6, r4\n\t"                                                                       \
+  "sub    r8, r8, r3\n\t"                                                                       \
+  "sub    r9, r9, r4\n\t"                                                                       \
+  "strd   r5, r6, [%[f], #112]\n\t" /* the edge vectors, for the planes */                      \
+  "strd   r8, r9, [%[f], #120]\n\t"                                                             \
+  "eor    r12, r5, r5, asr #31\n\t"                                                             \
+  "sub    r12, r12, r5, asr #31\n\t"                                                            \
+  "eor    r0, r8, r8, asr #31\n\t"                                                              \
+  "sub    r0, r0, r8, asr #31\n\t"                                                              \
+  "orr    r12, r12, r0\n\t"                                                                     \
+  "orr    r12, r12, r9\n\t"                                                                     \
+  "str    r12, [%[f], #24]\n\t"                                                                 \
+  "cmp    r12, #16384\n\t"                                                                      \
+  "bhs    8f\n\t"                                                                               \
+  "cmp    r10, r11\n\t"                                                                         \
+  "bgt    8f\n\t" /* mid r0 = clamp((yb - 128) >> 8, first - 1, last); the rows */              \
+  "asr    r0, r1, #8\n\t"                                                                       \
+  "sub    r1, r10, #1\n\t"                                                                      \
+  "cmp    r0, r1\n\t"                                                                           \
+  "it     lt\n\t"                                                                               \
+  "movlt  r0, r1\n\t"                                                                           \
+  "cmp    r0, r11\n\t"                                                                          \
+  "it     gt\n\t"                                                                               \
+  "movgt  r0, r11\n\t"                                                                          \
+  "ldr    r1, [%[f], #16]\n\t"                                                                  \
+  "strh   r10, [r1, #36]\n\t"                                                                   \
+  "strh   r0, [r1, #38]\n\t"                                                                    \
+  "strh   r11, [r1, #40]\n\t" /* cb r11, xmax - 128 r12, xa r3 = x0 + 128 - 256 cb, width lr */ \
+  "cmp    r5, r8\n\t"                                                                           \
+  "itete  lt\n\t"                                                                               \
+  "andlt  r11, r5, r5, asr #31\n\t"                                                             \
+  "andge  r11, r8, r8, asr #31\n\t"                                                             \
+  "biclt  r12, r8, r8, asr #31\n\t"                                                             \
+  "bicge  r12, r5, r5, asr #31\n\t"                                                             \
+  "sub    r3, r3, #128\n\t"                                                                     \
+  "add    r11, r11, r3\n\t"                                                                     \
+  "asr    r11, r11, #8\n\t"                                                                     \
+  "add    r12, r12, r3\n\t" /* xmax - 128: cmax <= width exactly when it is <= 256 width */     \
+  "add    r3, r3, #256\n\t"                                                                     \
+  "sub    r3, r3, r11, lsl #8\n\t"                                                              \
+  "ldr    lr, [%[f], #92]\n\t" /* the width; inside: ucb r12 = cb, base 0, flags 4; else ucb 0, \
+                                 base cb, flags 0 (in r2) */                                    \
+  "cmp    r11, #0\n\t"                                                                          \
+  "blt    1f\n\t"                                                                               \
+  "cmp    r12, lr, lsl #8\n\t"                                                                  \
+  "bgt    1f\n\t"                                                                               \
+  "mov    r12, r11\n\t"                                                                         \
+  "movs   r11, #0\n\t"                                                                          \
+  "movs   r2, #4\n\t"                                                                           \
+  "b      2f\n\t"                                                                               \
+  "1:\n\t"                                                                                      \
+  "movs   r12, #0\n\t"                                                                          \
+  "movs   r2, #0\n\t"                                                                           \
+  "2:\n\t"                                                                                      \
+  "strh   r11, [r1, #42]\n\t" /* d, the flags (kBottomRight when d > 0) */                      \
+  "mul    r11, r5, r9\n\t"                                                                      \
+  "mls    r11, r8, r6, r11\n\t"                                                                 \
+  "str    r11, [%[f], #20]\n\t"                                                                 \
+  "rsb    r11, r11, #0\n\t" /* d > 0: -d < 0 (|d| < 2^29 here) */                               \
+  "orr    r2, r2, r11, lsr #31\n\t"                                                             \
+  "strb   r2, [r1, #47]\n\t" /* t0 r4 = 256 first + 128 - y0; the bottom edge at row mid + 1 */ \
+  "rsb    r4, r4, #128\n\t"                                                                     \
+  "add    r4, r4, r10, lsl #8\n\t"                                                              \
+  "sub    r11, r0, r10\n\t"                                                                     \
+  "add    r11, r11, #1\n\t"                                                                     \
+  "add    r11, r4, r11, lsl #8\n\t"                                                             \
+  "sub    r11, r11, r6\n\t"                                                                     \
+  "sub    lr, r8, r5\n\t"                                                                       \
+  "mul    r11, lr, r11\n\t"                                                                     \
+  "str    lr, [r1, #28]\n\t"                                                                    \
+  "sub    lr, r9, r6\n\t"                                                                       \
+  "add    r0, r3, r5\n\t"                                                                       \
+  "mla    r11, r0, lr, r11\n\t"                                                                 \
+  "sub    r11, r11, #1\n\t"                                                                     \
+  "asr    r11, r11, #8\n\t"                                                                     \
+  "clz    r0, lr\n\t" /* max(dy, 1) for dy >= 0: dy | (clz(dy) >> 5) */                         \
+  "orr    lr, lr, r0, lsr #5\n\t"                                                               \
+  "mla    r11, r12, lr, r11\n\t"                                                                \
+  "str    r11, [r1, #24]\n\t"                                                                   \
+  "str    lr, [r1, #32]\n\t" /* the long edge ql r11, the top edge qt lr (top_dy in r6) */      \
+  "mul    r11, r3, r9\n\t"                                                                      \
+  "mla    r11, r8, r4, r11\n\t"                                                                 \
+  "sub    r11, r11, #1\n\t"                                                                     \
+  "asr    r11, r11, #8\n\t"                                                                     \
+  "mla    r11, r12, r9, r11\n\t"                                                                \
+  "mul    lr, r3, r6\n\t"                                                                       \
+  "mla    lr, r5, r4, lr\n\t"                                                                   \
+  "sub    lr, lr, #1\n\t"                                                                       \
+  "asr    lr, lr, #8\n\t"                                                                       \
+  "clz    r0, r6\n\t"                                                                           \
+  "orr    r6, r6, r0, lsr #5\n\t"                                                               \
+  "mla    lr, r12, r6, lr\n\t" /* the record, left edge first */                                \
+  "tst    r2, #1\n\t"                                                                           \
+  "beq    3f\n\t"                                                                               \
+  "strd   r11, lr, [r1]\n\t"                                                                    \
+  "strd   r8, r5, [r1, #8]\n\t"                                                                 \
+  "strd   r9, r6, [r1, #16]\n\t"                                                                \
+  "b      4f\n\t"                                                                               \
+  "3:\n\t"                                                                                      \
+  "strd   lr, r11, [r1]\n\t"                                                                    \
+  "strd   r5, r8, [r1, #8]\n\t"                                                                 \
+  "strd   r6, r9, [r1, #16]\n\t"                                                                \
+  "4:\n\t" /* twice the area (word 5) at or above kSurelyPixelsArea2: kPixels */                \
+  "ldr    r0, [%[f], #20]\n\t"                                                                  \
+  "eor    r0, r0, r0, asr #31\n\t"                                                              \
+  "cmp    r0, #0x20000\n\t"                                                                     \
+  "bhs    41f\n\t" /* the columns at the row max(mid, first): long cl r11, short cs lr */       \
+  "ldrsh  r0, [r1, #38]\n\t"                                                                    \
+  "subs   r3, r0, r10\n\t"                                                                      \
+  "bge    5f\n\t"                                                                               \
+  "udiv   r11, r11, r9\n\t"                                                                     \
+  "ldr    r4, [r1, #24]\n\t"                                                                    \
+  "ldr    r12, [r1, #32]\n\t"                                                                   \
+  "udiv   lr, r4, r12\n\t"                                                                      \
+  "b      6f\n\t"                                                                               \
+  "5:\n\t"                                                                                      \
+  "mla    r11, r8, r3, r11\n\t"                                                                 \
+  "udiv   r11, r11, r9\n\t"                                                                     \
+  "mla    lr, r5, r3, lr\n\t"                                                                   \
+  "udiv   lr, lr, r6\n\t"                                                                       \
+  "6:\n\t"                                                                                      \
+  "ldrsh  r3, [r1, #42]\n\t" /* the column base, the width */                                   \
+  "ldr    r12, [%[f], #92]\n\t"                                                                 \
+  "tst    r2, #1\n\t" /* left quotient r11, right lr */                                         \
+  "ittt   eq\n\t"                                                                               \
+  "eoreq  r11, r11, lr\n\t"                                                                     \
+  "eoreq  lr, lr, r11\n\t"                                                                      \
+  "eoreq  r11, r11, lr\n\t"                                                                     \
+  "sub    r12, r12, r3\n\t" /* left < width - base */                                           \
+  "movs   r0, #2\n\t"                                                                           \
+  "cmp    r11, r12\n\t"                                                                         \
+  "bge    9f\n\t"                                                                               \
+  "cmn    lr, r3\n\t" /* right + base > 0 */                                                    \
+  "ble    9f\n\t"                                                                               \
+  "cmp    r11, lr\n\t"                                                                          \
+  "bge    9f\n\t"                                                                               \
+  "41:\n\t"                                                                                     \
+  "movs   r0, #1\n\t"                                                                           \
+  "b      9f\n\t"                                                                               \
+  "8:\n\t"                                                                                      \
+  "movs   r0, #0\n\t"                                                                           \
+  "9:\n\t"                                                                                      \
   "str    r0, [%[f], #28]\n\t"
 #endif
 
@@ -1126,7 +1134,7 @@ void set_hue(uint32_t* w, const UntexturedInput& in) {
                     static_cast<uint32_t>(in.hue.blue) >> 15});
 }
 struct LanesFrame {
-  uint32_t w[32];
+  uint32_t w[kLanesFrameWords];
   LanesFrame() = default;
   LanesFrame(const ScreenVertex* const v[3], uint32_t steps) {
     w[0] = reinterpret_cast<uintptr_t>(v[0]);
@@ -1201,8 +1209,7 @@ template <bool kBlock>
 SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
                              ActiveTriangle& t) {
   LanesFrame frame(v, kRowsStep);
-  frame.w[3] = reinterpret_cast<uintptr_t>(&w);
-  frame.w[23] = static_cast<uint32_t>(w.width);
+  set_window(frame.w, w);
   small_lanes_steps(frame, &t);
   return frame.rows();
 }
@@ -1210,8 +1217,7 @@ SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
 bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
                                   const UntexturedInput& in, ActiveTriangle& t, SmallRows& rows) {
   LanesFrame frame(v, kRowsStep | kPlanesStep);
-  frame.w[3] = reinterpret_cast<uintptr_t>(&w);
-  frame.w[23] = static_cast<uint32_t>(w.width);
+  set_window(frame.w, w);
   set_hue(frame.w, in);
   small_lanes_steps(frame, &t);
   rows = frame.rows();
@@ -1253,11 +1259,10 @@ void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
   static_assert(sizeof(frame_) == sizeof(LanesFrame) && alignof(LanesSetup) >= 4);
   w_ = &w;
   in_ = &in;
-  frame_[3] = reinterpret_cast<uintptr_t>(&w);
   frame_[21] = kSortStep | kRowsStep | kPlanesStep |
                (in.colors == ColorPlanes::kPerspective ? kAffineStep : 0u);
   set_hue(frame_, in);
-  frame_[23] = static_cast<uint32_t>(w.width);  // (the frame's: constant while w is used)
+  set_window(frame_, w);
   frame_[24] = reinterpret_cast<uintptr_t>(vertices);
   frame_[26] = in.affine.bound;
   frame_[27] = in.affine.green_weight;
@@ -1287,13 +1292,12 @@ bool small_lanes_planes_by_hand(const ScreenVertex* const /*v*/[3], int32_t /*d*
 #if defined(__thumb2__) && defined(__ARM_FEATURE_IDIV) && !defined(__OPTIMIZE_SIZE__)
 SmallRows small_rows_by_hand(const ScreenVertex* const v[3], const RowWindow& w,
                              ActiveTriangle& t) {
-  uint32_t frame[32];  // (the rows store the edge vectors at words 28 to 31)
+  uint32_t frame[kLanesFrameWords];  // (the rows store the edge vectors at words 28 to 31)
   frame[0] = reinterpret_cast<uintptr_t>(v[0]);
   frame[1] = reinterpret_cast<uintptr_t>(v[1]);
   frame[2] = reinterpret_cast<uintptr_t>(v[2]);
-  frame[3] = reinterpret_cast<uintptr_t>(&w);
   frame[4] = reinterpret_cast<uintptr_t>(&t);
-  frame[23] = static_cast<uint32_t>(w.width);
+  set_window(frame, w);
   uint32_t* const f = frame;
   asm volatile(LR_SMALL_ROWS_ASM
                :

@@ -215,8 +215,11 @@ bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindo
 // are one block of hand-made code (the rest, rare, as setup_untextured_triangle does it); the
 // same result and record as sort_by_y and setup_untextured_triangle everywhere. w and in must
 // outlive the calls (the strip loop's setup context holds them).
+// The words of the hand-made setup blocks' frame (untextured_setup.cpp).
+inline constexpr size_t kLanesFrameWords = 34;
 class LanesSetup {
  public:
+  // (w's first_min, last_max and width are read here: prepare again when they change.)
   void prepare(const RowWindow& w, const UntexturedInput& in, const ScreenVertex* vertices);
   UntexturedTriangle set_up(const uint16_t index[3], ActiveTriangle& t) {
     if constexpr (kSmallPlanesByHand) {  // 32-bit addresses
@@ -238,7 +241,7 @@ class LanesSetup {
   const RowWindow* w_ = nullptr;
   const UntexturedInput* in_ = nullptr;
   const ScreenVertex* vertices_ = nullptr;
-  uint32_t frame_[32] = {};  // the hand-made block's frame (untextured_setup.cpp)
+  uint32_t frame_[kLanesFrameWords] = {};  // the hand-made block's frame (untextured_setup.cpp)
 };
 
 // What the strip loop keeps of LanesSetup where it is not by hand, or where the renderer draws
