@@ -789,11 +789,11 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "sub    r1, r1, r10\n\t" \
   "mov    r11, #129024\n\t" \
   "mul    r10, r10, r11\n\t" \
-  "add    r10, r10, #0x2000000\n\t" \
-  "str    r10, [%[f], #72]\n\t" \
-  "ldr    r10, [%[f], #84]\n\t" /* kHueStep: red and blue from green's differences */ \
-  "tst    r10, #16\n\t" \
-  "bne    26f\n\t" LR_SP_PLANE LR_SP_FINISH("72") \
+  "add    r10, r10, #0x2000000\n\t" /* green's a0, kept in r10 on the one-hue path */ \
+  "ldr    r11, [%[f], #84]\n\t" /* kHueStep: red and blue from green's differences */ \
+  "tst    r11, #16\n\t" \
+  "bne    26f\n\t" \
+  "str    r10, [%[f], #72]\n\t" LR_SP_PLANE LR_SP_FINISH("72") \
   "str    r2, [r10, #76]\n\t" \
   "strd   r8, r9, [r10, #80]\n\t" \
   /* red and blue: rs 31 / 32, 2^(1 - tg), a0 (31 c >> 4) + 2^10 in each lane */ \
@@ -839,6 +839,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "add    r9, r9, r10, lsl #16\n\t" LR_SP_FINISH("72") \
   "str    r2, [r10, #64]\n\t" \
   "strd   r8, r9, [r10, #68]\n\t" \
+  "ldr    r11, [%[f], #84]\n\t" /* the steps, for the affine test (the one-hue path keeps them) */ \
   "b      27f\n\t" \
   /* one hue: green's numerators made into r6 (x) and r5 (y), kept (the edges are not needed */ \
   /* after them); red's and blue's factors mul_hi(rs 31 / 32, ratio) 2^(3 - tg) (the ratios */ \
@@ -850,12 +851,17 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "mls    r6, r1, r4, r9\n\t" \
   "smmul  r8, r6, r12\n\t" \
   "smmul  r9, r5, r12\n\t" \
-  "ldrd   r10, r11, [%[f], #32]\n\t" \
-  "smmul  r2, r9, r11\n\t" \
-  "smmla  r2, r8, r10, r2\n\t" \
-  "ldrd   r10, r11, [%[f], #40]\n\t" \
-  "mls    r2, r8, r10, r2\n\t" \
-  "mls    r2, r9, r11, r2\n\t" LR_SP_FINISH("72") \
+  "ldrd   r0, r1, [%[f], #32]\n\t" \
+  "smmul  r2, r9, r1\n\t" \
+  "smmla  r2, r8, r0, r2\n\t" \
+  "ldrd   r0, r1, [%[f], #40]\n\t" \
+  "mls    r2, r8, r0, r2\n\t" \
+  "mls    r2, r9, r1, r2\n\t" \
+  "lsl    r2, r2, lr\n\t" /* LR_SP_FINISH with green's a0 from r10 */ \
+  "lsl    r8, r8, lr\n\t" \
+  "lsl    r9, r9, lr\n\t" \
+  "add    r2, r2, r10\n\t" \
+  "ldr    r10, [%[f], #16]\n\t" \
   "str    r2, [r10, #76]\n\t" \
   "strd   r8, r9, [r10, #80]\n\t" \
   "ldrd   r8, r9, [%[f], #48]\n\t" \
@@ -1003,8 +1009,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
       /* or (w_max - w_min) D <= bound w_min with D the largest channel range (green's times */ \
       /* its weight); else the result 3. w_min r8, w_max - w_min r9. One hue first: D within */ \
       /* range_g F + kHueRangeSlack (LanesFrame), F at word 25: when that passes, D does. */ \
-      "ldr    r1, [%[f], #84]\n\t" \
-      "tst    r1, #8\n\t" \
+      "tst    r11, #8\n\t" /* the steps, in r11 from the planes */ \
       "beq    " PASSED "\n\t" \
       "ldm    %[f], {r2, r3, r4}\n\t" \
       "ldr    r5, [r2, #12]\n\t" \
@@ -1025,7 +1030,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
       "sub    r9, r9, r8\n\t" \
       "cmp    r9, r8, lsr #5\n\t" \
       "bls    " PASSED "\n\t" \
-      "tst    r1, #16\n\t" /* kHueStep */ \
+      "tst    r11, #16\n\t" /* kHueStep */ \
       "beq    28f\n\t" \
       "ldrh   r5, [r2, #18]\n\t" \
       "ldrh   r6, [r3, #18]\n\t" \
@@ -1034,22 +1039,22 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
       "itete  lo\n\t" \
       "movlo  r10, r5\n\t" \
       "movhs  r10, r6\n\t" \
-      "movlo  r11, r6\n\t" \
-      "movhs  r11, r5\n\t" \
+      "movlo  r1, r6\n\t" \
+      "movhs  r1, r5\n\t" \
       "cmp    r12, r10\n\t" \
       "it     lo\n\t" \
       "movlo  r10, r12\n\t" \
-      "cmp    r12, r11\n\t" \
+      "cmp    r12, r1\n\t" \
       "it     hi\n\t" \
-      "movhi  r11, r12\n\t" \
-      "sub    r11, r11, r10\n\t" \
+      "movhi  r1, r12\n\t" \
+      "sub    r1, r1, r10\n\t" \
       "ldr    lr, [%[f], #100]\n\t" \
-      "mov    r1, #0xC0000\n\t" /* kHueRangeSlack 2^15 */ \
-      "mla    r11, r11, lr, r1\n\t" /* D 2^15 at most, below 2^31 */ \
-      "umull  r5, r6, r9, r11\n\t" \
-      "mov    r1, #0x4100000\n\t" /* bound 2^15 */ \
-      "umull  r1, r12, r1, r8\n\t" \
-      "subs   r1, r1, r5\n\t" \
+      "mov    r10, #0xC0000\n\t" /* kHueRangeSlack 2^15 */ \
+      "mla    r1, r1, lr, r10\n\t" /* at least D 2^15, below 2^32 */ \
+      "umull  r5, r6, r9, r1\n\t" \
+      "mov    r10, #0x4100000\n\t" /* bound 2^15 */ \
+      "umull  r10, r12, r10, r8\n\t" \
+      "subs   r10, r10, r5\n\t" \
       "sbcs   r12, r12, r6\n\t" \
       "bhs    " PASSED "\n\t" \
       "28:\n\t" \
