@@ -495,8 +495,10 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 // vectors e1x, e1y, e2x, e2y (112, for the planes) and the window's first_min and last_max (128);
 // a frame of kLanesFrameWords words, the window's set once per window, not per triangle. Ends
 // with the result in r0.
-#define LR_SMALL_ROWS_ASM "ldm    %[f], {r0, r1, r2}\n\t" LR_SMALL_ROWS_BODY
-// LR_SMALL_ROWS_ASM with the vertices already in r0-r2.
+#define LR_SMALL_ROWS_ASM \
+  "ldm    %[f], {r0, r1, r2}\n\t" LR_SMALL_ROWS_BODY "str    r0, [%[f], #28]\n\t"
+// LR_SMALL_ROWS_ASM with the vertices already in r0-r2, the result left in r0 only (what follows
+// stores it at word 7 where C reads it).
 #define LR_SMALL_ROWS_BODY                                                                      \
   "ldrd   r3, r4, [r0]\n\t"                                                                     \
   "ldrd   r5, r6, [r1]\n\t"                                                                     \
@@ -655,8 +657,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "b      9f\n\t"                                                                               \
   "8:\n\t"                                                                                      \
   "movs   r0, #0\n\t"                                                                           \
-  "9:\n\t"                                                                                      \
-  "str    r0, [%[f], #28]\n\t"
+  "9:\n\t"
 #endif
 
 #if defined(__thumb2__) && defined(__ARM_FEATURE_DSP) && defined(__ARM_FEATURE_IDIV) && \
@@ -934,62 +935,64 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 // (word 7) becomes kPixels when a row has a pixel centre, and the triangle goes on to its planes;
 // else kNoPixels, and the block returns 4 (LanesSetup's sliver) at once.
 // The step after the rows where the later rows are not tested: on to the planes with kPixels.
-#define LR_LANES_ROWS_MADE \
-  "cmp    r0, #1\n\t"      \
+#define LR_LANES_ROWS_MADE     \
+  "str    r0, [%[f], #28]\n\t" \
+  "cmp    r0, #1\n\t"          \
   "bne    20f\n\t"
-#define LR_LANES_LATER_ROWS                                                   \
-  "cmp    r0, #1\n\t"                                                         \
-  "beq    39f\n\t"                                                            \
-  "cmp    r0, #2\n\t"                                                         \
-  "bne    20f\n\t"                                                            \
-  "ldr    r1, [%[f], #16]\n\t"                                                \
-  "ldrsh  r3, [r1, #36]\n\t"                                                  \
-  "ldrsh  r4, [r1, #38]\n\t"                                                  \
-  "ldrsh  r5, [r1, #40]\n\t"                                                  \
-  "ldrsh  r6, [r1, #42]\n\t"                                                  \
-  "ldr    r12, [%[f], #92]\n\t"                                               \
-  "sub    r12, r12, r6\n\t"                                                   \
-  "rsb    r6, r6, #0\n\t"                                                     \
-  "ldrd   r8, r11, [r1]\n\t"                                                  \
-  "ldrd   r9, lr, [r1, #8]\n\t"                                               \
-  "ldrd   r10, r0, [r1, #16]\n\t"                                             \
-  "31:\n\t"                                                                   \
-  "cmp    r3, r4\n\t"                                                         \
-  "bgt    34f\n\t"                                                            \
-  "32:\n\t"                                                                   \
-  "udiv   r1, r8, r10\n\t"                                                    \
-  "udiv   r2, r11, r0\n\t"                                                    \
-  "add    r8, r8, r9\n\t"                                                     \
-  "add    r11, r11, lr\n\t"                                                   \
-  "cmp    r1, r12\n\t" /* left < width - base, right > -base, left < right */ \
-  "itt    lt\n\t"                                                             \
-  "cmplt  r6, r2\n\t"                                                         \
-  "cmplt  r1, r2\n\t"                                                         \
-  "blt    35f\n\t"                                                            \
-  "33:\n\t"                                                                   \
-  "add    r3, r3, #1\n\t"                                                     \
-  "cmp    r3, r5\n\t"                                                         \
-  "ble    31b\n\t"                                                            \
-  "movs   r0, #3\n\t"                                                         \
-  "str    r0, [%[f], #28]\n\t"                                                \
-  "movs   r0, #4\n\t" /* the block's status for a sliver */                   \
-  "b      20f\n\t"                                                            \
-  "34:\n\t" /* past mid_row: the bottom edge on the short side, once */       \
-  "movw   r4, #32767\n\t"                                                     \
-  "ldr    r1, [%[f], #16]\n\t"                                                \
-  "ldrb   r2, [r1, #47]\n\t"                                                  \
-  "tst    r2, #1\n\t"                                                         \
-  "beq    37f\n\t"                                                            \
-  "ldrd   r11, lr, [r1, #24]\n\t"                                             \
-  "ldr    r0, [r1, #32]\n\t"                                                  \
-  "b      32b\n\t"                                                            \
-  "37:\n\t"                                                                   \
-  "ldrd   r8, r9, [r1, #24]\n\t"                                              \
-  "ldr    r10, [r1, #32]\n\t"                                                 \
-  "b      32b\n\t"                                                            \
-  "35:\n\t"                                                                   \
-  "movs   r0, #1\n\t"                                                         \
-  "str    r0, [%[f], #28]\n\t"                                                \
+#define LR_LANES_LATER_ROWS                                                       \
+  "cmp    r0, #1\n\t" /* kPixels: word 7 stored only where C reads it (18, 28) */ \
+  "beq    39f\n\t"                                                                \
+  "str    r0, [%[f], #28]\n\t"                                                    \
+  "cmp    r0, #2\n\t"                                                             \
+  "bne    20f\n\t"                                                                \
+  "ldr    r1, [%[f], #16]\n\t"                                                    \
+  "ldrsh  r3, [r1, #36]\n\t"                                                      \
+  "ldrsh  r4, [r1, #38]\n\t"                                                      \
+  "ldrsh  r5, [r1, #40]\n\t"                                                      \
+  "ldrsh  r6, [r1, #42]\n\t"                                                      \
+  "ldr    r12, [%[f], #92]\n\t"                                                   \
+  "sub    r12, r12, r6\n\t"                                                       \
+  "rsb    r6, r6, #0\n\t"                                                         \
+  "ldrd   r8, r11, [r1]\n\t"                                                      \
+  "ldrd   r9, lr, [r1, #8]\n\t"                                                   \
+  "ldrd   r10, r0, [r1, #16]\n\t"                                                 \
+  "31:\n\t"                                                                       \
+  "cmp    r3, r4\n\t"                                                             \
+  "bgt    34f\n\t"                                                                \
+  "32:\n\t"                                                                       \
+  "udiv   r1, r8, r10\n\t"                                                        \
+  "udiv   r2, r11, r0\n\t"                                                        \
+  "add    r8, r8, r9\n\t"                                                         \
+  "add    r11, r11, lr\n\t"                                                       \
+  "cmp    r1, r12\n\t" /* left < width - base, right > -base, left < right */     \
+  "itt    lt\n\t"                                                                 \
+  "cmplt  r6, r2\n\t"                                                             \
+  "cmplt  r1, r2\n\t"                                                             \
+  "blt    35f\n\t"                                                                \
+  "33:\n\t"                                                                       \
+  "add    r3, r3, #1\n\t"                                                         \
+  "cmp    r3, r5\n\t"                                                             \
+  "ble    31b\n\t"                                                                \
+  "movs   r0, #3\n\t"                                                             \
+  "str    r0, [%[f], #28]\n\t"                                                    \
+  "movs   r0, #4\n\t" /* the block's status for a sliver */                       \
+  "b      20f\n\t"                                                                \
+  "34:\n\t" /* past mid_row: the bottom edge on the short side, once */           \
+  "movw   r4, #32767\n\t"                                                         \
+  "ldr    r1, [%[f], #16]\n\t"                                                    \
+  "ldrb   r2, [r1, #47]\n\t"                                                      \
+  "tst    r2, #1\n\t"                                                             \
+  "beq    37f\n\t"                                                                \
+  "ldrd   r11, lr, [r1, #24]\n\t"                                                 \
+  "ldr    r0, [r1, #32]\n\t"                                                      \
+  "b      32b\n\t"                                                                \
+  "37:\n\t"                                                                       \
+  "ldrd   r8, r9, [r1, #24]\n\t"                                                  \
+  "ldr    r10, [r1, #32]\n\t"                                                     \
+  "b      32b\n\t"                                                                \
+  "35:\n\t"                                                                       \
+  "movs   r0, #1\n\t"                                                             \
+  "str    r0, [%[f], #28]\n\t"                                                    \
   "39:\n\t"
 #define LR_LANES_BLOCK_ASM(STEP_SORT, AFTER_SORT, STEP_PLANES, AFTER_ROWS, PASSED) \
   "str    r1, [%[f], #16]\n\t" STEP_SORT /* the vertices: r0-r2 (binned sorted by y:           \
@@ -1100,8 +1103,12 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
       "sbcs   r4, r4, r2\n\t" \
       "it     lo\n\t" \
       "movlo  r0, #3\n\t" \
+      "movs   r1, #1\n\t" /* the rows' result, kPixels, for LanesSetup::rest */ \
+      "str    r1, [%[f], #28]\n\t" \
       "b      21f\n\t" \
-      "18:\n\t" /* the planes were not made */ \
+      "18:\n\t" /* the planes were not made (the rows' result kPixels at word 7) */ \
+      "movs   r0, #1\n\t" \
+      "str    r0, [%[f], #28]\n\t" \
       "movs   r0, #0\n\t" \
       "21:\n\t" \
       "str    r0, [%[f], #88]\n\t" \
