@@ -997,11 +997,10 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
 #define LR_LANES_BLOCK_ASM(STEP_SORT, AFTER_SORT, STEP_PLANES, AFTER_ROWS, PASSED) \
   "str    r1, [%[f], #16]\n\t" STEP_SORT /* the vertices: r0-r2 (binned sorted by y:           \
                                             store_sorted, kBinnedSorted) */                     \
-  "ldr    r3, [%[f], #96]\n\t"                                                                  \
+  "ldrd   r3, r12, [%[f], #96]\n\t" /* the vertex store, sizeof(ScreenVertex) */              \
   "ldrh   r4, [r2]\n\t"                                                                         \
   "ldrh   r5, [r2, #2]\n\t"                                                                     \
   "ldrh   r6, [r2, #4]\n\t"                                                                     \
-  "mov    r12, #24\n\t" /* sizeof(ScreenVertex) */ \
   "mla    r0, r4, r12, r3\n\t" \
   "mla    r1, r5, r12, r3\n\t" \
   "mla    r2, r6, r12, r3\n\t" \
@@ -1011,7 +1010,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
       /* the affine colour test (affine_within, kAffineBound565): w_max - w_min <= w_min >> 5, */ \
       /* or (w_max - w_min) D <= bound w_min with D the largest channel range (green's times */ \
       /* its weight); else the result 3. w_min r8, w_max - w_min r9. One hue first: D within */ \
-      /* range_g F + kHueRangeSlack (LanesFrame), F at word 25: when that passes, D does. */ \
+      /* range_g F + kHueRangeSlack (LanesFrame), F at word 3: when that passes, D does. */ \
       "tst    r11, #8\n\t" /* the steps, in r11 from the planes */ \
       "beq    " PASSED "\n\t" \
       "ldm    %[f], {r2, r3, r4}\n\t" \
@@ -1051,7 +1050,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
       "it     hi\n\t" \
       "movhi  r1, r12\n\t" \
       "sub    r1, r1, r10\n\t" \
-      "ldr    lr, [%[f], #100]\n\t" \
+      "ldr    lr, [%[f], #12]\n\t" \
       "mov    r10, #0xC0000\n\t" /* kHueRangeSlack 2^15 */ \
       "mla    r1, r1, lr, r10\n\t" /* at least D 2^15, below 2^32 */ \
       "umull  r5, r6, r9, r1\n\t" \
@@ -1118,11 +1117,11 @@ namespace {
 // The frame of the small lanes setup by hand (the words above), with the steps to take in word 21:
 // kRowsStep, kPlanesStep or both (the planes then only when the rows' result is kPixels), and
 // LanesSetup's: kSortStep (the vertices from the three indices (small_lanes_asm's index) into the
-// vertex store at word 24, binned sorted by y: store_sorted, kBinnedSorted)
-// and kAffineStep (when the planes were made, kAffineBound565's colour test, the bound and
-// green's weight at 26 and 27: the result 3 when it fails).
-// kHueStep: the input is one hue (UntexturedInput::hue), its ratios at words 19 (red) and 20
-// (blue; the other path's scratch words for blue's differences), the affine test's F at 25.
+// vertex store at word 24 and the size of a vertex at 25, binned sorted by y: store_sorted,
+// kBinnedSorted) and kAffineStep (when the planes were made, kAffineBound565's colour test, the
+// bound and green's weight at 26 and 27: the result 3 when it fails). kHueStep: the input is one
+// hue (UntexturedInput::hue), its ratios at words 19 (red) and 20 (blue; the other path's scratch
+// words for blue's differences), the affine test's F at 3.
 constexpr uint32_t kRowsStep = 1, kPlanesStep = 2, kSortStep = 4, kAffineStep = 8, kHueStep = 16;
 static_assert(kBinnedSorted);  // LanesSetup's block reads the vertices in their binned order
 // The affine colour test of a one-hue draw bounds D, the largest channel range of a triangle
@@ -1142,8 +1141,8 @@ void set_hue(uint32_t* w, const UntexturedInput& in) {
   w[21] |= kHueStep;
   w[19] = static_cast<uint32_t>(in.hue.red);
   w[20] = static_cast<uint32_t>(in.hue.blue);
-  w[25] = std::max({uint32_t{2} << 15, static_cast<uint32_t>(in.hue.red) >> 15,
-                    static_cast<uint32_t>(in.hue.blue) >> 15});
+  w[3] = std::max({uint32_t{2} << 15, static_cast<uint32_t>(in.hue.red) >> 15,
+                   static_cast<uint32_t>(in.hue.blue) >> 15});
 }
 struct LanesFrame {
   uint32_t w[kLanesFrameWords];
@@ -1276,6 +1275,7 @@ void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
   set_hue(frame_, in);
   set_window(frame_, w);
   frame_[24] = reinterpret_cast<uintptr_t>(vertices);
+  frame_[25] = sizeof(ScreenVertex);
   frame_[26] = in.affine.bound;
   frame_[27] = in.affine.green_weight;
 }
