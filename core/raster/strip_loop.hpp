@@ -562,7 +562,8 @@ template <class PF, int K, SpanSet kSpans>
     in.lanes_first = lanes_first_of(in);
     in.hue = dr.hue;  // (read by lanes Gouraud triangles only)
     c.lanes = kHandLanes && in.lanes_first && !c.legacy;
-    if (kHandLanes && c.lanes) c.lanes_setup.prepare(c.window, in, frame_.vertices.data());
+    if (kHandLanes && c.lanes)
+      c.lanes_setup.prepare(c.window, in, frame_.vertices.data(), c.lanes_rows);
     c.lanes_count = c.lanes ? c.vertex_count : 0;
   }
   if (kHandLanes && c.lanes) return set_up_lanes(node, bt, c, t, stats_->triangles_without_pixels);
@@ -617,9 +618,7 @@ template <class PF, int K, SpanSet kSpans>
                                                                           uint32_t& slivers) {
   constexpr UntexturedTriangle kLanes = UntexturedTriangle::made(UntexturedKind::kLanes, false);
   const UntexturedTriangle u = c.lanes_setup.set_up(bt.v, t);
-  if (u == kLanes) [[likely]] {  // what the setup block makes (its row loop known here)
-    t.rows = c.lanes_rows;
-  } else {
+  if (u != kLanes) [[unlikely]] {  // (a lanes triangle's t.rows: LanesSetup's, c.lanes_rows)
     if (!u.pixels()) {
       ++slivers;
       return false;

@@ -698,7 +698,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "]\n\t"                    \
   "add    r2, r2, r10\n\t"   \
   "ldr    r10, [%[f], #16]\n\t"
-#define LR_SMALL_PLANES_ASM                  \
+#define LR_SMALL_PLANES_ASM(Z_BASE)          \
   /* zbits r6, lz r11, bm r12, the limits */ \
   "ldm    %[f], {r0, r1, r2}\n\t" \
   "ldr    r3, [r0, #8]\n\t" \
@@ -775,8 +775,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   /* depth: rs, 2^(zsh - tg) */ \
   "ldr    r8, [%[f], #48]\n\t" \
   "ldr    r9, [%[f], #68]\n\t" LR_SP_SCALE \
-  "ldrd   r0, r1, [%[f], #56]\n\t" LR_SP_PLANE LR_SP_FINISH("64") \
-  "str    r2, [r10, #52]\n\t" \
+  "ldrd   r0, r1, [%[f], #56]\n\t" LR_SP_PLANE LR_SP_FINISH("64") Z_BASE \
   "strd   r8, r9, [r10, #56]\n\t" \
   /* green: rs 63 / 64, 2^(17 - tg), a0 63 c 2^11 + 2^25 */ \
   "ldrd   r8, r9, [%[f], #48]\n\t" \
@@ -994,7 +993,14 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "movs   r0, #1\n\t"                                                             \
   "str    r0, [%[f], #28]\n\t"                                                    \
   "39:\n\t"
-#define LR_LANES_BLOCK_ASM(STEP_SORT, AFTER_SORT, STEP_PLANES, AFTER_ROWS, PASSED) \
+// The depth plane's base into the record (the triangle in r10): the steps' copy; LanesSetup's
+// with the row loop of its lanes triangles (frame word 34: the prepared draw's) beside it in one
+// STRD, which the strip loop then need not store (its result 1 is exactly such a triangle).
+#define LR_LANES_Z_BASE "str    r2, [r10, #52]\n\t"
+#define LR_LANES_Z_AND_ROWS      \
+  "ldr    r11, [%[f], #136]\n\t" \
+  "strd   r11, r2, [r10, #48]\n\t"
+#define LR_LANES_BLOCK_ASM(STEP_SORT, AFTER_SORT, STEP_PLANES, AFTER_ROWS, PASSED, Z_BASE) \
   "str    r1, [%[f], #16]\n\t" STEP_SORT /* the vertices: r0-r2 (binned sorted by y:           \
                                             store_sorted, kBinnedSorted) */                     \
   "ldrd   r3, r12, [%[f], #96]\n\t" /* the vertex store, sizeof(ScreenVertex) */              \
@@ -1006,7 +1012,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "mla    r2, r6, r12, r3\n\t" \
   "stm    %[f], {r0, r1, r2}\n\t"                                                               \
   AFTER_SORT LR_SMALL_ROWS_BODY AFTER_ROWS STEP_PLANES \
-      "10:\n\t" LR_SMALL_PLANES_ASM \
+      "10:\n\t" LR_SMALL_PLANES_ASM(Z_BASE) \
       /* the affine colour test (affine_within, kAffineBound565): w_max - w_min <= w_min >> 5, */ \
       /* or (w_max - w_min) D <= bound w_min with D the largest channel range (green's times */ \
       /* its weight); else the result 3. w_min r8, w_max - w_min r9. One hue first: D within */ \
@@ -1188,8 +1194,9 @@ template <bool kBlock>
                 SmallRows::kNoPixels == 3);
   static_assert(offsetof(ScreenVertex, z) == 8 && offsetof(ScreenVertex, color) == 16 &&
                 offsetof(Color15, g) == 2 && offsetof(Color15, b) == 4);
-  static_assert(offsetof(ActiveTriangle, z) == 52 && offsetof(ActiveTriangle, c) == 64 &&
-                sizeof(Plane) == 12 && offsetof(Plane, base) == 0 && offsetof(Plane, gx) == 4);
+  static_assert(offsetof(ActiveTriangle, rows) == 48 && offsetof(ActiveTriangle, z) == 52 &&
+                offsetof(ActiveTriangle, c) == 64 && sizeof(Plane) == 12 &&
+                offsetof(Plane, base) == 0 && offsetof(Plane, gx) == 4);
   static_assert(kFastMaxSpread == 10 && kFastMaxDepthSpread == 35 && kSmallMaxDepthBits == 26);
   static_assert(offsetof(ScreenVertex, y) == 4 && offsetof(ScreenVertex, w) == 12 &&
                 offsetof(Color15, r) == 0 && sizeof(ScreenVertex) == 24);
@@ -1199,16 +1206,17 @@ template <bool kBlock>
   register ActiveTriangle* t_reg asm("r1") = t;
   register const uint16_t* index_reg asm("r2") = index;
   if constexpr (kBlock)
-    asm volatile(LR_LANES_BLOCK_ASM("", "", "", LR_LANES_LATER_ROWS, "20f")
+    asm volatile(LR_LANES_BLOCK_ASM("", "", "", LR_LANES_LATER_ROWS, "20f", LR_LANES_Z_AND_ROWS)
                  : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
                  : [f] "r"(f)
                  : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   else
-    asm volatile(LR_LANES_BLOCK_ASM(LR_LANES_STEP("4", "11f"), LR_LANES_NO_SORT,
-                                    LR_LANES_STEP("2", "20f"), LR_LANES_ROWS_MADE, "21f")
-                 : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
-                 : [f] "r"(f)
-                 : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
+    asm volatile(
+        LR_LANES_BLOCK_ASM(LR_LANES_STEP("4", "11f"), LR_LANES_NO_SORT, LR_LANES_STEP("2", "20f"),
+                           LR_LANES_ROWS_MADE, "21f", LR_LANES_Z_BASE)
+        : "=&r"(status), "+r"(t_reg), "+r"(index_reg)
+        : [f] "r"(f)
+        : "r3", "r4", "r5", "r6", "r8", "r9", "r10", "r11", "r12", "lr", "cc", "memory");
   return status;
 }
 // The steps' copy for the by-hand entries below (one, out of line); LanesSetup::block has its own.
@@ -1266,10 +1274,12 @@ namespace {
 }  // namespace
 
 void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
-                         const ScreenVertex* vertices) {
+                         const ScreenVertex* vertices, RowFn lanes_rows) {
   static_assert(sizeof(frame_) == sizeof(LanesFrame) && alignof(LanesSetup) >= 4);
   w_ = &w;
   in_ = &in;
+  lanes_rows_ = lanes_rows;
+  frame_[34] = reinterpret_cast<uintptr_t>(lanes_rows);
   frame_[21] = kSortStep | kRowsStep | kPlanesStep |
                (in.colors == ColorPlanes::kPerspective ? kAffineStep : 0u);
   set_hue(frame_, in);
@@ -1294,6 +1304,8 @@ UntexturedTriangle LanesSetup::rest(const uint16_t /*index*/[3], ActiveTriangle&
 #undef LR_LANES_STEP
 #undef LR_LANES_NO_SORT
 #undef LR_LANES_BLOCK_ASM
+#undef LR_LANES_Z_BASE
+#undef LR_LANES_Z_AND_ROWS
 #undef LR_LANES_LATER_ROWS
 #undef LR_LANES_ROWS_MADE
 #else
@@ -1336,7 +1348,8 @@ bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindo
 }
 
 void LanesSetup::prepare(const RowWindow& w, const UntexturedInput& in,
-                         const ScreenVertex* vertices) {
+                         const ScreenVertex* vertices, RowFn lanes_rows) {
+  lanes_rows_ = lanes_rows;
   w_ = &w;
   in_ = &in;
   vertices_ = vertices;

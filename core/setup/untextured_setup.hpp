@@ -216,19 +216,25 @@ bool small_lanes_triangle_by_hand(const ScreenVertex* const v[3], const RowWindo
 // same result and record as sort_by_y and setup_untextured_triangle everywhere. w and in must
 // outlive the calls (the strip loop's setup context holds them).
 // The words of the hand-made setup blocks' frame (untextured_setup.cpp).
-inline constexpr size_t kLanesFrameWords = 34;
+inline constexpr size_t kLanesFrameWords = 35;
 class LanesSetup {
  public:
-  // (w's first_min, last_max and width are read here: prepare again when they change.)
-  void prepare(const RowWindow& w, const UntexturedInput& in, const ScreenVertex* vertices);
+  // (w's first_min, last_max and width are read here: prepare again when they change.) A lanes
+  // triangle's record gets lanes_rows as its row loop (t.rows) here; the other kinds' are the
+  // caller's to set.
+  void prepare(const RowWindow& w, const UntexturedInput& in, const ScreenVertex* vertices,
+               RowFn lanes_rows = nullptr);
   UntexturedTriangle set_up(const uint16_t index[3], ActiveTriangle& t) {
+    constexpr UntexturedTriangle kLanes = UntexturedTriangle::made(UntexturedKind::kLanes, false);
     if constexpr (kSmallPlanesByHand) {  // 32-bit addresses
       const uint32_t status = block(frame_, t, index);
-      if (status == 1) [[likely]]  // a lanes triangle, rows and planes made
-        return UntexturedTriangle::made(UntexturedKind::kLanes, false);
+      if (status == 1) [[likely]]  // a lanes triangle, rows, planes and t.rows made
+        return kLanes;
       if (status == 4) return UntexturedTriangle::sliver();  // no row has a pixel centre
     }
-    return rest(index, t);
+    const UntexturedTriangle u = rest(index, t);
+    if (u == kLanes) t.rows = lanes_rows_;
+    return u;
   }
 
  private:
@@ -240,6 +246,7 @@ class LanesSetup {
 
   const RowWindow* w_ = nullptr;
   const UntexturedInput* in_ = nullptr;
+  RowFn lanes_rows_ = nullptr;
   const ScreenVertex* vertices_ = nullptr;
   uint32_t frame_[kLanesFrameWords] = {};  // the hand-made block's frame (untextured_setup.cpp)
 };
@@ -248,7 +255,7 @@ class LanesSetup {
 // no lanes triangle: nothing (its setup context stays small).
 struct NoLanesSetup {
   static void prepare(const RowWindow& /*w*/, const UntexturedInput& /*in*/,
-                      const ScreenVertex* /*vertices*/) {}
+                      const ScreenVertex* /*vertices*/, RowFn /*lanes_rows*/ = nullptr) {}
   static UntexturedTriangle set_up(const uint16_t /*index*/[3], ActiveTriangle& /*t*/) {
     return UntexturedTriangle::sliver();
   }
