@@ -690,12 +690,12 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "mls    r2, r9, r11, r2\n\t"
 // LR_SP_FINISH: the base (a0 from the frame's word 72, or OFF) and the gradients times 2^left;
 // the triangle in r10.
-#define LR_SP_FINISH(OFF)    \
+#define LR_SP_FINISH(OFF) LR_SP_FINISH_A0("ldr    r10, [%[f], #" OFF "]\n\t")
+// LR_SP_FINISH with a0 in r10 once A0 has run.
+#define LR_SP_FINISH_A0(A0)  \
   "lsl    r2, r2, lr\n\t"    \
   "lsl    r8, r8, lr\n\t"    \
-  "lsl    r9, r9, lr\n\t"    \
-  "ldr    r10, [%[f], #" OFF \
-  "]\n\t"                    \
+  "lsl    r9, r9, lr\n\t" A0 \
   "add    r2, r2, r10\n\t"   \
   "ldr    r10, [%[f], #16]\n\t"
 #define LR_SMALL_PLANES_ASM(Z_BASE)          \
@@ -856,12 +856,7 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "smmla  r2, r8, r0, r2\n\t" \
   "ldrd   r0, r1, [%[f], #40]\n\t" \
   "mls    r2, r8, r0, r2\n\t" \
-  "mls    r2, r9, r1, r2\n\t" \
-  "lsl    r2, r2, lr\n\t" /* LR_SP_FINISH with green's a0 from r10 */ \
-  "lsl    r8, r8, lr\n\t" \
-  "lsl    r9, r9, lr\n\t" \
-  "add    r2, r2, r10\n\t" \
-  "ldr    r10, [%[f], #16]\n\t" \
+  "mls    r2, r9, r1, r2\n\t" LR_SP_FINISH_A0("") /* green's a0 in r10 */ \
   "str    r2, [r10, #76]\n\t" \
   "strd   r8, r9, [r10, #80]\n\t" \
   "ldrd   r8, r9, [%[f], #48]\n\t" \
@@ -993,6 +988,29 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
   "movs   r0, #1\n\t"                                                             \
   "str    r0, [%[f], #28]\n\t"                                                    \
   "39:\n\t"
+// The least of the unsigned r5, r6, r12 into MIN and their range (largest less least) into RANGE.
+#define LR_RANGE3(MIN, RANGE) \
+  "cmp    r5, r6\n\t"         \
+  "itete  lo\n\t"             \
+  "movlo  " MIN               \
+  ", r5\n\t"                  \
+  "movhs  " MIN               \
+  ", r6\n\t"                  \
+  "movlo  " RANGE             \
+  ", r6\n\t"                  \
+  "movhs  " RANGE             \
+  ", r5\n\t"                  \
+  "cmp    r12, " MIN          \
+  "\n\t"                      \
+  "it     lo\n\t"             \
+  "movlo  " MIN               \
+  ", r12\n\t"                 \
+  "cmp    r12, " RANGE        \
+  "\n\t"                      \
+  "it     hi\n\t"             \
+  "movhi  " RANGE             \
+  ", r12\n\t"                 \
+  "sub    " RANGE ", " RANGE ", " MIN "\n\t"
 // The depth plane's base into the record (the triangle in r10): the steps' copy; LanesSetup's
 // with the row loop of its lanes triangles (frame word 34: the prepared draw's) beside it in one
 // STRD, which the strip loop then need not store (its result 1 is exactly such a triangle).
@@ -1022,40 +1040,14 @@ SmallRows small_rows(const ScreenVertex* const v[3], const RowWindow& w, ActiveT
       "ldm    %[f], {r2, r3, r4}\n\t" \
       "ldr    r5, [r2, #12]\n\t" \
       "ldr    r6, [r3, #12]\n\t" \
-      "ldr    r12, [r4, #12]\n\t" \
-      "cmp    r5, r6\n\t" \
-      "itete  lo\n\t" \
-      "movlo  r8, r5\n\t" \
-      "movhs  r8, r6\n\t" \
-      "movlo  r9, r6\n\t" \
-      "movhs  r9, r5\n\t" \
-      "cmp    r12, r8\n\t" \
-      "it     lo\n\t" \
-      "movlo  r8, r12\n\t" \
-      "cmp    r12, r9\n\t" \
-      "it     hi\n\t" \
-      "movhi  r9, r12\n\t" \
-      "sub    r9, r9, r8\n\t" \
+      "ldr    r12, [r4, #12]\n\t" LR_RANGE3("r8", "r9") \
       "cmp    r9, r8, lsr #5\n\t" \
       "bls    " PASSED "\n\t" \
       "tst    r11, #16\n\t" /* kHueStep */ \
       "beq    28f\n\t" \
       "ldrh   r5, [r2, #18]\n\t" \
       "ldrh   r6, [r3, #18]\n\t" \
-      "ldrh   r12, [r4, #18]\n\t" \
-      "cmp    r5, r6\n\t" \
-      "itete  lo\n\t" \
-      "movlo  r10, r5\n\t" \
-      "movhs  r10, r6\n\t" \
-      "movlo  r1, r6\n\t" \
-      "movhs  r1, r5\n\t" \
-      "cmp    r12, r10\n\t" \
-      "it     lo\n\t" \
-      "movlo  r10, r12\n\t" \
-      "cmp    r12, r1\n\t" \
-      "it     hi\n\t" \
-      "movhi  r1, r12\n\t" \
-      "sub    r1, r1, r10\n\t" \
+      "ldrh   r12, [r4, #18]\n\t" LR_RANGE3("r10", "r1") \
       "ldr    lr, [%[f], #12]\n\t" \
       "mov    r10, #0xC0000\n\t" /* kHueRangeSlack 2^15 */ \
       "mla    r1, r1, lr, r10\n\t" /* at least D 2^15, below 2^32 */ \
@@ -1298,12 +1290,14 @@ UntexturedTriangle LanesSetup::rest(const uint16_t /*index*/[3], ActiveTriangle&
   return finish_after_hand(*reinterpret_cast<LanesFrame*>(frame_), *w_, *in_, t);
 }
 #undef LR_SP_FINISH
+#undef LR_SP_FINISH_A0
 #undef LR_SP_PLANE
 #undef LR_SP_SCALE
 #undef LR_SMALL_PLANES_ASM
 #undef LR_LANES_STEP
 #undef LR_LANES_NO_SORT
 #undef LR_LANES_BLOCK_ASM
+#undef LR_RANGE3
 #undef LR_LANES_Z_BASE
 #undef LR_LANES_Z_AND_ROWS
 #undef LR_LANES_LATER_ROWS
